@@ -1,0 +1,74 @@
+#include "cli/cli.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include "core/file_io.h"
+
+namespace btflut::cli {
+
+Status requireExtension(const std::string& path, const std::vector<std::string>& extensions,
+                        const std::string& what) {
+    std::string ext = fileExtension(path);
+    for (const std::string& e : extensions)
+        if (ext == e) return success();
+    std::string list;
+    for (const std::string& e : extensions) list += (list.empty() ? "." : " or .") + e;
+    return Error{path + ": " + what + " must be a " + list + " file"};
+}
+
+std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label) {
+    if (!::isatty(STDERR_FILENO)) return {};
+    return [label](std::size_t done, std::size_t total) {
+        const int width = 30;
+        int filled = static_cast<int>(width * done / std::max<std::size_t>(total, 1));
+        std::fprintf(stderr, "\r%s [%s%s] %zu/%zu", label.c_str(), std::string(filled, '#').c_str(),
+                     std::string(width - filled, ' ').c_str(), done, total);
+        if (done == total) std::fprintf(stderr, "\n");
+    };
+}
+
+int run(const std::vector<std::string>& args) {
+    CLI::App root{
+        "btflut: 3D textures in real time with histogram-matched look-up tables\n"
+        "(van Ginneken, Koenderink & Dana, IJCV 1999). Angles are in degrees; a direction\n"
+        "is THETA,PHI in the sample frame (z = surface normal, x = image right)."};
+    root.name("btflut");
+    root.require_subcommand(1);
+    Commands commands;
+    addHistCommand(root, commands);
+    addBakeCommand(root, commands);
+    addRelightCommand(root, commands);
+    addInfoCommand(root, commands);
+    addExportCommand(root, commands);
+    addMatchCommand(root, commands);
+    addBenchCommand(root, commands);
+
+    std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 pops from the back
+    try {
+        root.parse(reversed);
+    } catch (const CLI::CallForHelp& e) {
+        return root.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return root.exit(e);
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return root.exit(e);
+        std::cerr << "btflut: error: " << e.what() << " (see btflut --help)\n";
+        return 2;
+    }
+    for (const Command& command : commands) {
+        if (!command.app->parsed()) continue;
+        Status status = command.run();
+        if (!status) {
+            std::cerr << "btflut " << command.app->get_name() << ": error: " << status.error()
+                      << "\n";
+            return 1;
+        }
+        return 0;
+    }
+    return 2;
+}
+
+}  // namespace btflut::cli

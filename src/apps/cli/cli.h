@@ -1,0 +1,42 @@
+#pragma once
+// The `btflut` command line. Each subcommand lives in its own cmd_*.cpp and registers
+// itself on the root app; `run` parses, dispatches, and turns an Error into one line on
+// stderr and exit status 1. Tests call `run` in-process.
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+
+namespace btflut::cli {
+
+/// A registered subcommand: its CLI11 app and what to do once it parsed.
+struct Command {
+    CLI::App* app;
+    std::function<Status()> run;
+};
+using Commands = std::vector<Command>;
+
+void addHistCommand(CLI::App& root, Commands& commands);
+void addBakeCommand(CLI::App& root, Commands& commands);
+void addRelightCommand(CLI::App& root, Commands& commands);
+void addInfoCommand(CLI::App& root, Commands& commands);
+void addExportCommand(CLI::App& root, Commands& commands);
+void addMatchCommand(CLI::App& root, Commands& commands);
+void addBenchCommand(CLI::App& root, Commands& commands);
+
+/// Runs btflut with arguments (without the program name); returns the exit status.
+int run(const std::vector<std::string>& args);
+
+// Shared by the commands.
+
+/// Validates that `path` ends in one of `extensions` (lower case, no dot).
+Status requireExtension(const std::string& path, const std::vector<std::string>& extensions,
+                        const std::string& what);
+
+/// A progress bar on stderr when it is a terminal; does nothing otherwise.
+std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label);
+
+}  // namespace btflut::cli

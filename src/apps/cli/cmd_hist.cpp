@@ -1,0 +1,90 @@
+// btflut hist: the masked, normalised histogram of every image of a dataset.
+#include <memory>
+
+#include "cli/cli.h"
+#include "core/dataset.h"
+#include "core/histogram.h"
+#include "core/parallel.h"
+
+namespace btflut::cli {
+
+namespace {
+
+struct HistOptions {
+    std::string dataset;
+    std::string output;
+    int bins = 64;
+    std::string channels = "grey";
+};
+
+Status runHist(const HistOptions& o) {
+    if (Status s = requireExtension(o.output, {"csv", "json"}, "output"); !s) return s;
+    Result<Dataset> dataset = openDataset(o.dataset);
+    if (!dataset) return Error{dataset.error()};
+    const bool rgb = o.channels == "rgb";
+    const std::size_t perImage = rgb ? 3 : 1;
+
+    // The first image fixes the size and the mask; the rest are decoded in parallel.
+    const DatasetImage& first = dataset->images.front();
+    Result<Image> firstImage = loadImage(first.path);
+    if (!firstImage) return Error{firstImage.error()};
+    Result<Mask> mask = loadDatasetMask(*dataset, firstImage->width, firstImage->height);
+    if (!mask) return Error{mask.error()};
+
+    std::vector<HistogramRow> rows(dataset->images.size() * perImage);
+    std::vector<std::string> errors(dataset->images.size());
+    parallelFor(dataset->images.size(), 0, [&](std::size_t i) {
+        const DatasetImage& info = dataset->images[i];
+        Result<Image> image = i == 0 ? Result<Image>(*firstImage) : loadImage(info.path);
+        if (!image) {
+            errors[i] = image.error();
+            return;
+        }
+        Status size = requireSameSize(*image, info.path, firstImage->width, firstImage->height,
+                                      first.path);
+        if (!size) {
+            errors[i] = size.error();
+            return;
+        }
+        if (rgb && image->channels != 3) {
+            errors[i] = info.path + ": --channels rgb needs colour images, this one is grey";
+            return;
+        }
+        static const char* const suffix[] = {":R", ":G", ":B"};
+        for (std::size_t c = 0; c < perImage; ++c) {
+            LevelCounts levels = rgb ? countChannelLevels(*image, *mask, static_cast<int>(c))
+                                     : countGreyLevels(*image, *mask);
+            rows[i * perImage + c] = {rgb ? info.name + suffix[c] : info.name, info.light,
+                                      info.view, binHistogram(levels, o.bins)};
+        }
+    });
+    for (const std::string& e : errors)
+        if (!e.empty()) return Error{e};
+    std::string text = fileExtension(o.output) == "csv" ? histogramsToCsv(rows) : histogramsToJson(rows);
+    return writeFileAtomically(o.output, text);
+}
+
+}  // namespace
+
+void addHistCommand(CLI::App& root, Commands& commands) {
+    auto o = std::make_shared<HistOptions>();
+    CLI::App* app = root.add_subcommand(
+        "hist", "Masked, normalised grey-level histogram of every image of a dataset");
+    app->add_option("DATASET", o->dataset,
+                    "folder or file: btflut manifest (.json), RTI (.lp), photometric-stereo "
+                    "folder (lights.txt) or Bonn UBO2003 folder")
+        ->required();
+    app->add_option("-o,--output", o->output,
+                    "FILE.csv (name,theta_i,phi_i,theta_r,phi_r,b0..b{N-1}) or FILE.json")
+        ->required();
+    app->add_option("--bins", o->bins, "number of equal bins over [0, 1]")
+        ->check(CLI::Range(2, 1 << 20))
+        ->capture_default_str();
+    app->add_option("--channels", o->channels,
+                    "grey: mean of R, G, B; rgb: one row per channel, named NAME:R, NAME:G, NAME:B")
+        ->check(CLI::IsMember({"grey", "rgb"}))
+        ->capture_default_str();
+    commands.push_back({app, [o] { return runHist(*o); }});
+}
+
+}  // namespace btflut::cli

@@ -1,0 +1,73 @@
+// btflut info: what a bank holds.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "cli/cli.h"
+#include "core/bank_file.h"
+
+namespace btflut::cli {
+
+namespace {
+
+struct InfoOptions {
+    std::string bank;
+};
+
+std::string degrees(Direction d) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "(%.2f, %.2f)", d.thetaDegrees(), d.phiDegrees());
+    return buf;
+}
+
+Status runInfo(const InfoOptions& o) {
+    Result<LutBank> bank = loadBank(o.bank);
+    if (!bank) return Error{bank.error()};
+    const LutBank& b = *bank;
+    std::cout << o.bank << ": btflut bank, format version " << kBankFormatVersion << ", "
+              << std::filesystem::file_size(o.bank) << " bytes\n"
+              << "  LUTs:      " << b.entries << " entries, "
+              << (b.colour == ColourMode::Grey ? "grey (one LUT on the grey value)"
+                                               : "rgb (one LUT per channel)")
+              << "\n  reference: " << b.referenceName << ", light " << degrees(b.referenceLight)
+              << ", view " << degrees(b.referenceView) << ", ";
+    if (b.reference.width > 0)
+        std::cout << b.reference.width << "x" << b.reference.height << "x" << b.reference.channels
+                  << " " << b.reference.bitDepth << "-bit, embedded\n";
+    else
+        std::cout << "not embedded\n";
+    std::cout << "  grid:      " << b.gridSize << "x" << b.gridSize
+              << " nodes per view layer over the equal-area light disk\n"
+              << "  layers:    " << b.layers.size() << " view direction(s)\n";
+    for (std::size_t l = 0; l < b.layers.size(); ++l) {
+        const ViewLayer& layer = b.layers[l];
+        std::size_t counts[3] = {0, 0, 0}, inDisk = 0;
+        for (int j = 0; j < b.gridSize; ++j)
+            for (int i = 0; i < b.gridSize; ++i) {
+                DiskPoint p = b.gridPoint(i, j);
+                if (p.x * p.x + p.y * p.y > 1) continue;  // beyond the horizon
+                ++inDisk;
+                ++counts[static_cast<int>(layer.gridProvenance[static_cast<std::size_t>(j) * b.gridSize + i])];
+            }
+        double maxTheta = 0;
+        for (const LightNode& n : layer.nodes) maxTheta = std::max(maxTheta, n.light.thetaDegrees());
+        std::printf("  layer %zu: view %s, %zu measured lights (theta up to %.1f), grid nodes in the "
+                    "hemisphere: %zu measured, %zu interpolated, %zu extrapolated (%.0f%% covered)\n",
+                    l, degrees(layer.view).c_str(), layer.nodes.size(), maxTheta, counts[0], counts[1],
+                    counts[2], 100.0 * static_cast<double>(counts[0] + counts[1]) / static_cast<double>(inDisk));
+    }
+    std::fflush(stdout);
+    return success();
+}
+
+}  // namespace
+
+void addInfoCommand(CLI::App& root, Commands& commands) {
+    auto o = std::make_shared<InfoOptions>();
+    CLI::App* app = root.add_subcommand("info", "Describe a LUT bank: header, grid, coverage, size");
+    app->add_option("BANK", o->bank, "M.btflut")->required();
+    commands.push_back({app, [o] { return runInfo(*o); }});
+}
+
+}  // namespace btflut::cli

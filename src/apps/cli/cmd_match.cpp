@@ -1,0 +1,54 @@
+// btflut match: give one image the grey-level histogram of another (one LUT, as baked).
+#include <iostream>
+#include <memory>
+
+#include "cli/cli.h"
+#include "core/lut_bank.h"
+
+namespace btflut::cli {
+
+namespace {
+
+struct MatchOptions {
+    std::string source;
+    std::string target;
+    std::string output;
+    int entries = 0;
+    int depth = 8;
+};
+
+Status runMatch(const MatchOptions& o) {
+    if (Status s = requireExtension(o.output, {"png"}, "output"); !s) return s;
+    Result<Image> source = loadImage(o.source);
+    if (!source) return Error{source.error()};
+    Result<Image> target = loadImage(o.target);
+    if (!target) return Error{target.error()};
+    LevelCounts from = countGreyLevels(*source, fullMask(source->width, source->height));
+    LevelCounts to = countGreyLevels(*target, fullMask(target->width, target->height));
+    // Enough entries to hold every code of a grey 8-bit source exactly.
+    int entries = o.entries ? o.entries : (source->bitDepth == 16 ? 4096 : 256);
+    Lut lut = matchLut(from, to, entries);
+    Image out = applyLuts(*source, ColourMode::Grey, lut.values, entries);
+    if (Status s = savePng(out, o.output, o.depth); !s) return s;
+    std::cout << "wrote " << o.output << "\n";
+    return success();
+}
+
+}  // namespace
+
+void addMatchCommand(CLI::App& root, Commands& commands) {
+    auto o = std::make_shared<MatchOptions>();
+    CLI::App* app = root.add_subcommand(
+        "match", "Give SOURCE the grey-level histogram of TARGET (histogram matching)");
+    app->add_option("SOURCE", o->source, "image whose pixels are mapped")->required();
+    app->add_option("TARGET", o->target, "image whose histogram is wanted")->required();
+    app->add_option("-o,--output", o->output, "out.png")->required();
+    app->add_option("--entries", o->entries, "LUT entries (default 256, 4096 for 16-bit)")
+        ->check(CLI::Range(2, 65536));
+    app->add_option("--depth", o->depth, "bits per sample of the PNG")
+        ->check(CLI::IsMember({8, 16}))
+        ->capture_default_str();
+    commands.push_back({app, [o] { return runMatch(*o); }});
+}
+
+}  // namespace btflut::cli

@@ -1,0 +1,68 @@
+// btflut relight: the CPU reference of the renderer — the reference image with the LUT
+// for one light (and view) direction applied.
+#include <iostream>
+#include <memory>
+
+#include "cli/cli.h"
+#include "core/bank_file.h"
+
+namespace btflut::cli {
+
+namespace {
+
+struct RelightOptions {
+    std::string bank;
+    std::string light;
+    std::string view = "0,0";
+    std::string output;
+    std::string referenceImage;
+    int depth = 8;
+    bool quiet = false;
+};
+
+Status runRelight(const RelightOptions& o) {
+    if (Status s = requireExtension(o.output, {"png"}, "output"); !s) return s;
+    Result<Direction> light = parseDirection(o.light, "--light");
+    if (!light) return Error{light.error()};
+    Result<Direction> view = parseDirection(o.view, "--view");
+    if (!view) return Error{view.error()};
+    Result<LutBank> bank = loadBank(o.bank);
+    if (!bank) return Error{bank.error()};
+    if (!o.referenceImage.empty()) {
+        Result<Image> image = loadImage(o.referenceImage);
+        if (!image) return Error{image.error()};
+        if (bank->colour == ColourMode::Rgb && image->channels != 3)
+            return Error{o.referenceImage + ": the bank is rgb but this image is grey"};
+        bank->reference = std::move(*image);
+    }
+    if (bank->reference.width == 0)
+        return Error{o.bank + ": the bank has no reference image inside; give --reference-image"};
+    BankLookup lookup = bank->lookup(*light, *view);
+    Image out = applyLuts(bank->reference, bank->colour, lookup.values, bank->entries);
+    if (Status s = savePng(out, o.output, o.depth); !s) return s;
+    if (!o.quiet)
+        std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT "
+                  << provenanceName(lookup.provenance) << ")\n";
+    return success();
+}
+
+}  // namespace
+
+void addRelightCommand(CLI::App& root, Commands& commands) {
+    auto o = std::make_shared<RelightOptions>();
+    CLI::App* app = root.add_subcommand(
+        "relight", "Apply the bank's LUT for a light (and view) direction to its reference image");
+    app->add_option("BANK", o->bank, "M.btflut")->required();
+    app->add_option("--light", o->light, "light direction THETA,PHI in degrees")->required();
+    app->add_option("--view", o->view, "view direction THETA,PHI in degrees")->capture_default_str();
+    app->add_option("-o,--output", o->output, "out.png")->required();
+    app->add_option("--depth", o->depth, "bits per sample of the PNG")
+        ->check(CLI::IsMember({8, 16}))
+        ->capture_default_str();
+    app->add_option("--reference-image", o->referenceImage,
+                    "reference image, for a bank baked with --no-reference");
+    app->add_flag("-q,--quiet", o->quiet, "do not say what was written");
+    commands.push_back({app, [o] { return runRelight(*o); }});
+}
+
+}  // namespace btflut::cli

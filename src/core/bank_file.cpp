@@ -1,0 +1,296 @@
+#include "core/bank_file.h"
+
+#include <zlib.h>
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+namespace btflut {
+
+static_assert(std::endian::native == std::endian::little,
+              "the .btflut reader/writer copies little-endian words directly");
+
+namespace {
+
+constexpr std::uint8_t kSignature[8] = {0x89, 'B', 'T', 'F', 'L', 'U', 'T', 0x0A};
+constexpr std::uint32_t kMaxEntries = 65536;
+constexpr std::uint32_t kMaxGrid = 257;
+
+std::uint32_t tagOf(const char (&t)[5]) {
+    return static_cast<std::uint32_t>(t[0]) | static_cast<std::uint32_t>(t[1]) << 8 |
+           static_cast<std::uint32_t>(t[2]) << 16 | static_cast<std::uint32_t>(t[3]) << 24;
+}
+const std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"),
+                    kEnd = tagOf("END ");
+
+std::string tagName(std::uint32_t tag) {
+    std::string s;
+    for (int i = 0; i < 4; ++i) {
+        char c = static_cast<char>((tag >> (8 * i)) & 0xFF);
+        s += (c >= 32 && c < 127) ? c : '?';
+    }
+    return s;
+}
+
+class Writer {
+public:
+    template <typename T>
+    void put(T v) {
+        auto p = reinterpret_cast<const std::uint8_t*>(&v);
+        m_bytes.insert(m_bytes.end(), p, p + sizeof(T));
+    }
+    void putBytes(const void* data, std::size_t n) {
+        if (n == 0) return;
+        auto p = static_cast<const std::uint8_t*>(data);
+        m_bytes.insert(m_bytes.end(), p, p + n);
+    }
+    void putString(const std::string& s) {
+        put(static_cast<std::uint32_t>(s.size()));
+        putBytes(s.data(), s.size());
+    }
+    Bytes& bytes() { return m_bytes; }
+
+private:
+    Bytes m_bytes;
+};
+
+// Bounds-checked reads over one chunk payload; the first failure sticks.
+class Reader {
+public:
+    Reader(const std::uint8_t* data, std::size_t size) : m_data(data), m_size(size) {}
+    template <typename T>
+    T get() {
+        T v{};
+        if (need(sizeof(T))) std::memcpy(&v, m_data + m_pos, sizeof(T));
+        m_pos += m_ok ? sizeof(T) : 0;
+        return v;
+    }
+    const std::uint8_t* getBytes(std::size_t n) {
+        if (!need(n)) return nullptr;
+        const std::uint8_t* p = m_data + m_pos;
+        m_pos += n;
+        return p;
+    }
+    std::string getString() {
+        auto n = get<std::uint32_t>();
+        const std::uint8_t* p = getBytes(n);
+        return p ? std::string(reinterpret_cast<const char*>(p), n) : std::string();
+    }
+    bool ok() const { return m_ok; }
+    std::size_t remaining() const { return m_size - m_pos; }
+
+private:
+    bool need(std::size_t n) {
+        if (m_ok && n > m_size - m_pos) m_ok = false;
+        return m_ok;
+    }
+    const std::uint8_t* m_data;
+    std::size_t m_size;
+    std::size_t m_pos = 0;
+    bool m_ok = true;
+};
+
+// CRC-32 of a chunk's tag and payload. (zlib's crc32 treats a null buffer as "return the
+// initial value", so an empty payload must not be passed through.)
+std::uint32_t chunkCrc(std::uint32_t tag, const std::uint8_t* payload, std::size_t length) {
+    uLong crc = crc32(0L, reinterpret_cast<const Bytef*>(&tag), 4);
+    if (length > 0) crc = crc32_z(crc, payload, length);
+    return static_cast<std::uint32_t>(crc);
+}
+
+void putChunk(Writer& file, std::uint32_t tag, const Bytes& payload) {
+    file.put(tag);
+    file.put(static_cast<std::uint32_t>(payload.size()));
+    file.putBytes(payload.data(), payload.size());
+    file.put(chunkCrc(tag, payload.data(), payload.size()));
+}
+
+void putDirection(Writer& w, Direction d) {
+    w.put(d.thetaDegrees());
+    w.put(d.phiDegrees());
+}
+
+}  // namespace
+
+Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
+    Writer file;
+    file.putBytes(kSignature, sizeof kSignature);
+    file.put(kBankFormatVersion);
+
+    const bool embed = options.embedReference && bank.reference.width > 0;
+    Writer head;
+    head.put(static_cast<std::uint32_t>(bank.entries));
+    head.put(static_cast<std::uint32_t>(bank.colour));
+    head.put(static_cast<std::uint32_t>(bank.gridSize));
+    head.put(static_cast<std::uint32_t>(bank.layers.size()));
+    head.put(static_cast<std::uint32_t>(embed ? 1 : 0));
+    head.put(static_cast<std::uint32_t>(bank.reference.width));
+    head.put(static_cast<std::uint32_t>(bank.reference.height));
+    head.put(static_cast<std::uint32_t>(bank.reference.channels));
+    head.put(static_cast<std::uint32_t>(bank.reference.bitDepth));
+    putDirection(head, bank.referenceLight);
+    putDirection(head, bank.referenceView);
+    head.putString(bank.referenceName);
+    putChunk(file, kHead, head.bytes());
+
+    for (const ViewLayer& layer : bank.layers) {
+        Writer w;
+        putDirection(w, layer.view);
+        w.put(static_cast<std::uint32_t>(layer.nodes.size()));
+        for (const LightNode& node : layer.nodes) {
+            putDirection(w, node.light);
+            w.putString(node.name);
+        }
+        w.putBytes(layer.nodeLuts.data(), layer.nodeLuts.size() * sizeof(float));
+        for (Provenance p : layer.gridProvenance) w.put(static_cast<std::uint8_t>(p));
+        w.putBytes(layer.gridLuts.data(), layer.gridLuts.size() * sizeof(std::uint16_t));
+        putChunk(file, kLayer, w.bytes());
+    }
+    if (embed) putChunk(file, kReference, encodePng(bank.reference, bank.reference.bitDepth));
+    putChunk(file, kEnd, {});
+    return std::move(file.bytes());
+}
+
+Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name) {
+    auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
+    if (bytes.size() < sizeof kSignature + 4 || std::memcmp(bytes.data(), kSignature, 8) != 0)
+        return fail("not a .btflut file (bad signature)");
+    Reader file(bytes.data() + 8, bytes.size() - 8);
+    auto version = file.get<std::uint32_t>();
+    if (version != kBankFormatVersion)
+        return fail("unsupported .btflut version " + std::to_string(version) + " (this btflut reads " +
+                    std::to_string(kBankFormatVersion) + ")");
+
+    LutBank bank;
+    bool haveHead = false, haveReference = false, embedded = false;
+    std::uint32_t layerCount = 0, refW = 0, refH = 0, refC = 0, refDepth = 0;
+    for (int chunkIndex = 0;; ++chunkIndex) {
+        if (file.remaining() == 0) return fail("truncated (no END chunk)");
+        auto tag = file.get<std::uint32_t>();
+        auto length = file.get<std::uint32_t>();
+        if (!file.ok()) return fail("truncated (incomplete chunk header)");
+        const std::uint8_t* payload = file.getBytes(length);
+        auto storedCrc = file.get<std::uint32_t>();
+        if (!file.ok())
+            return fail("truncated (chunk " + tagName(tag) + " declares " + std::to_string(length) +
+                        " bytes)");
+        if (chunkCrc(tag, payload, length) != storedCrc)
+            return fail("checksum mismatch in chunk " + tagName(tag) + " (file is corrupted)");
+        if (chunkIndex == 0 && tag != kHead) return fail("first chunk is not HEAD");
+        Reader in(payload, length);
+        auto getDirection = [&](const std::string& what) -> Result<Direction> {
+            double theta = in.get<double>(), phi = in.get<double>();
+            if (!std::isfinite(theta) || !std::isfinite(phi) || theta < 0 || theta > 90)
+                return Error{name + ": invalid " + what + " direction"};
+            return Direction::fromDegrees(theta, phi);
+        };
+
+        if (tag == kHead) {
+            if (haveHead) return fail("two HEAD chunks");
+            haveHead = true;
+            bank.entries = static_cast<int>(in.get<std::uint32_t>());
+            auto colour = in.get<std::uint32_t>();
+            bank.gridSize = static_cast<int>(in.get<std::uint32_t>());
+            layerCount = in.get<std::uint32_t>();
+            embedded = in.get<std::uint32_t>() == 1;
+            refW = in.get<std::uint32_t>();
+            refH = in.get<std::uint32_t>();
+            refC = in.get<std::uint32_t>();
+            refDepth = in.get<std::uint32_t>();
+            Result<Direction> rl = getDirection("reference light");
+            Result<Direction> rv = getDirection("reference view");
+            bank.referenceName = in.getString();
+            if (!in.ok() || in.remaining() != 0) return fail("HEAD chunk has the wrong size");
+            if (!rl) return Error{rl.error()};
+            if (!rv) return Error{rv.error()};
+            bank.referenceLight = *rl;
+            bank.referenceView = *rv;
+            if (bank.entries < 2 || static_cast<std::uint32_t>(bank.entries) > kMaxEntries)
+                return fail("LUT entry count " + std::to_string(bank.entries) + " is invalid");
+            if (colour != 1 && colour != 3) return fail("colour mode " + std::to_string(colour) + " is invalid");
+            bank.colour = static_cast<ColourMode>(colour);
+            if (bank.gridSize < 2 || static_cast<std::uint32_t>(bank.gridSize) > kMaxGrid)
+                return fail("grid size " + std::to_string(bank.gridSize) + " is invalid");
+            if (layerCount == 0) return fail("bank has no view layers");
+            if ((refC != 1 && refC != 3) || (refDepth != 8 && refDepth != 16) || refW == 0 || refH == 0)
+                return fail("reference image description is invalid");
+        } else if (tag == kLayer) {
+            if (bank.layers.size() == layerCount)
+                return fail("more LAYR chunks than the " + std::to_string(layerCount) + " declared");
+            const std::size_t length1 = bank.lutLength();
+            const auto cells = static_cast<std::size_t>(bank.gridSize) * bank.gridSize;
+            ViewLayer layer;
+            Result<Direction> view = getDirection("layer view");
+            if (!view) return Error{view.error()};
+            layer.view = *view;
+            auto nodes = in.get<std::uint32_t>();
+            if (!in.ok() || nodes == 0 || nodes > in.remaining() / 20)
+                return fail("layer " + std::to_string(bank.layers.size()) + " has an invalid node count");
+            for (std::uint32_t n = 0; n < nodes; ++n) {
+                Result<Direction> light = getDirection("node light");
+                if (!light) return Error{light.error()};
+                std::string nodeName = in.getString();
+                layer.nodes.push_back({nodeName, *light});
+            }
+            const std::uint8_t* luts = in.getBytes(nodes * length1 * sizeof(float));
+            const std::uint8_t* kinds = in.getBytes(cells);
+            const std::uint8_t* grid = in.getBytes(cells * length1 * sizeof(std::uint16_t));
+            if (!in.ok() || in.remaining() != 0)
+                return fail("LAYR chunk " + std::to_string(bank.layers.size()) + " has the wrong size");
+            layer.nodeLuts.resize(nodes * length1);
+            std::memcpy(layer.nodeLuts.data(), luts, layer.nodeLuts.size() * sizeof(float));
+            for (std::size_t k = 0; k < layer.nodeLuts.size(); k += static_cast<std::size_t>(bank.entries))
+                if (!isValidLut(&layer.nodeLuts[k], static_cast<std::size_t>(bank.entries)))
+                    return fail("a LUT is not monotonic in [0, 1] (file is corrupted)");
+            for (std::size_t c = 0; c < cells; ++c) {
+                if (kinds[c] > 2) return fail("invalid grid node provenance");
+                layer.gridProvenance.push_back(static_cast<Provenance>(kinds[c]));
+            }
+            layer.gridLuts.resize(cells * length1);
+            std::memcpy(layer.gridLuts.data(), grid, layer.gridLuts.size() * sizeof(std::uint16_t));
+            bank.layers.push_back(std::move(layer));
+        } else if (tag == kReference) {
+            if (!embedded || haveReference) return fail("unexpected REFI chunk");
+            haveReference = true;
+            Result<Image> image = decodeImage(Bytes(payload, payload + length), name + " (reference image)");
+            if (!image) return Error{image.error()};
+            if (static_cast<std::uint32_t>(image->width) != refW ||
+                static_cast<std::uint32_t>(image->height) != refH ||
+                static_cast<std::uint32_t>(image->channels) != refC)
+                return fail("reference image does not match the header");
+            bank.reference = std::move(*image);
+        } else if (tag == kEnd) {
+            if (length != 0) return fail("END chunk is not empty");
+            if (file.remaining() != 0) return fail("unexpected bytes after the END chunk");
+            break;
+        } else {
+            return fail("unknown chunk " + tagName(tag));
+        }
+    }
+    if (bank.layers.size() != layerCount)
+        return fail("declares " + std::to_string(layerCount) + " layers but holds " +
+                    std::to_string(bank.layers.size()));
+    if (embedded && !haveReference) return fail("reference image chunk is missing");
+    if (bank.colour == ColourMode::Rgb && embedded && bank.reference.channels != 3)
+        return fail("rgb bank with a grey reference image");
+    for (const ViewLayer& l : bank.layers)
+        for (std::size_t a = 0; a < l.nodes.size(); ++a)
+            for (std::size_t b = a + 1; b < l.nodes.size(); ++b)
+                if (angleBetween(l.nodes[a].light, l.nodes[b].light) < 1e-9)
+                    return fail("two nodes share one light direction");
+    bank.buildTriangulations();
+    return bank;
+}
+
+Status saveBank(const LutBank& bank, const std::string& path, const BankWriteOptions& options) {
+    return writeFileAtomically(path, encodeBank(bank, options));
+}
+
+Result<LutBank> loadBank(const std::string& path) {
+    Result<Bytes> bytes = readFile(path);
+    if (!bytes) return Error{bytes.error()};
+    return decodeBank(*bytes, path);
+}
+
+}  // namespace btflut

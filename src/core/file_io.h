@@ -1,0 +1,31 @@
+#pragma once
+// Whole-file reads and atomic writes. A write goes to a temporary file beside the target
+// that is renamed over it only when complete, so a failed or interrupted command never
+// leaves a half-written output, and an existing output survives a failure untouched.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/result.h"
+
+namespace btflut {
+
+using Bytes = std::vector<std::uint8_t>;
+
+/// Reads a whole file; errors name the file ("PATH: no such file", ...).
+Result<Bytes> readFile(const std::string& path);
+
+/// Writes bytes to `path` through a temporary file and a rename.
+Status writeFileAtomically(const std::string& path, const void* data, std::size_t size);
+inline Status writeFileAtomically(const std::string& path, const Bytes& bytes) {
+    return writeFileAtomically(path, bytes.data(), bytes.size());
+}
+inline Status writeFileAtomically(const std::string& path, const std::string& text) {
+    return writeFileAtomically(path, text.data(), text.size());
+}
+
+/// Lower-case extension without the dot ("png" for "a/b.PNG"), empty if none.
+std::string fileExtension(const std::string& path);
+
+}  // namespace btflut

@@ -1,0 +1,77 @@
+#pragma once
+// Images as float samples in [0, 1] (0 = black, 1 = white), and sample masks.
+//
+//   Result<Image> img = loadImage("rock.3.tga");   // PNG (8/16-bit), JPEG, TGA, BMP
+//   float g = img->grey(x, row);                     // mean of R, G, B (the paper's grey)
+//   Status s = savePng(*img, "out.png", 16);         // atomic write, 8 or 16 bits
+//
+// Rows are stored top row first, as in the files (image y points up, so row 0 is the
+// largest y). Alpha is dropped; grey-alpha loads as grey.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/file_io.h"
+#include "core/result.h"
+
+namespace btflut {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    int channels = 0;  ///< 1 (grey) or 3 (RGB)
+    int bitDepth = 8;  ///< precision of the source: 8 or 16 bits per sample
+    std::vector<float> samples;  ///< width * height * channels, interleaved
+
+    Image() = default;
+    Image(int w, int h, int c, int depth = 8)
+        : width(w), height(h), channels(c), bitDepth(depth),
+          samples(static_cast<std::size_t>(w) * h * c, 0.f) {}
+
+    std::size_t pixelCount() const { return static_cast<std::size_t>(width) * height; }
+    float& at(int x, int row, int c) {
+        return samples[(static_cast<std::size_t>(row) * width + x) * channels + c];
+    }
+    float at(int x, int row, int c) const {
+        return samples[(static_cast<std::size_t>(row) * width + x) * channels + c];
+    }
+    /// Grey value of pixel i: the mean of R, G and B.
+    float grey(std::size_t i) const {
+        const float* p = &samples[i * channels];
+        return channels == 1 ? p[0] : (p[0] + p[1] + p[2]) * (1.f / 3.f);
+    }
+    /// Largest integer sample value of the source precision (255 or 65535).
+    int maxCode() const { return bitDepth == 16 ? 65535 : 255; }
+};
+
+/// Sample mask: one byte per pixel, non-zero = part of the sample.
+struct Mask {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> inside;
+
+    std::size_t count() const;
+};
+
+/// Decodes an image file. Errors name the file and say what is wrong (missing, unknown
+/// format, corrupt, truncated).
+Result<Image> loadImage(const std::string& path);
+
+/// Decodes an image held in memory; `name` is used in error messages.
+Result<Image> decodeImage(const Bytes& bytes, const std::string& name);
+
+/// A mask from an image file (non-zero in any channel = sample). It must be
+/// `width` x `height` and contain at least one sample pixel.
+Result<Mask> loadMask(const std::string& path, int width, int height);
+
+/// A mask with every pixel inside.
+Mask fullMask(int width, int height);
+
+/// PNG bytes of an image at 8 or 16 bits per sample (values clamped to [0, 1]).
+Bytes encodePng(const Image& image, int bitDepth);
+
+/// Writes a PNG atomically.
+Status savePng(const Image& image, const std::string& path, int bitDepth = 8);
+
+}  // namespace btflut

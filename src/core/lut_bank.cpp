@@ -1,0 +1,300 @@
+#include "core/lut_bank.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+#include "core/parallel.h"
+
+namespace btflut {
+
+namespace {
+
+constexpr double kSameDirection = 1e-6;  // radians: closer directions are one node
+
+Provenance combine(Provenance a, Provenance b) { return std::max(a, b); }
+
+Provenance provenanceOf(const Weights& w) {
+    if (!w.inside) return Provenance::Extrapolated;
+    double top = *std::max_element(w.weight.begin(), w.weight.begin() + w.count);
+    return top > 1 - 1e-9 ? Provenance::Measured : Provenance::Interpolated;
+}
+
+// Per-image result of the streaming pass.
+struct ImageLuts {
+    std::vector<float> values;  // channels x entries
+    std::string error;
+};
+
+std::vector<LevelCounts> countLevels(const Image& image, const Mask& mask, ColourMode colour) {
+    if (colour == ColourMode::Grey) return {countGreyLevels(image, mask)};
+    return {countChannelLevels(image, mask, 0), countChannelLevels(image, mask, 1),
+            countChannelLevels(image, mask, 2)};
+}
+
+std::size_t chooseReference(const Dataset& dataset) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < dataset.images.size(); ++i) {
+        const DatasetImage& a = dataset.images[i];
+        const DatasetImage& b = dataset.images[best];
+        // Nearest to a frontal camera first, then nearest to frontal light.
+        if (a.view.theta < b.view.theta - 1e-12 ||
+            (std::abs(a.view.theta - b.view.theta) <= 1e-12 && a.light.theta < b.light.theta - 1e-12))
+            best = i;
+    }
+    return best;
+}
+
+}  // namespace
+
+const char* provenanceName(Provenance p) {
+    switch (p) {
+        case Provenance::Measured: return "measured";
+        case Provenance::Interpolated: return "interpolated";
+        case Provenance::Extrapolated: return "extrapolated";
+    }
+    return "?";
+}
+
+DiskPoint LutBank::gridPoint(int i, int j) const {
+    const double step = 2.0 / (gridSize - 1);
+    return {-1 + step * i, -1 + step * j};
+}
+
+void LutBank::buildTriangulations() {
+    std::vector<DiskPoint> viewPoints;
+    for (ViewLayer& layer : layers) {
+        std::vector<DiskPoint> points;
+        for (const LightNode& node : layer.nodes) points.push_back(toDisk(node.light));
+        layer.lights = Triangulation(std::move(points));
+        viewPoints.push_back(toDisk(layer.view));
+    }
+    views = Triangulation(std::move(viewPoints));
+}
+
+void LutBank::fillGrids() {
+    const std::size_t length = lutLength();
+    for (ViewLayer& layer : layers) {
+        const auto cells = static_cast<std::size_t>(gridSize) * gridSize;
+        layer.gridLuts.assign(cells * length, 0);
+        layer.gridProvenance.assign(cells, Provenance::Extrapolated);
+        std::vector<float> blended(length);
+        for (int j = 0; j < gridSize; ++j)
+            for (int i = 0; i < gridSize; ++i) {
+                DiskPoint p = gridPoint(i, j);
+                double r = std::hypot(p.x, p.y);
+                if (r > 1) p = {p.x / r, p.y / r};  // beyond the horizon: the horizon's LUT
+                Weights w = layer.lights.weightsAt(p);
+                std::vector<const float*> luts;
+                for (int k = 0; k < w.count; ++k)
+                    luts.push_back(&layer.nodeLuts[static_cast<std::size_t>(w.index[k]) * length]);
+                blendLuts(luts, std::span(w.weight.data(), static_cast<std::size_t>(w.count)),
+                          length, blended.data());
+                const auto cell = static_cast<std::size_t>(j) * gridSize + i;
+                layer.gridProvenance[cell] = provenanceOf(w);
+                for (std::size_t k = 0; k < length; ++k)
+                    layer.gridLuts[cell * length + k] =
+                        static_cast<std::uint16_t>(std::lround(blended[k] * 65535.0));
+            }
+    }
+}
+
+BankLookup LutBank::lookup(Direction light, Direction view) const {
+    const std::size_t length = lutLength();
+    BankLookup out;
+    out.values.assign(length, 0.f);
+    Weights vw = views.weightsAt(toDisk(view));
+    out.provenance = provenanceOf(vw);
+    std::vector<double> accumulated(length, 0.0);
+    const DiskPoint lightPoint = toDisk(light);
+    for (int v = 0; v < vw.count; ++v) {
+        if (vw.weight[v] == 0) continue;
+        const ViewLayer& layer = layers[static_cast<std::size_t>(vw.index[v])];
+        Weights lw = layer.lights.weightsAt(lightPoint);
+        out.provenance = combine(out.provenance, provenanceOf(lw));
+        for (int l = 0; l < lw.count; ++l) {
+            const double w = vw.weight[v] * lw.weight[l];
+            const float* lut = &layer.nodeLuts[static_cast<std::size_t>(lw.index[l]) * length];
+            for (std::size_t k = 0; k < length; ++k) accumulated[k] += w * lut[k];
+        }
+    }
+    for (std::size_t k = 0; k < length; ++k) out.values[k] = static_cast<float>(accumulated[k]);
+    return out;
+}
+
+Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
+                         const ImageProvider& provider) {
+    const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {
+        Result<Image> image = loadImage(dataset.images[i].path);
+        if (!image) return Error{image.error()};
+        storage = std::move(*image);
+        return &storage;
+    };
+    const ImageProvider& images = provider ? provider : decode;
+    if (dataset.images.empty()) return Error{dataset.source + ": dataset has no images"};
+    if (options.gridSize < 2 || options.gridSize > 257)
+        return Error{"--grid " + std::to_string(options.gridSize) + " is outside [2, 257]"};
+    if (options.entries != 0 && (options.entries < 2 || options.entries > 65536))
+        return Error{"--entries " + std::to_string(options.entries) + " is outside [2, 65536]"};
+
+    std::size_t refIndex = chooseReference(dataset);
+    if (!options.referenceName.empty()) {
+        auto it = std::find_if(dataset.images.begin(), dataset.images.end(),
+                               [&](const DatasetImage& im) {
+                                   return im.name == options.referenceName ||
+                                          im.path == options.referenceName;
+                               });
+        if (it == dataset.images.end())
+            return Error{dataset.source + ": no image named '" + options.referenceName +
+                         "' for --reference"};
+        refIndex = static_cast<std::size_t>(it - dataset.images.begin());
+    }
+    const DatasetImage& refInfo = dataset.images[refIndex];
+    Image referenceStorage;
+    Result<const Image*> reference = images(refIndex, referenceStorage);
+    if (!reference) return Error{reference.error()};
+    const Image& ref = **reference;
+    if (options.colour == ColourMode::Rgb && ref.channels != 3)
+        return Error{refInfo.path + ": --colour rgb needs colour images, this one is grey"};
+    Result<Mask> loadedMask = loadDatasetMask(dataset, ref.width, ref.height);
+    if (!loadedMask) return Error{loadedMask.error()};
+    const Mask& mask = *loadedMask;
+    const std::vector<LevelCounts> refLevels = countLevels(ref, mask, options.colour);
+    for (const LevelCounts& levels : refLevels) {
+        auto present = std::count_if(levels.counts.begin(), levels.counts.end(),
+                                     [](std::uint64_t c) { return c > 0; });
+        if (present < 2)
+            return Error{refInfo.path + ": reference image is constant over the sample, so no "
+                                        "LUT can give it another histogram; choose another "
+                                        "with --reference"};
+    }
+
+    LutBank bank;
+    bank.colour = options.colour;
+    bank.gridSize = options.gridSize;
+    bank.entries = options.entries ? options.entries : (ref.bitDepth == 16 ? 1024 : 256);
+    bank.referenceName = refInfo.name;
+    bank.referenceLight = refInfo.light;
+    bank.referenceView = refInfo.view;
+    const std::size_t length = bank.lutLength();
+
+    // Stream through the images: decode, count, match, forget.
+    std::vector<ImageLuts> results(dataset.images.size());
+    std::mutex progressMutex;
+    std::size_t done = 0;
+    parallelFor(dataset.images.size(), options.threads, [&](std::size_t i) {
+        const DatasetImage& info = dataset.images[i];
+        ImageLuts& out = results[i];
+        Image storage;
+        Result<const Image*> image =
+            i == refIndex ? Result<const Image*>(&ref) : images(i, storage);
+        if (!image) {
+            out.error = image.error();
+        } else if (Status size = requireSameSize(**image, info.path, ref.width, ref.height,
+                                                 refInfo.path + " (the reference)");
+                   !size) {
+            out.error = size.error();
+        } else if (options.colour == ColourMode::Rgb && (*image)->channels != 3) {
+            out.error = info.path + ": --colour rgb needs colour images, this one is grey";
+        } else {
+            std::vector<LevelCounts> levels = countLevels(**image, mask, options.colour);
+            out.values.reserve(length);
+            for (std::size_t c = 0; c < levels.size(); ++c) {
+                Lut lut = matchLut(refLevels[c], levels[c], bank.entries);
+                out.values.insert(out.values.end(), lut.values.begin(), lut.values.end());
+            }
+        }
+        if (options.progress) {
+            std::lock_guard lock(progressMutex);
+            options.progress(++done, dataset.images.size());
+        }
+    });
+    for (const ImageLuts& r : results)
+        if (!r.error.empty()) return Error{r.error};
+
+    // Group by view into layers, and merge repeated light directions within a layer by
+    // averaging their LUTs (the barycentre of the repeated measurements).
+    std::vector<std::vector<int>> mergedCount;
+    for (std::size_t i = 0; i < dataset.images.size(); ++i) {
+        const DatasetImage& info = dataset.images[i];
+        auto layer = std::find_if(bank.layers.begin(), bank.layers.end(), [&](const ViewLayer& l) {
+            return angleBetween(l.view, info.view) < kSameDirection;
+        });
+        if (layer == bank.layers.end()) {
+            bank.layers.push_back(ViewLayer{info.view, {}, {}, {}, {}, {}});
+            mergedCount.emplace_back();
+            layer = std::prev(bank.layers.end());
+        }
+        auto& counts = mergedCount[static_cast<std::size_t>(layer - bank.layers.begin())];
+        auto node = std::find_if(layer->nodes.begin(), layer->nodes.end(), [&](const LightNode& n) {
+            return angleBetween(n.light, info.light) < kSameDirection;
+        });
+        const std::vector<float>& values = results[i].values;
+        if (node == layer->nodes.end()) {
+            layer->nodes.push_back({info.name, info.light});
+            layer->nodeLuts.insert(layer->nodeLuts.end(), values.begin(), values.end());
+            counts.push_back(1);
+        } else {
+            auto n = static_cast<std::size_t>(node - layer->nodes.begin());
+            float* sum = &layer->nodeLuts[n * length];
+            for (std::size_t k = 0; k < length; ++k) sum[k] += values[k];
+            ++counts[n];
+        }
+    }
+    for (std::size_t l = 0; l < bank.layers.size(); ++l)
+        for (std::size_t n = 0; n < mergedCount[l].size(); ++n)
+            if (mergedCount[l][n] > 1)
+                for (std::size_t k = 0; k < length; ++k)
+                    bank.layers[l].nodeLuts[n * length + k] /= static_cast<float>(mergedCount[l][n]);
+
+    bank.reference = ref;
+    bank.buildTriangulations();
+    bank.fillGrids();
+    return bank;
+}
+
+Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
+                int entries) {
+    Image out = image;
+    const std::size_t n = image.pixelCount();
+    if (colour == ColourMode::Rgb) {
+        BTFLUT_CHECK(image.channels == 3);
+        for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c)
+                out.samples[i * 3 + c] = Lut::applyLut(
+                    &values[static_cast<std::size_t>(c) * entries], entries, image.samples[i * 3 + c]);
+        return out;
+    }
+    if (image.channels == 1) {
+        for (std::size_t i = 0; i < n; ++i)
+            out.samples[i] = Lut::applyLut(values.data(), entries, image.samples[i]);
+        return out;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        float* p = &out.samples[i * 3];
+        const float grey = image.grey(i);
+        const float target = Lut::applyLut(values.data(), entries, grey);
+        if (grey <= 0.f) {
+            p[0] = p[1] = p[2] = target;
+            continue;
+        }
+        const float scale = target / grey;
+        float top = 0.f;
+        for (int c = 0; c < 3; ++c) top = std::max(top, p[c] *= scale);
+        if (top > 1.f) {
+            // Pull the colour towards its grey until the brightest channel is 1: the
+            // mean (the grey value) stays at target.
+            const float k = (1.f - target) / (top - target);
+            for (int c = 0; c < 3; ++c) p[c] = target + (p[c] - target) * k;
+        }
+    }
+    return out;
+}
+
+Image relight(const LutBank& bank, Direction light, Direction view) {
+    BTFLUT_CHECK(bank.reference.width > 0);
+    BankLookup lut = bank.lookup(light, view);
+    return applyLuts(bank.reference, bank.colour, lut.values, bank.entries);
+}
+
+}  // namespace btflut

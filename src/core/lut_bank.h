@@ -1,0 +1,118 @@
+#pragma once
+// A LUT bank: everything a renderer needs to give one reference image the histogram of the
+// material under any light (and view) direction.
+//
+//   Result<LutBank> bank = bakeBank(dataset, BakeOptions{});
+//   BankLookup lut = bank->lookup(light, view);    // blended LUT + how it was obtained
+//   Image relit = relight(*bank, light, view);     // the CPU reference of the shader
+//
+// Layout. Images are grouped by view direction into layers (one layer for a fixed camera).
+// Each layer holds
+//   - nodes: one LUT per measured light direction (float, exact), and
+//   - grid: the LUTs resampled on a gridSize x gridSize regular grid over the equal-area
+//     disk (direction.h) — what an engine uploads as a texture array and reads with
+//     hardware bilinear filtering; nodes outside the unit disk hold the horizon's LUT.
+// Queries use the nodes: Delaunay interpolation over the measured light directions (and
+// over the layers' view directions), so a measured direction reproduces its measurement
+// exactly, and directions outside the measured hull are clamped to its boundary. Blending
+// LUTs blends quantile functions (lut.h).
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/dataset.h"
+#include "core/image.h"
+#include "core/lut.h"
+#include "core/triangulation.h"
+
+namespace btflut {
+
+enum class ColourMode : std::uint32_t {
+    Grey = 1,  ///< one LUT on the grey value; pixel colour ratios kept
+    Rgb = 3,   ///< one LUT per channel
+};
+
+/// How a LUT was obtained: from a measurement at that direction, by interpolating
+/// measurements around it, or by clamping to the nearest measured boundary.
+enum class Provenance : std::uint8_t { Measured = 0, Interpolated = 1, Extrapolated = 2 };
+
+const char* provenanceName(Provenance p);
+
+struct LightNode {
+    std::string name;  ///< image it came from (merged duplicates: the first)
+    Direction light;
+};
+
+struct ViewLayer {
+    Direction view;
+    std::vector<LightNode> nodes;
+    std::vector<float> nodeLuts;          ///< nodes x channels x entries
+    std::vector<std::uint16_t> gridLuts;  ///< gridSize^2 x channels x entries, unorm16
+    std::vector<Provenance> gridProvenance;  ///< gridSize^2; node (i, j) at j * gridSize + i
+    Triangulation lights;                 ///< over the nodes' disk points
+};
+
+struct BankLookup {
+    std::vector<float> values;  ///< channels x entries
+    Provenance provenance = Provenance::Measured;
+};
+
+struct LutBank {
+    int entries = 256;
+    ColourMode colour = ColourMode::Grey;
+    int gridSize = 17;
+    std::vector<ViewLayer> layers;
+    Triangulation views;  ///< over the layers' view directions
+
+    std::string referenceName;
+    Direction referenceLight, referenceView;
+    Image reference;  ///< may be empty (width 0) when the bank was written without it
+
+    int channels() const { return static_cast<int>(colour); }
+    std::size_t lutLength() const { return static_cast<std::size_t>(channels()) * entries; }
+
+    /// The LUT for a light and view direction (any direction in the upper hemisphere).
+    BankLookup lookup(Direction light, Direction view = {}) const;
+
+    /// Disk point of grid node (i, j): x = -1 + 2 i / (gridSize - 1), likewise y.
+    DiskPoint gridPoint(int i, int j) const;
+
+    /// Rebuilds the triangulations from the node and layer directions (after loading).
+    void buildTriangulations();
+    /// Fills every layer's grid from its nodes.
+    void fillGrids();
+};
+
+struct BakeOptions {
+    std::string referenceName;  ///< empty: the image nearest to frontal light and view
+    int gridSize = 17;
+    int entries = 0;  ///< 0: 256 for an 8-bit reference, 1024 for a 16-bit one
+    ColourMode colour = ColourMode::Grey;
+    int threads = 0;  ///< 0: all cores
+    /// Called after each image with (done, total); may be empty.
+    std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// Supplies image `index` of a dataset: decodes it into `storage` and returns &storage, or
+/// returns an image it already holds (benchmarks time the baking without the decoding).
+using ImageProvider = std::function<Result<const Image*>(std::size_t index, Image& storage)>;
+
+/// Bakes a bank from a dataset: decodes every image once, streaming, so memory holds only
+/// the reference and one image per thread. Errors name the file and the problem (corrupt
+/// image, sizes differ, mask of another size or empty, constant reference, ...).
+/// Without a provider, images are decoded from the dataset's files.
+Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
+                         const ImageProvider& provider = {});
+
+/// The reference image with the LUT for (light, view) applied to every pixel. Grey mode
+/// scales each pixel's colour by LUT(grey) / grey and, where that would clip a channel,
+/// desaturates towards grey so the new grey value is kept exactly.
+Image relight(const LutBank& bank, Direction light, Direction view = {});
+
+/// Applies a LUT (channels x entries, as BankLookup::values) to an image.
+Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
+                int entries);
+
+}  // namespace btflut

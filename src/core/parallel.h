@@ -1,0 +1,28 @@
+#pragma once
+// parallelFor: runs work(i) for i in [0, count) on up to `threads` threads (0 = all cores).
+// Work items must be independent; each writes only its own outputs, so results do not
+// depend on the thread count.
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace btflut {
+
+template <typename Work>
+void parallelFor(std::size_t count, int threads, Work&& work) {
+    unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+    n = std::max(1u, std::min<unsigned>(n, static_cast<unsigned>(std::min<std::size_t>(count, 1u << 16))));
+    std::atomic<std::size_t> next{0};
+    auto loop = [&] {
+        for (std::size_t i; (i = next.fetch_add(1)) < count;) work(i);
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 1; t < n; ++t) pool.emplace_back(loop);
+    loop();
+    for (auto& t : pool) t.join();
+}
+
+}  // namespace btflut

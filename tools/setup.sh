@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian packages btflut needs to build, test and run (Debian 12, as root or
+# with sudo). Idempotent: packages already present are left alone, and `apt-get update` runs
+# only when something is missing. Nothing is downloaded from anywhere but Debian's archive.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  libstb-dev            # stb_image (decode PNG/JPEG/TGA/BMP, 8- and 16-bit)
+  libspng-dev zlib1g-dev  # PNG encode (8/16-bit), CRC-32 for .btflut files
+  libcli11-dev nlohmann-json3-dev doctest-dev
+  libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libimgui-dev
+  python3 python3-numpy python3-skimage python3-pil  # reference checks in tools/
+  xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "setup: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"
