@@ -1,1 +1,168 @@
 #include <doctest/doctest.h>
+
+#include "core/bank_file.h"
+#include "core/lut_bank.h"
+#include "helpers.h"
+
+using namespace btflut;
+using namespace btflut::test;
+
+namespace {
+const std::vector<SyntheticShot> kShots{{0, 0, 0, 0, 0, 1},    {30, 0, 0, 0, 40, 1},
+                                        {30, 120, 0, 0, 0, 2}, {30, 240, 0, 0, 100, 1},
+                                        {55, 60, 0, 0, 20, 2}, {55, 300, 0, 0, 150, 1}};
+
+Dataset openSynthetic(const TempDir& dir, const std::vector<SyntheticShot>& shots = kShots) {
+    auto ds = openDataset(writeSyntheticDataset(dir, shots));
+    REQUIRE(ds.ok());
+    return *ds;
+}
+}  // namespace
+
+TEST_CASE("a bank reproduces every measured direction exactly") {
+    TempDir dir;
+    Dataset ds = openSynthetic(dir);
+    auto bank = bakeBank(ds, {});
+    REQUIRE(bank.ok());
+    CHECK(bank->referenceName == "shot0");  // frontal light
+    CHECK(bank->entries == 256);
+    REQUIRE(bank->layers.size() == 1);
+    CHECK(bank->layers[0].nodes.size() == kShots.size());
+    for (const SyntheticShot& s : kShots) {
+        BankLookup lut = bank->lookup(Direction::fromDegrees(s.thetaI, s.phiI));
+        CHECK(lut.provenance == Provenance::Measured);
+        for (int code = 0; code < 100; ++code)
+            REQUIRE(lut.values[static_cast<std::size_t>(code)] * 255.f ==
+                    doctest::Approx(s.offset + s.slope * code).epsilon(1e-5));
+    }
+}
+
+TEST_CASE("between two nodes the LUT is their quantile blend, monotonic, exact at the nodes") {
+    TempDir dir;
+    Dataset ds = openSynthetic(dir, {{20, 0, 0, 0, 0, 1}, {40, 0, 0, 0, 100, 2}});
+    auto bank = bakeBank(ds, {});
+    REQUIRE(bank.ok());
+    const Direction a = Direction::fromDegrees(20, 0), b = Direction::fromDegrees(40, 0);
+    auto la = bank->lookup(a), lb = bank->lookup(b);
+    for (double t : {0.0, 0.25, 0.5, 0.9, 1.0}) {
+        DiskPoint pa = toDisk(a), pb = toDisk(b);
+        Direction mid = fromDisk({pa.x + t * (pb.x - pa.x), pa.y + t * (pb.y - pa.y)});
+        BankLookup lut = bank->lookup(mid);
+        REQUIRE(isValidLut(lut.values.data(), lut.values.size()));
+        CHECK(lut.provenance == (t == 0.0 || t == 1.0 ? Provenance::Measured : Provenance::Interpolated));
+        for (std::size_t k = 0; k < lut.values.size(); ++k)
+            REQUIRE(lut.values[k] == doctest::Approx((1 - t) * la.values[k] + t * lb.values[k]).epsilon(1e-6));
+    }
+    CHECK(bank->lookup(Direction::fromDegrees(30, 90)).provenance == Provenance::Extrapolated);
+}
+
+TEST_CASE("grid nodes carry their provenance and the blended LUT at 16 bits") {
+    TempDir dir;
+    Dataset ds = openSynthetic(dir);
+    auto bank = bakeBank(ds, {.gridSize = 9});
+    REQUIRE(bank.ok());
+    const ViewLayer& layer = bank->layers[0];
+    const std::size_t centre = 4 * 9 + 4;  // the pole, where shot0 was measured
+    CHECK(layer.gridProvenance[centre] == Provenance::Measured);
+    CHECK(layer.gridProvenance[0] == Provenance::Extrapolated);  // a corner: beyond the horizon
+    for (std::size_t k = 0; k < 256; ++k)
+        REQUIRE(std::abs(layer.gridLuts[centre * 256 + k] / 65535.0 - layer.nodeLuts[k]) <= 0.5 / 65535 + 1e-9);
+    for (int j = 0; j < 9; ++j)
+        for (int i = 0; i < 9; ++i) {
+            DiskPoint p = bank->gridPoint(i, j);
+            if (p.x * p.x + p.y * p.y > 1) continue;
+            BankLookup lut = bank->lookup(fromDisk(p));
+            const std::size_t cell = static_cast<std::size_t>(j) * 9 + i;
+            CHECK(lut.provenance == layer.gridProvenance[cell]);
+            for (std::size_t k = 0; k < 256; k += 17)
+                REQUIRE(std::abs(layer.gridLuts[cell * 256 + k] / 65535.0 - lut.values[k]) < 1e-4);
+        }
+}
+
+TEST_CASE("view layers: one per view direction, blended between views") {
+    TempDir dir;
+    Dataset ds = openSynthetic(dir, {{10, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 20, 1},
+                                     {10, 0, 40, 0, 50, 1}, {30, 0, 40, 0, 80, 1}});
+    auto bank = bakeBank(ds, {});
+    REQUIRE(bank.ok());
+    REQUIRE(bank->layers.size() == 2);
+    BankLookup v0 = bank->lookup(Direction::fromDegrees(10, 0), Direction::fromDegrees(0, 0));
+    BankLookup v1 = bank->lookup(Direction::fromDegrees(10, 0), Direction::fromDegrees(40, 0));
+    CHECK(v0.values[10] * 255 == doctest::Approx(10));
+    CHECK(v1.values[10] * 255 == doctest::Approx(60));
+    BankLookup mid = bank->lookup(Direction::fromDegrees(10, 0), fromDisk({toDisk(Direction::fromDegrees(40, 0)).x / 2, 0}));
+    CHECK(mid.provenance == Provenance::Interpolated);
+    CHECK(mid.values[10] * 255 == doctest::Approx(35));
+}
+
+TEST_CASE("results do not depend on the thread count") {
+    TempDir dir;
+    Dataset ds = openSynthetic(dir);
+    auto one = bakeBank(ds, {.threads = 1});
+    auto two = bakeBank(ds, {.threads = 2});
+    REQUIRE(one.ok());
+    REQUIRE(two.ok());
+    CHECK(encodeBank(*one) == encodeBank(*two));
+}
+
+TEST_CASE("bad datasets are refused with the file and the problem") {
+    TempDir dir;
+    Dataset ds = openSynthetic(dir);
+
+    SUBCASE("an image of another size") {
+        REQUIRE(savePng(Image(10, 10, 1), ds.images[3].path).ok());
+        auto r = bakeBank(ds, {});
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error().find("shot3.png: image is 10x10 but") != std::string::npos);
+    }
+    SUBCASE("a constant reference") {
+        Image flat(40, 30, 1);
+        std::fill(flat.samples.begin(), flat.samples.end(), 0.5f);
+        REQUIRE(savePng(flat, ds.images[0].path).ok());
+        auto r = bakeBank(ds, {});
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error().find("shot0.png: reference image is constant") != std::string::npos);
+    }
+    SUBCASE("an empty mask, a mask of another size") {
+        REQUIRE(savePng(Image(40, 30, 1), dir / "empty.png").ok());
+        ds.maskPath = dir / "empty.png";
+        auto empty = bakeBank(ds, {});
+        REQUIRE_FALSE(empty.ok());
+        CHECK(empty.error().find("empty.png: mask has no sample pixels") != std::string::npos);
+        REQUIRE(savePng(Image(41, 30, 1), dir / "wide.png").ok());
+        ds.maskPath = dir / "wide.png";
+        auto wide = bakeBank(ds, {});
+        REQUIRE_FALSE(wide.ok());
+        CHECK(wide.error().find("wide.png: mask is 41x30") != std::string::npos);
+    }
+    SUBCASE("a corrupt image") {
+        std::ofstream(ds.images[2].path, std::ios::binary) << "\x89PNG\r\n\x1a\n garbage";
+        auto r = bakeBank(ds, {});
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error().find("shot2.png") != std::string::npos);
+    }
+    SUBCASE("an unknown reference name") {
+        auto r = bakeBank(ds, {.referenceName = "nope"});
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error().find("no image named 'nope'") != std::string::npos);
+    }
+}
+
+TEST_CASE("grey-mode relighting sets each pixel's grey to LUT(grey) and keeps its colour") {
+    Image im(3, 1, 3);
+    const float px[3][3] = {{0.2f, 0.1f, 0.3f}, {0.8f, 0.4f, 0.6f}, {0, 0, 0}};
+    for (int i = 0; i < 3; ++i)
+        for (int c = 0; c < 3; ++c) im.samples[i * 3 + c] = px[i][c];
+    std::vector<float> brighten(256);
+    for (std::size_t k = 0; k < 256; ++k) brighten[k] = std::min(1.f, static_cast<float>(k) / 255.f * 1.6f + 0.05f);
+    Image out = applyLuts(im, ColourMode::Grey, brighten, 256, /*dither=*/false);
+    for (std::size_t i = 0; i < 3; ++i) {
+        float want = Lut::applyLut(brighten.data(), 256, im.grey(i));
+        CHECK(out.grey(i) == doctest::Approx(want).epsilon(1e-5));
+        for (int c = 0; c < 3; ++c) CHECK(out.samples[i * 3 + c] <= 1.f);
+    }
+    // Unclipped: colour ratios kept. Clipped (pixel 1): desaturated towards grey.
+    CHECK(out.samples[0] / out.samples[1] == doctest::Approx(2.0));
+    CHECK(out.samples[3] == doctest::Approx(1.0));
+    CHECK(out.samples[8] == doctest::Approx(0.05));  // black takes LUT(0), as grey
+}

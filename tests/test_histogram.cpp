@@ -1,1 +1,69 @@
 #include <doctest/doctest.h>
+
+#include "core/histogram.h"
+
+using namespace btflut;
+
+TEST_CASE("grey levels are exact codes of the mean of R, G, B within the mask") {
+    Image im(2, 2, 3);
+    const float px[4][3] = {{0, 0, 0}, {1, 1, 1}, {10 / 255.f, 20 / 255.f, 30 / 255.f}, {1, 0, 0}};
+    for (int i = 0; i < 4; ++i)
+        for (int c = 0; c < 3; ++c) im.samples[i * 3 + c] = px[i][c];
+    Mask mask{2, 2, {1, 1, 1, 0}};
+    LevelCounts grey = countGreyLevels(im, mask);
+    CHECK(grey.counts.size() == 766);
+    CHECK(grey.total() == 3);
+    CHECK(grey.counts[0] == 1);
+    CHECK(grey.counts[765] == 1);
+    CHECK(grey.counts[60] == 1);
+    CHECK(grey.counts[255] == 0);  // masked out
+    LevelCounts red = countChannelLevels(im, fullMask(2, 2), 0);
+    CHECK(red.counts.size() == 256);
+    CHECK(red.counts[255] == 2);
+}
+
+TEST_CASE("binned histograms are normalised and put 1.0 in the last bin") {
+    LevelCounts l{{1, 0, 0, 1}};  // values 0 and 1
+    auto h = binHistogram(l, 4);
+    CHECK(h[0] == 0.5);
+    CHECK(h[3] == 0.5);
+    LevelCounts many;
+    many.counts.assign(766, 3);
+    auto h64 = binHistogram(many, 64);
+    double sum = 0;
+    for (double v : h64) sum += v;
+    CHECK(sum == doctest::Approx(1.0).epsilon(1e-15));
+}
+
+TEST_CASE("histogram CSV round-trips and refuses malformed rows") {
+    std::vector<HistogramRow> rows{{"a", Direction::fromDegrees(30, 45), Direction::fromDegrees(0, 0), {0.25, 0.75}},
+                                   {"b", Direction::fromDegrees(10, 0), Direction::fromDegrees(20, 90), {1, 0}}};
+    std::string csv = histogramsToCsv(rows);
+    CHECK(csv.rfind("name,theta_i,phi_i,theta_r,phi_r,b0,b1\n", 0) == 0);
+    auto back = parseHistogramCsv(csv, "h.csv");
+    REQUIRE(back.ok());
+    REQUIRE(back->size() == 2);
+    CHECK((*back)[1].bins == rows[1].bins);
+    CHECK((*back)[0].light.thetaDegrees() == doctest::Approx(30));
+    CHECK((*back)[1].view.phiDegrees() == doctest::Approx(90));
+    CHECK(histogramsToCsv(*back) == csv);
+
+    for (const char* bad : {"", "name,theta_i\n", "name,theta_i,phi_i,theta_r,phi_r,b0,b2\n",
+                            "name,theta_i,phi_i,theta_r,phi_r,b0,b1\na,1,2,3,4,0.5\n",
+                            "name,theta_i,phi_i,theta_r,phi_r,b0,b1\na,1,2,3,4,0.5,x\n",
+                            "name,theta_i,phi_i,theta_r,phi_r,b0,b1\na,nan,2,3,4,0.5,0.5\n",
+                            "name,theta_i,phi_i,theta_r,phi_r,b0,b1\na,1,2,3,4,-0.5,1.5\n"}) {
+        INFO(bad);
+        auto r = parseHistogramCsv(bad, "h.csv");
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error().find("h.csv") == 0);
+    }
+}
+
+TEST_CASE("earth mover's distance of shifted spikes is the shift") {
+    std::vector<double> a(10, 0), b(10, 0);
+    a[2] = 1;
+    b[5] = 1;
+    CHECK(earthMoversDistance(a, b) == doctest::Approx(0.3));
+    CHECK(earthMoversDistance(a, a) == 0.0);
+}

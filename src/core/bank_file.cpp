@@ -118,7 +118,7 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     file.putBytes(kSignature, sizeof kSignature);
     file.put(kBankFormatVersion);
 
-    const bool embed = options.embedReference && bank.reference.width > 0;
+    const bool embed = options.embedReference && !bank.reference.samples.empty();
     Writer head;
     head.put(static_cast<std::uint32_t>(bank.entries));
     head.put(static_cast<std::uint32_t>(bank.colour));
@@ -272,6 +272,12 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name) {
         return fail("declares " + std::to_string(layerCount) + " layers but holds " +
                     std::to_string(bank.layers.size()));
     if (embedded && !haveReference) return fail("reference image chunk is missing");
+    if (!embedded) {  // keep the description, without pixels
+        bank.reference.width = static_cast<int>(refW);
+        bank.reference.height = static_cast<int>(refH);
+        bank.reference.channels = static_cast<int>(refC);
+        bank.reference.bitDepth = static_cast<int>(refDepth);
+    }
     if (bank.colour == ColourMode::Rgb && embedded && bank.reference.channels != 3)
         return fail("rgb bank with a grey reference image");
     for (const ViewLayer& l : bank.layers)

@@ -29,11 +29,10 @@ Vec3 toVector(Direction d) {
 }
 
 Direction fromVector(Vec3 v) {
-    double len = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-    BTFLUT_DCHECK(len > 0);
-    double z = std::clamp(v.z / len, -1.0, 1.0);
+    BTFLUT_DCHECK(v.x != 0 || v.y != 0 || v.z != 0);
+    // atan2 keeps full precision near the pole, where acos(z) loses half the digits.
     double phi = (v.x == 0 && v.y == 0) ? 0.0 : std::atan2(v.y, v.x);
-    return {std::acos(z), wrapAzimuth(phi)};
+    return {std::atan2(std::hypot(v.x, v.y), v.z), wrapAzimuth(phi)};
 }
 
 DiskPoint toDisk(Direction d) {

@@ -59,7 +59,12 @@ std::string truncationProblem(const Bytes& b) {
             if (b[i] == 0xFF && b[i + 1] == 0xD9) return {};
         return "truncated JPEG (no end-of-image marker)";
     }
-    if (n >= 8 && b[0] == 0x89 && b[1] == 'P') return {};  // stb checks PNG chunk lengths
+    if (n >= 8 && b[0] == 0x89 && b[1] == 'P') {
+        // stb stops at IEND without checking CRCs, so a cut in the last chunk goes unseen.
+        for (std::size_t i = n >= 12 ? n - 12 : 0; i + 8 <= n; ++i)
+            if (std::memcmp(&b[i], "IEND", 4) == 0 && i + 8 <= n) return {};
+        return "truncated PNG (no complete IEND chunk)";
+    }
     // Otherwise TGA, which has no magic number: check uncompressed pixel data length.
     if (n < 18) return "file too short to be an image";
     std::uint32_t type = b[2];
@@ -98,13 +103,13 @@ Result<Image> decodeImage(const Bytes& bytes, const std::string& name) {
             stbi_load_16_from_memory(bytes.data(), len, &fw, &fh, &fc, channels), stbi_image_free);
         if (!data) return Error{name + ": corrupt image (" + stbi_failure_reason() + ")"};
         for (std::size_t i = 0; i < image.samples.size(); ++i)
-            image.samples[i] = data.get()[i] * (1.f / 65535.f);
+            image.samples[i] = static_cast<float>(data.get()[i]) / 65535.f;
     } else {
         std::unique_ptr<stbi_uc, void (*)(void*)> data(
             stbi_load_from_memory(bytes.data(), len, &fw, &fh, &fc, channels), stbi_image_free);
         if (!data) return Error{name + ": corrupt image (" + stbi_failure_reason() + ")"};
         for (std::size_t i = 0; i < image.samples.size(); ++i)
-            image.samples[i] = data.get()[i] * (1.f / 255.f);
+            image.samples[i] = static_cast<float>(data.get()[i]) / 255.f;
     }
     return image;
 }

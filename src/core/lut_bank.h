@@ -68,7 +68,7 @@ struct LutBank {
 
     std::string referenceName;
     Direction referenceLight, referenceView;
-    Image reference;  ///< may be empty (width 0) when the bank was written without it
+    Image reference;  ///< without samples when the bank was written without it
 
     int channels() const { return static_cast<int>(colour); }
     std::size_t lutLength() const { return static_cast<std::size_t>(channels()) * entries; }
@@ -106,13 +106,17 @@ using ImageProvider = std::function<Result<const Image*>(std::size_t index, Imag
 Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
                          const ImageProvider& provider = {});
 
-/// The reference image with the LUT for (light, view) applied to every pixel. Grey mode
-/// scales each pixel's colour by LUT(grey) / grey and, where that would clip a channel,
-/// desaturates towards grey so the new grey value is kept exactly.
-Image relight(const LutBank& bank, Direction light, Direction view = {});
+/// The reference image with the LUT for (light, view) applied to every pixel (see
+/// applyLuts), dithered unless `dither` is false.
+Image relight(const LutBank& bank, Direction light, Direction view = {}, bool dither = true);
 
-/// Applies a LUT (channels x entries, as BankLookup::values) to an image.
+/// Applies a LUT (channels x entries, as BankLookup::values) to an image. Grey mode sets
+/// each pixel's grey to LUT(grey), scaling its colour by LUT(grey) / grey and, where that
+/// would clip a channel, desaturating towards grey so the new grey value is kept exactly;
+/// rgb mode maps each channel by its own LUT. With `dither`, each value first moves by
+/// ditherOffset(x, row) of one input code (lut.h), which lets the LUT split the pixels of a
+/// code and so reproduce the target histogram closely.
 Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
-                int entries);
+                int entries, bool dither = true);
 
 }  // namespace btflut

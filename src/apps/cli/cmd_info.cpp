@@ -32,11 +32,9 @@ Status runInfo(const InfoOptions& o) {
                                                : "rgb (one LUT per channel)")
               << "\n  reference: " << b.referenceName << ", light " << degrees(b.referenceLight)
               << ", view " << degrees(b.referenceView) << ", ";
-    if (b.reference.width > 0)
-        std::cout << b.reference.width << "x" << b.reference.height << "x" << b.reference.channels
-                  << " " << b.reference.bitDepth << "-bit, embedded\n";
-    else
-        std::cout << "not embedded\n";
+    std::cout << b.reference.width << "x" << b.reference.height << "x" << b.reference.channels
+              << " " << b.reference.bitDepth << "-bit, "
+              << (b.reference.samples.empty() ? "not embedded" : "embedded") << "\n";
     std::cout << "  grid:      " << b.gridSize << "x" << b.gridSize
               << " nodes per view layer over the equal-area light disk\n"
               << "  layers:    " << b.layers.size() << " view direction(s)\n";

@@ -15,6 +15,7 @@ struct MatchOptions {
     std::string output;
     int entries = 0;
     int depth = 8;
+    bool noDither = false;
 };
 
 Status runMatch(const MatchOptions& o) {
@@ -28,7 +29,7 @@ Status runMatch(const MatchOptions& o) {
     // Enough entries to hold every code of a grey 8-bit source exactly.
     int entries = o.entries ? o.entries : (source->bitDepth == 16 ? 4096 : 256);
     Lut lut = matchLut(from, to, entries);
-    Image out = applyLuts(*source, ColourMode::Grey, lut.values, entries);
+    Image out = applyLuts(*source, ColourMode::Grey, lut.values, entries, !o.noDither);
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
     std::cout << "wrote " << o.output << "\n";
     return success();
@@ -48,6 +49,9 @@ void addMatchCommand(CLI::App& root, Commands& commands) {
     app->add_option("--depth", o->depth, "bits per sample of the PNG")
         ->check(CLI::IsMember({8, 16}))
         ->capture_default_str();
+    app->add_flag("--no-dither", o->noDither,
+                  "apply the plain LUT (dithering by half an input code lets it split the pixels "
+                  "of one grey level and reproduce the target histogram closely)");
     commands.push_back({app, [o] { return runMatch(*o); }});
 }
 

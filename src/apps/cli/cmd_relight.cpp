@@ -17,6 +17,7 @@ struct RelightOptions {
     std::string output;
     std::string referenceImage;
     int depth = 8;
+    bool noDither = false;
     bool quiet = false;
 };
 
@@ -35,10 +36,10 @@ Status runRelight(const RelightOptions& o) {
             return Error{o.referenceImage + ": the bank is rgb but this image is grey"};
         bank->reference = std::move(*image);
     }
-    if (bank->reference.width == 0)
+    if (bank->reference.samples.empty())
         return Error{o.bank + ": the bank has no reference image inside; give --reference-image"};
     BankLookup lookup = bank->lookup(*light, *view);
-    Image out = applyLuts(bank->reference, bank->colour, lookup.values, bank->entries);
+    Image out = applyLuts(bank->reference, bank->colour, lookup.values, bank->entries, !o.noDither);
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
     if (!o.quiet)
         std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT "
@@ -59,6 +60,9 @@ void addRelightCommand(CLI::App& root, Commands& commands) {
     app->add_option("--depth", o->depth, "bits per sample of the PNG")
         ->check(CLI::IsMember({8, 16}))
         ->capture_default_str();
+    app->add_flag("--no-dither", o->noDither,
+                  "apply the plain LUT (dithering by half an input code lets it split the pixels "
+                  "of one grey level and reproduce the target histogram closely)");
     app->add_option("--reference-image", o->referenceImage,
                     "reference image, for a bank baked with --no-reference");
     app->add_flag("-q,--quiet", o->quiet, "do not say what was written");

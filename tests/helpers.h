@@ -1,0 +1,145 @@
+#pragma once
+// Shared test helpers: temporary folders, small synthetic images, in-process CLI runs.
+
+#include <doctest/doctest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <filesystem>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli.h"
+#include "core/image.h"
+
+namespace btflut::test {
+
+namespace fs = std::filesystem;
+
+/// A fresh folder under the system temp dir, removed with its contents at scope exit.
+class TempDir {
+public:
+    TempDir() {
+        static int counter = 0;
+        m_path = fs::temp_directory_path() /
+                 ("btflut-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+        fs::remove_all(m_path);
+        fs::create_directories(m_path);
+    }
+    ~TempDir() { fs::remove_all(m_path); }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    std::string operator/(const std::string& name) const { return (m_path / name).string(); }
+    const fs::path& path() const { return m_path; }
+
+private:
+    fs::path m_path;
+};
+
+/// Result of running `btflut ARGS...` in-process.
+struct CliRun {
+    int status;
+    std::string out;
+    std::string err;
+};
+
+inline CliRun runCli(const std::vector<std::string>& args) {
+    std::ostringstream out, err;
+    std::streambuf* oldOut = std::cout.rdbuf(out.rdbuf());
+    std::streambuf* oldErr = std::cerr.rdbuf(err.rdbuf());
+    int status = cli::run(args);
+    std::cout.rdbuf(oldOut);
+    std::cerr.rdbuf(oldErr);
+    return {status, out.str(), err.str()};
+}
+
+/// Asserts the run failed with exactly one line on stderr that contains `needle`.
+inline void requireOneLineError(const CliRun& run, const std::string& needle) {
+    INFO("stderr: " << run.err);
+    CHECK(run.status != 0);
+    CHECK(run.err.find(needle) != std::string::npos);
+    CHECK(std::count(run.err.begin(), run.err.end(), '\n') == 1);
+}
+
+inline std::string readText(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// Folder of the shared measured data (../shared/data beside the project, or $BTFLUT_DATA).
+/// Empty when missing; BTFLUT_REQUIRE_DATA=1 (set by .ci/run) turns that into a failure.
+inline std::string sharedDataDir() {
+    if (const char* env = std::getenv("BTFLUT_DATA")) return env;
+    fs::path p = fs::path(BTFLUT_SOURCE_DIR) / ".." / "shared" / "data";
+    return fs::exists(p) ? p.lexically_normal().string() : std::string();
+}
+
+inline bool haveSharedData(const std::string& name) {
+    std::string dir = sharedDataDir();
+    if (!dir.empty() && fs::exists(fs::path(dir) / name)) return true;
+    if (const char* require = std::getenv("BTFLUT_REQUIRE_DATA"); require && std::string(require) == "1")
+        FAIL("shared data set " << name << " not found (set BTFLUT_DATA)");
+    MESSAGE("skipped: shared data set " << name << " not found");
+    return false;
+}
+
+/// A grey 8-bit image of smooth random structure (every code used several times).
+inline Image randomGreyImage(int w, int h, unsigned seed) {
+    std::mt19937 rng(seed);
+    Image im(w, h, 1);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            double v = 0.5 + 0.25 * std::sin(0.21 * x + seed) * std::cos(0.17 * y) +
+                       0.2 * (static_cast<double>(rng() % 1000) / 1000.0 - 0.5);
+            im.at(x, y, 0) = static_cast<float>(std::lround(std::clamp(v, 0.0, 1.0) * 255) / 255.0);
+        }
+    return im;
+}
+
+}  // namespace btflut::test
+
+#include <nlohmann/json.hpp>
+
+#include "core/direction.h"
+
+namespace btflut::test {
+
+/// One image of a synthetic dataset: direction and the integer code map from the
+/// reference's codes (0..99) to this image's codes, k -> offset + slope * k (injective, so
+/// the exact matching LUT is known).
+struct SyntheticShot {
+    double thetaI, phiI, thetaR = 0, phiR = 0;
+    int offset = 0, slope = 1;
+};
+
+/// Writes grey 8-bit PNGs and a btflut manifest; the first shot's image is the
+/// reference image itself (offset 0, slope 1 expected). Returns the manifest path.
+inline std::string writeSyntheticDataset(const TempDir& dir, const std::vector<SyntheticShot>& shots,
+                                         int w = 40, int h = 30) {
+    nlohmann::json manifest{{"btflut_dataset", 1}, {"images", nlohmann::json::array()}};
+    for (std::size_t s = 0; s < shots.size(); ++s) {
+        Image im(w, h, 1);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                int code = (x * 7 + y * 13 + (x * y) % 11) % 100;  // the reference's code here
+                im.at(x, y, 0) = static_cast<float>(shots[s].offset + shots[s].slope * code) / 255.f;
+            }
+        std::string name = "shot" + std::to_string(s) + ".png";
+        REQUIRE(savePng(im, dir / name).ok());
+        manifest["images"].push_back({{"file", name},
+                                      {"light", {{"theta", shots[s].thetaI}, {"phi", shots[s].phiI}}},
+                                      {"view", {{"theta", shots[s].thetaR}, {"phi", shots[s].phiR}}}});
+    }
+    std::string path = dir / "btflut-dataset.json";
+    std::ofstream(path) << manifest.dump(1);
+    return path;
+}
+
+}  // namespace btflut::test
