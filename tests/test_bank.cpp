@@ -155,7 +155,7 @@ TEST_CASE("grey-mode relighting sets each pixel's grey to LUT(grey) and keeps it
         for (int c = 0; c < 3; ++c) im.samples[i * 3 + c] = px[i][c];
     std::vector<float> brighten(256);
     for (std::size_t k = 0; k < 256; ++k) brighten[k] = std::min(1.f, static_cast<float>(k) / 255.f * 1.6f + 0.05f);
-    Image out = applyLuts(im, ColourMode::Grey, brighten, 256, /*dither=*/false);
+    Image out = applyLuts(im, ColourMode::Grey, brighten, 256, /*targetCode=*/0.f);
     for (std::size_t i = 0; i < 3; ++i) {
         float want = Lut::applyLut(brighten.data(), 256, im.grey(i));
         CHECK(out.grey(i) == doctest::Approx(want).epsilon(1e-5));

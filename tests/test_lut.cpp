@@ -35,25 +35,36 @@ std::vector<std::size_t> presentCodes(const LevelCounts& l) {
 
 }  // namespace
 
-TEST_CASE("matchLut on a hand-worked example") {
-    // Codes 0..3 (cells a third wide). Reference masses 2,0,1,1; target 0,1,1,2.
+TEST_CASE("matchLut agrees with scikit-image's mapping on a hand-worked example") {
+    // Values 0, 1/3, 2/3, 1. Reference masses 2,0,1,1; target 0,1,1,2.
     LevelCounts ref{{2, 0, 1, 1}}, target{{0, 1, 1, 2}};
     Lut lut = matchLut(ref, target, 4);
-    // Code 0 holds reference mass [0, .5): its middle .25 is the top of target code 1's cell.
-    CHECK(lut.values[0] == doctest::Approx(1.5 / 3));
-    // Code 1 is absent: c_ref is flat at .5, the top of target code 2's cell.
-    CHECK(lut.values[1] == doctest::Approx(2.5 / 3));
-    // Code 2 holds [.5, .75): middle .625 is a quarter into target code 3's [.5, 1).
-    CHECK(lut.values[2] == doctest::Approx(2.75 / 3));
-    CHECK(lut.values[3] == doctest::Approx(1.0));  // 3.25 / 3, clamped to white
+    // np.interp([.5, .75, 1], [.25, .5, 1], [1/3, 2/3, 1]) = [2/3, 5/6, 1]
+    CHECK(lut.values[0] == doctest::Approx(2.0 / 3));
+    CHECK(lut.values[2] == doctest::Approx(5.0 / 6));
+    CHECK(lut.values[3] == doctest::Approx(1.0));
+    // 1/3 is absent from the reference: c_ref is flat at .5 there, as at code 0.
+    CHECK(lut.values[1] == doctest::Approx(2.0 / 3));
+}
+
+TEST_CASE("matchLut keeps empty stretches of the target empty") {
+    // Target codes 1 and 7 only (of 0..7): scikit-image would spread code 7's pixels over
+    // (1, 7]; here they stay within code 7's cell (6, 7].
+    LevelCounts ref{{1, 1, 1, 1, 1, 1, 1, 1}}, target{{0, 4, 0, 0, 0, 0, 0, 4}};
+    Lut lut = matchLut(ref, target, 8);
+    for (int k = 0; k < 8; ++k) {
+        double code = lut.values[static_cast<std::size_t>(k)] * 7;
+        CHECK(((code > 0 - 1e-9 && code <= 1 + 1e-6) || (code > 6 - 1e-6 && code <= 7 + 1e-6)));
+    }
 }
 
 TEST_CASE("matchLut is well defined for spikes and single-valued images") {
     LevelCounts spread{{1, 1, 1, 1, 1}}, spike{{0, 0, 9, 0, 0}};
     Lut toSpike = matchLut(spread, spike, 16);
-    for (float v : toSpike.values) CHECK(std::abs(v - 0.5) <= 0.125 + 1e-6);  // code 2's cell
+    for (float v : toSpike.values) CHECK((v > 0.25 - 1e-6 && v <= 0.5 + 1e-6));  // code 2's cell
     Lut fromSpike = matchLut(spike, spread, 16);
     CHECK(isValidLut(fromSpike.values.data(), fromSpike.values.size()));
+    CHECK(fromSpike.values[8] == doctest::Approx(1.0));  // all reference mass is the top quantile
     Lut self = matchLut(spike, spike, 5);
     CHECK(self.values[2] == doctest::Approx(0.5));
 }
@@ -81,12 +92,12 @@ TEST_CASE("matchLut properties over thousands of random histograms") {
         for (std::size_t k : presentCodes(ref))
             REQUIRE(self.values[k] == doctest::Approx(ref.valueOf(k)).epsilon(1e-6));
 
-        // Applying the LUT reproduces the target histogram: every output lies in the cell of
-        // a present target code, and the mass at or below each target cell matches the
-        // target's within half the reference's largest single-code mass.
+        // Applying the LUT reproduces the target histogram: every output lies in the cell
+        // (y - 1, y] of a present target code y, and the mass at or below each present code
+        // matches the target's within the reference's largest single-code mass.
         const auto refTotal = static_cast<double>(ref.total());
         const auto targetTotal = static_cast<double>(target.total());
-        const double halfCode = 0.5 / static_cast<double>(targetCodes - 1);
+        const double code = 1.0 / static_cast<double>(targetCodes - 1);
         std::vector<std::size_t> targetPresent = presentCodes(target);
         double maxRefAtom = 0;
         std::vector<std::pair<double, double>> outputs;  // (value, mass)
@@ -95,18 +106,18 @@ TEST_CASE("matchLut properties over thousands of random histograms") {
             maxRefAtom = std::max(maxRefAtom, mass);
             double out = lut.values[k];
             outputs.push_back({out, mass});
-            auto near = std::lower_bound(targetPresent.begin(), targetPresent.end(), out - halfCode - 1e-6,
-                                         [&](std::size_t c, double v) { return target.valueOf(c) < v; });
-            REQUIRE(near != targetPresent.end());
-            REQUIRE(std::abs(target.valueOf(*near) - out) <= halfCode + 1e-6);
+            auto above = std::lower_bound(targetPresent.begin(), targetPresent.end(), out - 1e-6,
+                                          [&](std::size_t c, double v) { return target.valueOf(c) < v; });
+            REQUIRE(above != targetPresent.end());
+            REQUIRE(target.valueOf(*above) - out <= code + 1e-6);
         }
         double targetCdf = 0;
         for (std::size_t m : targetPresent) {
             targetCdf += static_cast<double>(target.counts[m]) / targetTotal;
             double outCdf = 0;
             for (auto [value, mass] : outputs)
-                if (value <= target.valueOf(m) + halfCode + 1e-7) outCdf += mass;
-            REQUIRE(std::abs(outCdf - targetCdf) <= 0.5 * maxRefAtom + 1e-6);
+                if (value <= target.valueOf(m) + 1e-6) outCdf += mass;
+            REQUIRE(std::abs(outCdf - targetCdf) <= maxRefAtom + 1e-6);
         }
     }
 }
@@ -127,25 +138,27 @@ TEST_CASE("dithering splits reference codes, so coarse references reproduce the 
         std::uint32_t pixel = 0;
         for (std::size_t k = 0; k < 256; ++k)
             for (int n = 0; n < static_cast<int>(static_cast<double>(ref.counts[k]) * scale); ++n, ++pixel) {
-                float v = static_cast<float>((static_cast<double>(k) + ditherOffset(pixel % 640, pixel / 640)) / last);
-                outputs.push_back(lut.apply(v));
+                float v = lutInput(static_cast<float>(static_cast<double>(k) / last), pixel % 640,
+                                   pixel / 640, static_cast<float>(1 / last));
+                outputs.push_back(lutOutput(lut.apply(v), static_cast<float>(1 / last)));
             }
         std::sort(outputs.begin(), outputs.end());
         double targetCdf = 0, worst = 0, worstUndithered = 0;
         Lut onCodes = matchLut(ref, target, 256);
         for (std::size_t m : presentCodes(target)) {
             targetCdf += static_cast<double>(target.counts[m]) / static_cast<double>(target.total());
-            double top = (static_cast<double>(m) + 0.5) / last;
+            double top = (static_cast<double>(m) + 0.5) / last + 1e-7;  // float outputs
             double outCdf = static_cast<double>(std::upper_bound(outputs.begin(), outputs.end(), top) - outputs.begin()) /
                             static_cast<double>(outputs.size());
             worst = std::max(worst, std::abs(outCdf - targetCdf));
             double plain = 0;
             for (std::size_t k : presentCodes(ref))
-                if (onCodes.values[k] <= top) plain += static_cast<double>(ref.counts[k]) / static_cast<double>(ref.total());
+                if (onCodes.values[k] <= static_cast<double>(m) / last + 1e-7) plain += static_cast<double>(ref.counts[k]) / static_cast<double>(ref.total());
             worstUndithered = std::max(worstUndithered, std::abs(plain - targetCdf));
         }
-        INFO("trial " << trial << " undithered " << worstUndithered);
+        INFO("trial " << trial << ": undithered " << worstUndithered);
         CHECK(worst <= 0.006);
+        CHECK(worstUndithered >= 5 * worst);
     }
     // The hash itself: uniform in [-1/2, 1/2) and reproducible.
     double mean = 0;

@@ -26,25 +26,29 @@ Lut matchLut(const LevelCounts& reference, const LevelCounts& target, int entrie
     BTFLUT_CHECK(entries >= 2);
     const std::vector<double> refBelow = massBelow(reference);
     const std::vector<double> tgtBelow = massBelow(target);
-    const auto refLast = static_cast<double>(reference.counts.size() - 1);
-    const auto tgtLast = static_cast<double>(target.counts.size() - 1);
-    const std::size_t tgtCodes = target.counts.size();
+    const std::size_t refCodes = reference.counts.size(), tgtCodes = target.counts.size();
+    const auto refLast = static_cast<double>(refCodes - 1);
     Lut lut;
     lut.values.resize(static_cast<std::size_t>(entries));
+    const double tgtCode = 1.0 / static_cast<double>(tgtCodes - 1);
     std::size_t m = 0;  // target code; only moves forward as u grows with v
     for (int e = 0; e < entries; ++e) {
-        // u = c_ref(v): v's position in code units, its cell k = round(c), linear across it.
-        const double c = static_cast<double>(e) / (entries - 1) * refLast + 0.5;
-        const auto k = std::min(static_cast<std::size_t>(c), reference.counts.size() - 1);
-        const double across = std::min(c - static_cast<double>(k), 1.0);
-        const double u = std::lerp(refBelow[k], refBelow[k + 1], across);
-        // c_target^{-1}(u): the first present code whose cell reaches u.
+        // u = c_ref(v): v in code units lies in the cell (k - 1, k] of k = j + 1, or at the
+        // top of cell j when it is exactly code j.
+        const double c = static_cast<double>(e) / (entries - 1) * refLast;
+        const auto j = std::min(static_cast<std::size_t>(c), refCodes - 1);
+        const double frac = c - static_cast<double>(j);
+        double u = refBelow[j + 1];
+        if (frac > 0 && j + 1 < refCodes) u += (refBelow[j + 2] - refBelow[j + 1]) * frac;
+        // c_target^{-1}(u): the first present code whose mass reaches u.
         while (m + 1 < tgtCodes && (tgtBelow[m + 1] < u || target.counts[m] == 0)) ++m;
         while (target.counts[m] == 0) --m;  // u = 1 past the last present code
-        const double cellMass = tgtBelow[m + 1] - tgtBelow[m];
-        const double within = std::clamp((u - tgtBelow[m]) / cellMass, 0.0, 1.0);
-        const double out = (static_cast<double>(m) - 0.5 + within) / tgtLast;
-        lut.values[static_cast<std::size_t>(e)] = static_cast<float>(std::clamp(out, 0.0, 1.0));
+        // Across the code's own cell only: the cells of absent codes get no output.
+        const double top = target.valueOf(m);
+        const double bottom = std::max(0.0, top - tgtCode);
+        const double within =
+            std::clamp((u - tgtBelow[m]) / (tgtBelow[m + 1] - tgtBelow[m]), 0.0, 1.0);
+        lut.values[static_cast<std::size_t>(e)] = static_cast<float>(std::lerp(bottom, top, within));
     }
     return lut;
 }

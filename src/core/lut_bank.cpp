@@ -254,34 +254,37 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
 }
 
 Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
-                int entries, bool dither) {
+                int entries, float targetCode) {
     Image out = image;
-    const auto width = static_cast<std::size_t>(image.width);
+    const auto width = static_cast<std::uint32_t>(image.width);
     const std::size_t n = image.pixelCount();
+    const bool dither = targetCode > 0;
     // One input code: of a channel in rgb mode, of the grey value (channels x max) otherwise.
-    const float code = colour == ColourMode::Rgb ? 1.f / static_cast<float>(image.maxCode())
-                                                 : 1.f / static_cast<float>(image.channels * image.maxCode());
-    auto offset = [&](std::size_t i, std::uint32_t c) {
-        if (!dither) return 0.f;
-        return ditherOffset(static_cast<std::uint32_t>(i % width), static_cast<std::uint32_t>(i / width), c) * code;
+    const float code = colour == ColourMode::Rgb || image.channels == 1
+                           ? 1.f / static_cast<float>(image.maxCode())
+                           : 1.f / static_cast<float>(image.channels * image.maxCode());
+    auto map = [&](const float* lut, float v, std::size_t i, std::uint32_t c) {
+        if (!dither) return Lut::applyLut(lut, entries, v);
+        const auto index = static_cast<std::uint32_t>(i);
+        const float in = lutInput(v, index % width, index / width, code, c);
+        return lutOutput(Lut::applyLut(lut, entries, in), targetCode);
     };
     if (colour == ColourMode::Rgb) {
         BTFLUT_CHECK(image.channels == 3);
         for (std::size_t i = 0; i < n; ++i)
             for (std::uint32_t c = 0; c < 3; ++c)
-                out.samples[i * 3 + c] = Lut::applyLut(&values[c * static_cast<std::size_t>(entries)], entries,
-                                                       image.samples[i * 3 + c] + offset(i, c));
+                out.samples[i * 3 + c] =
+                    map(&values[c * static_cast<std::size_t>(entries)], image.samples[i * 3 + c], i, c);
         return out;
     }
     if (image.channels == 1) {
-        for (std::size_t i = 0; i < n; ++i)
-            out.samples[i] = Lut::applyLut(values.data(), entries, image.samples[i] + offset(i, 0));
+        for (std::size_t i = 0; i < n; ++i) out.samples[i] = map(values.data(), image.samples[i], i, 0);
         return out;
     }
     for (std::size_t i = 0; i < n; ++i) {
         float* p = &out.samples[i * 3];
         const float grey = image.grey(i);
-        const float target = Lut::applyLut(values.data(), entries, grey + offset(i, 0));
+        const float target = map(values.data(), grey, i, 0);
         if (grey <= 0.f) {
             p[0] = p[1] = p[2] = target;
             continue;
@@ -302,7 +305,8 @@ Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>&
 Image relight(const LutBank& bank, Direction light, Direction view, bool dither) {
     BTFLUT_CHECK(!bank.reference.samples.empty());
     BankLookup lut = bank.lookup(light, view);
-    return applyLuts(bank.reference, bank.colour, lut.values, bank.entries, dither);
+    return applyLuts(bank.reference, bank.colour, lut.values, bank.entries,
+                     dither ? bank.targetCode() : 0.f);
 }
 
 }  // namespace btflut

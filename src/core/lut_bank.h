@@ -71,6 +71,12 @@ struct LutBank {
     Image reference;  ///< without samples when the bank was written without it
 
     int channels() const { return static_cast<int>(colour); }
+    /// One code of the values the LUTs map to (those of the reference's format: 1/765 for
+    /// the grey of 8-bit RGB), the unit of the dithered output shift.
+    float targetCode() const {
+        int perValue = colour == ColourMode::Rgb ? 1 : reference.channels;
+        return 1.f / static_cast<float>(perValue * (reference.bitDepth == 16 ? 65535 : 255));
+    }
     std::size_t lutLength() const { return static_cast<std::size_t>(channels()) * entries; }
 
     /// The LUT for a light and view direction (any direction in the upper hemisphere).
@@ -113,10 +119,10 @@ Image relight(const LutBank& bank, Direction light, Direction view = {}, bool di
 /// Applies a LUT (channels x entries, as BankLookup::values) to an image. Grey mode sets
 /// each pixel's grey to LUT(grey), scaling its colour by LUT(grey) / grey and, where that
 /// would clip a channel, desaturating towards grey so the new grey value is kept exactly;
-/// rgb mode maps each channel by its own LUT. With `dither`, each value first moves by
-/// ditherOffset(x, row) of one input code (lut.h), which lets the LUT split the pixels of a
-/// code and so reproduce the target histogram closely.
+/// rgb mode maps each channel by its own LUT. With `targetCode` > 0 (one code of the
+/// targets' values, e.g. 1/765) the LUT is applied dithered (lutInput/lutOutput in lut.h),
+/// which reproduces the target histogram closely; with 0, plainly.
 Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
-                int entries, bool dither = true);
+                int entries, float targetCode);
 
 }  // namespace btflut

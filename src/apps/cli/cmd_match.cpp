@@ -29,7 +29,8 @@ Status runMatch(const MatchOptions& o) {
     // Enough entries to hold every code of a grey 8-bit source exactly.
     int entries = o.entries ? o.entries : (source->bitDepth == 16 ? 4096 : 256);
     Lut lut = matchLut(from, to, entries);
-    Image out = applyLuts(*source, ColourMode::Grey, lut.values, entries, !o.noDither);
+    const float targetCode = 1.f / static_cast<float>(to.counts.size() - 1);
+    Image out = applyLuts(*source, ColourMode::Grey, lut.values, entries, o.noDither ? 0.f : targetCode);
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
     std::cout << "wrote " << o.output << "\n";
     return success();

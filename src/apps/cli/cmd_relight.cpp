@@ -39,7 +39,8 @@ Status runRelight(const RelightOptions& o) {
     if (bank->reference.samples.empty())
         return Error{o.bank + ": the bank has no reference image inside; give --reference-image"};
     BankLookup lookup = bank->lookup(*light, *view);
-    Image out = applyLuts(bank->reference, bank->colour, lookup.values, bank->entries, !o.noDither);
+    Image out = applyLuts(bank->reference, bank->colour, lookup.values, bank->entries,
+                          o.noDither ? 0.f : bank->targetCode());
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
     if (!o.quiet)
         std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT "
