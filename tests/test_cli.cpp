@@ -1,1 +1,135 @@
+// The btflut command end to end, in-process: outputs, and bad input refused with one line
+// naming the file, a non-zero exit and no (or an untouched) output file.
 #include <doctest/doctest.h>
+
+#include "core/bank_file.h"
+#include "helpers.h"
+
+using namespace btflut;
+using namespace btflut::test;
+
+namespace {
+const std::vector<SyntheticShot> kShots{{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 40, 1}, {30, 120, 0, 0, 0, 2},
+                                        {30, 240, 0, 0, 100, 1}};
+}
+
+TEST_CASE("btflut --help and every subcommand's --help succeed") {
+    CHECK(runCli({"--help"}).status == 0);
+    for (const char* cmd : {"hist", "bake", "relight", "info", "export", "match"}) {
+        CliRun r = runCli({cmd, "--help"});
+        INFO(cmd);
+        CHECK(r.status == 0);
+        CHECK(r.out.find("Usage") != std::string::npos);
+    }
+    CHECK(runCli({"bench", "bake", "--help"}).status == 0);
+    requireOneLineError(runCli({}), "error");
+    requireOneLineError(runCli({"frobnicate"}), "frobnicate");
+}
+
+TEST_CASE("hist writes the documented CSV and JSON") {
+    TempDir dir;
+    std::string manifest = writeSyntheticDataset(dir, kShots);
+    CliRun r = runCli({"hist", manifest, "--bins", "8", "-o", dir / "h.csv"});
+    REQUIRE(r.status == 0);
+    auto rows = parseHistogramCsv(readText(dir / "h.csv"), "h.csv");
+    REQUIRE(rows.ok());
+    REQUIRE(rows->size() == kShots.size());
+    CHECK((*rows)[1].light.thetaDegrees() == doctest::Approx(30));
+    double sum = 0;
+    for (double v : (*rows)[2].bins) sum += v;
+    CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));
+    CHECK(readText(dir / "h.csv").rfind("name,theta_i,phi_i,theta_r,phi_r,b0,b1,b2,b3,b4,b5,b6,b7\nshot0,", 0) == 0);
+
+    REQUIRE(runCli({"hist", manifest, "-o", dir / "h.json"}).status == 0);
+    auto doc = nlohmann::json::parse(readText(dir / "h.json"));
+    CHECK(doc["bins"] == 64);
+    CHECK(doc["histograms"].size() == kShots.size());
+
+    requireOneLineError(runCli({"hist", manifest, "--channels", "rgb", "-o", dir / "rgb.csv"}), "needs colour images");
+    CHECK_FALSE(fs::exists(dir / "rgb.csv"));
+    requireOneLineError(runCli({"hist", manifest, "--bins", "1", "-o", dir / "b.csv"}), "--bins");
+    requireOneLineError(runCli({"hist", manifest, "-o", dir / "h.txt"}), "h.txt: output must be a .csv or .json file");
+}
+
+TEST_CASE("bake, info, relight and export work from files") {
+    TempDir dir;
+    std::string manifest = writeSyntheticDataset(dir, kShots);
+    CliRun bake = runCli({"bake", manifest, "-o", dir / "m.btflut", "--grid", "5"});
+    REQUIRE(bake.status == 0);
+    CHECK(bake.out.find("wrote") != std::string::npos);
+    CliRun info = runCli({"info", dir / "m.btflut"});
+    REQUIRE(info.status == 0);
+    CHECK(info.out.find("256 entries") != std::string::npos);
+    CHECK(info.out.find("5x5") != std::string::npos);
+    CHECK(info.out.find("4 measured lights") != std::string::npos);
+
+    REQUIRE(runCli({"relight", dir / "m.btflut", "--light", "30,0", "-o", dir / "r.png", "--no-dither"}).status == 0);
+    auto relit = loadImage(dir / "r.png");
+    REQUIRE(relit.ok());
+    auto measured = loadImage(dir / "shot1.png");
+    for (std::size_t i = 0; i < relit->samples.size(); ++i)
+        REQUIRE(std::lround(relit->samples[i] * 255) == std::lround(measured->samples[i] * 255));
+
+    CliRun ex = runCli({"export", dir / "m.btflut", "-o", dir / "atlas.png"});
+    REQUIRE(ex.status == 0);
+    auto atlas = loadImage(dir / "atlas.png");
+    REQUIRE(atlas.ok());
+    CHECK(atlas->bitDepth == 16);
+    CHECK(atlas->width == 256);
+    CHECK(atlas->height == 25);
+    auto side = nlohmann::json::parse(readText(dir / "atlas.json"));
+    CHECK(side["grid_size"] == 5);
+    CHECK(side["layers"][0]["node_provenance"].size() == 25);
+    // The centre row (the pole, shot0's light) is the identity on the reference's codes.
+    for (int code = 0; code < 100; ++code)
+        CHECK(std::lround(atlas->at(code, 12, 0) * 255) == code);
+}
+
+TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched") {
+    TempDir dir;
+    std::string manifest = writeSyntheticDataset(dir, kShots);
+    REQUIRE(runCli({"bake", manifest, "-o", dir / "m.btflut"}).status == 0);
+    std::ofstream(dir / "keep.btflut") << "precious";
+    std::ofstream(dir / "keep.png") << "precious";
+
+    SUBCASE("missing dataset") {
+        requireOneLineError(runCli({"bake", dir / "nothing", "-o", dir / "keep.btflut"}), "nothing: no such file or folder");
+    }
+    SUBCASE("corrupt image in the dataset") {
+        std::ofstream(dir / "shot2.png", std::ios::binary) << "\x89PNG\r\n\x1a\n";
+        requireOneLineError(runCli({"bake", manifest, "-o", dir / "keep.btflut"}), "shot2.png");
+    }
+    SUBCASE("NaN and below-horizon lights in an .lp file") {
+        std::ofstream(dir / "nan.lp") << "2\nshot0.png 0 0 1\nshot1.png nan 0 1\n";
+        requireOneLineError(runCli({"bake", dir / "nan.lp", "-o", dir / "keep.btflut"}), "nan.lp:3");
+        std::ofstream(dir / "low.lp") << "2\nshot0.png 0 0 1\nshot1.png 0.6 0 -0.8\n";
+        requireOneLineError(runCli({"hist", dir / "low.lp", "-o", dir / "h.csv"}), "below the horizon");
+        CHECK_FALSE(fs::exists(dir / "h.csv"));
+    }
+    SUBCASE("truncated and bit-flipped banks") {
+        std::string bytes = readText(dir / "m.btflut");
+        std::ofstream(dir / "cut.btflut", std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+        requireOneLineError(runCli({"relight", dir / "cut.btflut", "--light", "10,0", "-o", dir / "keep.png"}),
+                            "cut.btflut: truncated");
+        bytes[bytes.size() / 3] ^= 4;
+        std::ofstream(dir / "flip.btflut", std::ios::binary) << bytes;
+        requireOneLineError(runCli({"info", dir / "flip.btflut"}), "flip.btflut: checksum mismatch");
+        requireOneLineError(runCli({"export", dir / "flip.btflut", "-o", dir / "keep.png"}), "flip.btflut");
+    }
+    SUBCASE("bad directions") {
+        requireOneLineError(runCli({"relight", dir / "m.btflut", "--light", "nan,0", "-o", dir / "keep.png"}), "--light");
+        requireOneLineError(runCli({"relight", dir / "m.btflut", "--light", "90,0", "-o", dir / "keep.png"}), "horizon");
+        requireOneLineError(runCli({"relight", dir / "m.btflut", "--light", "30,0", "--view", "95,0", "-o", dir / "keep.png"}), "--view");
+    }
+    SUBCASE("a constant reference, a bad reference name") {
+        requireOneLineError(runCli({"bake", manifest, "--reference", "zzz", "-o", dir / "keep.btflut"}), "no image named 'zzz'");
+        Image flat(40, 30, 1);
+        std::fill(flat.samples.begin(), flat.samples.end(), 0.25f);
+        REQUIRE(savePng(flat, dir / "shot0.png").ok());
+        requireOneLineError(runCli({"bake", manifest, "-o", dir / "keep.btflut"}), "reference image is constant");
+    }
+    CHECK(readText(dir / "keep.btflut") == "precious");
+    CHECK(readText(dir / "keep.png") == "precious");
+    for (const auto& entry : fs::directory_iterator(dir.path()))
+        CHECK(entry.path().string().find(".tmp.") == std::string::npos);
+}

@@ -46,6 +46,15 @@ int run(const std::vector<std::string>& args) {
     addMatchCommand(root, commands);
     addBenchCommand(root, commands);
 
+    if (!args.empty() && !args.front().empty() && args.front()[0] != '-') {
+        bool known = false;
+        for (const CLI::App* sub : root.get_subcommands([](const CLI::App*) { return true; }))
+            known = known || sub->get_name() == args.front();
+        if (!known) {
+            std::cerr << "btflut: error: unknown command '" << args.front() << "' (see btflut --help)\n";
+            return 2;
+        }
+    }
     std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 pops from the back
     try {
         root.parse(reversed);

@@ -68,12 +68,15 @@ Status runBenchBake(const BenchBakeOptions& o) {
     if (o.json) {
         std::cout << out.dump(1) << "\n";
     } else {
-        std::printf("bake (histograms + LUTs + grid, decode excluded) of %zu images, %zu pixels\n",
-                    images.size(), pixels);
-        std::printf("  all threads: %8.3f ms median of %d\n", median(all) * 1e3, o.repeat);
-        std::printf("  1 thread:    %8.3f ms median of %d\n", median(one) * 1e3, o.repeat);
-        std::printf("  throughput:  %.1f Mpixel/s (all threads)\n",
-                    static_cast<double>(pixels) / median(all) * 1e-6);
+        char text[512];
+        std::snprintf(text, sizeof text,
+                      "bake (histograms + LUTs + grid, decode excluded) of %zu images, %zu pixels\n"
+                      "  all threads: %8.3f ms median of %d\n"
+                      "  1 thread:    %8.3f ms median of %d\n"
+                      "  throughput:  %.1f Mpixel/s (all threads)\n",
+                      images.size(), pixels, median(all) * 1e3, o.repeat, median(one) * 1e3, o.repeat,
+                      static_cast<double>(pixels) / median(all) * 1e-6);
+        std::cout << text;
     }
     return success();
 }
