@@ -166,3 +166,41 @@ TEST_CASE("grey-mode relighting sets each pixel's grey to LUT(grey) and keeps it
     CHECK(out.samples[3] == doctest::Approx(1.0));
     CHECK(out.samples[8] == doctest::Approx(0.05));  // black takes LUT(0), as grey
 }
+
+TEST_CASE("rgb mode bakes one exact LUT per channel") {
+    TempDir dir;
+    // Three lights; each channel of each image is its own injective code map of the
+    // reference's channel, so every channel LUT is known exactly.
+    nlohmann::json manifest{{"images", nlohmann::json::array()}};
+    const int offsets[3][3] = {{0, 0, 0}, {10, 50, 90}, {100, 20, 5}};
+    for (int s = 0; s < 3; ++s) {
+        Image im(20, 10, 3);
+        for (int y = 0; y < 10; ++y)
+            for (int x = 0; x < 20; ++x)
+                for (int c = 0; c < 3; ++c)
+                    im.at(x, y, c) = static_cast<float>(offsets[s][c] + (x * 3 + y * 7 + c * 11) % 100) / 255.f;
+        std::string name = "c" + std::to_string(s) + ".png";
+        REQUIRE(savePng(im, dir / name).ok());
+        manifest["images"].push_back({{"file", name}, {"light", {{"theta", 25.0 * s}, {"phi", 40.0 * s}}}});
+    }
+    std::ofstream(dir / "set.json") << manifest.dump();
+    auto ds = openDataset(dir / "set.json");
+    REQUIRE(ds.ok());
+    auto bank = bakeBank(*ds, {.colour = ColourMode::Rgb});
+    REQUIRE(bank.ok());
+    CHECK(bank->lutLength() == 3 * 256);
+    BankLookup lut = bank->lookup(Direction::fromDegrees(50, 80));
+    for (int c = 0; c < 3; ++c)
+        for (int code = 0; code < 100; ++code)
+            REQUIRE(lut.values[static_cast<std::size_t>(c * 256 + code)] * 255 ==
+                    doctest::Approx(offsets[2][c] + code).epsilon(1e-5));
+    Image relit = relight(*bank, Direction::fromDegrees(50, 80), {}, /*dither=*/false);
+    auto measured = loadImage(dir / "c2.png");
+    for (std::size_t i = 0; i < relit.samples.size(); ++i)
+        REQUIRE(std::lround(relit.samples[i] * 255) == std::lround(measured->samples[i] * 255));
+    // Grey images cannot be baked in rgb mode.
+    Dataset grey = openSynthetic(dir);
+    auto refused = bakeBank(grey, {.colour = ColourMode::Rgb});
+    REQUIRE_FALSE(refused.ok());
+    CHECK(refused.error().find("needs colour images") != std::string::npos);
+}

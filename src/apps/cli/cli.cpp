@@ -19,6 +19,15 @@ Status requireExtension(const std::string& path, const std::vector<std::string>&
     return Error{path + ": " + what + " must be a " + list + " file"};
 }
 
+void addLutImageOptions(CLI::App& app, int& depth, bool& noDither) {
+    app.add_option("--depth", depth, "bits per sample of the PNG")
+        ->check(CLI::IsMember({8, 16}))
+        ->capture_default_str();
+    app.add_flag("--no-dither", noDither,
+                 "apply the plain LUT (by default each pixel is dithered within its grey level, "
+                 "so the LUT can split a level's pixels and reproduce the target histogram closely)");
+}
+
 std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label) {
     if (!::isatty(STDERR_FILENO)) return {};
     return [label](std::size_t done, std::size_t total) {

@@ -36,6 +36,9 @@ int run(const std::vector<std::string>& args);
 Status requireExtension(const std::string& path, const std::vector<std::string>& extensions,
                         const std::string& what);
 
+/// The options of commands that write a LUT-mapped image: --depth 8|16 and --no-dither.
+void addLutImageOptions(CLI::App& app, int& depth, bool& noDither);
+
 /// A progress bar on stderr when it is a terminal; does nothing otherwise.
 std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label);
 

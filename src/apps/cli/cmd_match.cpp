@@ -47,12 +47,7 @@ void addMatchCommand(CLI::App& root, Commands& commands) {
     app->add_option("-o,--output", o->output, "out.png")->required();
     app->add_option("--entries", o->entries, "LUT entries (default 256, 4096 for 16-bit)")
         ->check(CLI::Range(2, 65536));
-    app->add_option("--depth", o->depth, "bits per sample of the PNG")
-        ->check(CLI::IsMember({8, 16}))
-        ->capture_default_str();
-    app->add_flag("--no-dither", o->noDither,
-                  "apply the plain LUT (dithering by half an input code lets it split the pixels "
-                  "of one grey level and reproduce the target histogram closely)");
+    addLutImageOptions(*app, o->depth, o->noDither);
     commands.push_back({app, [o] { return runMatch(*o); }});
 }
 

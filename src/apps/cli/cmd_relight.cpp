@@ -58,12 +58,7 @@ void addRelightCommand(CLI::App& root, Commands& commands) {
     app->add_option("--light", o->light, "light direction THETA,PHI in degrees")->required();
     app->add_option("--view", o->view, "view direction THETA,PHI in degrees")->capture_default_str();
     app->add_option("-o,--output", o->output, "out.png")->required();
-    app->add_option("--depth", o->depth, "bits per sample of the PNG")
-        ->check(CLI::IsMember({8, 16}))
-        ->capture_default_str();
-    app->add_flag("--no-dither", o->noDither,
-                  "apply the plain LUT (dithering by half an input code lets it split the pixels "
-                  "of one grey level and reproduce the target histogram closely)");
+    addLutImageOptions(*app, o->depth, o->noDither);
     app->add_option("--reference-image", o->referenceImage,
                     "reference image, for a bank baked with --no-reference");
     app->add_flag("-q,--quiet", o->quiet, "do not say what was written");
