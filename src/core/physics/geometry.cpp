@@ -1,0 +1,65 @@
+#include "core/physics/geometry.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/dataset.h"
+
+namespace btflut {
+
+namespace {
+// A signed angle in the x-z plane (positive towards +x) as a direction.
+Direction inPlane(double degrees) { return Direction::fromDegrees(std::abs(degrees), degrees >= 0 ? 0 : 180); }
+}  // namespace
+
+std::vector<Geometry> curetC2() {
+    std::vector<Geometry> g;
+    for (int k = 1; k <= 11; ++k) {
+        const double normal = (k - 4) * 11.25;
+        // Lab frame: light at in-plane angle 0, camera at 45; relative to the normal they sit
+        // at -normal and 45 - normal.
+        g.push_back({"c2-" + std::to_string(k), inPlane(-normal), inPlane(45 - normal)});
+    }
+    return g;
+}
+
+std::vector<Geometry> curetSpecular() {
+    std::vector<Geometry> g;
+    for (int k = 1; k <= 7; ++k)
+        g.push_back({"s" + std::to_string(k), inPlane(-11.25 * k), inPlane(11.25 * k)});
+    return g;
+}
+
+Result<std::vector<Geometry>> parseGeometry(const std::string& spec) {
+    if (spec == "curet-c2") return curetC2();
+    if (spec == "curet-specular") return curetSpecular();
+    if (spec.find(',') != std::string::npos && spec.find('/') == std::string::npos) {
+        std::vector<Geometry> g;
+        std::istringstream in(spec);
+        std::string item;
+        while (std::getline(in, item, ';')) {
+            double a[4];
+            char sep[3];
+            std::istringstream fields(item);
+            if (!(fields >> a[0] >> sep[0] >> a[1] >> sep[1] >> a[2] >> sep[2] >> a[3]) ||
+                sep[0] != ',' || sep[1] != ',' || sep[2] != ',' || !(fields >> std::ws).eof())
+                return Error{"--geometry: expected THETA_I,PHI_I,THETA_R,PHI_R[;...], got '" + item + "'"};
+            for (double v : a)
+                if (!std::isfinite(v)) return Error{"--geometry: '" + item + "' has a non-finite angle"};
+            if (a[0] < 0 || a[0] > 90 || a[2] < 0 || a[2] > 90)
+                return Error{"--geometry: '" + item + "': theta must be within [0, 90] degrees"};
+            g.push_back({"p" + std::to_string(g.size() + 1), Direction::fromDegrees(a[0], a[1]),
+                         Direction::fromDegrees(a[2], a[3])});
+        }
+        if (g.empty()) return Error{"--geometry: empty list"};
+        return g;
+    }
+    Result<Dataset> ds = openDataset(spec);
+    if (!ds) return Error{"--geometry '" + spec + "' is not curet-c2, curet-specular, a list or a dataset (" +
+                          ds.error() + ")"};
+    std::vector<Geometry> g;
+    for (const DatasetImage& im : ds->images) g.push_back({im.name, im.light, im.view});
+    return g;
+}
+
+}  // namespace btflut
