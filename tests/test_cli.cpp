@@ -133,3 +133,39 @@ TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched
     for (const auto& entry : fs::directory_iterator(dir.path()))
         CHECK(entry.path().string().find(".tmp.") == std::string::npos);
 }
+
+TEST_CASE("simulate writes hist's CSV and refuses bad parameters") {
+    TempDir dir;
+    CliRun ok = runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "16", "-o", dir / "s.csv"});
+    REQUIRE(ok.status == 0);
+    auto rows = parseHistogramCsv(readText(dir / "s.csv"), "s.csv");
+    REQUIRE(rows.ok());
+    REQUIRE(rows->size() == 11);
+    CHECK((*rows)[5].name == "c2-6");
+    CHECK((*rows)[5].light.thetaDegrees() == doctest::Approx(22.5));
+    REQUIRE(runCli({"simulate", "--roughness", "0.4", "--brdf", "mix", "--kd", "0.6", "--ks", "0.4", "--geometry",
+                    "curet-specular", "--method", "mc", "--samples", "2000", "-o", dir / "s.json"})
+                .status == 0);
+    CHECK(nlohmann::json::parse(readText(dir / "s.json"))["histograms"].size() == 7);
+
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad{
+        {{"--roughness", "0"}, "roughness 0 must be > 0"},
+        {{"--roughness", "-1"}, "roughness -1 must be > 0"},
+        {{"--roughness", "0.4", "--brdf", "ts", "--sigma", "0"}, "sigma 0 must be > 0"},
+        {{"--roughness", "0.4", "--brdf", "ts", "--ior", "0.9"}, "ior 0.9 must be >= 1"},
+        {{"--roughness", "0.4", "--brdf", "mix"}, "--brdf mix needs --kd and --ks"},
+        {{"--roughness", "0.4", "--brdf", "phong"}, "--brdf"},
+        {{"--roughness", "0.4", "--method", "magic"}, "--method 'magic'"},
+        {{"--roughness", "0.4", "--bins", "1"}, "--bins"},
+        {{"--roughness", "nan"}, "roughness nan must be > 0"},
+    };
+    for (const auto& [flags, needle] : bad) {
+        std::vector<std::string> args{"simulate", "--geometry", "curet-c2", "-o", dir / "bad.csv"};
+        args.insert(args.end(), flags.begin(), flags.end());
+        INFO(needle);
+        requireOneLineError(runCli(args), needle);
+    }
+    requireOneLineError(runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c3", "-o", dir / "bad.csv"}), "curet-c3");
+    requireOneLineError(runCli({"simulate", "--roughness", "0.4", "--geometry", "10,0,95,0", "-o", dir / "bad.csv"}), "theta");
+    CHECK_FALSE(fs::exists(dir / "bad.csv"));
+}

@@ -53,6 +53,7 @@ int run(const std::vector<std::string>& args) {
     addInfoCommand(root, commands);
     addExportCommand(root, commands);
     addMatchCommand(root, commands);
+    addSimulateCommand(root, commands);
     addBenchCommand(root, commands);
 
     if (!args.empty() && !args.front().empty() && args.front()[0] != '-') {

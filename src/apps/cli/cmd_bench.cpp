@@ -7,7 +7,11 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
+#include "cli/model_options.h"
+#include "core/histogram.h"
 #include "core/lut_bank.h"
+#include "core/physics/geometry.h"
+#include "core/physics/simulate.h"
 
 namespace btflut::cli {
 
@@ -81,6 +85,92 @@ Status runBenchBake(const BenchBakeOptions& o) {
     return success();
 }
 
+struct BenchSimulateOptions {
+    ModelFlags model;
+    int repeat = 3;
+    bool json = false;
+};
+
+// Error (mean EMD over the 11 curet-c2 positions against the quadrature at 512 nodes)
+// against time (one whole geometry, median of interleaved repeats).
+Status runBenchSimulate(const BenchSimulateOptions& o) {
+    Result<SurfaceModel> model = modelFromFlags(o.model);
+    if (!model) return Error{model.error()};
+    const std::vector<Geometry> geometry = curetC2();
+    std::vector<std::vector<double>> reference;
+    for (const Geometry& g : geometry)
+        reference.push_back(simulateHistogram(*model, g.light, g.view,
+                                              {.method = SimulationMethod::Quadrature, .nodes = 512}));
+    struct Config {
+        std::string label;
+        SimulationOptions options;
+        double error = 0;
+        std::vector<double> seconds;
+    };
+    std::vector<Config> configs;
+    for (std::uint64_t n : {1000ull, 10000ull, 50000ull, 100000ull, 1000000ull})
+        configs.push_back({"mc " + std::to_string(n), {.method = SimulationMethod::Mc, .samples = n, .seed = 5}});
+    configs.push_back({"mc 50000 1 thread", {.method = SimulationMethod::Mc, .samples = 50000, .seed = 5, .threads = 1}});
+    configs.push_back({"mc 1000000 1 thread", {.method = SimulationMethod::Mc, .samples = 1000000, .seed = 5, .threads = 1}});
+    for (int nodes : {4, 6, 8, 12, 16, 24, 32, 48, 64})
+        configs.push_back({"quadrature " + std::to_string(nodes), {.method = SimulationMethod::Quadrature, .nodes = nodes}});
+    for (int r = 0; r < o.repeat; ++r)
+        for (Config& c : configs) {
+            auto start = std::chrono::steady_clock::now();
+            double error = 0;
+            for (std::size_t k = 0; k < geometry.size(); ++k) {
+                auto h = simulateHistogram(*model, geometry[k].light, geometry[k].view, c.options);
+                error += earthMoversDistance(h, reference[k]);
+            }
+            c.seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            c.error = error / static_cast<double>(geometry.size());
+        }
+    auto find = [&](const std::string& label) -> const Config& {
+        return *std::find_if(configs.begin(), configs.end(), [&](const Config& c) { return c.label == label; });
+    };
+    const Config& mc50k = find("mc 50000");
+    double quadSeconds = std::numeric_limits<double>::infinity();
+    std::string quadLabel = "none";
+    for (const Config& c : configs)
+        if (c.options.method == SimulationMethod::Quadrature && c.error <= mc50k.error && median(c.seconds) < quadSeconds) {
+            quadSeconds = median(c.seconds);
+            quadLabel = c.label;
+        }
+    const double quadOverMc = quadSeconds / median(mc50k.seconds);
+    const double speedup50k = median(find("mc 50000 1 thread").seconds) / median(mc50k.seconds);
+    const double speedup1m = median(find("mc 1000000 1 thread").seconds) / median(find("mc 1000000").seconds);
+    nlohmann::json out{{"model", {{"roughness", model->roughness}, {"kd", model->brdf.kd}, {"ks", model->brdf.ks},
+                                  {"sigma", model->brdf.sigma}, {"ior", model->brdf.ior}, {"gain", model->gain}}},
+                       {"geometry", "curet-c2"},
+                       {"reference", "quadrature 512"},
+                       {"quad_over_mc50k", quadOverMc},
+                       {"quad_matching_mc50k", quadLabel},
+                       {"mc_speedup_2_threads", speedup50k},
+                       {"mc_speedup_2_threads_1e6", speedup1m},
+                       {"configs", nlohmann::json::array()}};
+    for (const Config& c : configs)
+        out["configs"].push_back({{"label", c.label}, {"mean_emd", c.error}, {"seconds", median(c.seconds)}});
+    if (o.json) {
+        std::cout << out.dump(1) << "\n";
+        return success();
+    }
+    char line[200];
+    std::cout << "simulate curet-c2 (11 positions), error = mean EMD against quadrature 512, time = median of "
+              << o.repeat << "\n";
+    std::snprintf(line, sizeof line, "  %-22s %12s %12s\n", "method", "mean EMD", "time ms");
+    std::cout << line;
+    for (const Config& c : configs) {
+        std::snprintf(line, sizeof line, "  %-22s %12.3e %12.3f\n", c.label.c_str(), c.error, median(c.seconds) * 1e3);
+        std::cout << line;
+    }
+    std::snprintf(line, sizeof line,
+                  "quad_over_mc50k %.4f (%s reaches mc 50000's error; target <= 0.1)\n"
+                  "mc_speedup_2_threads %.2f at 5e4 points, %.2f at 1e6 (target >= 1.8)\n",
+                  quadOverMc, quadLabel.c_str(), speedup50k, speedup1m);
+    std::cout << line;
+    return success();
+}
+
 }  // namespace
 
 void addBenchCommand(CLI::App& root, Commands& commands) {
@@ -94,6 +184,14 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::Range(0, 1024));
     bake->add_flag("--json", o->json, "print JSON");
     commands.push_back({bake, [o] { return runBenchBake(*o); }});
+
+    auto so = std::make_shared<BenchSimulateOptions>();
+    CLI::App* simulate = bench->add_subcommand(
+        "simulate", "Error against time: Monte Carlo and quadrature histograms at curet-c2");
+    addModelOptions(*simulate, so->model, false);
+    simulate->add_option("--repeat", so->repeat, "timed runs")->check(CLI::Range(1, 100))->capture_default_str();
+    simulate->add_flag("--json", so->json, "print JSON");
+    commands.push_back({simulate, [so] { return runBenchSimulate(*so); }});
 }
 
 }  // namespace btflut::cli

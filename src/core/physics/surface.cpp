@@ -1,6 +1,7 @@
 #include "core/physics/surface.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
 
@@ -45,7 +46,9 @@ Fresnel fresnel(double n, double theta) {
 
 Status validateModel(const SurfaceModel& m, const std::string& what) {
     auto bad = [&](const std::string& name, double v, const std::string& rule) {
-        return Error{what + name + " " + std::to_string(v) + " " + rule};
+        char number[32];
+        std::snprintf(number, sizeof number, "%g", v);
+        return Error{what + name + " " + number + " " + rule};
     };
     if (!std::isfinite(m.roughness) || m.roughness <= 0) return bad("roughness", m.roughness, "must be > 0");
     if (!std::isfinite(m.brdf.sigma) || m.brdf.sigma <= 0) return bad("sigma", m.brdf.sigma, "must be > 0");

@@ -1,0 +1,39 @@
+#include "cli/model_options.h"
+
+namespace btflut::cli {
+
+void addModelOptions(CLI::App& app, ModelFlags& f, bool roughnessRequired) {
+    auto* r = app.add_option("--roughness", f.roughness, "rms slope r of the Gaussian surface (> 0)");
+    if (roughnessRequired) r->required();
+    app.add_option("--brdf", f.brdf, "local BRDF: lambert, ts (Torrance-Sparrow) or mix (kd lambert + ks ts)")
+        ->check(CLI::IsMember({"lambert", "ts", "mix"}))
+        ->capture_default_str();
+    app.add_option("--sigma", f.sigma, "Torrance-Sparrow facet slope width (> 0)")->capture_default_str();
+    app.add_option("--kd", f.kd, "diffuse weight (lambert: default 1; mix: required)");
+    app.add_option("--ks", f.ks, "specular weight (ts: default 1; mix: required)");
+    app.add_option("--ior", f.ior, "index of refraction for Fresnel (>= 1)")->capture_default_str();
+    app.add_option("--gain", f.gain, "camera gain; values clip at 1 (> 0)")->capture_default_str();
+}
+
+Result<SurfaceModel> modelFromFlags(const ModelFlags& f) {
+    SurfaceModel model;
+    model.roughness = f.roughness;
+    model.gain = f.gain;
+    model.brdf.sigma = f.sigma;
+    model.brdf.ior = f.ior;
+    if (f.brdf == "lambert") {
+        model.brdf.kd = f.kd.value_or(1.0);
+        model.brdf.ks = 0;
+    } else if (f.brdf == "ts") {
+        model.brdf.kd = 0;
+        model.brdf.ks = f.ks.value_or(1.0);
+    } else {
+        if (!f.kd || !f.ks) return Error{"--brdf mix needs --kd and --ks"};
+        model.brdf.kd = *f.kd;
+        model.brdf.ks = *f.ks;
+    }
+    if (Status s = validateModel(model, "--"); !s) return Error{s.error()};
+    return model;
+}
+
+}  // namespace btflut::cli
