@@ -111,6 +111,10 @@ std::string histogramsToJson(const std::vector<HistogramRow>& rows) {
     return doc.dump(1) + "\n";
 }
 
+Status saveHistograms(const std::vector<HistogramRow>& rows, const std::string& path) {
+    return writeFileAtomically(path, fileExtension(path) == "csv" ? histogramsToCsv(rows) : histogramsToJson(rows));
+}
+
 Result<std::vector<HistogramRow>> parseHistogramCsv(const std::string& text,
                                                     const std::string& file) {
     std::istringstream in(text);

@@ -53,6 +53,9 @@ std::string histogramsToCsv(const std::vector<HistogramRow>& rows);
 /// "values": [...]}]}.
 std::string histogramsToJson(const std::vector<HistogramRow>& rows);
 
+/// Writes histograms atomically as CSV or JSON, chosen by the extension of `path`.
+Status saveHistograms(const std::vector<HistogramRow>& rows, const std::string& path);
+
 /// Reads the CSV form back; `file` names the source in errors. Rows must all have the
 /// header's bin count and finite, non-negative values.
 Result<std::vector<HistogramRow>> parseHistogramCsv(const std::string& text,

@@ -60,8 +60,7 @@ Status runHist(const HistOptions& o) {
     });
     for (const std::string& e : errors)
         if (!e.empty()) return Error{e};
-    std::string text = fileExtension(o.output) == "csv" ? histogramsToCsv(rows) : histogramsToJson(rows);
-    return writeFileAtomically(o.output, text);
+    return saveHistograms(rows, o.output);
 }
 
 }  // namespace

@@ -38,8 +38,7 @@ Status runSimulate(const SimulateOptions& o) {
     std::vector<HistogramRow> rows;
     for (const Geometry& g : *geometry)
         rows.push_back({g.name, g.light, g.view, simulateHistogram(*model, g.light, g.view, options)});
-    std::string text = fileExtension(o.output) == "csv" ? histogramsToCsv(rows) : histogramsToJson(rows);
-    return writeFileAtomically(o.output, text);
+    return saveHistograms(rows, o.output);
 }
 
 }  // namespace
