@@ -60,8 +60,8 @@ double normalDensity(double x, double sd) {
     return std::exp(-0.5 * (x / sd) * (x / sd)) / (sd * std::sqrt(2 * std::numbers::pi));
 }
 
-// Standard normal CDF and its inverse (Acklam's rational approximation, then one Halley
-// step against erfc: full double precision).
+// Standard normal CDF and its inverse (Acklam's rational approximation, relative error
+// below 1.2e-9: ample for placing nodes, whose weights are exact in probability).
 double normalCdf(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
 
 double normalQuantile(double u) {
@@ -87,9 +87,7 @@ double normalQuantile(double u) {
         x = (((((a[0] * t + a[1]) * t + a[2]) * t + a[3]) * t + a[4]) * t + a[5]) * q /
             (((((b[0] * t + b[1]) * t + b[2]) * t + b[3]) * t + b[4]) * t + 1);
     }
-    const double e = normalCdf(x) - u;
-    const double step = e * std::sqrt(2 * std::numbers::pi) * std::exp(0.5 * x * x);
-    return x - step / (1 + 0.5 * x * step);
+    return x;
 }
 
 // cot(theta) for theta in [0, pi/2]: +inf at 0, 0 at the horizon.
@@ -120,11 +118,13 @@ void spreadOverBins(std::vector<double>& h, double value, double x, double y, do
     if (x < y) std::swap(x, y);
     // CDF of the sum at s, using H, the antiderivative of clamp(t, 0, 1).
     auto cdf = [x, y](double s) {
+        // Exactly 0 and 1 outside the support: there the closed form would subtract nearly
+        // equal large numbers (s / x can be 1e12 for a tiny cell) and lose mass.
+        if (s <= -x - y) return 0.0;
+        if (s >= x + y) return 1.0;
         auto clamp01 = [](double t) { return std::clamp(t, 0.0, 1.0); };
-        if (x <= 0) return s >= 0 ? 1.0 : 0.0;
-        // The closed form below subtracts nearly equal H values and multiplies by x / y: when
-        // y << x that cancellation costs all precision, while the uniform CDF is then exact
-        // to O((y / x)^2).
+        // When y << x the closed form below also cancels (it divides by y); the uniform CDF
+        // is then exact to O((y / x)^2).
         if (y <= 1e-4 * x) return clamp01((s + x) / (2 * x));
         auto H = [](double t) { return t <= 0 ? 0.0 : t < 1 ? 0.5 * t * t : t - 0.5; };
         return clamp01(x / y * (H((s + y + x) / (2 * x)) - H((s - y + x) / (2 * x))));
@@ -262,44 +262,49 @@ std::vector<double> quadrature(const SurfaceModel& model, Direction light, Direc
             return;
         }
         h[0] += weight * (1 - pIll);
-        // Spread along a only: spreading along both axes at once (a trapezoid) showed a bias
-        // against Monte Carlo on narrow specular lobes that grew with the node count (cause
-        // not found yet); one axis converges to Monte Carlo and already breaks the aliasing.
         const double value = valueAt(a, b);
         const double spreadA = 0.5 * std::abs(valueAt(a1, b) - valueAt(a0, b));
-        (void)b0, (void)b1;
-        spreadOverBins(h, value, spreadA, 0.0, weight * pIll);
+        const double spreadB = 0.5 * std::abs(valueAt(a, b1) - valueAt(a, b0));
+        spreadOverBins(h, value, spreadA, spreadB, weight * pIll);
     };
-    // Both slope axes are integrated in probability, u = Phi(slope / r), by the midpoint
-    // rule: each piece is cut into `nodes` cells of equal probability, so the Gaussian density
-    // cancels, the cells tile the plane exactly, and each node stands for a cell with known
-    // slope bounds. Pieces are cut at the visibility and shadowing boundaries, so no cell
-    // straddles one.
+    // Both slope axes are integrated in probability, u = Phi(slope / r), with Gauss-Legendre
+    // rules, so nodes sit where the mass is and the Gaussian density cancels. Pieces are cut
+    // at the visibility and shadowing boundaries, so no integrand has a kink. Each node
+    // stands for the cell of its probability share around it (kept within its piece).
     auto uOf = [r](double slope) { return std::isfinite(slope) ? normalCdf(slope / r) : (slope > 0 ? 1.0 : 0.0); };
     const double tail = kSlopeRange * r;  // bounds of the outermost cells
     auto slopeOf = [r, tail](double u) {
         return u <= 0 ? -tail : u >= 1 ? tail : std::clamp(r * normalQuantile(u), -tail, tail);
     };
+    const Rule& rule = gaussLegendre(o.nodes);
+    const std::size_t n = rule.x.size();
+    // The node, its weight and its cell's slope bounds for rule node k on [u0, u1].
+    struct Node {
+        double slope, weight, lo, hi;
+    };
+    auto node = [&](double u0, double u1, std::size_t k) {
+        const double half = 0.5 * (u1 - u0), u = u0 + half * (1 + rule.x[k]), w = half * rule.w[k];
+        return Node{slopeOf(u), w, slopeOf(std::max(u0, u - 0.5 * w)), slopeOf(std::min(u1, u + 0.5 * w))};
+    };
     const auto aPieces = pieces(0, uOf(aVisible), {inPlane ? uOf(aLight) : -1.0});
-    const auto n = static_cast<std::size_t>(o.nodes);
+    std::vector<Node> uncut;  // the b-nodes of rows that no shadow boundary crosses
+    for (std::size_t k = 0; k < n; ++k) uncut.push_back(node(0, 1, k));
     std::vector<std::vector<double>> rows(aPieces.size() * n);
-    parallelFor(rows.size(), o.threads, [&](std::size_t row) {
+    // Threads only pay off beyond about a millisecond of work.
+    const int threads = rows.size() * n < 4096 ? 1 : o.threads;
+    parallelFor(rows.size(), threads, [&](std::size_t row) {
         std::vector<double> h(static_cast<std::size_t>(o.bins), 0.0);
-        const auto [u0, u1] = aPieces[row / n];
-        const double du = (u1 - u0) / static_cast<double>(n);
-        const double uLo = u0 + du * static_cast<double>(row % n);
-        const double a = slopeOf(uLo + 0.5 * du), aLo = slopeOf(uLo), aHi = slopeOf(uLo + du);
-        double wa = du;
-        if (areaWeighted) wa *= v.z - std::sin(view.theta) * a;
+        const Node a = node(aPieces[row / n].first, aPieces[row / n].second, row % n);
+        double wa = a.weight;
+        if (areaWeighted) wa *= v.z - std::sin(view.theta) * a.slope;
         if (wa > 0) {
-            const double bCut = inPlane ? -1.0 : uOf((tLight - a * cosD) / sinD);
-            for (auto [w0, w1] : pieces(0, 1, {bCut})) {
-                const double dw = (w1 - w0) / static_cast<double>(n);
-                for (std::size_t j = 0; j < n; ++j) {
-                    const double wLo = w0 + dw * static_cast<double>(j);
-                    add(h, a, slopeOf(wLo + 0.5 * dw), aLo, aHi, slopeOf(wLo), slopeOf(wLo + dw), wa * dw);
+            const double bCut = inPlane ? -1.0 : uOf((tLight - a.slope * cosD) / sinD);
+            const auto bPieces = pieces(0, 1, {bCut});
+            for (auto [w0, w1] : bPieces)
+                for (std::size_t k = 0; k < n; ++k) {
+                    const Node b = bPieces.size() == 1 ? uncut[k] : node(w0, w1, k);
+                    add(h, a.slope, b.slope, a.lo, a.hi, b.lo, b.hi, wa * b.weight);
                 }
-            }
         }
         rows[row] = std::move(h);
     });

@@ -1,5 +1,6 @@
 #include "core/physics/surface.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -35,10 +36,13 @@ double facetDensity(double r, double thetaM) {
     return std::exp(-t * t / (2 * r * r)) / (2 * std::numbers::pi * r * r * c * c * c);
 }
 
-Fresnel fresnel(double n, double theta) {
-    const double ci = std::cos(theta), si = std::sin(theta);
-    const double st = si / n;
-    const double ct = std::sqrt(std::max(0.0, 1 - st * st));
+Fresnel fresnel(double n, double theta) { return fresnelFromCos(n, std::cos(theta)); }
+
+Fresnel fresnelFromCos(double n, double ci) {
+    ci = std::clamp(ci, 0.0, 1.0);
+    // cos of the refracted angle from Snell's law: sin t = sin i / n.
+    const double st2 = (1 - ci * ci) / (n * n);
+    const double ct = std::sqrt(std::max(0.0, 1 - st2));
     const double rs = (ci - n * ct) / (ci + n * ct);
     const double rp = (n * ci - ct) / (n * ci + ct);
     return {rs * rs, rp * rp};
@@ -76,7 +80,7 @@ double facetRadiance(const SurfaceModel& model, const Vec3& m, const Vec3& l, co
                 const double tan2 = (1 - cosAlpha * cosAlpha) / (cosAlpha * cosAlpha);
                 const double d = std::exp(-tan2 / (2 * s2)) /
                                  (2 * std::numbers::pi * s2 * cosAlpha * cosAlpha * cosAlpha);
-                const double f = fresnel(model.brdf.ior, std::acos(std::min(1.0, dot(l, h)))).unpolarised();
+                const double f = fresnelFromCos(model.brdf.ior, dot(l, h)).unpolarised();
                 // pi * f_r * cos i with f_r = F D / (4 cos i cos r)
                 value += model.brdf.ks * std::numbers::pi * f * d / (4 * cosR);
             }

@@ -38,6 +38,8 @@ struct Fresnel {
     double unpolarised() const { return 0.5 * (s + p); }
 };
 Fresnel fresnel(double n, double theta);
+/// The same from cos(theta), in [0, 1].
+Fresnel fresnelFromCos(double n, double cosTheta);
 
 /// Local reflection: kd * Lambert + ks * Torrance-Sparrow (Gaussian facet slopes of width
 /// sigma, normalised over projected area, Fresnel with index ior).
