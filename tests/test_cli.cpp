@@ -61,7 +61,7 @@ TEST_CASE("bake, info, relight and export work from files") {
     REQUIRE(info.status == 0);
     CHECK(info.out.find("256 entries") != std::string::npos);
     CHECK(info.out.find("5x5") != std::string::npos);
-    CHECK(info.out.find("4 measured lights") != std::string::npos);
+    CHECK(info.out.find("4 light nodes") != std::string::npos);
 
     REQUIRE(runCli({"relight", dir / "m.btflut", "--light", "30,0", "-o", dir / "r.png", "--no-dither"}).status == 0);
     auto relit = loadImage(dir / "r.png");
@@ -153,7 +153,7 @@ TEST_CASE("simulate writes hist's CSV and refuses bad parameters") {
         {{"--roughness", "-1"}, "roughness -1 must be > 0"},
         {{"--roughness", "0.4", "--brdf", "ts", "--sigma", "0"}, "sigma 0 must be > 0"},
         {{"--roughness", "0.4", "--brdf", "ts", "--ior", "0.9"}, "ior 0.9 must be >= 1"},
-        {{"--roughness", "0.4", "--brdf", "mix"}, "--brdf mix needs --kd and --ks"},
+        {{"--roughness", "0.4", "--brdf", "mix"}, "--brdf mix needs kd and ks"},
         {{"--roughness", "0.4", "--brdf", "phong"}, "--brdf"},
         {{"--roughness", "0.4", "--method", "magic"}, "--method 'magic'"},
         {{"--roughness", "0.4", "--bins", "1"}, "--bins"},

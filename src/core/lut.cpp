@@ -7,26 +7,35 @@ namespace btflut {
 namespace {
 
 // Cumulative mass below each code: below[k] = mass of codes < k, below[size] = 1.
-std::vector<double> massBelow(const LevelCounts& levels) {
-    const auto total = static_cast<double>(levels.total());
+std::vector<double> massBelow(std::span<const double> mass) {
+    double total = 0;
+    for (double m : mass) total += m;
     BTFLUT_CHECK(total > 0);
-    std::vector<double> below(levels.counts.size() + 1, 0.0);
-    std::uint64_t running = 0;
-    for (std::size_t k = 0; k < levels.counts.size(); ++k) {
-        running += levels.counts[k];
-        below[k + 1] = static_cast<double>(running) / total;
+    std::vector<double> below(mass.size() + 1, 0.0);
+    double running = 0;
+    for (std::size_t k = 0; k < mass.size(); ++k) {
+        running += mass[k];
+        below[k + 1] = running / total;
     }
     below.back() = 1.0;
     return below;
 }
 
+std::vector<double> asMass(const LevelCounts& levels) {
+    return {levels.counts.begin(), levels.counts.end()};
+}
+
 }  // namespace
 
 Lut matchLut(const LevelCounts& reference, const LevelCounts& target, int entries) {
-    BTFLUT_CHECK(entries >= 2);
+    return matchLut(asMass(reference), asMass(target), entries);
+}
+
+Lut matchLut(std::span<const double> reference, std::span<const double> target, int entries) {
+    BTFLUT_CHECK(entries >= 2 && reference.size() >= 2 && target.size() >= 2);
     const std::vector<double> refBelow = massBelow(reference);
     const std::vector<double> tgtBelow = massBelow(target);
-    const std::size_t refCodes = reference.counts.size(), tgtCodes = target.counts.size();
+    const std::size_t refCodes = reference.size(), tgtCodes = target.size();
     const auto refLast = static_cast<double>(refCodes - 1);
     Lut lut;
     lut.values.resize(static_cast<std::size_t>(entries));
@@ -41,10 +50,10 @@ Lut matchLut(const LevelCounts& reference, const LevelCounts& target, int entrie
         double u = refBelow[j + 1];
         if (frac > 0 && j + 1 < refCodes) u += (refBelow[j + 2] - refBelow[j + 1]) * frac;
         // c_target^{-1}(u): the first present code whose mass reaches u.
-        while (m + 1 < tgtCodes && (tgtBelow[m + 1] < u || target.counts[m] == 0)) ++m;
-        while (target.counts[m] == 0) --m;  // u = 1 past the last present code
+        while (m + 1 < tgtCodes && (tgtBelow[m + 1] < u || target[m] <= 0)) ++m;
+        while (target[m] <= 0) --m;  // u = 1 past the last present code
         // Across the code's own cell only: the cells of absent codes get no output.
-        const double top = target.valueOf(m);
+        const double top = static_cast<double>(m) / static_cast<double>(tgtCodes - 1);
         const double bottom = std::max(0.0, top - tgtCode);
         const double within =
             std::clamp((u - tgtBelow[m]) / (tgtBelow[m + 1] - tgtBelow[m]), 0.0, 1.0);

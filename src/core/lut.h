@@ -63,6 +63,10 @@ struct Lut {
 /// count at least one pixel.
 Lut matchLut(const LevelCounts& reference, const LevelCounts& target, int entries);
 
+/// The same from masses per code (code k at value k / (size - 1); any non-negative
+/// weights with a positive sum, e.g. a model histogram).
+Lut matchLut(std::span<const double> reference, std::span<const double> target, int entries);
+
 /// Dither for pixel (x, y) (and channel c), uniform in [-1/2, 1/2): a fixed integer hash,
 /// reproduced bit for bit by shaders/lut_common.glsl.
 inline float ditherOffset(std::uint32_t x, std::uint32_t y, std::uint32_t c = 0) {

@@ -122,6 +122,46 @@ BankLookup LutBank::lookup(Direction light, Direction view) const {
     return out;
 }
 
+void setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts) {
+    const std::size_t length = bank.lutLength();
+    bank.layers.clear();
+    // Group by view into layers, and merge repeated light directions within a layer by
+    // averaging their LUTs (the barycentre of the repeated measurements).
+    std::vector<std::vector<int>> mergedCount;
+    for (const DirectionalLut& lut : luts) {
+        BTFLUT_CHECK(lut.values.size() == length);
+        auto layer = std::find_if(bank.layers.begin(), bank.layers.end(), [&](const ViewLayer& l) {
+            return angleBetween(l.view, lut.view) < kSameDirection;
+        });
+        if (layer == bank.layers.end()) {
+            bank.layers.push_back(ViewLayer{lut.view, {}, {}, {}, {}, {}});
+            mergedCount.emplace_back();
+            layer = std::prev(bank.layers.end());
+        }
+        auto& counts = mergedCount[static_cast<std::size_t>(layer - bank.layers.begin())];
+        auto node = std::find_if(layer->nodes.begin(), layer->nodes.end(), [&](const LightNode& n) {
+            return angleBetween(n.light, lut.light) < kSameDirection;
+        });
+        if (node == layer->nodes.end()) {
+            layer->nodes.push_back({lut.name, lut.light});
+            layer->nodeLuts.insert(layer->nodeLuts.end(), lut.values.begin(), lut.values.end());
+            counts.push_back(1);
+        } else {
+            auto n = static_cast<std::size_t>(node - layer->nodes.begin());
+            float* sum = &layer->nodeLuts[n * length];
+            for (std::size_t k = 0; k < length; ++k) sum[k] += lut.values[k];
+            ++counts[n];
+        }
+    }
+    for (std::size_t l = 0; l < bank.layers.size(); ++l)
+        for (std::size_t n = 0; n < mergedCount[l].size(); ++n)
+            if (mergedCount[l][n] > 1)
+                for (std::size_t k = 0; k < length; ++k)
+                    bank.layers[l].nodeLuts[n * length + k] /= static_cast<float>(mergedCount[l][n]);
+    bank.buildTriangulations();
+    bank.fillGrids();
+}
+
 Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
                          const ImageProvider& provider) {
     const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {
@@ -212,46 +252,16 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     for (const ImageLuts& r : results)
         if (!r.error.empty()) return Error{r.error};
 
-    // Group by view into layers, and merge repeated light directions within a layer by
-    // averaging their LUTs (the barycentre of the repeated measurements).
-    std::vector<std::vector<int>> mergedCount;
+    std::vector<DirectionalLut> luts;
     for (std::size_t i = 0; i < dataset.images.size(); ++i) {
         const DatasetImage& info = dataset.images[i];
-        auto layer = std::find_if(bank.layers.begin(), bank.layers.end(), [&](const ViewLayer& l) {
-            return angleBetween(l.view, info.view) < kSameDirection;
-        });
-        if (layer == bank.layers.end()) {
-            bank.layers.push_back(ViewLayer{info.view, {}, {}, {}, {}, {}});
-            mergedCount.emplace_back();
-            layer = std::prev(bank.layers.end());
-        }
-        auto& counts = mergedCount[static_cast<std::size_t>(layer - bank.layers.begin())];
-        auto node = std::find_if(layer->nodes.begin(), layer->nodes.end(), [&](const LightNode& n) {
-            return angleBetween(n.light, info.light) < kSameDirection;
-        });
-        const std::vector<float>& values = results[i].values;
-        if (node == layer->nodes.end()) {
-            layer->nodes.push_back({info.name, info.light});
-            layer->nodeLuts.insert(layer->nodeLuts.end(), values.begin(), values.end());
-            counts.push_back(1);
-        } else {
-            auto n = static_cast<std::size_t>(node - layer->nodes.begin());
-            float* sum = &layer->nodeLuts[n * length];
-            for (std::size_t k = 0; k < length; ++k) sum[k] += values[k];
-            ++counts[n];
-        }
+        luts.push_back({info.name, info.light, info.view, std::move(results[i].values)});
     }
-    for (std::size_t l = 0; l < bank.layers.size(); ++l)
-        for (std::size_t n = 0; n < mergedCount[l].size(); ++n)
-            if (mergedCount[l][n] > 1)
-                for (std::size_t k = 0; k < length; ++k)
-                    bank.layers[l].nodeLuts[n * length + k] /= static_cast<float>(mergedCount[l][n]);
-
     bank.reference = ref;
-    bank.buildTriangulations();
-    bank.fillGrids();
+    setNodes(bank, luts);
     return bank;
 }
+
 
 Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
                 int entries, float targetCode) {

@@ -91,6 +91,20 @@ struct LutBank {
     void fillGrids();
 };
 
+/// A LUT at one light and view direction (measured or modelled); values are
+/// channels x entries.
+struct DirectionalLut {
+    std::string name;
+    Direction light;
+    Direction view;
+    std::vector<float> values;
+};
+
+/// Builds `bank`'s layers from LUTs: one layer per view direction, repeated light directions
+/// merged by averaging (the barycentre), then the triangulations and grids. bank.entries,
+/// colour and gridSize must be set; each LUT holds bank.lutLength() values.
+void setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts);
+
 struct BakeOptions {
     std::string referenceName;  ///< empty: the image nearest to frontal light and view
     int gridSize = 17;

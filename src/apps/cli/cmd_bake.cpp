@@ -5,6 +5,7 @@
 
 #include "cli/cli.h"
 #include "core/bank_file.h"
+#include "core/physics/model_bank.h"
 
 namespace btflut::cli {
 
@@ -14,6 +15,9 @@ struct BakeCommandOptions {
     std::string dataset;
     std::string output;
     std::string reference;
+    std::string model;
+    std::string mask;
+    std::string referenceLight = "0,0";
     std::string colour = "grey";
     int grid = 17;
     int entries = 0;
@@ -22,8 +26,40 @@ struct BakeCommandOptions {
     bool quiet = false;
 };
 
+// A bank from the rough-surface model and one reference image.
+Status runModelBake(const BakeCommandOptions& o) {
+    if (!o.dataset.empty()) return Error{"give either a DATASET or --model, not both"};
+    if (o.reference.empty()) return Error{"--model needs --reference IMAGE (the material's reference image)"};
+    if (o.colour != "grey") return Error{"--model makes grey LUTs; --colour rgb needs measured images"};
+    Result<Bytes> text = readFile(o.model);
+    if (!text) return Error{text.error()};
+    Result<ModelBankParams> params = parseModelParams(std::string(text->begin(), text->end()), o.model);
+    if (!params) return Error{params.error()};
+    Result<Direction> light = parseDirection(o.referenceLight, "--reference-light");
+    if (!light) return Error{light.error()};
+    Result<Image> reference = loadImage(o.reference);
+    if (!reference) return Error{reference.error()};
+    Mask mask = fullMask(reference->width, reference->height);
+    if (!o.mask.empty()) {
+        Result<Mask> loaded = loadMask(o.mask, reference->width, reference->height);
+        if (!loaded) return Error{loaded.error()};
+        mask = std::move(*loaded);
+    }
+    ModelReference about{std::filesystem::path(o.reference).stem().string(), *light, o.grid, o.entries};
+    Result<LutBank> bank = bakeModelBank(*params, *reference, mask, about);
+    if (!bank) return Error{bank.error()};
+    if (Status s = saveBank(*bank, o.output, {.embedReference = !o.noReference}); !s) return s;
+    if (!o.quiet)
+        std::cout << "wrote " << o.output << ": model r " << params->model.roughness << ", "
+                  << bank->layers.front().nodes.size() << " model directions, reference " << o.reference
+                  << ", " << std::filesystem::file_size(o.output) << " bytes\n";
+    return success();
+}
+
 Status runBake(const BakeCommandOptions& o) {
     if (Status s = requireExtension(o.output, {"btflut"}, "output"); !s) return s;
+    if (!o.model.empty()) return runModelBake(o);
+    if (o.dataset.empty()) return Error{"give a DATASET to bake, or --model PARAMS.json with --reference IMAGE"};
     Result<Dataset> dataset = openDataset(o.dataset);
     if (!dataset) return Error{dataset.error()};
     BakeOptions options;
@@ -53,11 +89,17 @@ Status runBake(const BakeCommandOptions& o) {
 void addBakeCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<BakeCommandOptions>();
     CLI::App* app = root.add_subcommand("bake", "Bake a LUT bank (.btflut) from a dataset");
-    app->add_option("DATASET", o->dataset, "dataset folder or file (see btflut hist --help)")
-        ->required();
+    app->add_option("DATASET", o->dataset, "dataset folder or file (see btflut hist --help)");
     app->add_option("-o,--output", o->output, "the bank, M.btflut")->required();
     app->add_option("--reference", o->reference,
-                    "name of the reference image (default: nearest to frontal light and view)");
+                    "with a DATASET: name of the reference image (default: nearest to frontal light "
+                    "and view); with --model: the reference image file");
+    app->add_option("--model", o->model,
+                    "PARAMS.json: bake from the rough-surface model instead (docs/model-params.md)");
+    app->add_option("--mask", o->mask, "with --model: mask of the reference image (non-zero = sample)");
+    app->add_option("--reference-light", o->referenceLight,
+                    "with --model: THETA,PHI of the light the reference image was taken under")
+        ->capture_default_str();
     app->add_option("--grid", o->grid, "grid nodes per side over the equal-area light disk")
         ->check(CLI::Range(2, 257))
         ->capture_default_str();

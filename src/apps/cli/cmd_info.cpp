@@ -52,7 +52,7 @@ Status runInfo(const InfoOptions& o) {
         for (const LightNode& n : layer.nodes) maxTheta = std::max(maxTheta, n.light.thetaDegrees());
         char line[320];
         std::snprintf(line, sizeof line,
-                      "  layer %zu: view %s, %zu measured lights (theta up to %.1f), grid nodes in the "
+                      "  layer %zu: view %s, %zu light nodes (theta up to %.1f), grid nodes in the "
                       "hemisphere: %zu measured, %zu interpolated, %zu extrapolated (%.0f%% covered)\n",
                       l, degrees(layer.view).c_str(), layer.nodes.size(), maxTheta, counts[0], counts[1],
                       counts[2], 100.0 * static_cast<double>(counts[0] + counts[1]) / static_cast<double>(inDisk));

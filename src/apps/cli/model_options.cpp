@@ -16,24 +16,7 @@ void addModelOptions(CLI::App& app, ModelFlags& f, bool roughnessRequired) {
 }
 
 Result<SurfaceModel> modelFromFlags(const ModelFlags& f) {
-    SurfaceModel model;
-    model.roughness = f.roughness;
-    model.gain = f.gain;
-    model.brdf.sigma = f.sigma;
-    model.brdf.ior = f.ior;
-    if (f.brdf == "lambert") {
-        model.brdf.kd = f.kd.value_or(1.0);
-        model.brdf.ks = 0;
-    } else if (f.brdf == "ts") {
-        model.brdf.kd = 0;
-        model.brdf.ks = f.ks.value_or(1.0);
-    } else {
-        if (!f.kd || !f.ks) return Error{"--brdf mix needs --kd and --ks"};
-        model.brdf.kd = *f.kd;
-        model.brdf.ks = *f.ks;
-    }
-    if (Status s = validateModel(model, "--"); !s) return Error{s.error()};
-    return model;
+    return makeSurfaceModel(f.roughness, f.brdf, f.kd, f.ks, f.sigma, f.ior, f.gain, "--");
 }
 
 }  // namespace btflut::cli

@@ -48,6 +48,31 @@ Fresnel fresnelFromCos(double n, double ci) {
     return {rs * rs, rp * rp};
 }
 
+Result<SurfaceModel> makeSurfaceModel(double roughness, const std::string& brdf, std::optional<double> kd,
+                                      std::optional<double> ks, double sigma, double ior, double gain,
+                                      const std::string& what) {
+    SurfaceModel model;
+    model.roughness = roughness;
+    model.gain = gain;
+    model.brdf.sigma = sigma;
+    model.brdf.ior = ior;
+    if (brdf == "lambert") {
+        model.brdf.kd = kd.value_or(1.0);
+        model.brdf.ks = 0;
+    } else if (brdf == "ts") {
+        model.brdf.kd = 0;
+        model.brdf.ks = ks.value_or(1.0);
+    } else if (brdf == "mix") {
+        if (!kd || !ks) return Error{what + "brdf mix needs kd and ks"};
+        model.brdf.kd = *kd;
+        model.brdf.ks = *ks;
+    } else {
+        return Error{what + "brdf '" + brdf + "' is not lambert, ts or mix"};
+    }
+    if (Status s = validateModel(model, what); !s) return Error{s.error()};
+    return model;
+}
+
 Status validateModel(const SurfaceModel& m, const std::string& what) {
     auto bad = [&](const std::string& name, double v, const std::string& rule) {
         char number[32];

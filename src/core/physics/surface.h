@@ -11,6 +11,7 @@
 // white Lambertian facet facing a unit light gives `gain`.
 
 #include <algorithm>
+#include <optional>
 #include <string>
 
 #include "core/direction.h"
@@ -55,6 +56,13 @@ struct SurfaceModel {
     LocalBrdf brdf;
     double gain = 1;
 };
+
+/// A model from the BRDF's name as flags and files give it: "lambert" uses kd (default 1),
+/// "ts" ks (default 1), "mix" needs both. Validated (validateModel); errors name the
+/// parameter, prefixed with `what` ("--" for flags, "FILE: " for files).
+Result<SurfaceModel> makeSurfaceModel(double roughness, const std::string& brdf, std::optional<double> kd,
+                                      std::optional<double> ks, double sigma, double ior, double gain,
+                                      const std::string& what);
 
 /// Checks a model's parameters: r > 0, sigma > 0, ior >= 1, kd and ks >= 0, gain > 0, all
 /// finite. `what` prefixes the message.
