@@ -169,3 +169,30 @@ TEST_CASE("simulate writes hist's CSV and refuses bad parameters") {
     requireOneLineError(runCli({"simulate", "--roughness", "0.4", "--geometry", "10,0,95,0", "-o", dir / "bad.csv"}), "theta");
     CHECK_FALSE(fs::exists(dir / "bad.csv"));
 }
+
+TEST_CASE("plot draws histogram CSV files as a figure; bad files refused") {
+    TempDir dir;
+    REQUIRE(runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "12", "-o", dir / "a.csv"}).status == 0);
+    REQUIRE(runCli({"simulate", "--roughness", "0.6", "--geometry", "curet-specular", "--nodes", "12", "-o", dir / "b.csv"}).status == 0);
+    CliRun ok = runCli({"plot", dir / "a.csv", dir / "b.csv", "-o", dir / "fig.png"});
+    REQUIRE(ok.status == 0);
+    auto fig = loadImage(dir / "fig.png");
+    REQUIRE(fig.ok());
+    CHECK(fig->height > 11 * 60);  // a row per position of the longer file
+    CHECK(fig->width > 2 * 256);   // a column per file
+    // Bars are drawn: the figure is not blank, and the L/S/C marks are red.
+    std::size_t blue = 0, red = 0;
+    for (std::size_t i = 0; i < fig->pixelCount(); ++i) {
+        const float* p = &fig->samples[i * 3];
+        blue += p[2] > 0.6f && p[0] < 0.35f;
+        red += p[0] > 0.6f && p[1] < 0.3f;
+    }
+    CHECK(blue > 5000);
+    CHECK(red > 50);
+    std::ofstream(dir / "bad.csv") << "name,theta_i,phi_i,theta_r,phi_r,b0,b1\nx,1,2,3,4,0.5\n";
+    requireOneLineError(runCli({"plot", dir / "bad.csv", "-o", dir / "x.png"}), "bad.csv:2");
+    std::ofstream(dir / "empty.csv") << "name,theta_i,phi_i,theta_r,phi_r,b0,b1\n";
+    requireOneLineError(runCli({"plot", dir / "empty.csv", "-o", dir / "x.png"}), "no histograms");
+    requireOneLineError(runCli({"plot", dir / "none.csv", "-o", dir / "x.png"}), "none.csv: cannot open");
+    CHECK_FALSE(fs::exists(dir / "x.png"));
+}

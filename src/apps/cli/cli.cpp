@@ -54,6 +54,7 @@ int run(const std::vector<std::string>& args) {
     addExportCommand(root, commands);
     addMatchCommand(root, commands);
     addSimulateCommand(root, commands);
+    addPlotCommand(root, commands);
     addBenchCommand(root, commands);
 
     if (!args.empty() && !args.front().empty() && args.front()[0] != '-') {

@@ -1,0 +1,137 @@
+#include "core/plot.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wold-style-cast"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#include <stb/stb_easy_font.h>
+#pragma GCC diagnostic pop
+
+namespace btflut {
+
+namespace {
+
+constexpr int kPanelW = 256, kPanelH = 60, kGapX = 36, kGapY = 10;
+constexpr int kLeft = 96, kTop = 44, kBottom = 44;
+constexpr int kTextScale = 2;
+
+struct Rgb {
+    float r, g, b;
+};
+const Rgb kInk{0.1f, 0.1f, 0.1f}, kBar{0.25f, 0.4f, 0.7f}, kAxis{0.55f, 0.55f, 0.55f},
+    kMark{0.75f, 0.15f, 0.1f};
+
+class Canvas {
+public:
+    Canvas(int w, int h) : m_image(w, h, 3) { std::fill(m_image.samples.begin(), m_image.samples.end(), 1.f); }
+    void fill(int x0, int y0, int x1, int y1, Rgb c) {
+        x0 = std::max(x0, 0), y0 = std::max(y0, 0);
+        x1 = std::min(x1, m_image.width), y1 = std::min(y1, m_image.height);
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                m_image.at(x, y, 0) = c.r;
+                m_image.at(x, y, 1) = c.g;
+                m_image.at(x, y, 2) = c.b;
+            }
+    }
+    // Text with its top-left corner at (x, y), stb_easy_font's quads scaled up.
+    void text(int x, int y, const std::string& s, Rgb c) {
+        std::vector<char> buffer(s.size() * 300 + 64);
+        std::string copy = s;
+        unsigned char colour[4] = {0, 0, 0, 255};
+        const int quads = stb_easy_font_print(0, 0, copy.data(), colour, buffer.data(), static_cast<int>(buffer.size()));
+        const auto* v = reinterpret_cast<const float*>(buffer.data());
+        for (int q = 0; q < quads; ++q) {
+            const float* a = v + q * 16;  // 4 vertices of (x, y, z, rgba) = 4 floats each
+            const float* d = a + 8;
+            fill(x + static_cast<int>(a[0] * kTextScale), y + static_cast<int>(a[1] * kTextScale),
+                 x + static_cast<int>(d[0] * kTextScale), y + static_cast<int>(d[1] * kTextScale), c);
+        }
+    }
+    static int textWidth(const std::string& s) {
+        std::string copy = s;
+        return stb_easy_font_width(copy.data()) * kTextScale;
+    }
+    Image take() { return std::move(m_image); }
+
+private:
+    Image m_image;
+};
+
+std::string positionLabel(const std::string& name) {
+    if (name == "c2-4") return name + " L";
+    if (name == "c2-6") return name + " S";
+    if (name == "c2-8") return name + " C";
+    return name;
+}
+
+std::string format(const char* pattern, double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, pattern, v);
+    return buf;
+}
+
+}  // namespace
+
+Image plotHistograms(const std::vector<PlotColumn>& columns) {
+    BTFLUT_CHECK(!columns.empty());
+    std::size_t rows = 0;
+    for (const PlotColumn& c : columns) rows = std::max(rows, c.rows.size());
+    BTFLUT_CHECK(rows > 0);
+    const int width = kLeft + static_cast<int>(columns.size()) * (kPanelW + kGapX);
+    const int height = kTop + static_cast<int>(rows) * (kPanelH + kGapY) + kBottom;
+    Canvas canvas(width, height);
+
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+        const int x0 = kLeft + static_cast<int>(c) * (kPanelW + kGapX);
+        canvas.text(x0 + (kPanelW - Canvas::textWidth(columns[c].title)) / 2, 10, columns[c].title, kInk);
+    }
+    for (std::size_t r = 0; r < rows; ++r) {
+        const int y0 = kTop + static_cast<int>(r) * (kPanelH + kGapY);
+        std::string label;
+        for (const PlotColumn& c : columns)
+            if (r < c.rows.size() && label.empty()) label = positionLabel(c.rows[r].name);
+        const bool marked = label.size() > 2 && label[label.size() - 2] == ' ';
+        canvas.text(8, y0 + 20, label, marked ? kMark : kInk);
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+            const int x0 = kLeft + static_cast<int>(c) * (kPanelW + kGapX);
+            canvas.fill(x0, y0 + kPanelH, x0 + kPanelW, y0 + kPanelH + 1, kAxis);  // baseline
+            canvas.fill(x0, y0, x0 + 1, y0 + kPanelH, kAxis);                      // y axis
+            if (r >= columns[c].rows.size()) continue;
+            const std::vector<double>& bins = columns[c].rows[r].bins;
+            const double rowMax = *std::max_element(bins.begin(), bins.end());
+            if (rowMax <= 0) continue;
+            const auto n = static_cast<int>(bins.size());
+            for (int b = 0; b < n; ++b) {
+                const int bx0 = x0 + 1 + b * (kPanelW - 1) / n, bx1 = x0 + 1 + (b + 1) * (kPanelW - 1) / n;
+                const int barHeight = static_cast<int>(bins[static_cast<std::size_t>(b)] / rowMax * (kPanelH - 4) + 0.5);
+                canvas.fill(bx0, y0 + kPanelH - barHeight, std::max(bx1, bx0 + 1), y0 + kPanelH, kBar);
+            }
+            // The panel's scale, over the bars on a white backing.
+            const std::string scale = format("%.3f", rowMax);
+            const int tx = x0 + kPanelW - Canvas::textWidth(scale) - 2;
+            canvas.fill(tx - 2, y0, x0 + kPanelW, y0 + 16, {1, 1, 1});
+            canvas.text(tx, y0 + 2, scale, kAxis);
+        }
+    }
+    // Grey-value axis under the last row of each column.
+    const int axisY = kTop + static_cast<int>(rows) * (kPanelH + kGapY) + 2;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+        const int x0 = kLeft + static_cast<int>(c) * (kPanelW + kGapX);
+        for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+            const int x = x0 + static_cast<int>(t * (kPanelW - 1));
+            canvas.fill(x, axisY - 6, x + 1, axisY, kAxis);
+            const std::string tick = t == 0 ? "0" : t == 1 ? "1" : format("%.2g", t);
+            canvas.text(std::clamp(x - Canvas::textWidth(tick) / 2, 0, width - Canvas::textWidth(tick)), axisY + 2, tick, kInk);
+        }
+        canvas.text(x0 + (kPanelW - Canvas::textWidth("grey value")) / 2, axisY + 22, "grey value", kAxis);
+    }
+    return canvas.take();
+}
+
+}  // namespace btflut
