@@ -228,3 +228,20 @@ TEST_CASE("smoothing keeps the mass") {
     CHECK(s[40] < 0.5);
     CHECK(s[38] > 0);
 }
+
+TEST_CASE("eq. 3 is a probability density of facet normals per unit macro area") {
+    // P is the slope distribution carried over to normals (d2(p, q) = dw / cos^3), so it
+    // integrates to 1 over the hemisphere; the facet-area density is P / cos.
+    for (double r : {0.05, 0.4, 1.5}) {
+        // int P(theta) dw over the hemisphere, dw = sin(theta) dtheta dphi.
+        const int n = 200000;
+        double sum = 0;
+        for (int i = 0; i < n; ++i) {
+            const double theta = (i + 0.5) / n * (std::numbers::pi / 2);
+            sum += facetDensity(r, theta) * std::sin(theta);
+        }
+        sum *= (std::numbers::pi / 2) / n * 2 * std::numbers::pi;
+        INFO("r " << r);
+        CHECK(sum == doctest::Approx(1.0).epsilon(1e-6));
+    }
+}
