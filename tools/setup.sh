@@ -9,6 +9,7 @@ packages=(
   libstb-dev            # stb_image (decode PNG/JPEG/TGA/BMP, 8- and 16-bit)
   libspng-dev zlib1g-dev  # PNG encode (8/16-bit), CRC-32 for .btflut files
   libcli11-dev nlohmann-json3-dev doctest-dev
+  libfftw3-dev          # spectral synthesis of rough height fields
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libimgui-dev
   python3 python3-numpy python3-skimage python3-pil  # reference checks in tools/
   xvfb xauth

@@ -1,0 +1,29 @@
+#pragma once
+// Renders a height field as an orthographic camera sees it under a collimated light: the
+// ground truth the histogram model is compared with.
+//
+//   Image img = renderHeightField(field, model, light, view, {.samplesPerAxis = 2});
+//
+// Pixel (i, row) is the ray that crosses the mean plane at x = i + 1/2, y = size - row - 1/2
+// (image y up), so every pixel covers the same image area whatever the view. Each ray is
+// marched from above the field to its first hit (masking); the hit is shadowed when it faces
+// away from the light or the field rises above the ray towards the light (cast shadows). Lit
+// hits take the local BRDF's radiance (facetRadiance, the model's); a pixel averages s x s
+// sub-rays and the camera then clips at 1.
+
+#include "core/image.h"
+#include "core/physics/surface.h"
+#include "core/synth/height_field.h"
+
+namespace btflut {
+
+struct RenderOptions {
+    int samplesPerAxis = 2;  ///< s: s x s rays per pixel
+    int threads = 0;         ///< 0: all cores
+};
+
+/// A grey image (field.size x field.size), values in [0, 1].
+Image renderHeightField(const HeightField& field, const SurfaceModel& model, Direction light, Direction view,
+                        const RenderOptions& options);
+
+}  // namespace btflut
