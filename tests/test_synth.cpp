@@ -84,3 +84,74 @@ TEST_CASE("a frontal light casts no shadow; a grazing one does, and only where t
     CHECK(dark > grazing.samples.size() / 10);
     CHECK(dark < grazing.samples.size());
 }
+
+#include "core/dataset.h"
+#include "helpers.h"
+
+using namespace btflut::test;
+
+TEST_CASE("btflut synth writes a dataset every reader takes, reproducibly, atomically") {
+    TempDir dir;
+    CliRun run = runCli({"synth", "--preset", "corduroy", "--geometry", "rti-6", "--size", "64", "--correlation-length",
+                         "6", "--samples", "1", "--albedo-variation", "0.3", "--ambient", "0.05", "--noise", "0.01",
+                         "-o", dir / "cord"});
+    REQUIRE(run.status == 0);
+    auto manifest = openDataset(dir / "cord");
+    REQUIRE(manifest.ok());
+    CHECK(manifest->format == "manifest");
+    CHECK(manifest->images.size() == 6);
+    CHECK(fs::exists(dir / "cord/mask.png"));
+    auto lp = openDataset(dir / "cord/synth.lp");  // fixed frontal camera: also an RTI capture
+    REQUIRE(lp.ok());
+    CHECK(angleBetween(lp->images[3].light, manifest->images[3].light) < 1e-6);
+    auto image = loadImage(dir / "cord/l2.png");
+    REQUIRE(image.ok());
+    CHECK(image->width == 64);
+    CHECK(image->channels == 1);
+    auto synth = nlohmann::json::parse(readText(dir / "cord/btflut-dataset.json"))["synth"];
+    CHECK(synth["roughness"] == 0.6);
+    CHECK(synth["roughness_across"] == 0.15);
+    // It bakes.
+    REQUIRE(runCli({"bake", dir / "cord", "-o", dir / "cord.btflut", "-q"}).status == 0);
+
+    // Same flags, same seed: the same bytes (whatever the thread count); --force replaces.
+    REQUIRE(runCli({"synth", "--preset", "corduroy", "--geometry", "rti-6", "--size", "64", "--correlation-length", "6",
+                    "--samples", "1", "--albedo-variation", "0.3", "--ambient", "0.05", "--noise", "0.01", "--threads",
+                    "1", "-o", dir / "again"})
+                .status == 0);
+    CHECK(readText(dir / "again/l4.png") == readText(dir / "cord/l4.png"));
+    requireOneLineError(runCli({"synth", "--size", "64", "--correlation-length", "6", "-o", dir / "cord"}),
+                        "exists and is not empty (use --force");
+    CHECK(readText(dir / "again/l4.png") == readText(dir / "cord/l4.png"));
+    REQUIRE(runCli({"synth", "--size", "64", "--correlation-length", "6", "--geometry", "10,0,20,180", "--force",
+                    "--depth", "16", "-o", dir / "cord"})
+                .status == 0);
+    CHECK(fs::exists(dir / "cord/p1.png"));
+    CHECK_FALSE(fs::exists(dir / "cord/l4.png"));
+    CHECK(loadImage(dir / "cord/p1.png")->bitDepth == 16);
+    CHECK_FALSE(fs::exists(dir / "cord/synth.lp"));  // the camera is not frontal
+}
+
+TEST_CASE("btflut synth refuses bad input with one line and writes nothing") {
+    TempDir dir;
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad{
+        {{"--size", "0"}, "size 0 must be positive"},
+        {{"--size", "-8"}, "size -8 must be positive"},
+        {{"--roughness", "0"}, "roughness 0 must be > 0"},
+        {{"--correlation-length", "0"}, "correlation length must be > 0"},
+        {{"--size", "64", "--correlation-length", "32"}, "at most size / 4"},
+        {{"--preset", "velvet"}, "--preset 'velvet'"},
+        {{"--brdf", "ts", "--sigma", "-1"}, "sigma -1 must be > 0"},
+        {{"--albedo-variation", "2"}, "--albedo-variation"},
+        {{"--noise", "-1"}, "--noise"},
+        {{"--geometry", "10,0,90,0"}, "above the horizon"},
+        {{"--geometry", "rti-0"}, "rti-N"},
+    };
+    for (const auto& [flags, needle] : bad) {
+        std::vector<std::string> args{"synth", "-o", dir / "out"};
+        args.insert(args.end(), flags.begin(), flags.end());
+        INFO(needle);
+        requireOneLineError(runCli(args), needle);
+    }
+    CHECK(fs::is_empty(dir.path()));
+}

@@ -55,6 +55,7 @@ int run(const std::vector<std::string>& args) {
     addMatchCommand(root, commands);
     addSimulateCommand(root, commands);
     addPlotCommand(root, commands);
+    addSynthCommand(root, commands);
     addBenchCommand(root, commands);
 
     if (!args.empty() && !args.front().empty() && args.front()[0] != '-') {

@@ -27,6 +27,7 @@ void addExportCommand(CLI::App& root, Commands& commands);
 void addMatchCommand(CLI::App& root, Commands& commands);
 void addSimulateCommand(CLI::App& root, Commands& commands);
 void addPlotCommand(CLI::App& root, Commands& commands);
+void addSynthCommand(CLI::App& root, Commands& commands);
 void addBenchCommand(CLI::App& root, Commands& commands);
 
 /// Runs btflut with arguments (without the program name); returns the exit status.

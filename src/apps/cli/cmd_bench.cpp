@@ -12,6 +12,7 @@
 #include "core/lut_bank.h"
 #include "core/physics/geometry.h"
 #include "core/physics/simulate.h"
+#include "core/synth/render.h"
 
 namespace btflut::cli {
 
@@ -171,6 +172,44 @@ Status runBenchSimulate(const BenchSimulateOptions& o) {
     return success();
 }
 
+struct BenchSynthOptions {
+    int size = 512;
+    int samples = 2;
+    int repeat = 3;
+    bool json = false;
+};
+
+// One image of a Lambertian r 0.4 field with cast shadows (light 60 degrees, view 30 degrees
+// from the other side), on one thread and on all, interleaved.
+Status runBenchSynth(const BenchSynthOptions& o) {
+    Result<HeightField> field = synthesizeHeightField({.size = o.size, .roughness = 0.4,
+                                                       .correlationLength = std::min(16.0, o.size / 4.0)});
+    if (!field) return Error{field.error()};
+    const SurfaceModel model{.roughness = 0.4};
+    const Direction light = Direction::fromDegrees(60, 0), view = Direction::fromDegrees(30, 180);
+    std::vector<double> one, all;
+    for (int r = 0; r < o.repeat; ++r)
+        for (int threads : {1, 0}) {
+            auto start = std::chrono::steady_clock::now();
+            Image image = renderHeightField(*field, model, light, view, {.samplesPerAxis = o.samples, .threads = threads});
+            (threads == 1 ? one : all).push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        }
+    const double speedup = median(one) / median(all);
+    nlohmann::json out{{"size", o.size}, {"rays_per_pixel", o.samples * o.samples}, {"seconds_1_thread", median(one)},
+                       {"seconds", median(all)}, {"speedup_2_threads", speedup}};
+    if (o.json) {
+        std::cout << out.dump(1) << "\n";
+        return success();
+    }
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "synth render %dx%d, %d rays per pixel, cast shadows: %.3f s on 1 thread, %.3f s on all "
+                  "cores (speed-up %.2f), medians of %d\n",
+                  o.size, o.size, o.samples * o.samples, median(one), median(all), speedup, o.repeat);
+    std::cout << text;
+    return success();
+}
+
 }  // namespace
 
 void addBenchCommand(CLI::App& root, Commands& commands) {
@@ -192,6 +231,14 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
     simulate->add_option("--repeat", so->repeat, "timed runs")->check(CLI::Range(1, 100))->capture_default_str();
     simulate->add_flag("--json", so->json, "print JSON");
     commands.push_back({simulate, [so] { return runBenchSimulate(*so); }});
+
+    auto yo = std::make_shared<BenchSynthOptions>();
+    CLI::App* synth = bench->add_subcommand("synth", "Time rendering one synthetic image, 1 thread against all");
+    synth->add_option("--size", yo->size, "image size")->check(CLI::Range(16, 8192))->capture_default_str();
+    synth->add_option("--samples", yo->samples, "rays per pixel along each axis")->check(CLI::Range(1, 16))->capture_default_str();
+    synth->add_option("--repeat", yo->repeat, "timed runs")->check(CLI::Range(1, 100))->capture_default_str();
+    synth->add_flag("--json", yo->json, "print JSON");
+    commands.push_back({synth, [yo] { return runBenchSynth(*yo); }});
 }
 
 }  // namespace btflut::cli

@@ -1,6 +1,8 @@
 #include "core/physics/geometry.h"
 
 #include <cmath>
+#include <cstdlib>
+#include <numbers>
 #include <sstream>
 
 #include "core/dataset.h"
@@ -30,9 +32,27 @@ std::vector<Geometry> curetSpecular() {
     return g;
 }
 
+std::vector<Geometry> rtiDome(int lights) {
+    std::vector<Geometry> g;
+    const double zMin = std::cos(75 * kDegree), golden = std::numbers::pi * (3 - std::sqrt(5.0));
+    for (int k = 0; k < lights; ++k) {
+        // Equal solid angle per light: z evenly spaced from 1 down to cos(75 degrees).
+        const double z = 1 - (k + 0.5) / lights * (1 - zMin);
+        g.push_back({"l" + std::to_string(k + 1), Direction{std::acos(z), std::fmod(k * golden, 2 * std::numbers::pi)},
+                     Direction{}});
+    }
+    return g;
+}
+
 Result<std::vector<Geometry>> parseGeometry(const std::string& spec) {
     if (spec == "curet-c2") return curetC2();
     if (spec == "curet-specular") return curetSpecular();
+    if (spec.rfind("rti-", 0) == 0) {
+        char* end = nullptr;
+        const long n = std::strtol(spec.c_str() + 4, &end, 10);
+        if (*end != '\0' || n < 1 || n > 10000) return Error{"--geometry " + spec + ": expected rti-N with N in 1..10000"};
+        return rtiDome(static_cast<int>(n));
+    }
     if (spec.find(',') != std::string::npos && spec.find('/') == std::string::npos) {
         std::vector<Geometry> g;
         std::istringstream in(spec);

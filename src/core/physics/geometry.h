@@ -6,6 +6,8 @@
 //                   in the x-z plane; frontal to the lamp at 4 (L), specular at 6 (S),
 //                   frontal to the camera at 8 (C). Named c2-1 .. c2-11.
 //   curet-specular  the 7 specular positions theta_i = theta_r = 11.25 k, opposite azimuths.
+//   rti-N           N lights spread evenly over the hemisphere up to 75 degrees (a Fibonacci
+//                   spiral), frontal camera: an RTI dome. Named l1 .. lN.
 //   a list          "THETA_I,PHI_I,THETA_R,PHI_R;..." in degrees.
 //   a dataset       the directions of a dataset's images (any form openDataset reads).
 
@@ -25,6 +27,7 @@ struct Geometry {
 
 std::vector<Geometry> curetC2();
 std::vector<Geometry> curetSpecular();
+std::vector<Geometry> rtiDome(int lights);
 
 /// A named geometry, a list, or a dataset path. Errors name the problem. Angles may be 90
 /// degrees here (the simulator handles the horizon); beyond is refused.

@@ -1,8 +1,10 @@
 #include "core/synth/render.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/parallel.h"
+#include "core/random.h"
 
 namespace btflut {
 
@@ -50,8 +52,17 @@ Image renderHeightField(const HeightField& field, const SurfaceModel& model, Dir
     const Vec3 l = toVector(light), v = toVector(view);
     const double top = field.maxHeight(), bottom = field.minHeight();
     Image image(n, n, 1, 16);
+    auto albedoAt = [&](double x, double y) {
+        if (!o.albedo) return 1.0;
+        auto wrap = [n](double c) {
+            auto k = static_cast<long>(std::floor(c)) % n;
+            return static_cast<std::size_t>(k < 0 ? k + n : k);
+        };
+        return (*o.albedo)[wrap(y) * static_cast<std::size_t>(n) + wrap(x)];
+    };
     parallelFor(static_cast<std::size_t>(n), o.threads, [&](std::size_t rowIndex) {
         const int row = static_cast<int>(rowIndex);
+        Random noise(o.noiseSeed * 0x9e3779b97f4a7c15ull + rowIndex);  // per row: thread-independent
         for (int i = 0; i < n; ++i) {
             double sum = 0;
             for (int sy = 0; sy < s; ++sy)
@@ -61,10 +72,14 @@ Image renderHeightField(const HeightField& field, const SurfaceModel& model, Dir
                     const double p = field.slopeXAt(hit.x, hit.y), q = field.slopeYAt(hit.x, hit.y);
                     const double len = std::sqrt(1 + p * p + q * q);
                     const Vec3 m{-p / len, -q / len, 1 / len};
+                    const double albedo = albedoAt(hit.x, hit.y);
+                    sum += o.ambient * albedo * model.brdf.kd * model.gain;
                     if (m.x * l.x + m.y * l.y + m.z * l.z <= 0 || castShadow(field, l, hit, top)) continue;
-                    sum += facetRadiance(model, m, l, v);
+                    sum += albedo * facetRadiance(model, m, l, v);
                 }
-            image.at(i, row, 0) = static_cast<float>(std::min(1.0, sum / (s * s)));
+            double value = sum / (s * s);
+            if (o.noise > 0) value += o.noise * noise.normals().first;
+            image.at(i, row, 0) = static_cast<float>(std::clamp(value, 0.0, 1.0));
         }
     });
     return image;

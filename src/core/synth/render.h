@@ -11,6 +11,9 @@
 // hits take the local BRDF's radiance (facetRadiance, the model's); a pixel averages s x s
 // sub-rays and the camera then clips at 1.
 
+#include <cstdint>
+#include <vector>
+
 #include "core/image.h"
 #include "core/physics/surface.h"
 #include "core/synth/height_field.h"
@@ -20,9 +23,16 @@ namespace btflut {
 struct RenderOptions {
     int samplesPerAxis = 2;  ///< s: s x s rays per pixel
     int threads = 0;         ///< 0: all cores
+    /// Surface albedo per field pixel (size x size, in [0, 1]); empty: 1 everywhere.
+    const std::vector<double>* albedo = nullptr;
+    double ambient = 0;      ///< constant diffuse irradiance (interreflection, sky), lit or not
+    double noise = 0;        ///< sensor noise: standard deviation per pixel, before clipping
+    std::uint64_t noiseSeed = 1;
 };
 
-/// A grey image (field.size x field.size), values in [0, 1].
+/// A grey image (field.size x field.size), values in [0, 1]. The albedo scales the local
+/// BRDF; the ambient term adds ambient * albedo * kd to every hit; noise is reproducible
+/// from its seed whatever the thread count.
 Image renderHeightField(const HeightField& field, const SurfaceModel& model, Direction light, Direction view,
                         const RenderOptions& options);
 

@@ -1,0 +1,41 @@
+// LUT application shared by btflut's fragment shaders: the GLSL twin of src/core/lut.h
+// (ditherOffset, lutInput, lutOutput) and of applyLuts' grey mode in src/core/lut_bank.cpp.
+// It must stay bit-for-bit equal to the C++ hash, so CPU relighting and GPU rendering agree.
+// (Compiled and tested against `btflut relight` by the renderer, issue 5.)
+
+// Uniform in [-1/2, 1/2) for pixel (x, y) and channel c.
+float btflutDitherOffset(uint x, uint y, uint c) {
+    uint h = x * 0x8da6b343u ^ y * 0xd8163841u ^ c * 0xcb1ab31fu;
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return float(h >> 8) * (1.0 / 16777216.0) - 0.5;
+}
+
+// The LUT (a 1D texture of `entries` texels, linear filtering) at v in [0, 1].
+float btflutApplyLut(sampler1D lut, int entries, float v) {
+    float position = clamp(v, 0.0, 1.0) * float(entries - 1);
+    return texture(lut, (position + 0.5) / float(entries)).r;
+}
+
+// Dithered application: input moved within its code's cell [v - code, v), output raised
+// half a target code (code 0 stays black). inCode, outCode: one input and one target code.
+float btflutApplyLutDithered(sampler1D lut, int entries, float v, uvec2 pixel, uint channel, float inCode,
+                             float outCode) {
+    float moved = v + (btflutDitherOffset(pixel.x, pixel.y, channel) - 0.5) * inCode;
+    float value = btflutApplyLut(lut, entries, moved);
+    return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
+}
+
+// Grey mode: the pixel's grey (mean of R, G, B) becomes `target`; its colour is scaled, and
+// desaturated towards grey where a channel would exceed 1, so the grey stays `target`.
+vec3 btflutSetGrey(vec3 rgb, float target) {
+    float grey = (rgb.r + rgb.g + rgb.b) / 3.0;
+    if (grey <= 0.0) return vec3(target);
+    vec3 scaled = rgb * (target / grey);
+    float top = max(scaled.r, max(scaled.g, scaled.b));
+    if (top > 1.0) scaled = vec3(target) + (scaled - vec3(target)) * ((1.0 - target) / (top - target));
+    return scaled;
+}
