@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "core/bank_file.h"
 #include "core/file_io.h"
 
 namespace btflut::cli {
@@ -17,6 +18,16 @@ Status requireExtension(const std::string& path, const std::vector<std::string>&
     std::string list;
     for (const std::string& e : extensions) list += (list.empty() ? "." : " or .") + e;
     return Error{path + ": " + what + " must be a " + list + " file"};
+}
+
+Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::string& light, const std::string& view) {
+    Result<Direction> l = parseDirection(light, "--light");
+    if (!l) return Error{l.error()};
+    Result<Direction> v = parseDirection(view, "--view");
+    if (!v) return Error{v.error()};
+    Result<LutBank> bank = loadBank(bankPath);
+    if (!bank) return Error{bank.error()};
+    return BankAtDirection{std::move(*bank), *l, *v};
 }
 
 void addLutImageOptions(CLI::App& app, int& depth, bool& noDither) {
@@ -56,6 +67,7 @@ int run(const std::vector<std::string>& args) {
     addSimulateCommand(root, commands);
     addPlotCommand(root, commands);
     addSynthCommand(root, commands);
+    addRenderCommand(root, commands);
     addBenchCommand(root, commands);
 
     if (!args.empty() && !args.front().empty() && args.front()[0] != '-') {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/lut_bank.h"
 #include "core/result.h"
 
 namespace btflut::cli {
@@ -28,6 +29,7 @@ void addMatchCommand(CLI::App& root, Commands& commands);
 void addSimulateCommand(CLI::App& root, Commands& commands);
 void addPlotCommand(CLI::App& root, Commands& commands);
 void addSynthCommand(CLI::App& root, Commands& commands);
+void addRenderCommand(CLI::App& root, Commands& commands);
 void addBenchCommand(CLI::App& root, Commands& commands);
 
 /// Runs btflut with arguments (without the program name); returns the exit status.
@@ -41,6 +43,14 @@ Status requireExtension(const std::string& path, const std::vector<std::string>&
 
 /// The options of commands that write a LUT-mapped image: --depth 8|16 and --no-dither.
 void addLutImageOptions(CLI::App& app, int& depth, bool& noDither);
+
+/// A bank and the light and view to apply it at, from the command line's text
+/// (THETA,PHI in degrees), each validated.
+struct BankAtDirection {
+    LutBank bank;
+    Direction light, view;
+};
+Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::string& light, const std::string& view);
 
 /// A progress bar on stderr when it is a terminal; does nothing otherwise.
 std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label);

@@ -23,24 +23,21 @@ struct RelightOptions {
 
 Status runRelight(const RelightOptions& o) {
     if (Status s = requireExtension(o.output, {"png"}, "output"); !s) return s;
-    Result<Direction> light = parseDirection(o.light, "--light");
-    if (!light) return Error{light.error()};
-    Result<Direction> view = parseDirection(o.view, "--view");
-    if (!view) return Error{view.error()};
-    Result<LutBank> bank = loadBank(o.bank);
-    if (!bank) return Error{bank.error()};
+    Result<BankAtDirection> query = loadBankAt(o.bank, o.light, o.view);
+    if (!query) return Error{query.error()};
+    LutBank& bank = query->bank;
     if (!o.referenceImage.empty()) {
         Result<Image> image = loadImage(o.referenceImage);
         if (!image) return Error{image.error()};
-        if (bank->colour == ColourMode::Rgb && image->channels != 3)
+        if (bank.colour == ColourMode::Rgb && image->channels != 3)
             return Error{o.referenceImage + ": the bank is rgb but this image is grey"};
-        bank->reference = std::move(*image);
+        bank.reference = std::move(*image);
     }
-    if (bank->reference.samples.empty())
+    if (bank.reference.samples.empty())
         return Error{o.bank + ": the bank has no reference image inside; give --reference-image"};
-    BankLookup lookup = bank->lookup(*light, *view);
-    Image out = applyLuts(bank->reference, bank->colour, lookup.values, bank->entries,
-                          o.noDither ? 0.f : bank->targetCode());
+    BankLookup lookup = bank.lookup(query->light, query->view);
+    Image out = applyLuts(bank.reference, bank.colour, lookup.values, bank.entries,
+                          o.noDither ? 0.f : bank.targetCode());
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
     if (!o.quiet)
         std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT "

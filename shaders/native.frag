@@ -1,0 +1,38 @@
+// The reference image at its native size with one LUT applied: the GL twin of btflut relight.
+// Defines: RGB_MODE (a LUT per channel), DITHER.
+uniform sampler2D reference;   // texel (x, row), row 0 the image's top
+uniform sampler1D lut[3];      // grey mode uses lut[0]
+uniform int entries;
+uniform int referenceChannels; // 1 or 3
+uniform int height;
+uniform float inCode;          // one input code of the value a LUT maps
+uniform float outCode;         // one target code
+
+out vec4 colour;
+
+float mapValue(int channel, float v, uvec2 pixel) {
+#ifdef DITHER
+    if (channel == 0) return btflutApplyLutDithered(lut[0], entries, v, pixel, 0u, inCode, outCode);
+    if (channel == 1) return btflutApplyLutDithered(lut[1], entries, v, pixel, 1u, inCode, outCode);
+    return btflutApplyLutDithered(lut[2], entries, v, pixel, 2u, inCode, outCode);
+#else
+    if (channel == 0) return btflutApplyLut(lut[0], entries, v);
+    if (channel == 1) return btflutApplyLut(lut[1], entries, v);
+    return btflutApplyLut(lut[2], entries, v);
+#endif
+}
+
+void main() {
+    uvec2 pixel = uvec2(uint(gl_FragCoord.x), uint(height - 1 - int(gl_FragCoord.y)));
+    vec3 texel = texelFetch(reference, ivec2(pixel), 0).rgb;
+    if (referenceChannels == 1) {
+        colour = vec4(vec3(mapValue(0, texel.r, pixel)), 1.0);
+        return;
+    }
+#ifdef RGB_MODE
+    colour = vec4(mapValue(0, texel.r, pixel), mapValue(1, texel.g, pixel), mapValue(2, texel.b, pixel), 1.0);
+#else
+    float grey = (texel.r + texel.g + texel.b) * (1.0 / 3.0);
+    colour = vec4(btflutSetGrey(texel, mapValue(0, grey, pixel)), 1.0);
+#endif
+}

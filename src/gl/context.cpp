@@ -1,0 +1,118 @@
+#include "gl/context.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GL/osmesa.h>
+
+#include <vector>
+
+#include "gl/gl_api.h"
+
+namespace btflut {
+
+namespace {
+
+std::string glStrings() {
+    auto str = [](GLenum e) {
+        const GLubyte* s = gl.GetString(e);
+        return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+    };
+    return str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
+}
+
+class OsMesaContext : public HeadlessContext {
+public:
+    static Result<std::unique_ptr<HeadlessContext>> create() {
+        const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_PROFILE,
+                                  OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
+                                  OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+        std::unique_ptr<OsMesaContext> c(new OsMesaContext());
+        c->m_context = OSMesaCreateContextAttribs(attributes, nullptr);
+        if (!c->m_context) return Error{"OSMesa: cannot create an OpenGL 3.3 core context"};
+        // Drawing goes to framebuffer objects; OSMesa still wants a buffer to be current.
+        if (!OSMesaMakeCurrent(c->m_context, c->m_pixel.data(), GL_UNSIGNED_BYTE, 1, 1))
+            return Error{"OSMesa: cannot make the context current"};
+        if (const char* missing = loadGlFunctions([](const char* n) {
+                return reinterpret_cast<void*>(OSMesaGetProcAddress(n));
+            }))
+            return Error{std::string("OSMesa: missing ") + missing};
+        return std::unique_ptr<HeadlessContext>(std::move(c));
+    }
+    ~OsMesaContext() override {
+        if (m_context) OSMesaDestroyContext(m_context);
+    }
+    std::string description() const override { return "osmesa (" + glStrings() + ")"; }
+
+private:
+    OsMesaContext() : m_pixel(4) {}
+    ::OSMesaContext m_context = nullptr;
+    std::vector<unsigned char> m_pixel;
+};
+
+class EglContext : public HeadlessContext {
+public:
+    static Result<std::unique_ptr<HeadlessContext>> create() {
+        std::unique_ptr<EglContext> c(new EglContext());
+        auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
+            eglGetProcAddress("eglGetPlatformDisplayEXT"));
+        c->m_display = getPlatformDisplay
+                           ? getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
+                           : eglGetDisplay(EGL_DEFAULT_DISPLAY);
+        if (c->m_display == EGL_NO_DISPLAY) return Error{"EGL: no display"};
+        if (!eglInitialize(c->m_display, nullptr, nullptr)) return Error{"EGL: cannot initialise the display"};
+        c->m_initialised = true;
+        if (!eglBindAPI(EGL_OPENGL_API)) return Error{"EGL: no desktop OpenGL API"};
+        // eglChooseConfig defaults to window surfaces, which a surfaceless display has none of.
+        const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
+        EGLConfig config = nullptr;
+        EGLint count = 0;
+        if (!eglChooseConfig(c->m_display, configAttributes, &config, 1, &count) || count == 0)
+            return Error{"EGL: no OpenGL config"};
+        const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                                            EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                            EGL_NONE};
+        c->m_context = eglCreateContext(c->m_display, config, EGL_NO_CONTEXT, contextAttributes);
+        if (c->m_context == EGL_NO_CONTEXT) return Error{"EGL: cannot create an OpenGL 3.3 core context"};
+        if (!eglMakeCurrent(c->m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, c->m_context))
+            return Error{"EGL: cannot make a surfaceless context current"};
+        if (const char* missing = loadGlFunctions([](const char* n) {
+                return reinterpret_cast<void*>(eglGetProcAddress(n));
+            }))
+            return Error{std::string("EGL: missing ") + missing};
+        return std::unique_ptr<HeadlessContext>(std::move(c));
+    }
+    ~EglContext() override {
+        if (m_context != EGL_NO_CONTEXT) {
+            eglMakeCurrent(m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            eglDestroyContext(m_display, m_context);
+        }
+        if (m_initialised) eglTerminate(m_display);
+    }
+    std::string description() const override { return "egl (" + glStrings() + ")"; }
+
+private:
+    EGLDisplay m_display = EGL_NO_DISPLAY;
+    EGLContext m_context = EGL_NO_CONTEXT;
+    bool m_initialised = false;
+};
+
+}  // namespace
+
+Result<GlBackend> parseGlBackend(const std::string& name) {
+    if (name == "auto") return GlBackend::Auto;
+    if (name == "osmesa") return GlBackend::OsMesa;
+    if (name == "egl") return GlBackend::Egl;
+    return Error{"--backend '" + name + "' is not auto, osmesa or egl"};
+}
+
+Result<std::unique_ptr<HeadlessContext>> createHeadlessContext(GlBackend backend) {
+    if (backend == GlBackend::OsMesa) return OsMesaContext::create();
+    if (backend == GlBackend::Egl) return EglContext::create();
+    Result<std::unique_ptr<HeadlessContext>> egl = EglContext::create();
+    if (egl) return egl;
+    Result<std::unique_ptr<HeadlessContext>> osmesa = OsMesaContext::create();
+    if (osmesa) return osmesa;
+    return Error{"no OpenGL context: " + egl.error() + "; " + osmesa.error()};
+}
+
+}  // namespace btflut

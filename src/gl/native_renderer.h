@@ -1,0 +1,16 @@
+#pragma once
+// The GPU path of `btflut relight`: the bank's reference image at its native size, drawn by
+// a fragment shader that applies the LUT for one light and view direction. Under a
+// directional light the LUT is the same for every fragment, so it is blended once on the CPU
+// (bank.lookup) and uploaded as a 1D texture; the shader does one linearly filtered fetch per
+// channel. Needs a current context (context.h).
+//
+//   Result<Image> img = renderNative(bank, light, view, /*dither=*/true);
+
+#include "core/lut_bank.h"
+
+namespace btflut {
+
+Result<Image> renderNative(const LutBank& bank, Direction light, Direction view, bool dither);
+
+}  // namespace btflut

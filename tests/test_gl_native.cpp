@@ -1,0 +1,128 @@
+// GL tests (doctest suite "gl", CTest label gl): headless contexts, and the GPU path of relight.
+#include <doctest/doctest.h>
+
+#include "core/bank_file.h"
+#include "gl/context.h"
+#include "gl/native_renderer.h"
+#include "gl/shader.h"
+#include "helpers.h"
+
+using namespace btflut;
+using namespace btflut::test;
+
+namespace {
+
+double maxDifference(const Image& a, const Image& b) {
+    REQUIRE(a.samples.size() == b.samples.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < a.samples.size(); ++i)
+        worst = std::max(worst, static_cast<double>(std::abs(a.samples[i] - b.samples[i])));
+    return worst;
+}
+
+// Renders on the backend and checks against the CPU reference at each light, dithered and not.
+void checkAgainstRelight(GlBackend backend, const LutBank& bank, const std::vector<Direction>& lights) {
+    auto context = createHeadlessContext(backend);
+    if (!context.ok()) FAIL(context.error());
+    for (const Direction& light : lights)
+        for (bool dither : {false, true}) {
+            auto gpu = renderNative(bank, light, {}, dither);
+            if (!gpu.ok()) FAIL(gpu.error());
+            const double d = maxDifference(*gpu, relight(bank, light, {}, dither));
+            INFO((*context)->description() << " light " << light.thetaDegrees() << "," << light.phiDegrees()
+                                           << " dither " << dither << ": " << d * 255 << " / 255");
+            CHECK(d <= 1.0 / 255);
+        }
+}
+
+}  // namespace
+
+TEST_SUITE("gl") {
+    TEST_CASE("headless contexts: OSMesa and EGL give OpenGL 3.3+ core") {
+        for (auto [backend, name] : {std::pair{GlBackend::OsMesa, "osmesa"}, std::pair{GlBackend::Egl, "egl"}}) {
+            auto context = createHeadlessContext(backend);
+            if (!context.ok()) FAIL(context.error());
+            CHECK((*context)->description().rfind(name, 0) == 0);
+        }
+        CHECK(parseGlBackend("vulkan").error().find("--backend 'vulkan'") != std::string::npos);
+    }
+
+    TEST_CASE("render --native equals relight at measured and in-between directions (grey and rgb banks)") {
+        TempDir dir;
+        nlohmann::json manifest{{"images", nlohmann::json::array()}};
+        const double lights[4][2] = {{0, 0}, {30, 0}, {30, 120}, {50, 240}};
+        for (int s = 0; s < 4; ++s) {
+            Image im(48, 32, 3);
+            for (int y = 0; y < 32; ++y)
+                for (int x = 0; x < 48; ++x)
+                    for (int c = 0; c < 3; ++c)
+                        im.at(x, y, c) = static_cast<float>(((x * (3 + s) + y * 7 + c * 29 + s * s * 13) % 200 + 20) / 255.0);
+            std::string name = "s" + std::to_string(s) + ".png";
+            REQUIRE(savePng(im, dir / name).ok());
+            manifest["images"].push_back({{"file", name}, {"light", {{"theta", lights[s][0]}, {"phi", lights[s][1]}}}});
+        }
+        std::ofstream(dir / "set.json") << manifest.dump();
+        auto ds = openDataset(dir / "set.json");
+        REQUIRE(ds.ok());
+        const std::vector<Direction> at{Direction::fromDegrees(30, 0), Direction::fromDegrees(20, 60),
+                                        Direction::fromDegrees(45, 200), Direction::fromDegrees(80, 10)};
+        for (ColourMode colour : {ColourMode::Grey, ColourMode::Rgb}) {
+            auto bank = bakeBank(*ds, {.colour = colour});
+            REQUIRE(bank.ok());
+            checkAgainstRelight(GlBackend::OsMesa, *bank, at);
+            checkAgainstRelight(GlBackend::Egl, *bank, at);
+        }
+    }
+
+    TEST_CASE("between two nodes the shader's value is the CPU interpolation") {
+        TempDir dir;
+        auto ds = openDataset(writeSyntheticDataset(dir, {{20, 0, 0, 0, 0, 1}, {40, 0, 0, 0, 100, 2}}));
+        REQUIRE(ds.ok());
+        auto bank = bakeBank(*ds, {});
+        REQUIRE(bank.ok());
+        const DiskPoint a = toDisk(Direction::fromDegrees(20, 0)), b = toDisk(Direction::fromDegrees(40, 0));
+        std::vector<Direction> between;
+        for (double t : {0.25, 0.5, 0.8}) between.push_back(fromDisk({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}));
+        checkAgainstRelight(GlBackend::Auto, *bank, between);
+    }
+
+    TEST_CASE("psm-rock: render --native equals relight on OSMesa and EGL") {
+        if (!haveSharedData("psm-rock")) return;
+        auto ds = openDataset(sharedDataDir() + "/psm-rock");
+        REQUIRE(ds.ok());
+        auto bank = bakeBank(*ds, {});
+        REQUIRE(bank.ok());
+        std::vector<Direction> at{ds->images[0].light, ds->images[5].light, Direction::fromDegrees(25, 80)};
+        checkAgainstRelight(GlBackend::OsMesa, *bank, at);
+        checkAgainstRelight(GlBackend::Egl, *bank, at);
+    }
+
+    TEST_CASE("a shader that does not compile names the file and line") {
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        const std::string broken = "out vec4 colour;\nvoid main() {\n    colour = vec4(undefinedThing);\n}\n";
+        auto program = buildProgramFromSources({{"quad.vert", embeddedShader("quad.vert")}},
+                                               {{"lut_common.glsl", embeddedShader("lut_common.glsl")},
+                                                {"broken.frag", broken}},
+                                               {});
+        REQUIRE_FALSE(program.ok());
+        INFO(program.error());
+        CHECK(program.error().find("shaders/broken.frag:3(") != std::string::npos);
+        CHECK(program.error().find("undefinedThing") != std::string::npos);
+    }
+
+    TEST_CASE("btflut render: the PNG equals relight's; bad input refused") {
+        TempDir dir;
+        auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 40, 1}}));
+        REQUIRE(runCli({"bake", dir / "btflut-dataset.json", "-o", dir / "m.btflut", "-q"}).status == 0);
+        REQUIRE(runCli({"render", dir / "m.btflut", "--light", "15,0", "--native", "-o", dir / "gpu.png"}).status == 0);
+        REQUIRE(runCli({"relight", dir / "m.btflut", "--light", "15,0", "-o", dir / "cpu.png", "-q"}).status == 0);
+        CHECK(readText(dir / "gpu.png") == readText(dir / "cpu.png"));
+        requireOneLineError(runCli({"render", dir / "none.btflut", "--light", "15,0", "--native", "-o", dir / "x.png"}),
+                            "none.btflut: cannot open");
+        requireOneLineError(runCli({"render", dir / "m.btflut", "--light", "nan,0", "--native", "-o", dir / "x.png"}),
+                            "--light");
+        requireOneLineError(runCli({"render", dir / "m.btflut", "--light", "10,0", "-o", dir / "x.png"}), "--native");
+        CHECK_FALSE(fs::exists(dir / "x.png"));
+    }
+}
