@@ -126,3 +126,78 @@ TEST_SUITE("gl") {
         CHECK_FALSE(fs::exists(dir / "x.png"));
     }
 }
+
+#include "gl/scene_renderer.h"
+
+TEST_SUITE("gl") {
+    TEST_CASE("scenes: golden image, culling, and materials no visible quad uses are never loaded") {
+        TempDir dir;
+        auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {45, 0, 0, 0, 100, 2}, {60, 200, 0, 0, 20, 1}}));
+        REQUIRE(ds.ok());
+        auto bank = bakeBank(*ds, {});
+        REQUIRE(bank.ok());
+        REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+        std::ofstream(dir / "scene.json") << R"({
+          "image": {"width": 160, "height": 120},
+          "camera": {"position": [0, -3, 2.2], "target": [0, 0, 0], "up": [0, 0, 1], "fov_degrees": 45},
+          "light": {"direction": [0.6, 0.2, 0.5]},
+          "materials": {"m": "m.btflut", "unused": "does-not-exist.btflut", "behind": "also-missing.btflut"},
+          "quads": [
+            {"material": "m", "center": [0, 0, 0], "normal": [0, 0, 1], "tangent": [1, 0, 0], "size": [3, 3], "uv_scale": 2},
+            {"material": "m", "center": [0.9, 0.6, 0.6], "normal": [-1, 0, 0], "tangent": [0, 1, 0], "size": [1, 1], "mode": "flat"},
+            {"material": "behind", "center": [0, -30, 0], "normal": [0, 1, 0], "tangent": [1, 0, 0]}
+          ]})";
+        auto scene = loadScene(dir / "scene.json");
+        REQUIRE(scene.ok());
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        RenderStats stats;
+        auto image = renderScene(*scene, stats);
+        if (!image.ok()) FAIL(image.error());
+        CHECK(stats.loadedMaterials == std::vector<std::string>{"m"});
+        CHECK(stats.skippedMaterials.size() == 2);  // neither missing file was opened
+        CHECK(stats.quadsCulled == 1);
+        CHECK(stats.quadsDrawn == 2);
+        CHECK(stats.textureBytes > 0);
+
+        // Golden image: tests/reference/scene-basic.png. BTFLUT_UPDATE_REFERENCE=1 rewrites it
+        // (then look at it, and commit it with the change that explains why it moved).
+        const std::string golden = std::string(BTFLUT_SOURCE_DIR) + "/tests/reference/scene-basic.png";
+        if (const char* update = std::getenv("BTFLUT_UPDATE_REFERENCE"); update && std::string(update) == "1")
+            REQUIRE(savePng(*image, golden).ok());
+        auto reference = loadImage(golden);
+        REQUIRE_MESSAGE(reference.ok(), "missing golden image; run with BTFLUT_UPDATE_REFERENCE=1");
+        REQUIRE(reference->width == image->width);
+        double sum = 0, worst = 0;
+        for (std::size_t i = 0; i < image->samples.size(); ++i) {
+            const double d = std::abs(std::round(image->samples[i] * 255) / 255 - reference->samples[i]);
+            sum += d;
+            worst = std::max(worst, d);
+        }
+        const double mean = sum / static_cast<double>(image->samples.size());
+        INFO("mean " << mean * 255 << " / 255, worst " << worst * 255 << " / 255");
+        CHECK(mean <= 0.5 / 255);
+        CHECK(worst <= 16.0 / 255);  // edges may rasterise a pixel differently on another driver
+    }
+
+    TEST_CASE("btflut render SCENE.json: stats, overrides, and bad scenes refused") {
+        TempDir dir;
+        auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {45, 0, 0, 0, 100, 2}}));
+        REQUIRE(runCli({"bake", dir / "btflut-dataset.json", "-o", dir / "m.btflut", "-q"}).status == 0);
+        std::ofstream(dir / "s.json") << R"({"light": {"direction": [0, 0, 1]}, "materials": {"m": "m.btflut", "x": "nope.btflut"},
+            "quads": [{"material": "m", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "size": [2,2]}]})";
+        CliRun ok = runCli({"render", dir / "s.json", "--size", "96x64", "--light", "30,0", "--mode", "flat", "--stats",
+                            "-o", dir / "s.png"});
+        REQUIRE(ok.status == 0);
+        CHECK(ok.out.find("materials skipped (no visible quad uses them): x") != std::string::npos);
+        CHECK(loadImage(dir / "s.png")->width == 96);
+        std::ofstream(dir / "missing.json") << R"({"light": {"direction": [0, 0, 1]}, "materials": {"m": "gone.btflut"},
+            "quads": [{"material": "m", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})";
+        requireOneLineError(runCli({"render", dir / "missing.json", "-o", dir / "x.png"}), "gone.btflut: cannot open");
+        std::ofstream(dir / "broken.json") << "{ not json";
+        requireOneLineError(runCli({"render", dir / "broken.json", "-o", dir / "x.png"}), "broken.json: not valid JSON");
+        requireOneLineError(runCli({"render", dir / "s.json", "--size", "0x10", "-o", dir / "x.png"}), "--size '0x10'");
+        requireOneLineError(runCli({"render", dir / "s.json", "--light", "nan,0", "-o", dir / "x.png"}), "--light");
+        CHECK_FALSE(fs::exists(dir / "x.png"));
+    }
+}

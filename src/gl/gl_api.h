@@ -60,7 +60,12 @@ typedef void(APIENTRYP PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first, GLsizei co
     X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                                            \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                      \
     X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                            \
-    X(PFNGLDRAWARRAYSPROC, DrawArrays)
+    X(PFNGLDRAWARRAYSPROC, DrawArrays)                                                      \
+    X(PFNGLENABLEPROC, Enable)                                                              \
+    X(PFNGLDISABLEPROC, Disable)                                                            \
+    X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                                              \
+    X(PFNGLUNIFORM3FPROC, Uniform3f)                                                        \
+    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)
 
 struct GlFunctions {
 #define BTFLUT_GL_MEMBER(type, name) type name = nullptr;

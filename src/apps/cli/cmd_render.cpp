@@ -6,13 +6,17 @@
 #include "core/bank_file.h"
 #include "gl/context.h"
 #include "gl/native_renderer.h"
+#include "gl/scene_renderer.h"
 
 namespace btflut::cli {
 
 namespace {
 
 struct RenderOptions {
-    std::string bank;
+    std::string input;
+    std::string size;
+    std::string mode;
+    bool stats = false;
     std::string light;
     std::string view = "0,0";
     std::string output;
@@ -23,20 +27,73 @@ struct RenderOptions {
     bool noDither = false;
 };
 
-Status runRender(const RenderOptions& o) {
-    if (Status s = requireExtension(o.output, {"png"}, "output"); !s) return s;
-    if (!o.native) return Error{"give --native: the frontal quad at the reference image's resolution is the "
-                                "mode this version renders"};
+Result<std::unique_ptr<HeadlessContext>> makeContext(const RenderOptions& o) {
     Result<GlBackend> backend = parseGlBackend(o.backend);
     if (!backend) return Error{backend.error()};
-    Result<BankAtDirection> query = loadBankAt(o.bank, o.light, o.view);
+    Result<std::unique_ptr<HeadlessContext>> context = createHeadlessContext(*backend);
+    if (context && o.verbose) std::cout << "context: " << (*context)->description() << "\n";
+    return context;
+}
+
+// SCENE.json, with --size, --light and --mode overriding the file.
+Status runSceneRender(const RenderOptions& o) {
+    Result<Scene> scene = loadScene(o.input);
+    if (!scene) return Error{scene.error()};
+    if (!o.size.empty()) {
+        int w = 0, h = 0;
+        char x = 0, extra = 0;
+        if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 ||
+            w > 16384 || h > 16384)
+            return Error{"--size '" + o.size + "': expected WxH with both within 1..16384"};
+        scene->width = w;
+        scene->height = h;
+    }
+    if (!o.light.empty()) {
+        Result<Direction> light = parseDirection(o.light, "--light");
+        if (!light) return Error{light.error()};
+        scene->light = toVector(*light);
+    }
+    if (!o.mode.empty()) {
+        if (o.mode != "lut" && o.mode != "flat") return Error{"--mode '" + o.mode + "' is not lut or flat"};
+        for (SceneQuad& q : scene->quads) q.mode = o.mode == "lut" ? RenderMode::Lut : RenderMode::Flat;
+    }
+    Result<std::unique_ptr<HeadlessContext>> context = makeContext(o);
+    if (!context) return Error{context.error()};
+    RenderStats stats;
+    Result<Image> image = renderScene(*scene, stats);
+    if (!image) return Error{image.error()};
+    if (Status s = savePng(*image, o.output, o.depth); !s) return s;
+    if (o.stats) {
+        auto list = [](const std::vector<std::string>& names) {
+            std::string s;
+            for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
+            return s.empty() ? std::string("none") : s;
+        };
+        std::cout << "materials loaded: " << list(stats.loadedMaterials)
+                  << "\nmaterials skipped (no visible quad uses them): " << list(stats.skippedMaterials)
+                  << "\nquads drawn: " << stats.quadsDrawn << " (" << stats.quadsUnlit << " unlit), culled: "
+                  << stats.quadsCulled << "\ntexture memory: " << stats.textureBytes << " bytes\n";
+    }
+    std::cout << "wrote " << o.output << " (" << image->width << "x" << image->height << ")\n";
+    return success();
+}
+
+Status runRender(const RenderOptions& o) {
+    if (Status s = requireExtension(o.output, {"png"}, "output"); !s) return s;
+    if (fileExtension(o.input) == "json") {
+        if (o.native) return Error{"--native renders a bank (M.btflut), not a scene"};
+        return runSceneRender(o);
+    }
+    if (!o.native) return Error{"a bank (M.btflut) renders with --native: the frontal quad at its reference image's "
+                                "resolution; scenes are SCENE.json"};
+    if (o.light.empty()) return Error{"--native needs --light THETA,PHI"};
+    Result<BankAtDirection> query = loadBankAt(o.input, o.light, o.view);
     if (!query) return Error{query.error()};
     LutBank& bank = query->bank;
-    Result<std::unique_ptr<HeadlessContext>> context = createHeadlessContext(*backend);
+    Result<std::unique_ptr<HeadlessContext>> context = makeContext(o);
     if (!context) return Error{context.error()};
-    if (o.verbose) std::cout << "context: " << (*context)->description() << "\n";
     Result<Image> image = renderNative(bank, query->light, query->view, !o.noDither);
-    if (!image) return Error{o.bank + ": " + image.error()};
+    if (!image) return Error{o.input + ": " + image.error()};
     if (Status s = savePng(*image, o.output, o.depth); !s) return s;
     std::cout << "wrote " << o.output << " (" << image->width << "x" << image->height << ")\n";
     return success();
@@ -46,9 +103,16 @@ Status runRender(const RenderOptions& o) {
 
 void addRenderCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<RenderOptions>();
-    CLI::App* app = root.add_subcommand("render", "Render with OpenGL, headless (OSMesa or EGL)");
-    app->add_option("BANK", o->bank, "M.btflut")->required();
-    app->add_option("--light", o->light, "light direction THETA,PHI in degrees")->required();
+    CLI::App* app = root.add_subcommand(
+        "render", "Render with OpenGL, headless (OSMesa or EGL): a scene (SCENE.json, docs/scene.md) or, "
+                  "with --native, a bank's reference at its own resolution");
+    app->add_option("INPUT", o->input, "SCENE.json or M.btflut")->required();
+    app->add_option("--light", o->light,
+                    "light THETA,PHI in degrees (bank: its sample frame; scene: the world, z up; "
+                    "overrides the file)");
+    app->add_option("--size", o->size, "scene image size WxH (overrides the file)");
+    app->add_option("--mode", o->mode, "lut or flat for every quad (overrides the file)");
+    app->add_flag("--stats", o->stats, "print what was loaded, what was skipped and the texture memory");
     app->add_option("--view", o->view, "view direction THETA,PHI in degrees")->capture_default_str();
     app->add_flag("--native", o->native, "the frontal quad at the reference image's own resolution");
     app->add_option("-o,--output", o->output, "out.png")->required();

@@ -1,0 +1,191 @@
+#include "core/scene.h"
+
+#include <cmath>
+#include <filesystem>
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/file_io.h"
+
+namespace btflut {
+
+namespace {
+
+using nlohmann::json;
+
+glm::dvec3 g(const Vec3& v) { return {v.x, v.y, v.z}; }
+Vec3 v3(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+Result<Vec3> readVector(const json& j, const std::string& where) {
+    if (!j.is_array() || j.size() != 3) return Error{where + ": expected [x, y, z]"};
+    Vec3 v;
+    double* out[] = {&v.x, &v.y, &v.z};
+    for (int i = 0; i < 3; ++i) {
+        if (!j[static_cast<std::size_t>(i)].is_number()) return Error{where + ": expected numbers"};
+        *out[i] = j[static_cast<std::size_t>(i)].get<double>();
+        if (!std::isfinite(*out[i])) return Error{where + ": not a finite vector"};
+    }
+    return v;
+}
+
+Result<double> readNumber(const json& parent, const char* key, double fallback, const std::string& where) {
+    if (!parent.contains(key)) return fallback;
+    if (!parent[key].is_number() || !std::isfinite(parent[key].get<double>()))
+        return Error{where + "." + key + ": expected a finite number"};
+    return parent[key].get<double>();
+}
+
+}  // namespace
+
+const char* renderModeName(RenderMode mode) { return mode == RenderMode::Lut ? "lut" : "flat"; }
+
+Result<Scene> parseScene(const std::string& text, const std::string& file, const std::string& folder) {
+    json doc;
+    try {
+        doc = json::parse(text);
+    } catch (const json::parse_error& e) {
+        return Error{file + ": not valid JSON (" + e.what() + ")"};
+    }
+    if (!doc.is_object()) return Error{file + ": expected a JSON object (a btflut scene)"};
+    Scene scene;
+    scene.file = file;
+    const std::string at = file + ": ";
+    if (doc.contains("image")) {
+        const json& im = doc["image"];
+        if (!im.is_object() || !im.contains("width") || !im.contains("height") || !im["width"].is_number_integer() ||
+            !im["height"].is_number_integer())
+            return Error{at + "image: expected {\"width\": pixels, \"height\": pixels}"};
+        scene.width = im["width"].get<int>();
+        scene.height = im["height"].get<int>();
+    }
+    if (scene.width <= 0 || scene.height <= 0 || scene.width > 16384 || scene.height > 16384)
+        return Error{at + "image size " + std::to_string(scene.width) + "x" + std::to_string(scene.height) +
+                     " is not within 1..16384"};
+    if (doc.contains("camera")) {
+        const json& c = doc["camera"];
+        for (auto [key, out] : {std::pair{"position", &scene.eye}, {"target", &scene.target}, {"up", &scene.up}})
+            if (c.contains(key)) {
+                Result<Vec3> v = readVector(c[key], at + "camera." + key);
+                if (!v) return Error{v.error()};
+                *out = *v;
+            }
+        Result<double> fov = readNumber(c, "fov_degrees", 45, at + "camera");
+        if (!fov) return Error{fov.error()};
+        scene.fovDegrees = *fov;
+    }
+    const glm::dvec3 forward = g(scene.target) - g(scene.eye);
+    if (glm::length(forward) < 1e-12) return Error{at + "camera: position and target coincide"};
+    if (glm::length(glm::cross(forward, g(scene.up))) < 1e-12 * glm::length(forward))
+        return Error{at + "camera: up is parallel to the viewing direction"};
+    if (!(scene.fovDegrees > 0 && scene.fovDegrees < 180)) return Error{at + "camera.fov_degrees must be within (0, 180)"};
+
+    if (!doc.contains("light") || !doc["light"].is_object() || !doc["light"].contains("direction"))
+        return Error{at + "light: expected {\"direction\": [x, y, z]} (towards the light, world frame)"};
+    Result<Vec3> light = readVector(doc["light"]["direction"], at + "light.direction");
+    if (!light) return Error{light.error()};
+    if (glm::length(g(*light)) < 1e-12) return Error{at + "light.direction is a zero vector"};
+    scene.light = v3(glm::normalize(g(*light)));
+
+    if (!doc.contains("materials") || !doc["materials"].is_object() || doc["materials"].empty())
+        return Error{at + "materials: expected {\"name\": \"bank.btflut\", ...}"};
+    for (const auto& [name, path] : doc["materials"].items()) {
+        if (!path.is_string()) return Error{at + "materials." + name + ": expected a .btflut path"};
+        scene.materials[name] = (std::filesystem::path(folder) / path.get<std::string>()).lexically_normal().string();
+    }
+    if (!doc.contains("quads") || !doc["quads"].is_array() || doc["quads"].empty())
+        return Error{at + "quads: expected a non-empty array"};
+    for (std::size_t i = 0; i < doc["quads"].size(); ++i) {
+        const json& q = doc["quads"][i];
+        const std::string where = at + "quads[" + std::to_string(i) + "]";
+        if (!q.is_object()) return Error{where + ": expected an object"};
+        SceneQuad quad;
+        if (!q.contains("material") || !q["material"].is_string()) return Error{where + ": no \"material\""};
+        quad.material = q["material"].get<std::string>();
+        if (!scene.materials.count(quad.material))
+            return Error{where + ": material '" + quad.material + "' is not in \"materials\""};
+        for (auto [key, out] : {std::pair{"center", &quad.center}, {"normal", &quad.normal}, {"tangent", &quad.tangent}}) {
+            if (!q.contains(key)) return Error{where + ": no \"" + key + "\""};
+            Result<Vec3> v = readVector(q[key], where + "." + key);
+            if (!v) return Error{v.error()};
+            *out = *v;
+        }
+        const glm::dvec3 n = g(quad.normal), t = g(quad.tangent);
+        if (glm::length(n) < 1e-12 || glm::length(t) < 1e-12) return Error{where + ": zero normal or tangent"};
+        const glm::dvec3 nn = glm::normalize(n);
+        const glm::dvec3 tt = t - glm::dot(t, nn) * nn;  // tangent made orthogonal to the normal
+        if (glm::length(tt) < 1e-9 * glm::length(t)) return Error{where + ": tangent is parallel to the normal (degenerate quad)"};
+        quad.normal = v3(nn);
+        quad.tangent = v3(glm::normalize(tt));
+        if (q.contains("size")) {
+            if (!q["size"].is_array() || q["size"].size() != 2 || !q["size"][0].is_number() || !q["size"][1].is_number())
+                return Error{where + ".size: expected [width, height]"};
+            quad.width = q["size"][0].get<double>();
+            quad.height = q["size"][1].get<double>();
+        }
+        if (!(quad.width > 0 && quad.height > 0) || !std::isfinite(quad.width) || !std::isfinite(quad.height))
+            return Error{where + ".size: width and height must be positive (degenerate quad)"};
+        Result<double> uv = readNumber(q, "uv_scale", 1, where);
+        if (!uv) return Error{uv.error()};
+        if (!(*uv > 0)) return Error{where + ".uv_scale must be positive"};
+        quad.uvScale = *uv;
+        const std::string mode = q.value("mode", std::string("lut"));
+        if (mode == "lut")
+            quad.mode = RenderMode::Lut;
+        else if (mode == "flat")
+            quad.mode = RenderMode::Flat;
+        else
+            return Error{where + ".mode '" + mode + "' is not lut or flat"};
+        scene.quads.push_back(quad);
+    }
+    return scene;
+}
+
+Result<Scene> loadScene(const std::string& path) {
+    Result<Bytes> bytes = readFile(path);
+    if (!bytes) return Error{bytes.error()};
+    std::string folder = std::filesystem::path(path).parent_path().string();
+    return parseScene(std::string(bytes->begin(), bytes->end()), path, folder.empty() ? "." : folder);
+}
+
+std::array<float, 16> viewProjection(const Scene& s) {
+    const glm::dmat4 view = glm::lookAt(g(s.eye), g(s.target), g(s.up));
+    const double distance = glm::length(g(s.target) - g(s.eye));
+    const glm::dmat4 projection = glm::perspective(glm::radians(s.fovDegrees),
+                                                   static_cast<double>(s.width) / s.height, distance * 1e-3, distance * 1e3);
+    const glm::mat4 m(projection * view);
+    std::array<float, 16> out;
+    std::copy(glm::value_ptr(m), glm::value_ptr(m) + 16, out.begin());
+    return out;
+}
+
+std::vector<std::size_t> visibleQuads(const Scene& s) {
+    const glm::dmat4 m = glm::dmat4(glm::make_mat4(viewProjection(s).data()));
+    std::vector<std::size_t> visible;
+    for (std::size_t i = 0; i < s.quads.size(); ++i) {
+        const SceneQuad& q = s.quads[i];
+        const glm::dvec3 t = g(q.tangent), b = glm::cross(g(q.normal), t), c = g(q.center);
+        glm::dvec4 corners[4];
+        int k = 0;
+        for (double su : {-0.5, 0.5})
+            for (double sv : {-0.5, 0.5}) corners[k++] = m * glm::dvec4(c + su * q.width * t + sv * q.height * b, 1);
+        // Outside when all four corners lie beyond one clip plane.
+        bool outside = false;
+        for (int axis = 0; axis < 3 && !outside; ++axis)
+            for (double sign : {-1.0, 1.0}) {
+                bool allBeyond = true;
+                for (const glm::dvec4& p : corners) allBeyond = allBeyond && sign * p[axis] > p.w;
+                outside = outside || allBeyond;
+            }
+        if (!outside) visible.push_back(i);
+    }
+    return visible;
+}
+
+Vec3 toQuadFrame(const SceneQuad& q, const Vec3& world) {
+    const glm::dvec3 t = g(q.tangent), n = g(q.normal), b = glm::cross(n, t), w = g(world);
+    return {glm::dot(w, t), glm::dot(w, b), glm::dot(w, n)};
+}
+
+}  // namespace btflut

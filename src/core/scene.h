@@ -1,0 +1,59 @@
+#pragma once
+// Scenes for `btflut render SCENE.json` (format: docs/scene.md): a perspective camera, one
+// directional light, and textured quads, each with a material (a .btflut bank) and a mode.
+//
+//   Result<Scene> scene = loadScene("demo.json");
+//   std::vector<std::size_t> visible = visibleQuads(*scene);   // frustum culling
+//
+// World frame: right-handed, z up. A quad's tangent frame is (tangent, bitangent = normal x
+// tangent, normal); its texture's x runs along the tangent and y along the bitangent, so the
+// material's sample frame is the quad's tangent frame.
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/direction.h"
+#include "core/result.h"
+
+namespace btflut {
+
+enum class RenderMode { Lut, Flat };
+
+struct SceneQuad {
+    std::string material;
+    Vec3 center, normal, tangent;  ///< normal and tangent unit and orthogonal after loading
+    double width = 1, height = 1;  ///< along the tangent and the bitangent
+    double uvScale = 1;            ///< texture repeats across the quad
+    RenderMode mode = RenderMode::Lut;
+};
+
+struct Scene {
+    std::string file;
+    int width = 1024, height = 1024;
+    Vec3 eye{0, -3, 2}, target{0, 0, 0}, up{0, 0, 1};
+    double fovDegrees = 45;
+    Vec3 light{0, 0, 1};  ///< unit vector towards the light, world frame
+    std::map<std::string, std::string> materials;  ///< name -> bank path (relative to the file)
+    std::vector<SceneQuad> quads;
+};
+
+/// Parses and validates a scene; errors name the file and the field (not JSON, unknown
+/// material, degenerate quad, NaN or zero direction, zero-sized image, ...).
+Result<Scene> parseScene(const std::string& text, const std::string& file, const std::string& folder);
+Result<Scene> loadScene(const std::string& path);
+
+/// 4x4 column-major view-projection matrix of the scene's camera (OpenGL clip space).
+std::array<float, 16> viewProjection(const Scene& scene);
+
+/// Indices of the quads not entirely outside the view frustum.
+std::vector<std::size_t> visibleQuads(const Scene& scene);
+
+/// A world vector in a quad's tangent frame (the material's sample frame): z > 0 is in
+/// front of the quad.
+Vec3 toQuadFrame(const SceneQuad& quad, const Vec3& world);
+
+const char* renderModeName(RenderMode mode);
+
+}  // namespace btflut

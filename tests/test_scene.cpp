@@ -1,0 +1,71 @@
+#include <doctest/doctest.h>
+
+#include "core/scene.h"
+
+using namespace btflut;
+
+namespace {
+const char* kScene = R"({
+  "image": {"width": 64, "height": 48},
+  "camera": {"position": [0, -3, 2], "target": [0, 0, 0], "up": [0, 0, 1], "fov_degrees": 50},
+  "light": {"direction": [0, 0, 2]},
+  "materials": {"a": "a.btflut", "b": "sub/b.btflut"},
+  "quads": [
+    {"material": "a", "center": [0, 0, 0], "normal": [0, 0, 3], "tangent": [1, 0, 0.5], "size": [2, 1], "uv_scale": 2},
+    {"material": "b", "center": [0, -10, 0], "normal": [0, 1, 0], "tangent": [1, 0, 0], "mode": "flat"}
+  ]
+})";
+}
+
+TEST_CASE("scenes parse, normalise their frames and cull what the camera cannot see") {
+    auto scene = parseScene(kScene, "s.json", "/scenes");
+    REQUIRE(scene.ok());
+    CHECK(scene->materials.at("b") == "/scenes/sub/b.btflut");
+    const SceneQuad& q = scene->quads[0];
+    CHECK(q.normal.z == doctest::Approx(1));
+    CHECK(q.tangent.z == doctest::Approx(0));  // made orthogonal to the normal
+    CHECK(q.tangent.x == doctest::Approx(1));
+    CHECK(scene->light.z == doctest::Approx(1));
+    CHECK(scene->quads[1].mode == RenderMode::Flat);
+    auto visible = visibleQuads(*scene);
+    REQUIRE(visible.size() == 1);  // the second quad is behind the camera
+    CHECK(visible[0] == 0);
+    const Vec3 local = toQuadFrame(q, scene->light);
+    CHECK(local.z == doctest::Approx(1));
+}
+
+TEST_CASE("bad scenes are refused naming the file and the field") {
+    struct Case {
+        const char* text;
+        const char* needle;
+    } cases[] = {
+        {"{", "s.json: not valid JSON"},
+        {R"({"image": {"width": 0, "height": 10}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "image size 0x10"},
+        {R"({"light": {"direction": [0,0,0]}, "materials": {"a": "a.btflut"}, "quads": []})", "light.direction is a zero vector"},
+        {R"({"light": {"direction": [0,"x",1]}, "materials": {"a": "a.btflut"}, "quads": []})", "light.direction: expected numbers"},
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "z", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "material 'z' is not in \"materials\""},
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [0,0,2]}]})",
+         "degenerate quad"},
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "size": [0, 1]}]})",
+         "degenerate quad"},
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "mode": "ptm"}]})",
+         ".mode 'ptm'"},
+        {R"({"camera": {"position": [0,0,1], "target": [0,0,1]}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "position and target coincide"},
+    };
+    for (const Case& c : cases) {
+        INFO(c.text);
+        auto r = parseScene(c.text, "s.json", ".");
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error().rfind("s.json", 0) == 0);
+        CHECK(r.error().find(c.needle) != std::string::npos);
+    }
+}
