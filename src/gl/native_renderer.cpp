@@ -2,6 +2,7 @@
 
 #include "gl/objects.h"
 #include "gl/shader.h"
+#include "gl/textures.h"
 
 namespace btflut {
 
@@ -12,23 +13,10 @@ GlTexture uploadReference(const Image& image) {
     gl.BindTexture(GL_TEXTURE_2D, texture.id());
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     // Float texels keep 8- and 16-bit codes exact; the shader reads them with texelFetch.
-    std::vector<float> rgb(image.pixelCount() * 3);
-    for (std::size_t i = 0; i < image.pixelCount(); ++i)
-        for (int c = 0; c < 3; ++c)
-            rgb[i * 3 + c] = image.samples[i * image.channels + (image.channels == 1 ? 0 : c)];
+    const std::vector<float> rgb = rgbSamples(image);
     gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, image.width, image.height, 0, GL_RGB, GL_FLOAT, rgb.data());
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    return texture;
-}
-
-GlTexture uploadLut(const float* values, int entries) {
-    GlTexture texture = makeTexture();
-    gl.BindTexture(GL_TEXTURE_1D, texture.id());
-    gl.TexImage1D(GL_TEXTURE_1D, 0, GL_R32F, entries, 0, GL_RED, GL_FLOAT, values);
-    gl.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     return texture;
 }
 

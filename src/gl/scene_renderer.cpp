@@ -5,6 +5,7 @@
 #include "core/bank_file.h"
 #include "gl/objects.h"
 #include "gl/shader.h"
+#include "gl/textures.h"
 
 namespace btflut {
 
@@ -18,9 +19,7 @@ struct Material {
 GlTexture uploadMipmapped(const Image& image, std::size_t& bytes) {
     GlTexture texture = makeTexture();
     gl.BindTexture(GL_TEXTURE_2D, texture.id());
-    std::vector<float> rgb(image.pixelCount() * 3);
-    for (std::size_t i = 0; i < image.pixelCount(); ++i)
-        for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = image.samples[i * image.channels + (image.channels == 1 ? 0 : c)];
+    const std::vector<float> rgb = rgbSamples(image);
     const bool sixteen = image.bitDepth == 16;
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     gl.TexImage2D(GL_TEXTURE_2D, 0, sixteen ? GL_RGB16 : GL_RGB8, image.width, image.height, 0, GL_RGB, GL_FLOAT,
@@ -31,16 +30,6 @@ GlTexture uploadMipmapped(const Image& image, std::size_t& bytes) {
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
     bytes += image.pixelCount() * (sixteen ? 8 : 4) * 4 / 3;  // the driver pads RGB to RGBA; mipmaps add 1/3
-    return texture;
-}
-
-GlTexture uploadLut(const float* values, int entries) {
-    GlTexture texture = makeTexture();
-    gl.BindTexture(GL_TEXTURE_1D, texture.id());
-    gl.TexImage1D(GL_TEXTURE_1D, 0, GL_R32F, entries, 0, GL_RED, GL_FLOAT, values);
-    gl.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    gl.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl.TexParameteri(GL_TEXTURE_1D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     return texture;
 }
 
