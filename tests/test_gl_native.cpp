@@ -191,6 +191,28 @@ TEST_SUITE("gl") {
         REQUIRE(ok.status == 0);
         CHECK(ok.out.find("materials skipped (no visible quad uses them): x") != std::string::npos);
         CHECK(loadImage(dir / "s.png")->width == 96);
+        REQUIRE(runCli({"render", dir / "s.json", "--size", "96x64", "--mode", "brdf", "-o", dir / "b.png"}).status == 0);
+        requireOneLineError(runCli({"render", dir / "s.json", "--mode", "ptm", "-o", dir / "x.png"}), "--mode 'ptm'");
+
+        // One renderer, many frames: a new light re-blends the LUT and changes the picture;
+        // a light from behind leaves the quad unlit (black), which is not an error.
+        auto scene = loadScene(dir / "s.json");
+        REQUIRE(scene.ok());
+        scene->width = 64;
+        scene->height = 48;
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        auto renderer = SceneRenderer::create(*scene);
+        REQUIRE(renderer.ok());
+        REQUIRE((*renderer)->draw(toVector(Direction::fromDegrees(0, 0))).ok());
+        Image frontal = (*renderer)->readBack();
+        REQUIRE((*renderer)->draw(toVector(Direction::fromDegrees(45, 0))).ok());
+        Image oblique = (*renderer)->readBack();
+        CHECK(frontal.samples != oblique.samples);
+        REQUIRE((*renderer)->draw({0, 0, -1}).ok());
+        CHECK((*renderer)->stats().quadsUnlit == 1);
+        Image behind = (*renderer)->readBack();
+        CHECK(*std::max_element(behind.samples.begin(), behind.samples.end()) == 0.f);
         std::ofstream(dir / "missing.json") << R"({"light": {"direction": [0, 0, 1]}, "materials": {"m": "gone.btflut"},
             "quads": [{"material": "m", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})";
         requireOneLineError(runCli({"render", dir / "missing.json", "-o", dir / "x.png"}), "gone.btflut: cannot open");

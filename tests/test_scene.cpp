@@ -56,7 +56,7 @@ TEST_CASE("bad scenes are refused naming the file and the field") {
          "degenerate quad"},
         {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
              "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "mode": "ptm"}]})",
-         ".mode 'ptm'"},
+         "mode 'ptm'"},
         {R"({"camera": {"position": [0,0,1], "target": [0,0,1]}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
              "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
          "position and target coincide"},

@@ -39,7 +39,20 @@ Result<double> readNumber(const json& parent, const char* key, double fallback, 
 
 }  // namespace
 
-const char* renderModeName(RenderMode mode) { return mode == RenderMode::Lut ? "lut" : "flat"; }
+const char* renderModeName(RenderMode mode) {
+    switch (mode) {
+        case RenderMode::Lut: return "lut";
+        case RenderMode::Brdf: return "brdf";
+        case RenderMode::Flat: return "flat";
+    }
+    return "?";
+}
+
+Result<RenderMode> parseRenderMode(const std::string& name) {
+    for (RenderMode m : {RenderMode::Lut, RenderMode::Brdf, RenderMode::Flat})
+        if (name == renderModeName(m)) return m;
+    return Error{"mode '" + name + "' is not lut, brdf or flat"};
+}
 
 Result<Scene> parseScene(const std::string& text, const std::string& file, const std::string& folder) {
     json doc;
@@ -130,13 +143,9 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
         if (!uv) return Error{uv.error()};
         if (!(*uv > 0)) return Error{where + ".uv_scale must be positive"};
         quad.uvScale = *uv;
-        const std::string mode = q.value("mode", std::string("lut"));
-        if (mode == "lut")
-            quad.mode = RenderMode::Lut;
-        else if (mode == "flat")
-            quad.mode = RenderMode::Flat;
-        else
-            return Error{where + ".mode '" + mode + "' is not lut or flat"};
+        Result<RenderMode> mode = parseRenderMode(q.value("mode", std::string("lut")));
+        if (!mode) return Error{where + "." + mode.error()};
+        quad.mode = *mode;
         scene.quads.push_back(quad);
     }
     return scene;

@@ -19,7 +19,7 @@
 
 namespace btflut {
 
-enum class RenderMode { Lut, Flat };
+enum class RenderMode { Lut, Brdf, Flat };
 
 struct SceneQuad {
     std::string material;
@@ -38,6 +38,9 @@ struct Scene {
     std::map<std::string, std::string> materials;  ///< name -> bank path (relative to the file)
     std::vector<SceneQuad> quads;
 };
+
+/// "lut", "brdf" or "flat".
+Result<RenderMode> parseRenderMode(const std::string& name);
 
 /// Parses and validates a scene; errors name the file and the field (not JSON, unknown
 /// material, degenerate quad, NaN or zero direction, zero-sized image, ...).

@@ -1,5 +1,6 @@
 // btflut bench: timings that print ratios measured side by side, never pass/fail.
 #include <algorithm>
+#include <map>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -13,6 +14,8 @@
 #include "core/physics/geometry.h"
 #include "core/physics/simulate.h"
 #include "core/synth/render.h"
+#include "gl/context.h"
+#include "gl/scene_renderer.h"
 
 namespace btflut::cli {
 
@@ -210,6 +213,73 @@ Status runBenchSynth(const BenchSynthOptions& o) {
     return success();
 }
 
+struct BenchRenderOptions {
+    std::string bank;
+    int frames = 10;
+    int repeat = 3;
+    std::string backend = "auto";
+    bool json = false;
+};
+
+// A floor and three walls filling the view, each with the bank's material.
+Scene benchScene(const std::string& bank, int width, int height) {
+    Scene s;
+    s.file = "bench";
+    s.width = width;
+    s.height = height;
+    s.eye = {0, -3.2, 1.6};
+    s.target = {0, 0, 0.6};
+    s.fovDegrees = 60;
+    s.materials["m"] = bank;
+    s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 6, 6, 3, RenderMode::Lut},
+               {"m", {0, 2, 1.5}, {0, -1, 0}, {1, 0, 0}, 6, 3, 2, RenderMode::Lut},
+               {"m", {-2.5, 0, 1.5}, {1, 0, 0}, {0, 1, 0}, 4, 3, 2, RenderMode::Lut},
+               {"m", {2.5, 0, 1.5}, {-1, 0, 0}, {0, -1, 0}, 4, 3, 2, RenderMode::Lut}};
+    return s;
+}
+
+Status runBenchRender(const BenchRenderOptions& o) {
+    Result<GlBackend> backend = parseGlBackend(o.backend);
+    if (!backend) return Error{backend.error()};
+    Result<std::unique_ptr<HeadlessContext>> context = createHeadlessContext(*backend);
+    if (!context) return Error{context.error()};
+    nlohmann::json out{{"context", (*context)->description()}, {"bank", o.bank}, {"sizes", nlohmann::json::array()}};
+    // Two lights, alternated every frame: each lut/brdf frame re-blends and uploads its LUTs.
+    const Vec3 lights[2] = {toVector(Direction::fromDegrees(40, 30)), toVector(Direction::fromDegrees(55, 200))};
+    std::string text;
+    for (auto [w, h] : {std::pair{1024, 1024}, std::pair{1920, 1080}}) {
+        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(benchScene(o.bank, w, h));
+        if (!renderer) return Error{renderer.error()};
+        std::map<RenderMode, std::vector<double>> frameTimes;
+        for (int r = 0; r < o.repeat; ++r)
+            for (RenderMode mode : {RenderMode::Flat, RenderMode::Lut, RenderMode::Brdf})
+                for (int f = 0; f < o.frames; ++f) {
+                    auto start = std::chrono::steady_clock::now();
+                    if (Status s = (*renderer)->draw(lights[f % 2], mode); !s) return s;
+                    (*renderer)->finish();
+                    frameTimes[mode].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                }
+        const double flat = median(frameTimes[RenderMode::Flat]), lut = median(frameTimes[RenderMode::Lut]),
+                     brdf = median(frameTimes[RenderMode::Brdf]);
+        out["sizes"].push_back({{"width", w}, {"height", h}, {"flat_ms", flat * 1e3}, {"lut_ms", lut * 1e3},
+                                {"brdf_ms", brdf * 1e3}, {"lut_over_flat", lut / flat}, {"lut_over_brdf", lut / brdf},
+                                {"texture_bytes", (*renderer)->stats().textureBytes}});
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "  %4dx%-4d  flat %7.2f ms  brdf %7.2f ms  lut %7.2f ms   lut/flat %.3f  lut/brdf %.3f\n", w, h,
+                      flat * 1e3, brdf * 1e3, lut * 1e3, lut / flat, lut / brdf);
+        text += line;
+        if (w == 1024) out["lut_over_flat"] = lut / flat;
+    }
+    if (o.json) {
+        std::cout << out.dump(1) << "\n";
+        return success();
+    }
+    std::cout << "render 4 quads, median frame times of " << o.repeat * o.frames << " frames per mode, "
+              << (*context)->description() << "\n" << text;
+    return success();
+}
+
 }  // namespace
 
 void addBenchCommand(CLI::App& root, Commands& commands) {
@@ -239,6 +309,16 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
     synth->add_option("--repeat", yo->repeat, "timed runs")->check(CLI::Range(1, 100))->capture_default_str();
     synth->add_flag("--json", yo->json, "print JSON");
     commands.push_back({synth, [yo] { return runBenchSynth(*yo); }});
+
+    auto ro = std::make_shared<BenchRenderOptions>();
+    CLI::App* render = bench->add_subcommand(
+        "render", "Frame times of the scene renderer in modes flat, brdf and lut, interleaved");
+    render->add_option("BANK", ro->bank, "M.btflut used for every quad")->required();
+    render->add_option("--frames", ro->frames, "frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();
+    render->add_option("--repeat", ro->repeat, "rounds")->check(CLI::Range(1, 100))->capture_default_str();
+    render->add_option("--backend", ro->backend, "auto, osmesa or egl")->capture_default_str();
+    render->add_flag("--json", ro->json, "print JSON");
+    commands.push_back({render, [ro] { return runBenchRender(*ro); }});
 }
 
 }  // namespace btflut::cli

@@ -54,8 +54,9 @@ Status runSceneRender(const RenderOptions& o) {
         scene->light = toVector(*light);
     }
     if (!o.mode.empty()) {
-        if (o.mode != "lut" && o.mode != "flat") return Error{"--mode '" + o.mode + "' is not lut or flat"};
-        for (SceneQuad& q : scene->quads) q.mode = o.mode == "lut" ? RenderMode::Lut : RenderMode::Flat;
+        Result<RenderMode> mode = parseRenderMode(o.mode);
+        if (!mode) return Error{"--" + mode.error()};
+        for (SceneQuad& q : scene->quads) q.mode = *mode;
     }
     Result<std::unique_ptr<HeadlessContext>> context = makeContext(o);
     if (!context) return Error{context.error()};
@@ -111,7 +112,7 @@ void addRenderCommand(CLI::App& root, Commands& commands) {
                     "light THETA,PHI in degrees (bank: its sample frame; scene: the world, z up; "
                     "overrides the file)");
     app->add_option("--size", o->size, "scene image size WxH (overrides the file)");
-    app->add_option("--mode", o->mode, "lut or flat for every quad (overrides the file)");
+    app->add_option("--mode", o->mode, "lut, brdf or flat for every quad (overrides the file)");
     app->add_flag("--stats", o->stats, "print what was loaded, what was skipped and the texture memory");
     app->add_option("--view", o->view, "view direction THETA,PHI in degrees")->capture_default_str();
     app->add_flag("--native", o->native, "the frontal quad at the reference image's own resolution");
