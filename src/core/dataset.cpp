@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+
+#include "core/json_text.h"
 #include <regex>
 #include <sstream>
 
@@ -233,12 +235,9 @@ Result<Dataset> parseLpFile(const std::string& text, const std::string& file,
 Result<Dataset> parseManifest(const std::string& text, const std::string& file,
                               const std::string& folder) {
     using nlohmann::json;
-    json doc;
-    try {
-        doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-        return Error{file + ": not valid JSON (" + e.what() + ")"};
-    }
+    Result<json> parsed = parseJsonText(text, file);
+    if (!parsed) return Error{parsed.error()};
+    json doc = std::move(*parsed);
     if (!doc.is_object() || !doc.contains("images") || !doc["images"].is_array())
         return Error{file + ": not a btflut dataset manifest (no \"images\" array)"};
     if (doc.contains("btflut_dataset") && doc["btflut_dataset"] != 1)

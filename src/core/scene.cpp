@@ -7,6 +7,8 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/json_text.h"
+
 #include "core/file_io.h"
 
 namespace btflut {
@@ -55,12 +57,9 @@ Result<RenderMode> parseRenderMode(const std::string& name) {
 }
 
 Result<Scene> parseScene(const std::string& text, const std::string& file, const std::string& folder) {
-    json doc;
-    try {
-        doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-        return Error{file + ": not valid JSON (" + e.what() + ")"};
-    }
+    Result<json> parsed = parseJsonText(text, file);
+    if (!parsed) return Error{parsed.error()};
+    json doc = std::move(*parsed);
     if (!doc.is_object()) return Error{file + ": expected a JSON object (a btflut scene)"};
     Scene scene;
     scene.file = file;

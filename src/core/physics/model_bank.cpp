@@ -2,18 +2,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/json_text.h"
+
 #include "core/parallel.h"
 
 namespace btflut {
 
 Result<ModelBankParams> parseModelParams(const std::string& text, const std::string& file) {
     using nlohmann::json;
-    json doc;
-    try {
-        doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-        return Error{file + ": not valid JSON (" + e.what() + ")"};
-    }
+    Result<json> parsed = parseJsonText(text, file);
+    if (!parsed) return Error{parsed.error()};
+    json doc = std::move(*parsed);
     if (!doc.is_object()) return Error{file + ": expected a JSON object of model parameters"};
     const std::string where = file + ": ";
     auto number = [&](const char* key, double fallback) -> Result<double> {
