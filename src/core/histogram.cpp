@@ -1,5 +1,6 @@
 #include "core/histogram.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -19,6 +20,10 @@ inline std::uint32_t codeOf(float v, float maxCode) {
     return static_cast<std::uint32_t>(v * maxCode + 0.5f);
 }
 }  // namespace
+
+std::size_t LevelCounts::presentCodes() const {
+    return static_cast<std::size_t>(std::count_if(counts.begin(), counts.end(), [](std::uint64_t c) { return c > 0; }));
+}
 
 LevelCounts countGreyLevels(const Image& image, const Mask& mask) {
     BTFLUT_CHECK(mask.inside.size() == image.pixelCount());

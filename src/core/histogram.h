@@ -22,6 +22,8 @@ namespace btflut {
 struct LevelCounts {
     std::vector<std::uint64_t> counts;
     std::uint64_t total() const;
+    /// Number of codes with at least one pixel (below 2: a constant image).
+    std::size_t presentCodes() const;
     double valueOf(std::size_t code) const {
         return static_cast<double>(code) / static_cast<double>(counts.size() - 1);
     }

@@ -200,14 +200,11 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     if (!loadedMask) return Error{loadedMask.error()};
     const Mask& mask = *loadedMask;
     const std::vector<LevelCounts> refLevels = countLevels(ref, mask, options.colour);
-    for (const LevelCounts& levels : refLevels) {
-        auto present = std::count_if(levels.counts.begin(), levels.counts.end(),
-                                     [](std::uint64_t c) { return c > 0; });
-        if (present < 2)
+    for (const LevelCounts& levels : refLevels)
+        if (levels.presentCodes() < 2)
             return Error{refInfo.path + ": reference image is constant over the sample, so no "
                                         "LUT can give it another histogram; choose another "
                                         "with --reference"};
-    }
 
     LutBank bank;
     bank.colour = options.colour;
@@ -257,11 +254,20 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         const DatasetImage& info = dataset.images[i];
         luts.push_back({info.name, info.light, info.view, std::move(results[i].values)});
     }
-    bank.reference = ref;
+    // The decoded reference is ours to keep; a provider's image is copied.
+    if (&ref == &referenceStorage)
+        bank.reference = std::move(referenceStorage);
+    else
+        bank.reference = ref;
     setNodes(bank, luts);
     return bank;
 }
 
+
+float inputCode(const Image& image, ColourMode colour) {
+    const int codes = colour == ColourMode::Rgb ? image.maxCode() : image.channels * image.maxCode();
+    return 1.f / static_cast<float>(codes);
+}
 
 Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
                 int entries, float targetCode) {
@@ -269,10 +275,7 @@ Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>&
     const auto width = static_cast<std::uint32_t>(image.width);
     const std::size_t n = image.pixelCount();
     const bool dither = targetCode > 0;
-    // One input code: of a channel in rgb mode, of the grey value (channels x max) otherwise.
-    const float code = colour == ColourMode::Rgb || image.channels == 1
-                           ? 1.f / static_cast<float>(image.maxCode())
-                           : 1.f / static_cast<float>(image.channels * image.maxCode());
+    const float code = inputCode(image, colour);
     auto map = [&](const float* lut, float v, std::size_t i, std::uint32_t c) {
         if (!dither) return Lut::applyLut(lut, entries, v);
         const auto index = static_cast<std::uint32_t>(i);

@@ -130,6 +130,10 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
 /// applyLuts), dithered unless `dither` is false.
 Image relight(const LutBank& bank, Direction light, Direction view = {}, bool dither = true);
 
+/// One code of the value a LUT maps for this image: of a channel in rgb mode or for a grey
+/// image, of the grey value (channels x max code) otherwise. The unit of the dithered input.
+float inputCode(const Image& image, ColourMode colour);
+
 /// Applies a LUT (channels x entries, as BankLookup::values) to an image. Grey mode sets
 /// each pixel's grey to LUT(grey), scaling its colour by LUT(grey) / grey and, where that
 /// would clip a channel, desaturating towards grey so the new grey value is kept exactly;

@@ -58,9 +58,7 @@ Result<Image> renderNative(const LutBank& bank, Direction light, Direction view,
         const std::string name = "lut[" + std::to_string(c) + "]";
         gl.Uniform1i(gl.GetUniformLocation(p, name.c_str()), 1 + c);
     }
-    const float inCode = bank.colour == ColourMode::Rgb || ref.channels == 1
-                             ? 1.f / static_cast<float>(ref.maxCode())
-                             : 1.f / static_cast<float>(ref.channels * ref.maxCode());
+    const float inCode = inputCode(ref, bank.colour);
     gl.Uniform1i(gl.GetUniformLocation(p, "entries"), bank.entries);
     gl.Uniform1i(gl.GetUniformLocation(p, "referenceChannels"), ref.channels);
     gl.Uniform1i(gl.GetUniformLocation(p, "height"), ref.height);

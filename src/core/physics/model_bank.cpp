@@ -83,7 +83,7 @@ Result<ModelBankParams> parseModelParams(const std::string& text, const std::str
 Result<LutBank> bakeModelBank(const ModelBankParams& params, const Image& reference, const Mask& mask,
                               const ModelReference& about) {
     LevelCounts refLevels = countGreyLevels(reference, mask);
-    if (std::count_if(refLevels.counts.begin(), refLevels.counts.end(), [](std::uint64_t c) { return c > 0; }) < 2)
+    if (refLevels.presentCodes() < 2)
         return Error{about.name + ": reference image is constant over the sample, so no LUT can give it "
                                   "another histogram"};
     LutBank bank;
