@@ -118,10 +118,6 @@ double HeightField::maxHeight() const { return *std::max_element(height.begin(),
 double HeightField::sample(const std::vector<double>& v, double x, double y) const {
     const double fx = std::floor(x), fy = std::floor(y);
     const double tx = x - fx, ty = y - fy;
-    auto wrap = [this](double i) {
-        auto k = static_cast<long>(i) % size;
-        return static_cast<std::size_t>(k < 0 ? k + size : k);
-    };
     const std::size_t x0 = wrap(fx), x1 = wrap(fx + 1), y0 = wrap(fy), y1 = wrap(fy + 1);
     const auto n = static_cast<std::size_t>(size);
     const double a = v[y0 * n + x0], b = v[y0 * n + x1], c = v[y1 * n + x0], d = v[y1 * n + x1];

@@ -11,6 +11,7 @@
 // are exact spectral derivatives. Anisotropy: a second rms slope along the axis rotated by
 // `angle` + 90 degrees (via a shorter or longer correlation length there).
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -38,6 +39,11 @@ struct HeightField {
     double heightAt(double x, double y) const { return sample(height, x, y); }
     double slopeXAt(double x, double y) const { return sample(slopeX, x, y); }
     double slopeYAt(double x, double y) const { return sample(slopeY, x, y); }
+    /// The grid column (or row) holding coordinate c, wrapped periodically into [0, size).
+    std::size_t wrap(double c) const {
+        auto k = static_cast<long>(std::floor(c)) % size;
+        return static_cast<std::size_t>(k < 0 ? k + size : k);
+    }
     double minHeight() const;
     double maxHeight() const;
 

@@ -54,11 +54,7 @@ Image renderHeightField(const HeightField& field, const SurfaceModel& model, Dir
     Image image(n, n, 1, 16);
     auto albedoAt = [&](double x, double y) {
         if (!o.albedo) return 1.0;
-        auto wrap = [n](double c) {
-            auto k = static_cast<long>(std::floor(c)) % n;
-            return static_cast<std::size_t>(k < 0 ? k + n : k);
-        };
-        return (*o.albedo)[wrap(y) * static_cast<std::size_t>(n) + wrap(x)];
+        return (*o.albedo)[field.wrap(y) * static_cast<std::size_t>(n) + field.wrap(x)];
     };
     parallelFor(static_cast<std::size_t>(n), o.threads, [&](std::size_t rowIndex) {
         const int row = static_cast<int>(rowIndex);
