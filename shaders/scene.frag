@@ -1,36 +1,68 @@
-// A scene quad: the material's reference texture (mipmapped, repeating) in one of three modes.
-// LUT_MODE: under a directional light a flat quad's light direction is constant, so its LUT is
-// blended once per frame on the CPU; here one extra filtered fetch per channel. BRDF_MODE: the
-// paper's 2D texture mapping, brightness scaled by the target-to-reference ratio. FLAT_MODE:
-// the plain texture. RGB_MODE: a LUT per channel.
+// A scene quad in one of five modes (one define each).
+// LUT_MODE: under a directional light a flat quad's light direction is constant, so its LUT
+//   is blended once per frame on the CPU; here one extra filtered fetch per channel. With
+//   VIEW_GRID (banks with several view layers) the LUT is a 3D texture over a grid of points
+//   on the quad, so the view direction varies per fragment. RGB_MODE: a LUT per channel.
+// BRDF_MODE: the paper's 2D texture mapping, brightness scaled by the target-to-reference ratio.
+// PTM_MODE: the polynomial texture map, as RTI viewers draw it.
+// FLAT_MODE: the plain texture. NEAREST_MODE: `reference` is the nearest measured image.
 uniform sampler2D reference;
+uniform int unlit;        // the light is behind the quad (every mode but flat draws black)
+uniform float brightness; // brdf mode
+
+in vec2 uv;
+in vec2 quadPosition;
+out vec4 colour;
+
+#if defined(LUT_MODE)
 uniform int entries;
+#if defined(VIEW_GRID)
+uniform sampler3D lut[3];
+uniform int viewGrid;
+float lutAt(int channel, float v) {
+    vec3 at = vec3((clamp(v, 0.0, 1.0) * float(entries - 1) + 0.5) / float(entries),
+                   (quadPosition * float(viewGrid - 1) + 0.5) / float(viewGrid));
+    if (channel == 0) return texture(lut[0], at).r;
+    if (channel == 1) return texture(lut[1], at).r;
+    return texture(lut[2], at).r;
+}
+#else
 uniform sampler1D lut[3];
 float lutAt(int channel, float v) {
     if (channel == 0) return btflutApplyLut(lut[0], entries, v);
     if (channel == 1) return btflutApplyLut(lut[1], entries, v);
     return btflutApplyLut(lut[2], entries, v);
 }
-uniform int unlit;        // the light is behind the quad (lut and brdf modes draw black)
-uniform float brightness; // brdf mode
+#endif
+#endif
 
-in vec2 uv;
-out vec4 colour;
+#if defined(PTM_MODE)
+uniform sampler2D ptmLow, ptmHigh, ptmAlbedo;  // coefficients 0-2, 3-5 (bytes), RGB albedo
+uniform vec3 ptmWeightsLow, ptmWeightsHigh;    // the light's terms with scale and bias folded in
+uniform float ptmOffset;
+#endif
 
 void main() {
-    vec3 texel = texture(reference, uv).rgb;
 #if defined(FLAT_MODE)
-    colour = vec4(texel, 1.0);
+    colour = vec4(texture(reference, uv).rgb, 1.0);
 #else
     if (unlit != 0) {
         colour = vec4(0.0, 0.0, 0.0, 1.0);
         return;
     }
-#if defined(BRDF_MODE)
-    colour = vec4(min(texel * brightness, vec3(1.0)), 1.0);
+#if defined(PTM_MODE)
+    float luminance = dot(texture(ptmLow, uv).rgb, ptmWeightsLow) + dot(texture(ptmHigh, uv).rgb, ptmWeightsHigh) +
+                      ptmOffset;
+    colour = vec4(clamp(texture(ptmAlbedo, uv).rgb * luminance, 0.0, 1.0), 1.0);
+#elif defined(NEAREST_MODE)
+    colour = vec4(texture(reference, uv).rgb, 1.0);
+#elif defined(BRDF_MODE)
+    colour = vec4(min(texture(reference, uv).rgb * brightness, vec3(1.0)), 1.0);
 #elif defined(RGB_MODE)
+    vec3 texel = texture(reference, uv).rgb;
     colour = vec4(lutAt(0, texel.r), lutAt(1, texel.g), lutAt(2, texel.b), 1.0);
 #else
+    vec3 texel = texture(reference, uv).rgb;
     float grey = (texel.r + texel.g + texel.b) * (1.0 / 3.0);
     colour = vec4(btflutSetGrey(texel, lutAt(0, grey)), 1.0);
 #endif

@@ -158,7 +158,8 @@ TEST_SUITE("gl") {
         CHECK(stats.skippedMaterials.size() == 2);  // neither missing file was opened
         CHECK(stats.quadsCulled == 1);
         CHECK(stats.quadsDrawn == 2);
-        CHECK(stats.textureBytes > 0);
+        CHECK(stats.textureBytes.reference > 0);
+        CHECK(stats.textureBytes.ptm == 0);
 
         // Golden image: tests/reference/scene-basic.png. BTFLUT_UPDATE_REFERENCE=1 rewrites it
         // (then look at it, and commit it with the change that explains why it moved).
@@ -192,7 +193,12 @@ TEST_SUITE("gl") {
         CHECK(ok.out.find("materials skipped (no visible quad uses them): x") != std::string::npos);
         CHECK(loadImage(dir / "s.png")->width == 96);
         REQUIRE(runCli({"render", dir / "s.json", "--size", "96x64", "--mode", "brdf", "-o", dir / "b.png"}).status == 0);
-        requireOneLineError(runCli({"render", dir / "s.json", "--mode", "ptm", "-o", dir / "x.png"}), "--mode 'ptm'");
+        requireOneLineError(runCli({"render", dir / "s.json", "--mode", "shiny", "-o", dir / "x.png"}), "--mode 'shiny'");
+        requireOneLineError(runCli({"render", dir / "s.json", "--mode", "ptm", "-o", dir / "x.png"}),
+                            "m.btflut: the bank holds no PTM (bake it with --ptm)");
+        requireOneLineError(runCli({"render", dir / "s.json", "--mode", "nearest", "-o", dir / "x.png"}),
+                            "material 'm' names no \"images\" (mode nearest draws the measured images)");
+        CHECK_FALSE(fs::exists(dir / "x.png"));
 
         // One renderer, many frames: a new light re-blends the LUT and changes the picture;
         // a light from behind leaves the quad unlit (black), which is not an error.

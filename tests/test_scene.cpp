@@ -9,7 +9,8 @@ const char* kScene = R"({
   "image": {"width": 64, "height": 48},
   "camera": {"position": [0, -3, 2], "target": [0, 0, 0], "up": [0, 0, 1], "fov_degrees": 50},
   "light": {"direction": [0, 0, 2]},
-  "materials": {"a": "a.btflut", "b": "sub/b.btflut"},
+  "materials": {"a": "a.btflut", "b": {"bank": "sub/b.btflut", "images": "../data/b"}},
+  "interpolation": "nearest",
   "quads": [
     {"material": "a", "center": [0, 0, 0], "normal": [0, 0, 3], "tangent": [1, 0, 0.5], "size": [2, 1], "uv_scale": 2},
     {"material": "b", "center": [0, -10, 0], "normal": [0, 1, 0], "tangent": [1, 0, 0], "mode": "flat"}
@@ -20,7 +21,10 @@ const char* kScene = R"({
 TEST_CASE("scenes parse, normalise their frames and cull what the camera cannot see") {
     auto scene = parseScene(kScene, "s.json", "/scenes");
     REQUIRE(scene.ok());
-    CHECK(scene->materials.at("b") == "/scenes/sub/b.btflut");
+    CHECK(scene->materials.at("b").bank == "/scenes/sub/b.btflut");
+    CHECK(scene->materials.at("b").images == "/data/b");
+    CHECK(scene->materials.at("a").images.empty());
+    CHECK_FALSE(scene->interpolateLuts);
     const SceneQuad& q = scene->quads[0];
     CHECK(q.normal.z == doctest::Approx(1));
     CHECK(q.tangent.z == doctest::Approx(0));  // made orthogonal to the normal
@@ -55,8 +59,14 @@ TEST_CASE("bad scenes are refused naming the file and the field") {
              "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "size": [0, 1]}]})",
          "degenerate quad"},
         {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
-             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "mode": "ptm"}]})",
-         "mode 'ptm'"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "mode": "glossy"}]})",
+         "mode 'glossy' is not lut, brdf, ptm, flat or nearest"},
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": {"images": "ds"}},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "materials.a: expected a .btflut path or {\"bank\": path, \"images\": dataset path}"},
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"}, "interpolation": "cubic",
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "interpolation: expected \"linear\" or \"nearest\""},
         {R"({"camera": {"position": [0,0,1], "target": [0,0,1]}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
              "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
          "position and target coincide"},

@@ -10,6 +10,7 @@ packages=(
   libspng-dev zlib1g-dev  # PNG encode (8/16-bit), CRC-32 for .btflut files
   libcli11-dev nlohmann-json3-dev doctest-dev
   libfftw3-dev          # spectral synthesis of rough height fields
+  libeigen3-dev         # least squares (PTM fitting)
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libimgui-dev
   python3 python3-numpy python3-skimage python3-pil  # reference checks in tools/
   xvfb xauth

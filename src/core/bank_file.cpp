@@ -21,7 +21,7 @@ std::uint32_t tagOf(const char (&t)[5]) {
     return static_cast<std::uint32_t>(t[0]) | static_cast<std::uint32_t>(t[1]) << 8 |
            static_cast<std::uint32_t>(t[2]) << 16 | static_cast<std::uint32_t>(t[3]) << 24;
 }
-const std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"),
+const std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
                     kEnd = tagOf("END ");
 
 std::string tagName(std::uint32_t tag) {
@@ -111,6 +111,101 @@ void putDirection(Writer& w, Direction d) {
     w.put(d.phiDegrees());
 }
 
+// The chunks of a .btflut file, each checked against its CRC; HEAD first, END last.
+struct Chunk {
+    std::uint32_t tag;
+    const std::uint8_t* payload;
+    std::uint32_t length;
+};
+
+Result<std::vector<Chunk>> splitChunks(const Bytes& bytes, const std::string& name) {
+    auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
+    if (bytes.size() < sizeof kSignature + 4 || std::memcmp(bytes.data(), kSignature, 8) != 0)
+        return fail("not a .btflut file (bad signature)");
+    Reader file(bytes.data() + 8, bytes.size() - 8);
+    auto version = file.get<std::uint32_t>();
+    if (version != kBankFormatVersion)
+        return fail("unsupported .btflut version " + std::to_string(version) + " (this btflut reads " +
+                    std::to_string(kBankFormatVersion) + ")");
+    std::vector<Chunk> chunks;
+    for (;;) {
+        if (file.remaining() == 0) return fail("truncated (no END chunk)");
+        auto tag = file.get<std::uint32_t>();
+        auto length = file.get<std::uint32_t>();
+        if (!file.ok()) return fail("truncated (incomplete chunk header)");
+        const std::uint8_t* payload = file.getBytes(length);
+        auto storedCrc = file.get<std::uint32_t>();
+        if (!file.ok())
+            return fail("truncated (chunk " + tagName(tag) + " declares " + std::to_string(length) +
+                        " bytes)");
+        if (chunkCrc(tag, payload, length) != storedCrc)
+            return fail("checksum mismatch in chunk " + tagName(tag) + " (file is corrupted)");
+        if (chunks.empty() && tag != kHead) return fail("first chunk is not HEAD");
+        if (tag == kEnd) {
+            if (length != 0) return fail("END chunk is not empty");
+            if (file.remaining() != 0) return fail("unexpected bytes after the END chunk");
+            return chunks;
+        }
+        chunks.push_back({tag, payload, length});
+    }
+}
+
+// PTMC payload: width, height (u32), scale[6], bias[6] (f32), then three PNGs, each
+// preceded by its byte length (u32): coefficients 0-2, coefficients 3-5, albedo (RGB8).
+Bytes encodePtm(const Ptm& ptm) {
+    Writer w;
+    w.put(static_cast<std::uint32_t>(ptm.width));
+    w.put(static_cast<std::uint32_t>(ptm.height));
+    for (float v : ptm.scale) w.put(v);
+    for (float v : ptm.bias) w.put(v);
+    auto plane = [&](const std::uint8_t* bytes, int stride) {
+        Image image(ptm.width, ptm.height, 3);
+        for (std::size_t i = 0; i < ptm.texels(); ++i)
+            for (int c = 0; c < 3; ++c) image.samples[i * 3 + c] = bytes[i * stride + c] / 255.f;
+        const Bytes png = encodePng(image, 8);
+        w.put(static_cast<std::uint32_t>(png.size()));
+        w.putBytes(png.data(), png.size());
+    };
+    plane(ptm.coefficients.data(), Ptm::kTerms);
+    plane(ptm.coefficients.data() + 3, Ptm::kTerms);
+    plane(ptm.albedo.data(), 3);
+    return std::move(w.bytes());
+}
+
+Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name) {
+    auto fail = [&](const std::string& what) { return Error{name + ": PTM chunk: " + what}; };
+    Reader in(chunk.payload, chunk.length);
+    Ptm ptm;
+    ptm.width = static_cast<int>(in.get<std::uint32_t>());
+    ptm.height = static_cast<int>(in.get<std::uint32_t>());
+    for (float& v : ptm.scale) v = in.get<float>();
+    for (float& v : ptm.bias) v = in.get<float>();
+    if (!in.ok() || ptm.width <= 0 || ptm.height <= 0) return fail("invalid header");
+    for (int k = 0; k < Ptm::kTerms; ++k)
+        if (!std::isfinite(ptm.scale[k]) || !std::isfinite(ptm.bias[k]) || ptm.scale[k] <= 0)
+            return fail("invalid scale or bias");
+    ptm.coefficients.resize(ptm.texels() * Ptm::kTerms);
+    ptm.albedo.resize(ptm.texels() * 3);
+    auto plane = [&](std::uint8_t* bytes, int stride, const char* what) -> Status {
+        auto length = in.get<std::uint32_t>();
+        const std::uint8_t* png = in.getBytes(length);
+        if (!in.ok()) return Error{name + ": PTM chunk: truncated " + what};
+        Result<Image> image = decodeImage(Bytes(png, png + length), name + " (PTM " + what + ")");
+        if (!image) return Error{image.error()};
+        if (image->width != ptm.width || image->height != ptm.height || image->channels != 3)
+            return Error{name + ": PTM chunk: " + what + " has the wrong size"};
+        for (std::size_t i = 0; i < ptm.texels(); ++i)
+            for (int c = 0; c < 3; ++c)
+                bytes[i * stride + c] = static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
+        return success();
+    };
+    if (Status s = plane(ptm.coefficients.data(), Ptm::kTerms, "coefficients 0-2"); !s) return Error{s.error()};
+    if (Status s = plane(ptm.coefficients.data() + 3, Ptm::kTerms, "coefficients 3-5"); !s) return Error{s.error()};
+    if (Status s = plane(ptm.albedo.data(), 3, "albedo"); !s) return Error{s.error()};
+    if (in.remaining() != 0) return fail("has the wrong size");
+    return ptm;
+}
+
 }  // namespace
 
 Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
@@ -148,36 +243,20 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         putChunk(file, kLayer, w.bytes());
     }
     if (embed) putChunk(file, kReference, encodePng(bank.reference, bank.reference.bitDepth));
+    if (!bank.ptm.empty()) putChunk(file, kPtm, encodePtm(bank.ptm));
     putChunk(file, kEnd, {});
     return std::move(file.bytes());
 }
 
-Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name) {
+Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const BankReadOptions& options) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
-    if (bytes.size() < sizeof kSignature + 4 || std::memcmp(bytes.data(), kSignature, 8) != 0)
-        return fail("not a .btflut file (bad signature)");
-    Reader file(bytes.data() + 8, bytes.size() - 8);
-    auto version = file.get<std::uint32_t>();
-    if (version != kBankFormatVersion)
-        return fail("unsupported .btflut version " + std::to_string(version) + " (this btflut reads " +
-                    std::to_string(kBankFormatVersion) + ")");
+    Result<std::vector<Chunk>> chunks = splitChunks(bytes, name);
+    if (!chunks) return Error{chunks.error()};
 
     LutBank bank;
-    bool haveHead = false, haveReference = false, embedded = false;
+    bool haveHead = false, haveReference = false, havePtm = false, embedded = false;
     std::uint32_t layerCount = 0, refW = 0, refH = 0, refC = 0, refDepth = 0;
-    for (int chunkIndex = 0;; ++chunkIndex) {
-        if (file.remaining() == 0) return fail("truncated (no END chunk)");
-        auto tag = file.get<std::uint32_t>();
-        auto length = file.get<std::uint32_t>();
-        if (!file.ok()) return fail("truncated (incomplete chunk header)");
-        const std::uint8_t* payload = file.getBytes(length);
-        auto storedCrc = file.get<std::uint32_t>();
-        if (!file.ok())
-            return fail("truncated (chunk " + tagName(tag) + " declares " + std::to_string(length) +
-                        " bytes)");
-        if (chunkCrc(tag, payload, length) != storedCrc)
-            return fail("checksum mismatch in chunk " + tagName(tag) + " (file is corrupted)");
-        if (chunkIndex == 0 && tag != kHead) return fail("first chunk is not HEAD");
+    for (const auto& [tag, payload, length] : *chunks) {
         Reader in(payload, length);
         auto getDirection = [&](const std::string& what) -> Result<Direction> {
             double theta = in.get<double>(), phi = in.get<double>();
@@ -260,10 +339,15 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name) {
                 static_cast<std::uint32_t>(image->channels) != refC)
                 return fail("reference image does not match the header");
             bank.reference = std::move(*image);
-        } else if (tag == kEnd) {
-            if (length != 0) return fail("END chunk is not empty");
-            if (file.remaining() != 0) return fail("unexpected bytes after the END chunk");
-            break;
+        } else if (tag == kPtm) {
+            if (havePtm) return fail("two PTMC chunks");
+            havePtm = true;
+            if (!options.ptm) continue;
+            Result<Ptm> ptm = decodePtm({tag, payload, length}, name);
+            if (!ptm) return Error{ptm.error()};
+            if (ptm->width != static_cast<int>(refW) || ptm->height != static_cast<int>(refH))
+                return fail("the PTM does not match the reference image's size");
+            bank.ptm = std::move(*ptm);
         } else {
             return fail("unknown chunk " + tagName(tag));
         }
@@ -293,10 +377,20 @@ Status saveBank(const LutBank& bank, const std::string& path, const BankWriteOpt
     return writeFileAtomically(path, encodeBank(bank, options));
 }
 
-Result<LutBank> loadBank(const std::string& path) {
+Result<LutBank> loadBank(const std::string& path, const BankReadOptions& options) {
     Result<Bytes> bytes = readFile(path);
     if (!bytes) return Error{bytes.error()};
-    return decodeBank(*bytes, path);
+    return decodeBank(*bytes, path, options);
+}
+
+Result<Ptm> loadBankPtm(const std::string& path) {
+    Result<Bytes> bytes = readFile(path);
+    if (!bytes) return Error{bytes.error()};
+    Result<std::vector<Chunk>> chunks = splitChunks(*bytes, path);
+    if (!chunks) return Error{chunks.error()};
+    for (const Chunk& chunk : *chunks)
+        if (chunk.tag == kPtm) return decodePtm(chunk, path);
+    return Error{path + ": the bank holds no PTM (bake it with --ptm)"};
 }
 
 }  // namespace btflut

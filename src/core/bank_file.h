@@ -21,10 +21,16 @@ struct BankWriteOptions {
     bool embedReference = true;  ///< store the reference image (PNG) inside the file
 };
 
+struct BankReadOptions {
+    bool ptm = true;  ///< decode the PTM chunk, if any (its checksum is checked either way)
+};
+
 Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options = {});
-Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name);
+Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const BankReadOptions& options = {});
 
 Status saveBank(const LutBank& bank, const std::string& path, const BankWriteOptions& options = {});
-Result<LutBank> loadBank(const std::string& path);
+Result<LutBank> loadBank(const std::string& path, const BankReadOptions& options = {});
+/// Only the PTM of a bank file (for a renderer that needs it later than the LUTs).
+Result<Ptm> loadBankPtm(const std::string& path);
 
 }  // namespace btflut

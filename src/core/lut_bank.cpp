@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <mutex>
+#include <optional>
 
 #include "core/parallel.h"
 
@@ -99,9 +100,32 @@ void LutBank::fillGrids() {
     }
 }
 
-BankLookup LutBank::lookup(Direction light, Direction view) const {
+LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
+    auto nearest = [](const auto& items, auto angleTo) {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < items.size(); ++i)
+            if (angleTo(items[i]) < angleTo(items[best])) best = i;
+        return best;
+    };
+    NodeRef ref;
+    ref.layer = nearest(layers, [&](const ViewLayer& l) { return angleBetween(l.view, view); });
+    ref.node = nearest(layers[ref.layer].nodes, [&](const LightNode& n) { return angleBetween(n.light, light); });
+    return ref;
+}
+
+BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) const {
     const std::size_t length = lutLength();
     BankLookup out;
+    if (!interpolate) {
+        const NodeRef n = nearestNode(light, view);
+        const ViewLayer& layer = layers[n.layer];
+        const float* lut = &layer.nodeLuts[n.node * length];
+        out.values.assign(lut, lut + length);
+        const bool exact = angleBetween(layer.view, view) < kSameDirection &&
+                           angleBetween(layer.nodes[n.node].light, light) < kSameDirection;
+        out.provenance = exact ? Provenance::Measured : Provenance::Interpolated;
+        return out;
+    }
     out.values.assign(length, 0.f);
     Weights vw = views.weightsAt(toDisk(view));
     out.provenance = provenanceOf(vw);
@@ -219,6 +243,8 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     std::vector<ImageLuts> results(dataset.images.size());
     std::mutex progressMutex;
     std::size_t done = 0;
+    std::optional<PtmFitter> ptm;
+    if (options.ptm) ptm.emplace(ref.width, ref.height);
     parallelFor(dataset.images.size(), options.threads, [&](std::size_t i) {
         const DatasetImage& info = dataset.images[i];
         ImageLuts& out = results[i];
@@ -234,6 +260,7 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         } else if (options.colour == ColourMode::Rgb && (*image)->channels != 3) {
             out.error = info.path + ": --colour rgb needs colour images, this one is grey";
         } else {
+            if (ptm && angleBetween(info.view, refInfo.view) < 1e-9) ptm->add(**image, info.light);
             std::vector<LevelCounts> levels = countLevels(**image, mask, options.colour);
             out.values.reserve(length);
             for (std::size_t c = 0; c < levels.size(); ++c) {
@@ -260,9 +287,13 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     else
         bank.reference = ref;
     setNodes(bank, luts);
+    if (ptm) {
+        Result<Ptm> fitted = ptm->finish(dataset.source);
+        if (!fitted) return Error{fitted.error()};
+        bank.ptm = std::move(*fitted);
+    }
     return bank;
 }
-
 
 float inputCode(const Image& image, ColourMode colour) {
     const int codes = colour == ColourMode::Rgb ? image.maxCode() : image.channels * image.maxCode();

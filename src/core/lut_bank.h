@@ -25,6 +25,7 @@
 #include "core/dataset.h"
 #include "core/image.h"
 #include "core/lut.h"
+#include "core/ptm.h"
 #include "core/triangulation.h"
 
 namespace btflut {
@@ -69,6 +70,7 @@ struct LutBank {
     std::string referenceName;
     Direction referenceLight, referenceView;
     Image reference;  ///< without samples when the bank was written without it
+    Ptm ptm;          ///< the baseline PTM of the reference view; empty unless baked with one
 
     int channels() const { return static_cast<int>(colour); }
     /// One code of the values the LUTs map to (those of the reference's format: 1/765 for
@@ -79,8 +81,16 @@ struct LutBank {
     }
     std::size_t lutLength() const { return static_cast<std::size_t>(channels()) * entries; }
 
-    /// The LUT for a light and view direction (any direction in the upper hemisphere).
-    BankLookup lookup(Direction light, Direction view = {}) const;
+    /// The LUT for a light and view direction (any direction in the upper hemisphere);
+    /// with `interpolate` false, the LUT of the nearest measured node (for comparisons).
+    BankLookup lookup(Direction light, Direction view = {}, bool interpolate = true) const;
+
+    /// The measured node nearest to a light direction in the layer nearest to a view
+    /// direction (nearest by angle).
+    struct NodeRef {
+        std::size_t layer = 0, node = 0;
+    };
+    NodeRef nearestNode(Direction light, Direction view = {}) const;
 
     /// Disk point of grid node (i, j): x = -1 + 2 i / (gridSize - 1), likewise y.
     DiskPoint gridPoint(int i, int j) const;
@@ -111,6 +121,7 @@ struct BakeOptions {
     int entries = 0;  ///< 0: 256 for an 8-bit reference, 1024 for a 16-bit one
     ColourMode colour = ColourMode::Grey;
     int threads = 0;  ///< 0: all cores
+    bool ptm = false;  ///< also fit a PTM (ptm.h) to the images of the reference's view
     /// Called after each image with (done, total); may be empty.
     std::function<void(std::size_t, std::size_t)> progress;
 };

@@ -45,15 +45,17 @@ const char* renderModeName(RenderMode mode) {
     switch (mode) {
         case RenderMode::Lut: return "lut";
         case RenderMode::Brdf: return "brdf";
+        case RenderMode::Ptm: return "ptm";
         case RenderMode::Flat: return "flat";
+        case RenderMode::Nearest: return "nearest";
     }
     return "?";
 }
 
 Result<RenderMode> parseRenderMode(const std::string& name) {
-    for (RenderMode m : {RenderMode::Lut, RenderMode::Brdf, RenderMode::Flat})
+    for (RenderMode m : {RenderMode::Lut, RenderMode::Brdf, RenderMode::Ptm, RenderMode::Flat, RenderMode::Nearest})
         if (name == renderModeName(m)) return m;
-    return Error{"mode '" + name + "' is not lut, brdf or flat"};
+    return Error{"mode '" + name + "' is not lut, brdf, ptm, flat or nearest"};
 }
 
 Result<Scene> parseScene(const std::string& text, const std::string& file, const std::string& folder) {
@@ -102,9 +104,27 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
 
     if (!doc.contains("materials") || !doc["materials"].is_object() || doc["materials"].empty())
         return Error{at + "materials: expected {\"name\": \"bank.btflut\", ...}"};
-    for (const auto& [name, path] : doc["materials"].items()) {
-        if (!path.is_string()) return Error{at + "materials." + name + ": expected a .btflut path"};
-        scene.materials[name] = (std::filesystem::path(folder) / path.get<std::string>()).lexically_normal().string();
+    auto resolve = [&](const json& path) {
+        return (std::filesystem::path(folder) / path.get<std::string>()).lexically_normal().string();
+    };
+    for (const auto& [name, entry] : doc["materials"].items()) {
+        SceneMaterial& m = scene.materials[name];
+        if (entry.is_string()) {
+            m.bank = resolve(entry);
+        } else if (entry.is_object() && entry.contains("bank") && entry["bank"].is_string() &&
+                   (!entry.contains("images") || entry["images"].is_string())) {
+            m.bank = resolve(entry["bank"]);
+            if (entry.contains("images")) m.images = resolve(entry["images"]);
+        } else {
+            return Error{at + "materials." + name +
+                         ": expected a .btflut path or {\"bank\": path, \"images\": dataset path}"};
+        }
+    }
+    if (doc.contains("interpolation")) {
+        const json& i = doc["interpolation"];
+        if (i != "linear" && i != "nearest")
+            return Error{at + "interpolation: expected \"linear\" or \"nearest\" (between the LUTs' directions)"};
+        scene.interpolateLuts = i == "linear";
     }
     if (!doc.contains("quads") || !doc["quads"].is_array() || doc["quads"].empty())
         return Error{at + "quads: expected a non-empty array"};

@@ -19,7 +19,15 @@
 
 namespace btflut {
 
-enum class RenderMode { Lut, Brdf, Flat };
+/// lut: the LUT for the quad's light and view; brdf: the paper's 2D texture mapping (the
+/// texture scaled by the target-to-reference mean grey); ptm: the bank's polynomial texture
+/// map; flat: the plain texture; nearest: the measured image nearest to the light direction.
+enum class RenderMode { Lut, Brdf, Ptm, Flat, Nearest };
+
+struct SceneMaterial {
+    std::string bank;    ///< .btflut path (relative paths resolved against the scene's folder)
+    std::string images;  ///< the dataset it was baked from, for mode nearest; may be empty
+};
 
 struct SceneQuad {
     std::string material;
@@ -35,11 +43,12 @@ struct Scene {
     Vec3 eye{0, -3, 2}, target{0, 0, 0}, up{0, 0, 1};
     double fovDegrees = 45;
     Vec3 light{0, 0, 1};  ///< unit vector towards the light, world frame
-    std::map<std::string, std::string> materials;  ///< name -> bank path (relative to the file)
+    std::map<std::string, SceneMaterial> materials;
+    bool interpolateLuts = true;  ///< false: the LUT of the nearest measured direction (for comparison)
     std::vector<SceneQuad> quads;
 };
 
-/// "lut", "brdf" or "flat".
+/// "lut", "brdf", "ptm", "flat" or "nearest".
 Result<RenderMode> parseRenderMode(const std::string& name);
 
 /// Parses and validates a scene; errors name the file and the field (not JSON, unknown

@@ -65,7 +65,10 @@ typedef void(APIENTRYP PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first, GLsizei co
     X(PFNGLDISABLEPROC, Disable)                                                            \
     X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                                              \
     X(PFNGLUNIFORM3FPROC, Uniform3f)                                                        \
-    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)
+    X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                          \
+    X(PFNGLTEXIMAGE3DPROC, TexImage3D)                                                      \
+    X(PFNGLTEXSUBIMAGE3DPROC, TexSubImage3D)                                                \
+    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)
 
 struct GlFunctions {
 #define BTFLUT_GL_MEMBER(type, name) type name = nullptr;

@@ -1,5 +1,7 @@
 #include "gl/scene_renderer.h"
 
+#include <algorithm>
+
 #include "core/bank_file.h"
 #include "gl/shader.h"
 #include "gl/textures.h"
@@ -8,30 +10,21 @@ namespace btflut {
 
 namespace {
 
-GlTexture uploadMipmapped(const Image& image, std::size_t& bytes) {
-    GlTexture texture = makeTexture();
-    gl.BindTexture(GL_TEXTURE_2D, texture.id());
-    const std::vector<float> rgb = rgbSamples(image);
-    const bool sixteen = image.bitDepth == 16;
-    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    gl.TexImage2D(GL_TEXTURE_2D, 0, sixteen ? GL_RGB16 : GL_RGB8, image.width, image.height, 0, GL_RGB, GL_FLOAT,
-                  rgb.data());
-    gl.GenerateMipmap(GL_TEXTURE_2D);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    bytes += image.pixelCount() * (sixteen ? 8 : 4) * 4 / 3;  // drivers pad RGB to RGBA; mipmaps add 1/3
-    return texture;
-}
-
 const char* modeDefine(RenderMode mode) {
     switch (mode) {
         case RenderMode::Lut: return "LUT_MODE";
         case RenderMode::Brdf: return "BRDF_MODE";
+        case RenderMode::Ptm: return "PTM_MODE";
         case RenderMode::Flat: return "FLAT_MODE";
+        case RenderMode::Nearest: return "NEAREST_MODE";
     }
     return "";
+}
+
+bool sameVector(const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
 }  // namespace
@@ -39,30 +32,39 @@ const char* modeDefine(RenderMode mode) {
 Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene) {
     std::unique_ptr<SceneRenderer> r(new SceneRenderer());
     r->m_scene = scene;
+    r->m_interpolate = scene.interpolateLuts;
     const std::vector<std::size_t> visible = visibleQuads(scene);
     r->m_stats.quadsCulled = scene.quads.size() - visible.size();
+    TextureBytes& bytes = r->m_stats.textureBytes;
     for (std::size_t i : visible) {
         const std::string& name = scene.quads[i].material;
         if (!r->m_materials.count(name)) {
-            Result<LutBank> bank = loadBank(scene.materials.at(name));
+            const std::string& path = scene.materials.at(name).bank;
+            Result<LutBank> bank = loadBank(path, {.ptm = false});  // the PTM only if a ptm quad needs it
             if (!bank) return Error{bank.error()};
-            if (bank->reference.samples.empty())
-                return Error{scene.materials.at(name) + ": the bank has no reference image inside"};
+            if (bank->reference.samples.empty()) return Error{path + ": the bank has no reference image inside"};
             Material& m = r->m_materials[name];
             m.bank = std::move(*bank);
-            m.reference = uploadMipmapped(m.bank.reference, r->m_stats.textureBytes);
+            m.reference = uploadMipmapped(m.bank.reference, bytes.reference);
             m.referenceGrey = countGreyLevels(m.bank.reference, fullMask(m.bank.reference.width, m.bank.reference.height));
             r->m_stats.loadedMaterials.push_back(name);
         }
         QuadState q{i, {}};
         const LutBank& bank = r->m_materials.at(name).bank;
+        const bool viewGrid = bank.layers.size() > 1;
         for (int c = 0; c < bank.channels(); ++c) {
-            q.luts.push_back(uploadLut(std::vector<float>(static_cast<std::size_t>(bank.entries)).data(), bank.entries));
-            r->m_stats.textureBytes += static_cast<std::size_t>(bank.entries) * 4;
+            if (viewGrid) {
+                q.luts.push_back(uploadLutVolume(nullptr, bank.entries, kViewGrid, kViewGrid));
+                bytes.luts += static_cast<std::size_t>(bank.entries) * kViewGrid * kViewGrid * 4;
+            } else {
+                const std::vector<float> zeros(static_cast<std::size_t>(bank.entries));
+                q.luts.push_back(uploadLut(zeros.data(), bank.entries));
+                bytes.luts += static_cast<std::size_t>(bank.entries) * 4;
+            }
         }
         r->m_quads.push_back(std::move(q));
     }
-    for (const auto& [name, path] : scene.materials)
+    for (const auto& [name, paths] : scene.materials)
         if (!r->m_materials.count(name)) r->m_stats.skippedMaterials.push_back(name);
 
     r->m_target = makeTexture();
@@ -82,9 +84,27 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene)
     return r;
 }
 
+void SceneRenderer::setCamera(const Vec3& eye, const Vec3& target, const Vec3& up) {
+    m_scene.eye = eye;
+    m_scene.target = target;
+    m_scene.up = up;
+}
+
+void SceneRenderer::setInterpolation(bool interpolate) {
+    if (interpolate == m_interpolate) return;
+    m_interpolate = interpolate;
+    for (QuadState& q : m_quads) q.lightUploaded = {0, 0, -2};  // blend again
+}
+
+const LutBank* SceneRenderer::bank(const std::string& material) const {
+    auto it = m_materials.find(material);
+    return it == m_materials.end() ? nullptr : &it->second.bank;
+}
+
 Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank) {
     std::vector<std::string> defines{modeDefine(mode)};
-    if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+    if (mode == RenderMode::Lut && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+    if (mode == RenderMode::Lut && bank.layers.size() > 1) defines.push_back("VIEW_GRID");
     auto found = m_programs.find(defines);
     if (found == m_programs.end()) {
         Result<GlProgram> p = buildProgram({"scene.vert"}, {"lut_common.glsl", "scene.frag"}, defines);
@@ -94,34 +114,145 @@ Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank) {
     return found->second.id();
 }
 
-void SceneRenderer::updateLut(QuadState& q, const Vec3& light) {
-    if (light.x == q.lightUploaded.x && light.y == q.lightUploaded.y && light.z == q.lightUploaded.z) return;
-    q.lightUploaded = light;
+// The direction from the quad point at corner coordinates (x, y) in [-1, 1]^2 to the eye,
+// in the quad's frame; behind the quad it is clamped to just above the horizon.
+Vec3 SceneRenderer::viewAt(const SceneQuad& quad, double x, double y) const {
+    const Vec3 b = cross(quad.normal, quad.tangent);
+    const double u = x * quad.width / 2, v = y * quad.height / 2;
+    const Vec3 point{quad.center.x + u * quad.tangent.x + v * b.x, quad.center.y + u * quad.tangent.y + v * b.y,
+                     quad.center.z + u * quad.tangent.z + v * b.z};
+    Vec3 view = toQuadFrame(quad, {m_scene.eye.x - point.x, m_scene.eye.y - point.y, m_scene.eye.z - point.z});
+    view.z = std::max(view.z, 1e-6 * std::hypot(view.x, view.y, view.z));
+    return view;
+}
+
+BankLookup SceneRenderer::centreLut(std::size_t quad, const Vec3& light) const {
+    const SceneQuad& q = m_scene.quads[quad];
+    const LutBank& bank = m_materials.at(q.material).bank;
+    const Vec3 local = toQuadFrame(q, light);
+    return bank.lookup(fromVector({local.x, local.y, std::max(local.z, 1e-9)}), fromVector(viewAt(q, 0, 0)),
+                       m_interpolate);
+}
+
+// Per quad and frame, only what the mode needs and only when the light, the camera (for
+// banks with view layers) or the mode changed: the LUTs (lut, brdf), the PTM weights (ptm),
+// the nearest image's name (nearest).
+void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
     const SceneQuad& quad = m_scene.quads[q.index];
     const Material& material = m_materials.at(quad.material);
+    const LutBank& bank = material.bank;
+    const bool viewGrid = bank.layers.size() > 1;
+    if (mode == q.modeUploaded && sameVector(light, q.lightUploaded) &&
+        (!viewGrid || sameVector(m_scene.eye, q.eyeUploaded)))
+        return;
+    q.modeUploaded = mode;
+    q.lightUploaded = light;
+    q.eyeUploaded = m_scene.eye;
     const Vec3 local = toQuadFrame(quad, light);
     q.unlit = local.z <= 1e-9;
-    if (q.unlit) return;
-    // The view direction of the quad's centre picks the view layer(s).
-    const Vec3 eye = toQuadFrame(quad, {m_scene.eye.x - quad.center.x, m_scene.eye.y - quad.center.y,
-                                        m_scene.eye.z - quad.center.z});
-    const LutBank& bank = material.bank;
-    const BankLookup lookup = bank.lookup(fromVector(local), eye.z > 0 ? fromVector(eye) : Direction{});
-    for (std::size_t c = 0; c < q.luts.size(); ++c) {
-        gl.BindTexture(GL_TEXTURE_1D, q.luts[c].id());
-        gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, bank.entries, GL_RED, GL_FLOAT,
-                         &lookup.values[c * static_cast<std::size_t>(bank.entries)]);
+    if (q.unlit || mode == RenderMode::Flat) return;
+    const Direction lightDirection = fromVector(local);
+    const Direction centreView = fromVector(viewAt(quad, 0, 0));
+    if (mode == RenderMode::Ptm) {
+        // As RTI viewers draw: the light's terms folded with each coefficient's scale and bias
+        // into six weights and an offset, once per quad, so a fragment does two dot products.
+        if (!material.ptmLoaded) return;
+        const std::array<double, Ptm::kTerms> t = Ptm::terms(lightDirection);
+        double offset = 0;
+        for (std::size_t k = 0; k < Ptm::kTerms; ++k) {
+            q.ptmWeights[k] = static_cast<float>(255.0 * material.ptmScale[k] * t[k]);
+            offset -= double{material.ptmBias[k]} * material.ptmScale[k] * t[k];
+        }
+        q.ptmWeights[6] = static_cast<float>(offset);
+        return;
     }
-    // brdf mode: the mean grey the LUT gives the reference, over the reference's own mean.
-    const LevelCounts& grey = material.referenceGrey;
-    double target = 0, reference = 0;
-    for (std::size_t k = 0; k < grey.counts.size(); ++k) {
-        if (!grey.counts[k]) continue;
-        const auto v = static_cast<float>(grey.valueOf(k));
-        target += static_cast<double>(grey.counts[k]) * Lut::applyLut(lookup.values.data(), bank.entries, v);
-        reference += static_cast<double>(grey.counts[k]) * v;
+    if (mode == RenderMode::Nearest) {
+        const LutBank::NodeRef nearest = bank.nearestNode(lightDirection, centreView);
+        q.nearestImage = bank.layers[nearest.layer].nodes[nearest.node].name;
+        return;
     }
-    q.brightness = reference > 0 ? static_cast<float>(target / reference) : 1.f;
+    const std::size_t entries = static_cast<std::size_t>(bank.entries);
+    const BankLookup centre = bank.lookup(lightDirection, centreView, m_interpolate);
+    if (viewGrid && mode == RenderMode::Lut) {
+        // channel-major volumes: [channel][y][x][entry]
+        constexpr int k = kViewGrid;
+        std::vector<float> volume(q.luts.size() * k * k * entries);
+        for (int j = 0; j < k; ++j)
+            for (int i = 0; i < k; ++i) {
+                const Vec3 view = viewAt(quad, -1 + 2.0 * i / (k - 1), -1 + 2.0 * j / (k - 1));
+                const BankLookup lut = bank.lookup(lightDirection, fromVector(view), m_interpolate);
+                for (std::size_t c = 0; c < q.luts.size(); ++c)
+                    std::copy_n(&lut.values[c * entries], entries,
+                                &volume[((c * k + static_cast<std::size_t>(j)) * k + static_cast<std::size_t>(i)) * entries]);
+            }
+        for (std::size_t c = 0; c < q.luts.size(); ++c) {
+            gl.BindTexture(GL_TEXTURE_3D, q.luts[c].id());
+            gl.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, bank.entries, k, k, GL_RED, GL_FLOAT,
+                             &volume[c * k * k * entries]);
+        }
+    } else if (mode == RenderMode::Lut) {
+        for (std::size_t c = 0; c < q.luts.size(); ++c) {
+            gl.BindTexture(GL_TEXTURE_1D, q.luts[c].id());
+            gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, bank.entries, GL_RED, GL_FLOAT, &centre.values[c * entries]);
+        }
+    } else {  // brdf: the mean grey the LUT gives the reference, over the reference's own mean
+        const LevelCounts& grey = material.referenceGrey;
+        double target = 0, reference = 0;
+        for (std::size_t k = 0; k < grey.counts.size(); ++k) {
+            if (!grey.counts[k]) continue;
+            const auto v = static_cast<float>(grey.valueOf(k));
+            target += static_cast<double>(grey.counts[k]) * Lut::applyLut(centre.values.data(), bank.entries, v);
+            reference += static_cast<double>(grey.counts[k]) * v;
+        }
+        q.brightness = reference > 0 ? static_cast<float>(target / reference) : 1.f;
+    }
+}
+
+// Loads what a mode needs beyond the reference and the LUTs, the first time it is needed.
+Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) {
+    const SceneQuad& quad = m_scene.quads[q.index];
+    Material& material = m_materials.at(quad.material);
+    const SceneMaterial& paths = m_scene.materials.at(quad.material);
+    TextureBytes& bytes = m_stats.textureBytes;
+    if (mode == RenderMode::Ptm && !material.ptmLoaded) {
+        Result<Ptm> ptm = loadBankPtm(paths.bank);
+        if (!ptm) return Error{ptm.error()};
+        std::vector<std::uint8_t> plane(ptm->texels() * 3);
+        for (int p = 0; p < 2; ++p) {
+            for (std::size_t i = 0; i < ptm->texels(); ++i)
+                std::copy_n(&ptm->coefficients[i * Ptm::kTerms + 3 * static_cast<std::size_t>(p)], 3, &plane[i * 3]);
+            material.ptm[static_cast<std::size_t>(p)] =
+                uploadMipmapped(ptm->width, ptm->height, GL_RGB8, GL_RGB, GL_UNSIGNED_BYTE, plane.data(), bytes.ptm);
+        }
+        material.ptm[2] = uploadMipmapped(ptm->width, ptm->height, GL_RGB8, GL_RGB, GL_UNSIGNED_BYTE, ptm->albedo.data(), bytes.ptm);
+        material.ptmScale = ptm->scale;
+        material.ptmBias = ptm->bias;
+        material.ptmLoaded = true;
+        m_stats.loadedPtms.push_back(quad.material);
+        for (QuadState& other : m_quads)  // their PTM weights are due
+            if (m_scene.quads[other.index].material == quad.material) other.lightUploaded = {0, 0, -2};
+        update(q, light, mode);
+    }
+    if (mode == RenderMode::Nearest && !q.unlit && !material.imageTextures.count(q.nearestImage)) {
+        if (!material.images) {
+            if (paths.images.empty())
+                return Error{m_scene.file + ": material '" + quad.material +
+                             "' names no \"images\" (mode nearest draws the measured images)"};
+            Result<Dataset> dataset = openDataset(paths.images);
+            if (!dataset) return Error{dataset.error()};
+            material.images = std::move(*dataset);
+        }
+        const auto& all = material.images->images;
+        auto found = std::find_if(all.begin(), all.end(), [&](const DatasetImage& im) { return im.name == q.nearestImage; });
+        if (found == all.end())
+            return Error{paths.images + ": no image named '" + q.nearestImage + "' (the bank's node); is it the dataset "
+                         "the bank was baked from?"};
+        Result<Image> image = loadImage(found->path);
+        if (!image) return Error{image.error()};
+        material.imageTextures.emplace(q.nearestImage, uploadMipmapped(*image, bytes.images));
+        ++m_stats.imagesLoaded;
+    }
+    return success();
 }
 
 Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOverride) {
@@ -135,28 +266,46 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
     m_stats.quadsDrawn = m_stats.quadsUnlit = 0;
     for (QuadState& q : m_quads) {
         const SceneQuad& quad = m_scene.quads[q.index];
-        const Material& material = m_materials.at(quad.material);
         const RenderMode mode = modeOverride.value_or(quad.mode);
-        if (mode != RenderMode::Flat) updateLut(q, light);
+        update(q, light, mode);
+        if (Status s = prepare(q, mode, light); !s) return s;
+        const Material& material = m_materials.at(quad.material);
         Result<GLuint> p = program(mode, material.bank);
         if (!p) return Error{p.error()};
         gl.UseProgram(*p);
-        gl.ActiveTexture(GL_TEXTURE0);
-        gl.BindTexture(GL_TEXTURE_2D, material.reference.id());
-        gl.Uniform1i(gl.GetUniformLocation(*p, "reference"), 0);
-        for (int c = 0; c < 3; ++c) {
-            gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE1 + c));
-            gl.BindTexture(GL_TEXTURE_1D, q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id());
-            const std::string name = "lut[" + std::to_string(c) + "]";
-            gl.Uniform1i(gl.GetUniformLocation(*p, name.c_str()), 1 + c);
-        }
+        auto bind = [&](int unit, GLenum target, GLuint texture, const char* name) {
+            gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+            gl.BindTexture(target, texture);
+            gl.Uniform1i(gl.GetUniformLocation(*p, name), unit);
+        };
         const bool unlit = mode != RenderMode::Flat && q.unlit;
-        gl.Uniform1i(gl.GetUniformLocation(*p, "entries"), material.bank.entries);
+        if (mode == RenderMode::Ptm) {
+            bind(0, GL_TEXTURE_2D, material.ptm[0].id(), "ptmLow");
+            bind(1, GL_TEXTURE_2D, material.ptm[1].id(), "ptmHigh");
+            bind(2, GL_TEXTURE_2D, material.ptm[2].id(), "ptmAlbedo");
+            const std::array<float, 7>& w = q.ptmWeights;
+            gl.Uniform3f(gl.GetUniformLocation(*p, "ptmWeightsLow"), w[0], w[1], w[2]);
+            gl.Uniform3f(gl.GetUniformLocation(*p, "ptmWeightsHigh"), w[3], w[4], w[5]);
+            gl.Uniform1f(gl.GetUniformLocation(*p, "ptmOffset"), w[6]);
+        } else if (mode == RenderMode::Nearest && !unlit) {
+            bind(0, GL_TEXTURE_2D, material.imageTextures.at(q.nearestImage).id(), "reference");
+        } else {
+            bind(0, GL_TEXTURE_2D, material.reference.id(), "reference");
+        }
+        if (mode == RenderMode::Lut) {
+            const GLenum target = material.bank.layers.size() > 1 ? GL_TEXTURE_3D : GL_TEXTURE_1D;
+            for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
+                const std::string name = "lut[" + std::to_string(c) + "]";
+                bind(1 + c, target, q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id(),
+                     name.c_str());
+            }
+            gl.Uniform1i(gl.GetUniformLocation(*p, "entries"), material.bank.entries);
+            gl.Uniform1i(gl.GetUniformLocation(*p, "viewGrid"), kViewGrid);
+        }
         gl.Uniform1i(gl.GetUniformLocation(*p, "unlit"), unlit ? 1 : 0);
         gl.Uniform1f(gl.GetUniformLocation(*p, "brightness"), q.brightness);
         gl.UniformMatrix4fv(gl.GetUniformLocation(*p, "viewProjection"), 1, GL_FALSE, matrix.data());
-        const Vec3 t = quad.tangent, n = quad.normal;
-        const Vec3 b{n.y * t.z - n.z * t.y, n.z * t.x - n.x * t.z, n.x * t.y - n.y * t.x};
+        const Vec3 t = quad.tangent, b = cross(quad.normal, quad.tangent);
         auto f = [](double v) { return static_cast<float>(v); };
         gl.Uniform3f(gl.GetUniformLocation(*p, "center"), f(quad.center.x), f(quad.center.y), f(quad.center.z));
         gl.Uniform3f(gl.GetUniformLocation(*p, "halfTangent"), f(t.x * quad.width / 2), f(t.y * quad.width / 2),

@@ -1,15 +1,18 @@
 #pragma once
 // Draws a Scene (core/scene.h) with OpenGL, doing only the work the view needs: quads outside
-// the frustum are culled, and only materials that a visible quad uses are loaded and uploaded
-// (once). Per frame, each lit quad's LUT is blended for the light (constant over a flat quad
-// under a directional light) and uploaded only when the light changed. Needs the context
-// that was current at creation.
+// the frustum are culled; only materials that a visible quad uses are loaded and uploaded
+// (once); a material's PTM is read only when a quad is first drawn in mode ptm, and a
+// measured image only when mode nearest first needs it. Per frame, a lit quad's LUT is
+// blended on the CPU (under a directional light a flat quad's light direction is constant)
+// and uploaded only when the light or the camera changed. Needs the context that was
+// current at creation.
 //
 //   Result<std::unique_ptr<SceneRenderer>> r = SceneRenderer::create(scene);
 //   (*r)->draw(scene.light);  Image img = (*r)->readBack();
 //
-// Modes: lut (the LUT), flat (the plain texture), brdf (the paper's "2D texture mapping": the
-// texture scaled by the ratio of the target's mean grey to the reference's).
+// Banks with several view layers: the view direction changes across a quad under a
+// perspective camera, so the LUT is blended for a kViewGrid x kViewGrid grid of points on the
+// quad and the shader interpolates between them (one trilinear fetch of a 3D texture).
 
 #include <map>
 #include <memory>
@@ -17,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "core/dataset.h"
 #include "core/image.h"
 #include "core/lut_bank.h"
 #include "core/scene.h"
@@ -24,42 +28,74 @@
 
 namespace btflut {
 
+/// GPU memory of the textures, by use (bytes as the driver stores them: RGB padded to RGBA,
+/// mipmap chains included).
+struct TextureBytes {
+    std::size_t reference = 0, luts = 0, ptm = 0, images = 0;
+    std::size_t total() const { return reference + luts + ptm + images; }
+};
+
 struct RenderStats {
     std::vector<std::string> loadedMaterials;   ///< names, in load order
     std::vector<std::string> skippedMaterials;  ///< used by no visible quad: never read
+    std::vector<std::string> loadedPtms;        ///< materials whose PTM a ptm quad needed
+    std::size_t imagesLoaded = 0;               ///< measured images read for mode nearest
     std::size_t quadsDrawn = 0, quadsCulled = 0, quadsUnlit = 0;
-    std::size_t textureBytes = 0;  ///< reference textures with mipmaps, plus LUT textures
+    TextureBytes textureBytes;
 };
 
 class SceneRenderer {
 public:
+    static constexpr int kViewGrid = 5;
+
     static Result<std::unique_ptr<SceneRenderer>> create(const Scene& scene);
 
     /// One frame for a light (unit vector, world frame); `mode` overrides every quad's.
     Status draw(const Vec3& light, std::optional<RenderMode> mode = {});
+    /// Moves the camera (the set of visible quads is fixed at creation).
+    void setCamera(const Vec3& eye, const Vec3& target, const Vec3& up);
+    /// Nearest-node LUTs instead of interpolated ones.
+    void setInterpolation(bool interpolate);
     /// Waits for the GPU (for timing).
     void finish() const;
     Image readBack() const;
+    GLuint framebuffer() const { return m_framebuffer.id(); }
+    const Scene& scene() const { return m_scene; }
     const RenderStats& stats() const { return m_stats; }
+    /// A visible quad's material bank, or null (for viewers that show LUTs and histograms).
+    const LutBank* bank(const std::string& material) const;
+    /// The LUT a quad's centre gets for a light (what mode lut applies there).
+    BankLookup centreLut(std::size_t quad, const Vec3& light) const;
 
 private:
     struct Material {
         LutBank bank;
         GlTexture reference;
         LevelCounts referenceGrey;  ///< for the brdf mode's mean
+        bool ptmLoaded = false;
+        std::array<GlTexture, 3> ptm;  ///< coefficients 0-2, 3-5, albedo
+        std::array<float, 6> ptmScale{}, ptmBias{};
+        std::optional<Dataset> images;
+        std::map<std::string, GlTexture> imageTextures;  ///< by dataset image name
     };
     struct QuadState {
         std::size_t index;
-        std::vector<GlTexture> luts;  ///< one per channel
-        Vec3 lightUploaded{0, 0, -2};  ///< the light its LUTs were blended for
-        float brightness = 1;
+        std::vector<GlTexture> luts;  ///< one per channel: 1D, or 3D over the view grid
+        Vec3 lightUploaded{0, 0, -2}, eyeUploaded;  ///< what its state was computed for
+        RenderMode modeUploaded = RenderMode::Flat;
+        float brightness = 1;  ///< brdf mode
         bool unlit = false;
+        std::array<float, 7> ptmWeights{};  ///< per coefficient weights and the offset
+        std::string nearestImage;
     };
     SceneRenderer() = default;
     Result<GLuint> program(RenderMode mode, const LutBank& bank);
-    void updateLut(QuadState& q, const Vec3& light);
+    Vec3 viewAt(const SceneQuad& quad, double x, double y) const;
+    void update(QuadState& q, const Vec3& light, RenderMode mode);
+    Status prepare(QuadState& q, RenderMode mode, const Vec3& light);
 
     Scene m_scene;
+    bool m_interpolate = true;
     std::map<std::string, Material> m_materials;
     std::vector<QuadState> m_quads;
     std::map<std::vector<std::string>, GlProgram> m_programs;  ///< by defines

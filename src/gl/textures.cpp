@@ -12,6 +12,49 @@ GlTexture uploadLut(const float* values, int entries) {
     return texture;
 }
 
+GlTexture uploadLutVolume(const float* values, int entries, int height, int depth) {
+    GlTexture texture = makeTexture();
+    gl.BindTexture(GL_TEXTURE_3D, texture.id());
+    gl.TexImage3D(GL_TEXTURE_3D, 0, GL_R32F, entries, height, depth, 0, GL_RED, GL_FLOAT, values);
+    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        gl.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
+GlTexture uploadMipmapped(int width, int height, GLenum internalFormat, GLenum format, GLenum type,
+                          const void* data, std::size_t& bytes) {
+    GlTexture texture = makeTexture();
+    gl.BindTexture(GL_TEXTURE_2D, texture.id());
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internalFormat), width, height, 0, format, type, data);
+    gl.GenerateMipmap(GL_TEXTURE_2D);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    std::size_t texel = 4;  // drivers pad RGB to RGBA
+    if (internalFormat == GL_RGB16) texel = 8;
+    if (internalFormat == GL_R8) texel = 1;
+    if (internalFormat == GL_R16) texel = 2;
+    if (format == GL_RED) {  // grey: read as (v, v, v)
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_G, GL_RED);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_B, GL_RED);
+    }
+    bytes += static_cast<std::size_t>(width) * height * texel * 4 / 3;  // mipmaps add a third
+    return texture;
+}
+
+GlTexture uploadMipmapped(const Image& image, std::size_t& bytes) {
+    const bool sixteen = image.bitDepth == 16;
+    if (image.channels == 1)
+        return uploadMipmapped(image.width, image.height, sixteen ? GL_R16 : GL_R8, GL_RED, GL_FLOAT,
+                               image.samples.data(), bytes);
+    const std::vector<float> rgb = rgbSamples(image);
+    return uploadMipmapped(image.width, image.height, sixteen ? GL_RGB16 : GL_RGB8, GL_RGB, GL_FLOAT, rgb.data(), bytes);
+}
+
 std::vector<float> rgbSamples(const Image& image) {
     std::vector<float> rgb(image.pixelCount() * 3);
     for (std::size_t i = 0; i < image.pixelCount(); ++i)

@@ -12,6 +12,18 @@ namespace btflut {
 /// texture twin of Lut::applyLut.
 GlTexture uploadLut(const float* values, int entries);
 
+/// A W x H x D LUT volume (entries along x) as a GL_R32F 3D texture, linearly filtered,
+/// clamped; `values` may be null (contents set later).
+GlTexture uploadLutVolume(const float* values, int entries, int height, int depth);
+
+/// A repeating, trilinearly filtered texture with its mipmaps from `format` (GL_RGB, or
+/// GL_RED for grey, read back as (v, v, v)) data of `type`, top row first; adds its GPU
+/// bytes to `bytes`.
+GlTexture uploadMipmapped(int width, int height, GLenum internalFormat, GLenum format, GLenum type,
+                          const void* data, std::size_t& bytes);
+/// An image at its own precision: R8/R16 for grey (read as RGB), RGB8/RGB16 for colour.
+GlTexture uploadMipmapped(const Image& image, std::size_t& bytes);
+
 /// An image's samples as RGB floats (grey repeated), top row first.
 std::vector<float> rgbSamples(const Image& image);
 

@@ -23,6 +23,7 @@ struct BakeCommandOptions {
     int entries = 0;
     int threads = 0;
     bool noReference = false;
+    bool ptm = false;
     bool quiet = false;
 };
 
@@ -67,6 +68,7 @@ Status runBake(const BakeCommandOptions& o) {
     options.gridSize = o.grid;
     options.entries = o.entries;
     options.threads = o.threads;
+    options.ptm = o.ptm;
     options.colour = o.colour == "rgb" ? ColourMode::Rgb : ColourMode::Grey;
     if (!o.quiet) options.progress = terminalProgress("baking");
     Result<LutBank> bank = bakeBank(*dataset, options);
@@ -78,7 +80,7 @@ Status runBake(const BakeCommandOptions& o) {
         std::cout << "wrote " << o.output << ": " << dataset->images.size() << " images, "
                   << bank->layers.size() << " view layer(s), " << nodes << " measured nodes, "
                   << bank->gridSize << "x" << bank->gridSize << " grid, " << bank->entries
-                  << " entries, reference " << bank->referenceName << ", "
+                  << " entries, reference " << bank->referenceName << (bank->ptm.empty() ? "" : ", PTM") << ", "
                   << std::filesystem::file_size(o.output) << " bytes\n";
     }
     return success();
@@ -111,6 +113,9 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
         ->capture_default_str();
     app->add_option("--threads", o->threads, "worker threads (0 = all cores)")
         ->check(CLI::Range(0, 1024));
+    app->add_flag("--ptm", o->ptm,
+                  "also fit a polynomial texture map (6 luminance coefficients + RGB albedo per texel) "
+                  "to the images of the reference's view, the baseline of `btflut render --mode ptm`");
     app->add_flag("--no-reference", o->noReference,
                   "do not embed the reference image (relight then needs --reference-image)");
     app->add_flag("-q,--quiet", o->quiet, "no progress bar or summary");

@@ -230,7 +230,7 @@ Scene benchScene(const std::string& bank, int width, int height) {
     s.eye = {0, -3.2, 1.6};
     s.target = {0, 0, 0.6};
     s.fovDegrees = 60;
-    s.materials["m"] = bank;
+    s.materials["m"] = {bank, ""};
     s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 6, 6, 3, RenderMode::Lut},
                {"m", {0, 2, 1.5}, {0, -1, 0}, {1, 0, 0}, 6, 3, 2, RenderMode::Lut},
                {"m", {-2.5, 0, 1.5}, {1, 0, 0}, {0, 1, 0}, 4, 3, 2, RenderMode::Lut},
@@ -244,15 +244,17 @@ Status runBenchRender(const BenchRenderOptions& o) {
     Result<std::unique_ptr<HeadlessContext>> context = createHeadlessContext(*backend);
     if (!context) return Error{context.error()};
     nlohmann::json out{{"context", (*context)->description()}, {"bank", o.bank}, {"sizes", nlohmann::json::array()}};
-    // Two lights, alternated every frame: each lut/brdf frame re-blends and uploads its LUTs.
+    // Two lights, alternated every frame: each frame re-blends and uploads the LUTs (lut),
+    // recomputes the brightness (brdf) or the PTM weights (ptm).
     const Vec3 lights[2] = {toVector(Direction::fromDegrees(40, 30)), toVector(Direction::fromDegrees(55, 200))};
+    const RenderMode modes[] = {RenderMode::Flat, RenderMode::Lut, RenderMode::Brdf, RenderMode::Ptm};
     std::string text;
     for (auto [w, h] : {std::pair{1024, 1024}, std::pair{1920, 1080}}) {
         Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(benchScene(o.bank, w, h));
         if (!renderer) return Error{renderer.error()};
         std::map<RenderMode, std::vector<double>> frameTimes;
         for (int r = 0; r < o.repeat; ++r)
-            for (RenderMode mode : {RenderMode::Flat, RenderMode::Lut, RenderMode::Brdf})
+            for (RenderMode mode : modes)
                 for (int f = 0; f < o.frames; ++f) {
                     auto start = std::chrono::steady_clock::now();
                     if (Status s = (*renderer)->draw(lights[f % 2], mode); !s) return s;
@@ -260,16 +262,34 @@ Status runBenchRender(const BenchRenderOptions& o) {
                     frameTimes[mode].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
                 }
         const double flat = median(frameTimes[RenderMode::Flat]), lut = median(frameTimes[RenderMode::Lut]),
-                     brdf = median(frameTimes[RenderMode::Brdf]);
+                     brdf = median(frameTimes[RenderMode::Brdf]), ptm = median(frameTimes[RenderMode::Ptm]);
         out["sizes"].push_back({{"width", w}, {"height", h}, {"flat_ms", flat * 1e3}, {"lut_ms", lut * 1e3},
-                                {"brdf_ms", brdf * 1e3}, {"lut_over_flat", lut / flat}, {"lut_over_brdf", lut / brdf},
-                                {"texture_bytes", (*renderer)->stats().textureBytes}});
+                                {"brdf_ms", brdf * 1e3}, {"ptm_ms", ptm * 1e3}, {"lut_over_flat", lut / flat},
+                                {"lut_over_brdf", lut / brdf}, {"lut_over_ptm", lut / ptm}});
         char line[256];
         std::snprintf(line, sizeof line,
-                      "  %4dx%-4d  flat %7.2f ms  brdf %7.2f ms  lut %7.2f ms   lut/flat %.3f  lut/brdf %.3f\n", w, h,
-                      flat * 1e3, brdf * 1e3, lut * 1e3, lut / flat, lut / brdf);
+                      "  %4dx%-4d  flat %6.2f ms  brdf %6.2f ms  ptm %6.2f ms  lut %6.2f ms   lut/flat %.3f  lut/ptm %.3f\n",
+                      w, h, flat * 1e3, brdf * 1e3, ptm * 1e3, lut * 1e3, lut / flat, lut / ptm);
         text += line;
-        if (w == 1024) out["lut_over_flat"] = lut / flat;
+        if (w == 1024) {
+            out["lut_over_flat"] = lut / flat;
+            out["lut_over_ptm"] = lut / ptm;
+            // Per material: lut needs the reference texture and, per quad, one small LUT; ptm
+            // needs its three coefficient/albedo textures.
+            const TextureBytes& bytes = (*renderer)->stats().textureBytes;
+            const std::size_t quads = (*renderer)->stats().quadsDrawn;
+            const std::size_t lutBytes = bytes.reference + bytes.luts / std::max<std::size_t>(quads, 1);
+            out["texture_bytes_lut"] = lutBytes;
+            out["texture_bytes_lut_per_quad"] = bytes.luts / std::max<std::size_t>(quads, 1);
+            out["texture_bytes_ptm"] = bytes.ptm;
+            out["lut_over_ptm_texture_bytes"] = static_cast<double>(lutBytes) / static_cast<double>(bytes.ptm);
+            std::snprintf(line, sizeof line,
+                          "  texture memory per material: lut %zu bytes (reference %zu + LUT %zu per quad), ptm %zu "
+                          "bytes; lut/ptm %.4f\n",
+                          lutBytes, bytes.reference, lutBytes - bytes.reference, bytes.ptm,
+                          static_cast<double>(lutBytes) / static_cast<double>(bytes.ptm));
+            text += line;
+        }
     }
     if (o.json) {
         std::cout << out.dump(1) << "\n";
@@ -312,8 +332,8 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
 
     auto ro = std::make_shared<BenchRenderOptions>();
     CLI::App* render = bench->add_subcommand(
-        "render", "Frame times of the scene renderer in modes flat, brdf and lut, interleaved");
-    render->add_option("BANK", ro->bank, "M.btflut used for every quad")->required();
+        "render", "Frame times of the scene renderer in modes flat, brdf, ptm and lut, interleaved");
+    render->add_option("BANK", ro->bank, "M.btflut used for every quad (baked with --ptm)")->required();
     render->add_option("--frames", ro->frames, "frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();
     render->add_option("--repeat", ro->repeat, "rounds")->check(CLI::Range(1, 100))->capture_default_str();
     render->add_option("--backend", ro->backend, "auto, osmesa or egl")->capture_default_str();

@@ -35,6 +35,9 @@ Status runInfo(const InfoOptions& o) {
     std::cout << b.reference.width << "x" << b.reference.height << "x" << b.reference.channels
               << " " << b.reference.bitDepth << "-bit, "
               << (b.reference.samples.empty() ? "not embedded" : "embedded") << "\n";
+    if (!b.ptm.empty())
+        std::cout << "  ptm: " << b.ptm.width << "x" << b.ptm.height << ", 6 coefficients + RGB albedo per texel ("
+                  << b.ptm.coefficients.size() + b.ptm.albedo.size() << " bytes)\n";
     std::cout << "  grid:      " << b.gridSize << "x" << b.gridSize
               << " nodes per view layer over the equal-area light disk\n"
               << "  layers:    " << b.layers.size() << " view direction(s)\n";

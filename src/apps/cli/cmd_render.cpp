@@ -16,6 +16,7 @@ struct RenderOptions {
     std::string input;
     std::string size;
     std::string mode;
+    std::string interpolation;
     bool stats = false;
     std::string light;
     std::string view = "0,0";
@@ -58,6 +59,7 @@ Status runSceneRender(const RenderOptions& o) {
         if (!mode) return Error{"--" + mode.error()};
         for (SceneQuad& q : scene->quads) q.mode = *mode;
     }
+    if (!o.interpolation.empty()) scene->interpolateLuts = o.interpolation == "linear";
     Result<std::unique_ptr<HeadlessContext>> context = makeContext(o);
     if (!context) return Error{context.error()};
     RenderStats stats;
@@ -73,7 +75,11 @@ Status runSceneRender(const RenderOptions& o) {
         std::cout << "materials loaded: " << list(stats.loadedMaterials)
                   << "\nmaterials skipped (no visible quad uses them): " << list(stats.skippedMaterials)
                   << "\nquads drawn: " << stats.quadsDrawn << " (" << stats.quadsUnlit << " unlit), culled: "
-                  << stats.quadsCulled << "\ntexture memory: " << stats.textureBytes << " bytes\n";
+                  << stats.quadsCulled << "\nPTMs loaded (for ptm quads): " << list(stats.loadedPtms)
+                  << "\nmeasured images loaded (for nearest quads): " << stats.imagesLoaded
+                  << "\ntexture memory: " << stats.textureBytes.total() << " bytes (references "
+                  << stats.textureBytes.reference << ", LUTs " << stats.textureBytes.luts << ", PTMs "
+                  << stats.textureBytes.ptm << ", measured images " << stats.textureBytes.images << ")\n";
     }
     std::cout << "wrote " << o.output << " (" << image->width << "x" << image->height << ")\n";
     return success();
@@ -112,7 +118,11 @@ void addRenderCommand(CLI::App& root, Commands& commands) {
                     "light THETA,PHI in degrees (bank: its sample frame; scene: the world, z up; "
                     "overrides the file)");
     app->add_option("--size", o->size, "scene image size WxH (overrides the file)");
-    app->add_option("--mode", o->mode, "lut, brdf or flat for every quad (overrides the file)");
+    app->add_option("--mode", o->mode, "lut, brdf, ptm, flat or nearest for every quad (overrides the file)");
+    app->add_option("--interpolation", o->interpolation,
+                    "linear: LUTs interpolated between the measured directions; nearest: the nearest one's "
+                    "(overrides the file)")
+        ->check(CLI::IsMember({"linear", "nearest"}));
     app->add_flag("--stats", o->stats, "print what was loaded, what was skipped and the texture memory");
     app->add_option("--view", o->view, "view direction THETA,PHI in degrees")->capture_default_str();
     app->add_flag("--native", o->native, "the frontal quad at the reference image's own resolution");

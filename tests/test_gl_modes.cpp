@@ -1,0 +1,159 @@
+// GL tests of the scene renderer's modes against their CPU twins: ptm (Ptm::render), nearest
+// (the measured image), nearest-node LUTs, and per-fragment view directions for banks with
+// several view layers. A frontal camera sees the quad fill the image texel for texel, so each
+// pixel centre samples one texel centre.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "core/bank_file.h"
+#include "gl/context.h"
+#include "gl/scene_renderer.h"
+#include "helpers.h"
+
+using namespace btflut;
+using namespace btflut::test;
+
+namespace {
+
+constexpr double kFov = 45;
+
+// The quad (normal +z, tangent +x) fills a w x h image exactly.
+Scene frontalScene(const std::string& bank, const std::string& images, int w, int h) {
+    Scene s;
+    s.file = "frontal";
+    s.width = w;
+    s.height = h;
+    s.fovDegrees = kFov;
+    s.eye = {0, 0, 1 / std::tan(kFov / 2 * M_PI / 180)};
+    s.target = {0, 0, 0};
+    s.up = {0, 1, 0};
+    s.materials["m"] = {bank, images};
+    s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2.0 * w / h, 2, 1, RenderMode::Lut}};
+    return s;
+}
+
+struct Difference {
+    double mean = 0, worst = 0;
+};
+
+Difference compare(const Image& gpu, const Image& cpu) {
+    REQUIRE(gpu.width == cpu.width);
+    REQUIRE(gpu.height == cpu.height);
+    Difference d;
+    for (std::size_t i = 0; i < gpu.pixelCount(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const double e = std::abs(gpu.samples[i * 3 + static_cast<std::size_t>(c)] -
+                                      cpu.samples[i * static_cast<std::size_t>(cpu.channels) + (cpu.channels == 3 ? static_cast<std::size_t>(c) : 0)]);
+            d.mean += e;
+            d.worst = std::max(d.worst, e);
+        }
+    d.mean /= static_cast<double>(gpu.pixelCount() * 3);
+    return d;
+}
+
+Image draw(SceneRenderer& renderer, Direction light, RenderMode mode) {
+    Status s = renderer.draw(toVector(light), mode);
+    if (!s) FAIL(s.error());
+    return renderer.readBack();
+}
+
+// Shots whose code maps differ, so that LUTs, PTM and nearest images all depend on the light.
+std::vector<SyntheticShot> variedShots(double viewTheta = 0, double viewPhi = 0) {
+    return {{0, 0, viewTheta, viewPhi, 0, 1},    {30, 0, viewTheta, viewPhi, 40, 1},  {30, 90, viewTheta, viewPhi, 10, 2},
+            {45, 180, viewTheta, viewPhi, 5, 1}, {45, 270, viewTheta, viewPhi, 60, 1}, {60, 45, viewTheta, viewPhi, 0, 2},
+            {60, 225, viewTheta, viewPhi, 90, 1}, {20, 300, viewTheta, viewPhi, 20, 1}};
+}
+
+}  // namespace
+
+TEST_SUITE("gl") {
+    TEST_CASE("modes ptm and nearest, and nearest-node LUTs, equal their CPU twins") {
+        TempDir dir;
+        auto ds = openDataset(writeSyntheticDataset(dir, variedShots(), 40, 30));
+        REQUIRE(ds.ok());
+        auto bank = bakeBank(*ds, {.ptm = true});
+        REQUIRE(bank.ok());
+        REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        auto renderer = SceneRenderer::create(frontalScene(dir / "m.btflut", dir.path().string(), 40, 30));
+        REQUIRE(renderer.ok());
+        SceneRenderer& r = **renderer;
+        CHECK(r.stats().loadedPtms.empty());  // not until a ptm quad is drawn
+
+        const Direction between = Direction::fromDegrees(38, 20);
+        for (Direction light : {Direction::fromDegrees(30, 0), between}) {
+            INFO("light " << light.thetaDegrees() << "," << light.phiDegrees());
+            // ptm: the shader's folded weights against the CPU's polynomial
+            const Difference ptm = compare(draw(r, light, RenderMode::Ptm), bank->ptm.render(light));
+            CHECK(ptm.worst <= 1.5 / 255);
+            // nearest: the measured image of the nearest node
+            const LutBank::NodeRef n = bank->nearestNode(light);
+            const std::string name = bank->layers[n.layer].nodes[n.node].name;
+            auto measured = loadImage(dir / (name + ".png"));
+            REQUIRE(measured.ok());
+            CHECK(compare(draw(r, light, RenderMode::Nearest), *measured).worst <= 0.5 / 255);
+        }
+        CHECK(r.stats().loadedPtms == std::vector<std::string>{"m"});
+        CHECK(r.stats().imagesLoaded == 1);  // (30, 0) is a node, and the nearest to `between`
+
+        // Nearest-node LUTs: the LUT of the nearest measurement, not the blend.
+        const Image interpolated = draw(r, between, RenderMode::Lut);
+        r.setInterpolation(false);
+        const Image nearestNode = draw(r, between, RenderMode::Lut);
+        const BankLookup nodeLut = bank->lookup(between, {}, false);
+        const Image cpu = applyLuts(bank->reference, bank->colour, nodeLut.values, bank->entries, 0);
+        CHECK(compare(nearestNode, cpu).worst <= 1.0 / 255);
+        CHECK(compare(interpolated, applyLuts(bank->reference, bank->colour, bank->lookup(between).values, bank->entries, 0))
+                  .worst <= 1.0 / 255);
+        CHECK(compare(interpolated, nearestNode).mean > 2.0 / 255);
+    }
+
+    TEST_CASE("banks with view layers: the LUT follows the view direction across the quad") {
+        TempDir dir;
+        std::vector<SyntheticShot> shots;
+        // Five views; each view's images are brighter the further the view is from frontal.
+        for (auto [theta, phi, offset] : {std::tuple{0.0, 0.0, 0}, {40.0, 0.0, 40}, {40.0, 90.0, 20}, {40.0, 180.0, 60},
+                                          {40.0, 270.0, 30}})
+            for (SyntheticShot s : variedShots(theta, phi)) {
+                s.offset += offset;
+                s.slope = 1;
+                shots.push_back(s);
+            }
+        auto ds = openDataset(writeSyntheticDataset(dir, shots, 64, 48));
+        REQUIRE(ds.ok());
+        auto bank = bakeBank(*ds, {});
+        REQUIRE(bank.ok());
+        REQUIRE(bank->layers.size() == 5);
+        REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        const Scene scene = frontalScene(dir / "m.btflut", "", 64, 48);
+        auto renderer = SceneRenderer::create(scene);
+        REQUIRE(renderer.ok());
+        const Direction light = Direction::fromDegrees(35, 60);
+        const Image gpu = draw(**renderer, light, RenderMode::Lut);
+
+        // Each pixel against the CPU LUT for the view direction from its own surface point.
+        const double halfWidth = 64.0 / 48;
+        double worstCentre = 0, worstCorner = 0, cornerVsCentreView = 0;
+        const BankLookup centreLut = bank->lookup(light, Direction{});
+        for (auto [x, y] : {std::pair{32, 24}, {31, 23}, {0, 0}, {63, 0}, {0, 47}, {63, 47}, {10, 40}}) {
+            const double px = -halfWidth + (x + 0.5) * 2 * halfWidth / 64, py = 1 - (y + 0.5) * 2 / 48.0;
+            const Direction view = fromVector({scene.eye.x - px, scene.eye.y - py, scene.eye.z});
+            const BankLookup lut = bank->lookup(light, view);
+            const float v = bank->reference.at(x, y, 0);
+            const double expected = Lut::applyLut(lut.values.data(), bank->entries, v);
+            const double d = std::abs(gpu.at(x, y, 0) - expected);
+            INFO("pixel " << x << "," << y << " view theta " << view.thetaDegrees());
+            (x == 32 || x == 31 ? worstCentre : worstCorner) = std::max(x == 32 || x == 31 ? worstCentre : worstCorner, d);
+            if (x == 0 || x == 63)
+                cornerVsCentreView = std::max(
+                    cornerVsCentreView, std::abs(expected - Lut::applyLut(centreLut.values.data(), bank->entries, v)));
+        }
+        CHECK(worstCentre <= 1.5 / 255);
+        CHECK(worstCorner <= 3.0 / 255);  // the grid's bilinear blend, near its nodes
+        CHECK(cornerVsCentreView > 10.0 / 255);  // the corners really see other LUTs
+    }
+}
