@@ -31,11 +31,12 @@ float btflutApplyLutDithered(sampler1D lut, int entries, float v, uvec2 pixel, u
 
 // Grey mode: the pixel's grey (mean of R, G, B) becomes `target`; its colour is scaled, and
 // desaturated towards grey where a channel would exceed 1, so the grey stays `target`.
+// Scaling gives target + (rgb - grey) * target / grey; desaturating so the top channel is 1
+// gives target + (rgb - grey) * (1 - target) / (top - grey); the smaller factor is the one
+// that applies, so no branch is needed (the same values as applyLuts in src/core/lut_bank.cpp).
 vec3 btflutSetGrey(vec3 rgb, float target) {
-    float grey = (rgb.r + rgb.g + rgb.b) / 3.0;
-    if (grey <= 0.0) return vec3(target);
-    vec3 scaled = rgb * (target / grey);
-    float top = max(scaled.r, max(scaled.g, scaled.b));
-    if (top > 1.0) scaled = vec3(target) + (scaled - vec3(target)) * ((1.0 - target) / (top - target));
-    return scaled;
+    float grey = (rgb.r + rgb.g + rgb.b) * (1.0 / 3.0);
+    float top = max(rgb.r, max(rgb.g, rgb.b));
+    float factor = min(target / max(grey, 1e-20), (1.0 - target) / max(top - grey, 1e-20));
+    return vec3(target) + (rgb - vec3(grey)) * factor;
 }

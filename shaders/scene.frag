@@ -58,6 +58,8 @@ void main() {
     colour = vec4(texture(reference, uv).rgb, 1.0);
 #elif defined(BRDF_MODE)
     colour = vec4(min(texture(reference, uv).rgb * brightness, vec3(1.0)), 1.0);
+#elif defined(GREY_TEXTURE)
+    colour = vec4(vec3(lutAt(0, texture(reference, uv).r)), 1.0);  // no chroma to keep
 #elif defined(RGB_MODE)
     vec3 texel = texture(reference, uv).rgb;
     colour = vec4(lutAt(0, texel.r), lutAt(1, texel.g), lutAt(2, texel.b), 1.0);

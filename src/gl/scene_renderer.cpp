@@ -105,6 +105,7 @@ Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank) {
     std::vector<std::string> defines{modeDefine(mode)};
     if (mode == RenderMode::Lut && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
     if (mode == RenderMode::Lut && bank.layers.size() > 1) defines.push_back("VIEW_GRID");
+    if (mode == RenderMode::Lut && bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
     auto found = m_programs.find(defines);
     if (found == m_programs.end()) {
         Result<GlProgram> p = buildProgram({"scene.vert"}, {"lut_common.glsl", "scene.frag"}, defines);
