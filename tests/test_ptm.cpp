@@ -87,6 +87,7 @@ TEST_CASE("bake --ptm stores the PTM in the bank; readers may skip it") {
     Result<LutBank> withoutPtm = decodeBank(bytes, "p.btflut", {.ptm = false});
     REQUIRE(withoutPtm.ok());
     CHECK(withoutPtm->ptm.empty());
+    CHECK(withoutPtm->ptmInFile);
 
     REQUIRE(writeFileAtomically(dir / "p.btflut", bytes).ok());
     Result<Ptm> alone = loadBankPtm(dir / "p.btflut");

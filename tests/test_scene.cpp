@@ -38,6 +38,24 @@ TEST_CASE("scenes parse, normalise their frames and cull what the camera cannot 
     CHECK(local.z == doctest::Approx(1));
 }
 
+TEST_CASE("a scene written as JSON reads back the same") {
+    auto scene = parseScene(kScene, "s.json", "/scenes");
+    REQUIRE(scene.ok());
+    auto back = parseScene(sceneToJson(*scene), "back.json", "/elsewhere");
+    REQUIRE(back.ok());
+    CHECK(back->width == 64);
+    CHECK(back->fovDegrees == 50);
+    CHECK(back->eye.y == -3);
+    CHECK(back->materials.at("b").bank == "/scenes/sub/b.btflut");
+    CHECK(back->materials.at("b").images == "/data/b");
+    CHECK_FALSE(back->interpolateLuts);
+    REQUIRE(back->quads.size() == 2);
+    CHECK(back->quads[0].width == 2);
+    CHECK(back->quads[0].uvScale == 2);
+    CHECK(back->quads[0].tangent.x == doctest::Approx(scene->quads[0].tangent.x));
+    CHECK(back->quads[1].mode == RenderMode::Flat);
+}
+
 TEST_CASE("bad scenes are refused naming the file and the field") {
     struct Case {
         const char* text;

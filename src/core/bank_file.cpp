@@ -342,6 +342,7 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
         } else if (tag == kPtm) {
             if (havePtm) return fail("two PTMC chunks");
             havePtm = true;
+            bank.ptmInFile = true;
             if (!options.ptm) continue;
             Result<Ptm> ptm = decodePtm({tag, payload, length}, name);
             if (!ptm) return Error{ptm.error()};

@@ -71,6 +71,7 @@ struct LutBank {
     Direction referenceLight, referenceView;
     Image reference;  ///< without samples when the bank was written without it
     Ptm ptm;          ///< the baseline PTM of the reference view; empty unless baked with one
+    bool ptmInFile = false;  ///< read from a file holding a PTM (decoded or skipped)
 
     int channels() const { return static_cast<int>(colour); }
     /// One code of the values the LUTs map to (those of the reference's format: 1/765 for

@@ -170,6 +170,30 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
     return scene;
 }
 
+std::string sceneToJson(const Scene& scene) {
+    auto vec = [](const Vec3& v) { return json::array({v.x, v.y, v.z}); };
+    json doc{{"btflut_scene", 1},
+             {"image", {{"width", scene.width}, {"height", scene.height}}},
+             {"camera", {{"position", vec(scene.eye)}, {"target", vec(scene.target)}, {"up", vec(scene.up)},
+                         {"fov_degrees", scene.fovDegrees}}},
+             {"light", {{"direction", vec(scene.light)}}},
+             {"interpolation", scene.interpolateLuts ? "linear" : "nearest"},
+             {"materials", json::object()},
+             {"quads", json::array()}};
+    for (const auto& [name, m] : scene.materials) {
+        const std::string bank = std::filesystem::absolute(m.bank).lexically_normal().string();
+        if (m.images.empty())
+            doc["materials"][name] = bank;
+        else
+            doc["materials"][name] = {{"bank", bank}, {"images", std::filesystem::absolute(m.images).lexically_normal().string()}};
+    }
+    for (const SceneQuad& q : scene.quads)
+        doc["quads"].push_back({{"material", q.material}, {"center", vec(q.center)}, {"normal", vec(q.normal)},
+                                {"tangent", vec(q.tangent)}, {"size", {q.width, q.height}}, {"uv_scale", q.uvScale},
+                                {"mode", renderModeName(q.mode)}});
+    return doc.dump(1) + "\n";
+}
+
 Result<Scene> loadScene(const std::string& path) {
     Result<Bytes> bytes = readFile(path);
     if (!bytes) return Error{bytes.error()};

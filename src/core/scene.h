@@ -56,6 +56,9 @@ Result<RenderMode> parseRenderMode(const std::string& name);
 Result<Scene> parseScene(const std::string& text, const std::string& file, const std::string& folder);
 Result<Scene> loadScene(const std::string& path);
 
+/// The scene as a scene file (paths made absolute), which parseScene reads back.
+std::string sceneToJson(const Scene& scene);
+
 /// 4x4 column-major view-projection matrix of the scene's camera (OpenGL clip space).
 std::array<float, 16> viewProjection(const Scene& scene);
 

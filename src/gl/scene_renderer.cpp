@@ -67,21 +67,38 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene)
     for (const auto& [name, paths] : scene.materials)
         if (!r->m_materials.count(name)) r->m_stats.skippedMaterials.push_back(name);
 
-    r->m_target = makeTexture();
-    gl.BindTexture(GL_TEXTURE_2D, r->m_target.id());
-    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, scene.width, scene.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
-    r->m_depth = makeTexture();
-    gl.BindTexture(GL_TEXTURE_2D, r->m_depth.id());
-    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, scene.width, scene.height, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
-                  nullptr);
-    r->m_framebuffer = makeFramebuffer();
-    gl.BindFramebuffer(GL_FRAMEBUFFER, r->m_framebuffer.id());
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, r->m_target.id(), 0);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, r->m_depth.id(), 0);
-    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return Error{"the GL driver cannot render to an RGBA8 image with depth"};
+    if (Status size = r->resize(scene.width, scene.height); !size) return Error{size.error()};
     r->m_vertexArray = makeVertexArray();
     return r;
+}
+
+Status SceneRenderer::resize(int width, int height) {
+    if (width < 1 || height < 1) return Error{"image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty"};
+    if (m_target.id() && width == m_scene.width && height == m_scene.height) return success();
+    m_scene.width = width;
+    m_scene.height = height;
+    m_target = allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
+    m_depth = allocateTexture2D(width, height, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_FLOAT);
+    m_framebuffer = makeFramebuffer();
+    gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_target.id(), 0);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m_depth.id(), 0);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return Error{"the GL driver cannot render to an RGBA8 image with depth"};
+    return success();
+}
+
+std::vector<std::uint8_t> SceneRenderer::coverage() const {
+    std::vector<float> depth(static_cast<std::size_t>(m_scene.width) * m_scene.height);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, m_scene.width, m_scene.height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    std::vector<std::uint8_t> covered(depth.size());
+    for (int row = 0; row < m_scene.height; ++row)  // top row first, like readBack
+        for (int x = 0; x < m_scene.width; ++x)
+            covered[static_cast<std::size_t>(row) * m_scene.width + x] =
+                depth[static_cast<std::size_t>(m_scene.height - 1 - row) * m_scene.width + x] < 1.f;
+    return covered;
 }
 
 void SceneRenderer::setCamera(const Vec3& eye, const Vec3& target, const Vec3& up) {

@@ -52,6 +52,10 @@ public:
 
     /// One frame for a light (unit vector, world frame); `mode` overrides every quad's.
     Status draw(const Vec3& light, std::optional<RenderMode> mode = {});
+    /// A new image size (keeps everything loaded).
+    Status resize(int width, int height);
+    /// Per pixel of the last frame (top row first): 1 where a quad was drawn.
+    std::vector<std::uint8_t> coverage() const;
     /// Moves the camera (the set of visible quads is fixed at creation).
     void setCamera(const Vec3& eye, const Vec3& target, const Vec3& up);
     /// Nearest-node LUTs instead of interpolated ones.

@@ -55,6 +55,13 @@ GlTexture uploadMipmapped(const Image& image, std::size_t& bytes) {
     return uploadMipmapped(image.width, image.height, sixteen ? GL_RGB16 : GL_RGB8, GL_RGB, GL_FLOAT, rgb.data(), bytes);
 }
 
+GlTexture allocateTexture2D(int width, int height, GLenum internalFormat, GLenum format, GLenum type) {
+    GlTexture texture = makeTexture();
+    gl.BindTexture(GL_TEXTURE_2D, texture.id());
+    gl.TexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internalFormat), width, height, 0, format, type, nullptr);
+    return texture;
+}
+
 std::vector<float> rgbSamples(const Image& image) {
     std::vector<float> rgb(image.pixelCount() * 3);
     for (std::size_t i = 0; i < image.pixelCount(); ++i)

@@ -24,6 +24,9 @@ GlTexture uploadMipmapped(int width, int height, GLenum internalFormat, GLenum f
 /// An image at its own precision: R8/R16 for grey (read as RGB), RGB8/RGB16 for colour.
 GlTexture uploadMipmapped(const Image& image, std::size_t& bytes);
 
+/// An empty 2D texture (a render target): `format`/`type` describe no data, only the kind.
+GlTexture allocateTexture2D(int width, int height, GLenum internalFormat, GLenum format, GLenum type);
+
 /// An image's samples as RGB floats (grey repeated), top row first.
 std::vector<float> rgbSamples(const Image& image);
 

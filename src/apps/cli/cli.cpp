@@ -69,6 +69,7 @@ int run(const std::vector<std::string>& args) {
     addSynthCommand(root, commands);
     addRenderCommand(root, commands);
     addBenchCommand(root, commands);
+    addViewCommand(root, commands);
 
     if (!args.empty() && !args.front().empty() && args.front()[0] != '-') {
         bool known = false;

@@ -31,6 +31,7 @@ void addPlotCommand(CLI::App& root, Commands& commands);
 void addSynthCommand(CLI::App& root, Commands& commands);
 void addRenderCommand(CLI::App& root, Commands& commands);
 void addBenchCommand(CLI::App& root, Commands& commands);
+void addViewCommand(CLI::App& root, Commands& commands);
 
 /// Runs btflut with arguments (without the program name); returns the exit status.
 int run(const std::vector<std::string>& args);

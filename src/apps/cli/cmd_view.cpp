@@ -1,0 +1,32 @@
+// btflut view: the interactive viewer (src/viewer).
+#include <memory>
+
+#include "cli/cli.h"
+#include "viewer/viewer.h"
+
+namespace btflut::cli {
+
+void addViewCommand(CLI::App& root, Commands& commands) {
+    auto o = std::make_shared<ViewerOptions>();
+    CLI::App* app = root.add_subcommand(
+        "view", "Explore a material in a window: move the light, switch modes, compare side by side (docs/viewer.md)");
+    app->add_option("INPUT", o->input,
+                    "M.btflut, a dataset (baked for the session) or SCENE.json; default: the bundled material");
+    app->add_option("--images", o->images, "with a bank: the dataset it was baked from (for mode nearest)");
+    app->add_option("--mode", o->mode, "lut, brdf, ptm, flat or nearest")->capture_default_str();
+    app->add_option("--split", o->split, "panes side by side: 1; 2 (brdf | lut); 3 (brdf | lut | nearest)")
+        ->check(CLI::Range(1, 3))
+        ->capture_default_str();
+    app->add_option("--light", o->light, "light THETA,PHI in degrees (world frame); default 45,30");
+    app->add_option("--width", o->width, "window width")->check(CLI::Range(640, 8192))->capture_default_str();
+    app->add_option("--height", o->height, "window height")->check(CLI::Range(400, 8192))->capture_default_str();
+    app->add_flag("!--no-vsync", o->vsync, "draw as fast as possible");
+    app->add_option("--frames", o->frames, "scripted: draw N frames, then exit")->check(CLI::Range(1, 100000));
+    app->add_flag("--light-sweep", o->lightSweep, "scripted: the light spirals from theta 10 to 80 over the frames");
+    app->add_option("--screenshot", o->screenshot, "PNG of the last scripted frame; interactively the S key's file");
+    app->add_option("--screenshot-dir", o->screenshotDir,
+                    "scripted: every frame as frame-NNNN.png with its state (.json) and scene (.scene.json)");
+    commands.push_back({app, [o] { return runViewer(*o); }});
+}
+
+}  // namespace btflut::cli

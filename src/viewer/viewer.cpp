@@ -1,0 +1,597 @@
+#include "viewer/viewer.h"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "core/bank_file.h"
+#include "core/dataset.h"
+#include "core/histogram.h"
+#include "core/json_text.h"
+#include "gl/gl_api.h"
+#include "gl/scene_renderer.h"
+#include "gl/textures.h"
+#include "viewer/widgets.h"
+#include "viewer/window.h"
+
+namespace btflut {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+constexpr float kPanelWidth = 380;
+constexpr int kHistogramBins = 64;
+const RenderMode kModes[] = {RenderMode::Lut, RenderMode::Brdf, RenderMode::Ptm, RenderMode::Flat, RenderMode::Nearest};
+
+const char* paneLabel(RenderMode mode) {
+    switch (mode) {
+        case RenderMode::Lut: return "LUT";
+        case RenderMode::Brdf: return "2D texture mapping (brdf)";
+        case RenderMode::Ptm: return "PTM";
+        case RenderMode::Flat: return "flat texture";
+        case RenderMode::Nearest: return "nearest measured image";
+    }
+    return "";
+}
+
+// What the viewer shows: a scene, built around one quad unless the input was a scene file.
+struct ViewerInput {
+    Scene scene;
+    bool singleQuad = false;
+    std::string title;
+    json modelParameters;       ///< a synthetic dataset's parameters, when known
+    std::string temporaryBank;  ///< baked from a dataset for this session; removed at exit
+};
+
+// The parameters `btflut synth` recorded in a dataset's manifest, if any.
+json manifestParameters(const std::string& datasetPath) {
+    fs::path manifest = fs::is_directory(datasetPath) ? fs::path(datasetPath) / "btflut-dataset.json" : fs::path(datasetPath);
+    if (manifest.extension() != ".json" || !fs::exists(manifest)) return {};
+    Result<Bytes> bytes = readFile(manifest.string());
+    if (!bytes) return {};
+    Result<json> doc = parseJsonText(std::string(bytes->begin(), bytes->end()), manifest.string());
+    return doc && doc->is_object() && doc->contains("synth") ? (*doc)["synth"] : json{};
+}
+
+Result<ViewerInput> openInput(const ViewerOptions& o) {
+    ViewerInput in;
+    const std::string path = o.input.empty() ? std::string(BTFLUT_DEFAULT_MATERIAL) : o.input;
+    in.title = "btflut view - " + path;
+    if (!fs::exists(path)) return Error{path + ": cannot open (no such file or folder)"};
+    if (fs::path(path).extension() == ".json" && !fs::is_directory(path)) {
+        Result<Bytes> bytes = readFile(path);
+        if (!bytes) return Error{bytes.error()};
+        Result<json> doc = parseJsonText(std::string(bytes->begin(), bytes->end()), path);
+        if (!doc) return Error{doc.error()};
+        if (doc->is_object() && doc->contains("quads")) {
+            Result<Scene> scene = loadScene(path);
+            if (!scene) return Error{scene.error()};
+            in.scene = std::move(*scene);
+            return in;
+        }
+    }
+    std::string bank = path, images = o.images;
+    if (fs::path(path).extension() != ".btflut") {  // a dataset: bake it for this session
+        Result<Dataset> dataset = openDataset(path);
+        if (!dataset) return Error{dataset.error()};
+        Result<LutBank> baked = bakeBank(*dataset, {.ptm = true});
+        if (!baked && baked.error().find("a PTM needs") != std::string::npos)
+            baked = bakeBank(*dataset, {});  // too few lights for a PTM: mode ptm stays off
+        if (!baked) return Error{baked.error()};
+        in.temporaryBank = (fs::temp_directory_path() / ("btflut-view-" + std::to_string(::getpid()) + ".btflut")).string();
+        if (Status s = saveBank(*baked, in.temporaryBank); !s) return Error{s.error()};
+        bank = in.temporaryBank;
+        images = path;
+        in.modelParameters = manifestParameters(path);
+    }
+    Result<LutBank> header = loadBank(bank, {.ptm = false});
+    if (!header) return Error{header.error()};
+    const double aspect = static_cast<double>(header->reference.width) / header->reference.height;
+    in.singleQuad = true;
+    in.scene.file = path;
+    in.scene.fovDegrees = 40;
+    in.scene.materials["material"] = {bank, images};
+    in.scene.quads = {{"material", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2 * aspect, 2, 1, RenderMode::Lut}};
+    in.scene.eye = {0, -1.5, 2.6};  // from 60 degrees above the quad
+    in.scene.target = {0, 0, 0};
+    return in;
+}
+
+// Camera on a sphere around its target.
+struct Orbit {
+    Vec3 target;
+    double azimuth = -M_PI / 2, elevation = 1.15, distance = 3.6;
+
+    Vec3 eye() const {
+        return {target.x + distance * std::cos(elevation) * std::cos(azimuth),
+                target.y + distance * std::cos(elevation) * std::sin(azimuth), target.z + distance * std::sin(elevation)};
+    }
+    static Orbit of(const Scene& s) {
+        Orbit o;
+        o.target = s.target;
+        const Vec3 d{s.eye.x - s.target.x, s.eye.y - s.target.y, s.eye.z - s.target.z};
+        o.distance = std::hypot(d.x, d.y, d.z);
+        o.elevation = std::asin(std::clamp(d.z / o.distance, -1.0, 1.0));
+        o.azimuth = std::atan2(d.y, d.x);
+        return o;
+    }
+};
+
+Status saveFramebufferPng(int width, int height, const std::string& path) {
+    std::vector<unsigned char> rgba(static_cast<std::size_t>(width) * height * 4);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    Image image(width, height, 3);
+    for (int row = 0; row < height; ++row)
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c)
+                image.at(x, row, c) = rgba[(static_cast<std::size_t>(height - 1 - row) * width + x) * 4 + c] / 255.f;
+    return savePng(image, path);
+}
+
+class Viewer {
+public:
+    Viewer(const ViewerOptions& options, ViewerInput input, Window& window)
+        : m_options(options), m_input(std::move(input)), m_window(window), m_orbit(Orbit::of(m_input.scene)) {}
+
+    Status start();
+    Status run();
+
+private:
+    struct Pane {
+        int x, y, width, height;  ///< window pixels, origin bottom left (GL)
+        RenderMode mode;
+    };
+    std::vector<Pane> panes(int width, int height) const;
+    Status renderPanes(int width, int height);
+    void updatePlots();
+    bool panel(int width, int height);
+    bool sceneInput(int width, int height);
+    Status saveScriptedFrame(int frame, int width, int height);
+    Vec3 lightVector() const { return toVector(m_light); }
+    Status screenshot(const std::string& path, int width, int height);
+    void resetCamera(int width, int height);
+
+    const ViewerOptions& m_options;
+    ViewerInput m_input;
+    Window& m_window;
+    std::unique_ptr<SceneRenderer> m_renderer;
+    const LutBank* m_bank = nullptr;  ///< quad 0's material, when visible
+    LevelCounts m_referenceGrey;
+    std::vector<Direction> m_nodes;
+
+    Direction m_light = Direction::fromDegrees(45, 30);
+    Orbit m_orbit;
+    int m_split = 1;
+    std::array<RenderMode, 3> m_paneModes{RenderMode::Lut, RenderMode::Lut, RenderMode::Nearest};
+    bool m_interpolate = true;
+    bool m_havePtm = false, m_haveImages = false;
+
+    GlTexture m_compositeColour;
+    GlFramebuffer m_composite;
+    int m_compositeWidth = 0, m_compositeHeight = 0;
+    std::vector<float> m_renderedHistogram, m_targetHistogram, m_lutCurve;
+    std::string m_provenance;
+    double m_sceneMs = 0;
+    std::string m_status;
+    int m_screenshots = 0;
+};
+
+Status Viewer::start() {
+    Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(m_input.scene);
+    if (!renderer) return Error{renderer.error()};
+    m_renderer = std::move(*renderer);
+    if (!m_input.scene.quads.empty()) m_bank = m_renderer->bank(m_input.scene.quads[0].material);
+    if (m_bank) {
+        m_referenceGrey = countGreyLevels(m_bank->reference, fullMask(m_bank->reference.width, m_bank->reference.height));
+        for (const LightNode& n : m_bank->layers[0].nodes) m_nodes.push_back(n.light);
+        const SceneMaterial& material = m_input.scene.materials.at(m_input.scene.quads[0].material);
+        m_haveImages = !material.images.empty();
+        m_havePtm = m_bank->ptmInFile;
+    }
+    if (!m_options.light.empty()) {
+        Result<Direction> light = parseDirection(m_options.light, "--light");
+        if (!light) return Error{light.error()};
+        m_light = *light;
+    } else if (!m_input.singleQuad) {
+        m_light = fromVector(m_input.scene.light);
+    }
+    Result<RenderMode> mode = parseRenderMode(m_options.mode);
+    if (!mode) return Error{"--" + mode.error()};
+    m_paneModes[0] = *mode;
+    m_split = m_options.split;
+    if (m_split == 2) m_paneModes = {RenderMode::Brdf, RenderMode::Lut, RenderMode::Nearest};
+    if (m_split == 3) m_paneModes = {RenderMode::Brdf, RenderMode::Lut, RenderMode::Nearest};
+    for (int p = 0; p < m_split; ++p) {
+        if (m_paneModes[static_cast<std::size_t>(p)] == RenderMode::Ptm && !m_havePtm)
+            return Error{m_input.scene.file + ": mode ptm needs a bank baked with --ptm"};
+        if (m_paneModes[static_cast<std::size_t>(p)] == RenderMode::Nearest && !m_haveImages)
+            return Error{m_input.scene.file + ": mode nearest needs the measured images (--images DATASET)"};
+    }
+    return success();
+}
+
+std::vector<Viewer::Pane> Viewer::panes(int width, int height) const {
+    const int area = std::max(1, width - static_cast<int>(kPanelWidth));
+    std::vector<Pane> out;
+    for (int p = 0; p < m_split; ++p) {
+        const int x0 = area * p / m_split, x1 = area * (p + 1) / m_split;
+        out.push_back({x0, 0, std::max(1, x1 - x0), std::max(1, height), m_paneModes[static_cast<std::size_t>(p)]});
+    }
+    return out;
+}
+
+// Draws every pane into the composite image (kept between frames, so a frame where nothing
+// changed only copies it to the window).
+Status Viewer::renderPanes(int width, int height) {
+    if (width != m_compositeWidth || height != m_compositeHeight) {
+        m_compositeColour = allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
+        m_composite = makeFramebuffer();
+        gl.BindFramebuffer(GL_FRAMEBUFFER, m_composite.id());
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_compositeColour.id(), 0);
+        m_compositeWidth = width;
+        m_compositeHeight = height;
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, m_composite.id());
+    gl.ClearColor(0.08f, 0.08f, 0.1f, 1);
+    gl.Clear(GL_COLOR_BUFFER_BIT);
+    const auto start = std::chrono::steady_clock::now();
+    m_renderer->setCamera(m_orbit.eye(), m_orbit.target, {0, 0, 1});
+    m_renderer->setInterpolation(m_interpolate);
+    const std::vector<Pane> all = panes(width, height);
+    // The plots follow the LUT pane, or the first.
+    std::size_t plottedPane = 0;
+    for (std::size_t p = all.size(); p-- > 0;)
+        if (all[p].mode == RenderMode::Lut) plottedPane = p;
+    for (std::size_t p = 0; p < all.size(); ++p) {
+        const Pane& pane = all[p];
+        if (Status s = m_renderer->resize(pane.width, pane.height); !s) return s;
+        if (Status s = m_renderer->draw(lightVector(), pane.mode); !s) return s;
+        if (p == plottedPane) updatePlots();
+        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_renderer->framebuffer());
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m_composite.id());
+        gl.BlitFramebuffer(0, 0, pane.width, pane.height, pane.x, pane.y, pane.x + pane.width, pane.y + pane.height,
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    }
+    m_renderer->finish();
+    m_sceneMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return success();
+}
+
+// The rendered material's grey histogram against the bank's target for the light (at quad 0's
+// centre), and the LUT there.
+void Viewer::updatePlots() {
+    if (!m_bank) return;
+    const Image frame = m_renderer->readBack();
+    const std::vector<std::uint8_t> covered = m_renderer->coverage();
+    m_renderedHistogram.assign(kHistogramBins, 0.f);
+    double total = 0;
+    for (std::size_t i = 0; i < frame.pixelCount(); ++i) {
+        if (!covered[i]) continue;
+        const int bin = std::min(kHistogramBins - 1, static_cast<int>(frame.grey(i) * kHistogramBins));
+        m_renderedHistogram[static_cast<std::size_t>(bin)] += 1;
+        total += 1;
+    }
+    for (float& v : m_renderedHistogram) v = total > 0 ? static_cast<float>(v / total) : 0.f;
+
+    const BankLookup lut = m_renderer->centreLut(0, lightVector());
+    m_provenance = provenanceName(lut.provenance);
+    m_lutCurve.assign(lut.values.begin(), lut.values.begin() + m_bank->entries);
+    m_targetHistogram.assign(kHistogramBins, 0.f);
+    total = 0;
+    for (std::size_t k = 0; k < m_referenceGrey.counts.size(); ++k) {
+        if (!m_referenceGrey.counts[k]) continue;
+        const float v = Lut::applyLut(lut.values.data(), m_bank->entries, static_cast<float>(m_referenceGrey.valueOf(k)));
+        const int bin = std::min(kHistogramBins - 1, static_cast<int>(v * kHistogramBins));
+        m_targetHistogram[static_cast<std::size_t>(bin)] += static_cast<float>(m_referenceGrey.counts[k]);
+        total += static_cast<double>(m_referenceGrey.counts[k]);
+    }
+    for (float& v : m_targetHistogram) v = total > 0 ? static_cast<float>(v / total) : 0.f;
+}
+
+// The ImGui panel; returns true when the scene must be drawn again.
+bool Viewer::panel(int width, int height) {
+    bool changed = false;
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(width) - kPanelWidth, 0));
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(height)));
+    ImGui::Begin("btflut", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::Text("%.1f fps (%.2f ms/frame), scene %.2f ms", static_cast<double>(ImGui::GetIO().Framerate),
+                1000.0 / static_cast<double>(std::max(ImGui::GetIO().Framerate, 1e-3f)), m_sceneMs);
+
+    if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
+        changed |= hemisphereWidget("##hemisphere", m_light, m_input.singleQuad ? m_nodes : std::vector<Direction>{}, 200);
+        float theta = static_cast<float>(m_light.thetaDegrees()), phi = static_cast<float>(m_light.phiDegrees());
+        bool edited = ImGui::InputFloat("theta", &theta, 1, 5, "%.1f");
+        edited |= ImGui::InputFloat("phi", &phi, 1, 15, "%.1f");
+        if (edited && std::isfinite(theta) && std::isfinite(phi)) {
+            m_light = Direction::fromDegrees(std::clamp(static_cast<double>(theta), 0.0, 89.0),
+                                             std::fmod(std::fmod(static_cast<double>(phi), 360.0) + 360.0, 360.0));
+            changed = true;
+        }
+        ImGui::TextDisabled("drag the disk or shift-drag the scene; arrows: 1 degree");
+    }
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::TextUnformatted("Panes");
+        for (int n = 1; n <= 3; ++n) {
+            ImGui::SameLine();
+            const std::string label = std::to_string(n) + "##split";
+            if (ImGui::RadioButton(label.c_str(), m_split == n)) {
+                m_split = n;
+                if (n > 1) m_paneModes = {RenderMode::Brdf, RenderMode::Lut, m_haveImages ? RenderMode::Nearest : RenderMode::Flat};
+                resetCamera(width, height);
+                changed = true;
+            }
+        }
+        for (int p = 0; p < m_split; ++p) {
+            RenderMode& mode = m_paneModes[static_cast<std::size_t>(p)];
+            const std::string label = "mode##pane" + std::to_string(p);
+            if (ImGui::BeginCombo(label.c_str(), renderModeName(mode))) {
+                for (RenderMode m : kModes) {
+                    const bool offered = (m != RenderMode::Ptm || m_havePtm) && (m != RenderMode::Nearest || m_haveImages);
+                    if (ImGui::Selectable(renderModeName(m), m == mode, offered ? 0 : ImGuiSelectableFlags_Disabled)) {
+                        mode = m;
+                        changed = true;
+                    }
+                }
+                ImGui::EndCombo();
+            }
+        }
+        changed |= ImGui::Checkbox("interpolate LUTs between measured directions", &m_interpolate);
+        if (ImGui::Button("Reset light and camera (R)")) {
+            m_light = Direction::fromDegrees(45, 30);
+            resetCamera(width, height);
+            changed = true;
+        }
+        ImGui::SameLine();
+        if (ImGui::Button("Screenshot (S)")) {
+            m_status = "screenshot: next frame";
+            m_screenshots = -1;  // taken after this frame is drawn
+        }
+        if (!m_status.empty()) ImGui::TextWrapped("%s", m_status.c_str());
+    }
+    if (m_bank && ImGui::CollapsingHeader("Histogram and LUT", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::TextDisabled("bars: rendered material; line: the bank's target");
+        histogramPlot("##histogram", m_renderedHistogram, m_targetHistogram, kPanelWidth - 20, 90);
+        ImGui::PlotLines("##lut", m_lutCurve.data(), static_cast<int>(m_lutCurve.size()), 0, "LUT at the quad centre", 0, 1,
+                         ImVec2(kPanelWidth - 20, 90));
+    }
+    if (m_bank && ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) {
+        std::size_t nodes = 0;
+        double maxTheta = 0;
+        for (const ViewLayer& l : m_bank->layers)
+            for (const LightNode& n : l.nodes) {
+                ++nodes;
+                maxTheta = std::max(maxTheta, n.light.thetaDegrees());
+            }
+        ImGui::Text("%d x %d reference, %s LUTs of %d entries", m_bank->reference.width, m_bank->reference.height,
+                    m_bank->colour == ColourMode::Rgb ? "rgb" : "grey", m_bank->entries);
+        ImGui::Text("%zu view layer(s), %zu measured nodes (theta up to %.0f)", m_bank->layers.size(), nodes, maxTheta);
+        ImGui::Text("%d x %d grid; here: %s", m_bank->gridSize, m_bank->gridSize, m_provenance.c_str());
+        ImGui::Text("PTM: %s, measured images: %s", m_havePtm ? "yes" : "no", m_haveImages ? "yes" : "no");
+        if (m_input.modelParameters.is_object()) {
+            ImGui::TextUnformatted("model parameters:");
+            for (const auto& [key, value] : m_input.modelParameters.items())
+                ImGui::BulletText("%s = %s", key.c_str(), value.dump().c_str());
+        }
+    }
+    ImGui::End();
+    return changed;
+}
+
+// Mouse and keys over the scene: orbit, zoom, shift-drag the light, arrows, R, S.
+bool Viewer::sceneInput(int width, int height) {
+    const ImGuiIO& io = ImGui::GetIO();
+    bool changed = false;
+    if (!io.WantCaptureMouse && io.MousePos.x < static_cast<float>(width) - kPanelWidth) {
+        if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
+            const ImVec2 d = io.MouseDelta;
+            if (io.KeyShift) {
+                m_light.phi = std::fmod(m_light.phi - d.x * 0.01 + 2 * M_PI, 2 * M_PI);
+                m_light.theta = std::clamp(m_light.theta + d.y * 0.01, 0.0, 89.0 * M_PI / 180);
+            } else {
+                m_orbit.azimuth -= d.x * 0.01;
+                m_orbit.elevation = std::clamp(m_orbit.elevation + d.y * 0.01, 0.05, 1.55);
+            }
+            changed |= d.x != 0 || d.y != 0;
+        }
+        if (io.MouseWheel != 0) {
+            m_orbit.distance = std::clamp(m_orbit.distance * std::pow(0.9, io.MouseWheel), 0.2, 100.0);
+            changed = true;
+        }
+    }
+    if (!io.WantCaptureKeyboard) {
+        const double step = M_PI / 180;
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) m_light.phi = std::fmod(m_light.phi + 2 * M_PI - step, 2 * M_PI), changed = true;
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow))) m_light.phi = std::fmod(m_light.phi + step, 2 * M_PI), changed = true;
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_UpArrow))) m_light.theta = std::max(0.0, m_light.theta - step), changed = true;
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_DownArrow))) m_light.theta = std::min(89 * step, m_light.theta + step), changed = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
+            m_light = Direction::fromDegrees(45, 30);
+            resetCamera(width, height);
+            changed = true;
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_S) || ImGui::IsKeyPressed(GLFW_KEY_F12)) m_screenshots = -1;
+    }
+    return changed;
+}
+
+// The scene's camera; around a single quad, moved back until the quad fits one pane.
+void Viewer::resetCamera(int width, int height) {
+    m_orbit = Orbit::of(m_input.scene);
+    if (!m_input.singleQuad || width <= 0 || height <= 0) return;
+    const Pane pane = panes(width, height)[0];
+    const double paneAspect = static_cast<double>(pane.width) / pane.height;
+    const double halfWidth = m_input.scene.quads[0].width / 2, halfHeight = m_input.scene.quads[0].height / 2;
+    const double tanHalfFov = std::tan(m_input.scene.fovDegrees / 2 * M_PI / 180);
+    m_orbit.distance = std::max(m_orbit.distance, 1.15 * std::max(halfHeight, halfWidth / paneAspect) / tanHalfFov);
+}
+
+Status Viewer::screenshot(const std::string& path, int width, int height) {
+    if (Status s = saveFramebufferPng(width, height, path); !s) return s;
+    m_status = "saved " + path;
+    return success();
+}
+
+// A scripted frame: the screenshot, its state, and a scene file that `btflut render` draws
+// as the first pane shows it.
+Status Viewer::saveScriptedFrame(int frame, int width, int height) {
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "frame-%04d", frame);
+    const fs::path dir(m_options.screenshotDir);
+    if (Status s = screenshot((dir / (std::string(stem) + ".png")).string(), width, height); !s) return s;
+    const Pane pane = panes(width, height)[0];
+    Scene scene = m_input.scene;
+    scene.width = pane.width;
+    scene.height = pane.height;
+    scene.eye = m_orbit.eye();
+    scene.target = m_orbit.target;
+    scene.up = {0, 0, 1};
+    scene.light = lightVector();
+    scene.interpolateLuts = m_interpolate;
+    for (SceneQuad& q : scene.quads) q.mode = pane.mode;
+    if (!m_input.temporaryBank.empty()) {  // the session's bank goes when the viewer does: keep a copy
+        const fs::path kept = dir / "material.btflut";
+        if (!fs::exists(kept)) {
+            Result<Bytes> bytes = readFile(m_input.temporaryBank);
+            if (!bytes) return Error{bytes.error()};
+            if (Status s = writeFileAtomically(kept.string(), *bytes); !s) return s;
+        }
+        for (auto& [name, material] : scene.materials)
+            if (material.bank == m_input.temporaryBank) material.bank = kept.string();
+    }
+    const std::string sceneFile = std::string(stem) + ".scene.json";
+    if (Status s = writeFileAtomically((dir / sceneFile).string(), sceneToJson(scene)); !s) return s;
+    const json state{{"frame", frame},
+                     {"light", {{"theta", m_light.thetaDegrees()}, {"phi", m_light.phiDegrees()}}},
+                     {"mode", renderModeName(pane.mode)},
+                     {"scene", sceneFile},
+                     // PNG pixels, origin top left: where the scene pane and the panel are
+                     {"scene_viewport", {pane.x, height - pane.y - pane.height, pane.width, pane.height}},
+                     {"panel", {width - static_cast<int>(kPanelWidth), 0, static_cast<int>(kPanelWidth), height}}};
+    return writeFileAtomically((dir / (std::string(stem) + ".json")).string(), state.dump(1) + "\n");
+}
+
+Status Viewer::run() {
+    GLFWwindow* window = m_window.handle();
+    {
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(window, &width, &height);
+        resetCamera(width, height);
+    }
+    bool dirty = true;
+    int idleFrames = 0;
+    const bool scripted = m_options.frames > 0;
+    for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
+        if (scripted && frame >= m_options.frames) break;
+        if (scripted || dirty || idleFrames < 3)
+            glfwPollEvents();
+        else
+            glfwWaitEvents();  // nothing changes until an event: do not spin
+        if (scripted && m_options.lightSweep) {
+            // A spiral from near frontal to grazing: an isotropic material's look changes with
+            // the light's elevation far more than with its azimuth.
+            const double t = m_options.frames > 1 ? static_cast<double>(frame) / (m_options.frames - 1) : 0.0;
+            m_light = Direction::fromDegrees(10 + 70 * t, 360.0 * frame / m_options.frames);
+            dirty = true;
+        }
+        int width = 0, height = 0;
+        glfwGetFramebufferSize(window, &width, &height);
+        if (width <= 0 || height <= 0) continue;  // minimised
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        dirty |= width != m_compositeWidth || height != m_compositeHeight;
+        dirty |= sceneInput(width, height);
+        dirty |= panel(width, height);
+        const std::vector<Pane> all = panes(width, height);
+        for (const Pane& p : all)  // labels over the panes
+            if (all.size() > 1)
+                ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(p.x) + 8, 8), IM_COL32(255, 255, 255, 255),
+                                                        paneLabel(p.mode));
+        ImGui::Render();
+        if (dirty) {
+            if (Status s = renderPanes(width, height); !s) return s;
+            idleFrames = 0;
+        } else {
+            ++idleFrames;
+        }
+        dirty = false;
+        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_composite.id());
+        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+        gl.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+        gl.Viewport(0, 0, width, height);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (scripted && !m_options.screenshotDir.empty())
+            if (Status s = saveScriptedFrame(frame, width, height); !s) return s;
+        const bool last = scripted && frame + 1 == m_options.frames;
+        if (m_screenshots < 0 || (last && !m_options.screenshot.empty())) {
+            const std::string path = !m_options.screenshot.empty() ? m_options.screenshot
+                                                                   : "btflut-screenshot-" + std::to_string(::getpid()) + "-" +
+                                                                         std::to_string(frame) + ".png";
+            if (Status s = screenshot(path, width, height); !s) return s;
+            m_screenshots = 0;
+            idleFrames = 0;  // show the status line
+        }
+        glfwSwapBuffers(window);
+    }
+    return success();
+}
+
+// Removes the session's temporary bank whatever way the viewer ends.
+struct TemporaryFile {
+    std::string path;
+    ~TemporaryFile() {
+        if (!path.empty()) fs::remove(path);
+    }
+};
+
+}  // namespace
+
+Status runViewer(const ViewerOptions& options) {
+    if (options.split < 1 || options.split > 3) return Error{"--split must be 1, 2 or 3"};
+    if (!options.screenshotDir.empty() && options.frames <= 0)
+        return Error{"--screenshot-dir saves scripted frames: give --frames N"};
+    if (!options.screenshotDir.empty() && !fs::is_directory(options.screenshotDir))
+        return Error{options.screenshotDir + ": not a folder (for --screenshot-dir)"};
+    // The window first: without a display there is nothing to do, and nothing to bake.
+    Result<std::unique_ptr<Window>> window = Window::create(options.width, options.height, "btflut view", options.vsync);
+    if (!window) return Error{window.error()};
+    Result<ViewerInput> input = openInput(options);
+    if (!input) return Error{input.error()};
+    TemporaryFile temporary{input->temporaryBank};
+    glfwSetWindowTitle((*window)->handle(), input->title.c_str());
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini beside the user's files
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL((*window)->handle(), true);
+    ImGui_ImplOpenGL3_Init("#version 330");
+    Status result = success();
+    {
+        Viewer viewer(options, std::move(*input), **window);
+        result = viewer.start();
+        if (result) result = viewer.run();
+    }
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    return result;
+}
+
+}  // namespace btflut

@@ -1,0 +1,31 @@
+#pragma once
+// `btflut view`: a window with the scene and a Dear ImGui panel for exploring a material's
+// appearance as the light moves (docs/viewer.md).
+//
+//   ViewerOptions o;  o.input = "rock.btflut";
+//   Status s = runViewer(o);   // returns when the window closes (or after o.frames)
+
+#include <string>
+
+#include "core/result.h"
+
+namespace btflut {
+
+struct ViewerOptions {
+    std::string input;   ///< M.btflut, a dataset, or SCENE.json; empty: the bundled default material
+    std::string images;  ///< with a bank: the dataset it was baked from (mode nearest)
+    int width = 1280, height = 800;
+    std::string mode = "lut";
+    std::string light;        ///< THETA,PHI (degrees, world frame); empty: 45,30
+    int split = 1;            ///< panes side by side: 1, 2 (brdf | lut) or 3 (brdf | lut | nearest)
+    bool vsync = true;
+    // Scripted runs (tests, demos): a fixed number of frames, then exit.
+    int frames = 0;             ///< 0: interactive
+    bool lightSweep = false;    ///< with frames: the light spirals from theta 10 to 80 over the frames
+    std::string screenshot;     ///< PNG of the last frame (and the S key's target interactively)
+    std::string screenshotDir;  ///< every scripted frame: frame-NNNN.png, .json (state), .scene.json
+};
+
+Status runViewer(const ViewerOptions& options);
+
+}  // namespace btflut

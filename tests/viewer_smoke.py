@@ -1,0 +1,97 @@
+#!/usr/bin/python3
+"""Smoke test of `btflut view` under Xvfb (CTest label "viewer").
+
+Starts the viewer on the bundled default material with a scripted light sweep, saving every
+frame with its state, and checks that
+  - the material region changes as the light moves,
+  - it matches `btflut render` of the same state (the scene file the viewer wrote) within a
+    tolerance,
+  - the UI panel is drawn,
+and that split views and the no-display error work.
+
+usage: viewer_smoke.py BTFLUT
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+from PIL import Image
+
+XVFB = ["xvfb-run", "-a", "-s", "-screen 0 1280x800x24"]
+
+
+def load(path):
+    return np.asarray(Image.open(path).convert("RGB"), dtype=np.float64) / 255.0
+
+
+def run(cmd, **kwargs):
+    result = subprocess.run(cmd, capture_output=True, text=True, **kwargs)
+    if result.returncode != 0:
+        sys.exit(f"FAIL: {' '.join(cmd)} exited {result.returncode}\n{result.stdout}{result.stderr}")
+    return result
+
+
+def main():
+    btflut = os.path.abspath(sys.argv[1])
+    failures = []
+
+    def check(ok, what):
+        print(("ok   " if ok else "FAIL ") + what)
+        if not ok:
+            failures.append(what)
+
+    with tempfile.TemporaryDirectory() as tmp:
+        frames = 4
+        run(XVFB + [btflut, "view", "--frames", str(frames), "--light-sweep", "--screenshot-dir", tmp])
+        crops = []
+        for k in range(frames):
+            stem = os.path.join(tmp, f"frame-{k:04d}")
+            state = json.load(open(stem + ".json"))
+            shot = load(stem + ".png")
+            x, y, w, h = state["scene_viewport"]
+            crop = shot[y:y + h, x:x + w]
+            crops.append(crop)
+            rendered_path = stem + "-render.png"
+            run([btflut, "render", os.path.join(tmp, state["scene"]), "-o", rendered_path])
+            rendered = load(rendered_path)
+            check(rendered.shape == crop.shape, f"frame {k}: render has the pane's size {crop.shape}")
+            if rendered.shape == crop.shape:
+                diff = np.abs(rendered - crop)
+                check(diff.mean() < 1.0 / 255 and np.percentile(diff, 99) < 8.0 / 255,
+                      f"frame {k} (light {state['light']['theta']:.0f},{state['light']['phi']:.0f}): viewer matches "
+                      f"btflut render (mean {diff.mean() * 255:.3f}/255, p99 {np.percentile(diff, 99) * 255:.1f}/255)")
+            px, py, pw, ph = state["panel"]
+            panel = shot[py:py + ph, px:px + pw]
+            distinct = len(np.unique((panel * 255).astype(np.uint8).reshape(-1, 3), axis=0))
+            check(panel.std() > 0.05 and distinct > 50, f"frame {k}: the UI panel is drawn ({distinct} colours)")
+        material = crops[0].max(axis=2) > 0  # the quad (the background is black)
+        for k in range(1, frames):
+            change = np.abs(crops[k] - crops[0]).max(axis=2)[material].mean()
+            check(change > 4.0 / 255, f"frame {k} differs from frame 0 as the light moves (mean {change * 255:.1f}/255)")
+
+        # Three panes (brdf | lut | nearest), labelled, each drawing the material.
+        split = os.path.join(tmp, "split.png")
+        run(XVFB + [btflut, "view", "--split", "3", "--frames", "2", "--screenshot", split])
+        shot = load(split)
+        area = shot[:, : shot.shape[1] - 380]
+        thirds = np.array_split(area, 3, axis=1)
+        check(all(t.std() > 0.05 for t in thirds), "split view: three panes drawn")
+        check(np.abs(thirds[0].mean() - thirds[1].mean()) > 0 and not np.array_equal(thirds[0], thirds[1]),
+              "split view: brdf and lut panes differ")
+
+    # No display: one line naming `btflut render`, non-zero exit.
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    result = subprocess.run([btflut, "view"], capture_output=True, text=True, env=env)
+    lines = result.stderr.strip().splitlines()
+    check(result.returncode != 0 and len(lines) == 1 and "btflut render" in lines[0],
+          f"no display: one error line naming btflut render ({result.stderr.strip()!r})")
+
+    if failures:
+        sys.exit(f"{len(failures)} check(s) failed")
+
+
+if __name__ == "__main__":
+    main()
