@@ -61,3 +61,43 @@ TEST_CASE("psm-rock: the bank is at most 1.25x the raw size of one image") {
     CHECK(with <= 1.25 * oneImage);
     CHECK(without <= 1.25 * oneImage);
 }
+
+TEST_CASE("psm-rock: against the PTM baseline, the LUT wins on histograms, the PTM on pixels") {
+    if (!haveSharedData("psm-rock")) return;
+    auto ds = openDataset(sharedDataDir() + "/psm-rock");
+    REQUIRE(ds.ok());
+    auto bank = bakeBank(*ds, {.ptm = true});
+    REQUIRE(bank.ok());
+    auto mask = loadDatasetMask(*ds, 512, 340);
+    REQUIRE(mask.ok());
+    double worstLut = 0, worstPtm = 0, pixelLut = 0, pixelPtm = 0;
+    for (const DatasetImage& info : ds->images) {
+        auto measured = loadImage(info.path);
+        REQUIRE(measured.ok());
+        const auto target = binHistogram(countGreyLevels(*measured, *mask), 64);
+        Image lut = relight(*bank, info.light);
+        lut.bitDepth = 16;
+        Image ptm = bank->ptm.render(info.light);
+        ptm.bitDepth = 16;
+        auto l1 = [&](const Image& im) {
+            const auto h = binHistogram(countGreyLevels(im, *mask), 64);
+            double sum = 0;
+            for (std::size_t i = 0; i < h.size(); ++i) sum += std::abs(h[i] - target[i]);
+            return sum;
+        };
+        auto pixels = [&](const Image& im) {  // mean |grey difference| over the sample
+            double sum = 0;
+            for (std::size_t i = 0; i < im.pixelCount(); ++i)
+                if (mask->inside[i]) sum += std::abs(im.grey(i) - measured->grey(i));
+            return sum / static_cast<double>(mask->count());
+        };
+        worstLut = std::max(worstLut, l1(lut));
+        worstPtm = std::max(worstPtm, l1(ptm));
+        pixelLut = std::max(pixelLut, pixels(lut));
+        pixelPtm = std::max(pixelPtm, pixels(ptm));
+    }
+    MESSAGE("worst histogram L1: LUT " << worstLut << ", PTM " << worstPtm << "; worst mean pixel error: LUT "
+                                       << pixelLut << ", PTM " << pixelPtm);
+    CHECK(worstLut < worstPtm);
+    CHECK(pixelPtm < pixelLut);
+}
