@@ -155,5 +155,35 @@ TEST_SUITE("gl") {
         CHECK(worstCentre <= 1.5 / 255);
         CHECK(worstCorner <= 3.0 / 255);  // the grid's bilinear blend, near its nodes
         CHECK(cornerVsCentreView > 10.0 / 255);  // the corners really see other LUTs
+        CHECK((*renderer)->stats().viewLayersLoaded == 5);
+    }
+
+    TEST_CASE("a fixed camera decodes only the view layers its quads look along") {
+        TempDir dir;
+        std::vector<SyntheticShot> shots;
+        // An inner ring of views around frontal and an outer ring at 75 degrees.
+        for (auto [theta, phi] : {std::pair{0.0, 0.0}, {20.0, 0.0}, {20.0, 120.0}, {20.0, 240.0}, {75.0, 60.0},
+                                  {75.0, 180.0}, {75.0, 300.0}})
+            for (SyntheticShot s : variedShots(theta, phi)) shots.push_back(s);
+        auto ds = openDataset(writeSyntheticDataset(dir, shots, 32, 32));
+        REQUIRE(ds.ok());
+        auto bank = bakeBank(*ds, {});
+        REQUIRE(bank.ok());
+        REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        Scene scene = frontalScene(dir / "m.btflut", "", 32, 32);
+        scene.eye.z *= 8;  // far away, narrow: every view within 3 degrees of frontal
+        scene.fovDegrees = kFov / 8;
+        auto fixed = SceneRenderer::create(scene);
+        REQUIRE(fixed.ok());
+        const Image few = draw(**fixed, Direction::fromDegrees(30, 10), RenderMode::Lut);
+        CHECK((*fixed)->stats().viewLayers == 7);
+        CHECK((*fixed)->stats().viewLayersLoaded <= 4);
+        auto moving = SceneRenderer::create(scene, {.fixedCamera = false});
+        REQUIRE(moving.ok());
+        CHECK((*moving)->stats().viewLayersLoaded == 7);
+        const Image all = draw(**moving, Direction::fromDegrees(30, 10), RenderMode::Lut);
+        CHECK(few.samples == all.samples);
     }
 }

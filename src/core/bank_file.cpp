@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/check.h"
+
 namespace btflut {
 
 static_assert(std::endian::native == std::endian::little,
@@ -230,6 +232,7 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     putChunk(file, kHead, head.bytes());
 
     for (const ViewLayer& layer : bank.layers) {
+        BTFLUT_CHECK(layer.lutsLoaded && !layer.gridLuts.empty());  // read whole (BankReadOptions defaults)
         Writer w;
         putDirection(w, layer.view);
         w.put(static_cast<std::uint32_t>(layer.nodes.size()));
@@ -252,6 +255,30 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
     Result<std::vector<Chunk>> chunks = splitChunks(bytes, name);
     if (!chunks) return Error{chunks.error()};
+
+    // Which layers' LUTs to decode: from the layers' view directions alone (their first 16 bytes).
+    std::vector<bool> wanted;
+    if (!options.views.empty()) {
+        LutBank views;
+        for (const Chunk& chunk : *chunks) {
+            if (chunk.tag != kLayer) continue;
+            Reader in(chunk.payload, chunk.length);
+            const double theta = in.get<double>(), phi = in.get<double>();
+            if (!in.ok() || !std::isfinite(theta) || !std::isfinite(phi) || theta < 0 || theta > 90) {
+                views.layers.clear();  // malformed: decode everything, and let the checks below say what is wrong
+                break;
+            }
+            views.layers.push_back({Direction::fromDegrees(theta, phi), {}, {}, {}, {}, {}});
+        }
+        if (!views.layers.empty()) {
+            std::vector<DiskPoint> points;
+            for (const ViewLayer& layer : views.layers) points.push_back(toDisk(layer.view));
+            views.views = Triangulation(std::move(points));
+            wanted.assign(views.layers.size(), false);
+            for (Direction v : options.views)
+                for (std::size_t l : views.layersFor(v)) wanted[l] = true;
+        }
+    }
 
     LutBank bank;
     bool haveHead = false, haveReference = false, havePtm = false, embedded = false;
@@ -317,6 +344,11 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             const std::uint8_t* grid = in.getBytes(cells * length1 * sizeof(std::uint16_t));
             if (!in.ok() || in.remaining() != 0)
                 return fail("LAYR chunk " + std::to_string(bank.layers.size()) + " has the wrong size");
+            if (!wanted.empty() && !wanted[bank.layers.size()]) {
+                layer.lutsLoaded = false;
+                bank.layers.push_back(std::move(layer));
+                continue;
+            }
             layer.nodeLuts.resize(nodes * length1);
             std::memcpy(layer.nodeLuts.data(), luts, layer.nodeLuts.size() * sizeof(float));
             for (std::size_t k = 0; k < layer.nodeLuts.size(); k += static_cast<std::size_t>(bank.entries))
@@ -324,10 +356,12 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
                     return fail("a LUT is not monotonic in [0, 1] (file is corrupted)");
             for (std::size_t c = 0; c < cells; ++c) {
                 if (kinds[c] > 2) return fail("invalid grid node provenance");
-                layer.gridProvenance.push_back(static_cast<Provenance>(kinds[c]));
+                if (options.grids) layer.gridProvenance.push_back(static_cast<Provenance>(kinds[c]));
             }
-            layer.gridLuts.resize(cells * length1);
-            std::memcpy(layer.gridLuts.data(), grid, layer.gridLuts.size() * sizeof(std::uint16_t));
+            if (options.grids) {
+                layer.gridLuts.resize(cells * length1);
+                std::memcpy(layer.gridLuts.data(), grid, layer.gridLuts.size() * sizeof(std::uint16_t));
+            }
             bank.layers.push_back(std::move(layer));
         } else if (tag == kReference) {
             if (!embedded || haveReference) return fail("unexpected REFI chunk");

@@ -22,7 +22,12 @@ struct BankWriteOptions {
 };
 
 struct BankReadOptions {
-    bool ptm = true;  ///< decode the PTM chunk, if any (its checksum is checked either way)
+    bool ptm = true;    ///< decode the PTM chunk, if any (its checksum is checked either way)
+    bool grids = true;  ///< copy the layers' resampled grids (a renderer blending nodes needs none)
+    /// Non-empty: decode the LUTs of only the view layers that lookups at these view
+    /// directions use (interpolated or nearest); the others keep their directions and nodes
+    /// with ViewLayer::lutsLoaded false. Such a bank cannot be encoded again.
+    std::vector<Direction> views;
 };
 
 Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options = {});

@@ -100,6 +100,18 @@ void LutBank::fillGrids() {
     }
 }
 
+std::vector<std::size_t> LutBank::layersFor(Direction view) const {
+    std::vector<std::size_t> used;
+    const Weights w = views.weightsAt(toDisk(view));
+    for (int v = 0; v < w.count; ++v)
+        if (w.weight[v] != 0) used.push_back(static_cast<std::size_t>(w.index[v]));
+    std::size_t nearest = 0;
+    for (std::size_t l = 1; l < layers.size(); ++l)
+        if (angleBetween(layers[l].view, view) < angleBetween(layers[nearest].view, view)) nearest = l;
+    used.push_back(nearest);
+    return used;
+}
+
 LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
     auto nearest = [](const auto& items, auto angleTo) {
         std::size_t best = 0;
@@ -119,6 +131,7 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
     if (!interpolate) {
         const NodeRef n = nearestNode(light, view);
         const ViewLayer& layer = layers[n.layer];
+        BTFLUT_CHECK(layer.lutsLoaded);
         const float* lut = &layer.nodeLuts[n.node * length];
         out.values.assign(lut, lut + length);
         const bool exact = angleBetween(layer.view, view) < kSameDirection &&
@@ -134,6 +147,7 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
     for (int v = 0; v < vw.count; ++v) {
         if (vw.weight[v] == 0) continue;
         const ViewLayer& layer = layers[static_cast<std::size_t>(vw.index[v])];
+        BTFLUT_CHECK(layer.lutsLoaded);
         Weights lw = layer.lights.weightsAt(lightPoint);
         out.provenance = combine(out.provenance, provenanceOf(lw));
         for (int l = 0; l < lw.count; ++l) {

@@ -53,6 +53,7 @@ struct ViewLayer {
     std::vector<std::uint16_t> gridLuts;  ///< gridSize^2 x channels x entries, unorm16
     std::vector<Provenance> gridProvenance;  ///< gridSize^2; node (i, j) at j * gridSize + i
     Triangulation lights;                 ///< over the nodes' disk points
+    bool lutsLoaded = true;               ///< false: read without its LUTs (BankReadOptions::views)
 };
 
 struct BankLookup {
@@ -95,6 +96,10 @@ struct LutBank {
 
     /// Disk point of grid node (i, j): x = -1 + 2 i / (gridSize - 1), likewise y.
     DiskPoint gridPoint(int i, int j) const;
+
+    /// The layers that lookups at a view direction use: those the view triangulation blends
+    /// there, and the nearest by angle.
+    std::vector<std::size_t> layersFor(Direction view) const;
 
     /// Rebuilds the triangulations from the node and layer directions (after loading).
     void buildTriangulations();

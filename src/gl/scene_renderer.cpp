@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/bank_file.h"
+#include "core/check.h"
 #include "gl/shader.h"
 #include "gl/textures.h"
 
@@ -29,10 +30,11 @@ Vec3 cross(const Vec3& a, const Vec3& b) {
 
 }  // namespace
 
-Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene) {
+Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene, const SceneRendererOptions& options) {
     std::unique_ptr<SceneRenderer> r(new SceneRenderer());
     r->m_scene = scene;
     r->m_interpolate = scene.interpolateLuts;
+    r->m_fixedCamera = options.fixedCamera;
     const std::vector<std::size_t> visible = visibleQuads(scene);
     r->m_stats.quadsCulled = scene.quads.size() - visible.size();
     TextureBytes& bytes = r->m_stats.textureBytes;
@@ -40,8 +42,14 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene)
         const std::string& name = scene.quads[i].material;
         if (!r->m_materials.count(name)) {
             const std::string& path = scene.materials.at(name).bank;
-            Result<LutBank> bank = loadBank(path, {.ptm = false});  // the PTM only if a ptm quad needs it
+            // Not the PTM (read when a ptm quad is drawn), nor the grids (the renderer blends
+            // nodes), nor, for a fixed camera, view layers that no visible quad looks along.
+            BankReadOptions read{.ptm = false, .grids = false};
+            if (options.fixedCamera) read.views = r->viewsOf(name, visible);
+            Result<LutBank> bank = loadBank(path, read);
             if (!bank) return Error{bank.error()};
+            r->m_stats.viewLayers += bank->layers.size();
+            for (const ViewLayer& layer : bank->layers) r->m_stats.viewLayersLoaded += layer.lutsLoaded;
             if (bank->reference.samples.empty()) return Error{path + ": the bank has no reference image inside"};
             Material& m = r->m_materials[name];
             m.bank = std::move(*bank);
@@ -102,6 +110,7 @@ std::vector<std::uint8_t> SceneRenderer::coverage() const {
 }
 
 void SceneRenderer::setCamera(const Vec3& eye, const Vec3& target, const Vec3& up) {
+    BTFLUT_CHECK(!m_fixedCamera);  // created with SceneRendererOptions::fixedCamera false
     m_scene.eye = eye;
     m_scene.target = target;
     m_scene.up = up;
@@ -130,6 +139,19 @@ Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank) {
         found = m_programs.emplace(defines, std::move(*p)).first;
     }
     return found->second.id();
+}
+
+// Every view direction the renderer may look a material up at: the view grid of each
+// visible quad that uses it (the centre is one of its points).
+std::vector<Direction> SceneRenderer::viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const {
+    std::vector<Direction> views;
+    for (std::size_t i : visible) {
+        if (m_scene.quads[i].material != material) continue;
+        for (int j = 0; j < kViewGrid; ++j)
+            for (int k = 0; k < kViewGrid; ++k)
+                views.push_back(fromVector(viewAt(m_scene.quads[i], -1 + 2.0 * k / (kViewGrid - 1), -1 + 2.0 * j / (kViewGrid - 1))));
+    }
+    return views;
 }
 
 // The direction from the quad point at corner coordinates (x, y) in [-1, 1]^2 to the eye,

@@ -35,11 +35,18 @@ struct TextureBytes {
     std::size_t total() const { return reference + luts + ptm + images; }
 };
 
+struct SceneRendererOptions {
+    /// The camera stays where the scene puts it: a bank's view layers that no visible quad's
+    /// view directions use are not decoded. A viewer that moves the camera says false.
+    bool fixedCamera = true;
+};
+
 struct RenderStats {
     std::vector<std::string> loadedMaterials;   ///< names, in load order
     std::vector<std::string> skippedMaterials;  ///< used by no visible quad: never read
     std::vector<std::string> loadedPtms;        ///< materials whose PTM a ptm quad needed
     std::size_t imagesLoaded = 0;               ///< measured images read for mode nearest
+    std::size_t viewLayers = 0, viewLayersLoaded = 0;  ///< over the loaded banks
     std::size_t quadsDrawn = 0, quadsCulled = 0, quadsUnlit = 0;
     TextureBytes textureBytes;
 };
@@ -48,7 +55,7 @@ class SceneRenderer {
 public:
     static constexpr int kViewGrid = 5;
 
-    static Result<std::unique_ptr<SceneRenderer>> create(const Scene& scene);
+    static Result<std::unique_ptr<SceneRenderer>> create(const Scene& scene, const SceneRendererOptions& options = {});
 
     /// One frame for a light (unit vector, world frame); `mode` overrides every quad's.
     Status draw(const Vec3& light, std::optional<RenderMode> mode = {});
@@ -56,7 +63,8 @@ public:
     Status resize(int width, int height);
     /// Per pixel of the last frame (top row first): 1 where a quad was drawn.
     std::vector<std::uint8_t> coverage() const;
-    /// Moves the camera (the set of visible quads is fixed at creation).
+    /// Moves the camera (the set of visible quads is fixed at creation); only for a renderer
+    /// created with SceneRendererOptions::fixedCamera false.
     void setCamera(const Vec3& eye, const Vec3& target, const Vec3& up);
     /// Nearest-node LUTs instead of interpolated ones.
     void setInterpolation(bool interpolate);
@@ -95,11 +103,13 @@ private:
     SceneRenderer() = default;
     Result<GLuint> program(RenderMode mode, const LutBank& bank);
     Vec3 viewAt(const SceneQuad& quad, double x, double y) const;
+    std::vector<Direction> viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const;
     void update(QuadState& q, const Vec3& light, RenderMode mode);
     Status prepare(QuadState& q, RenderMode mode, const Vec3& light);
 
     Scene m_scene;
     bool m_interpolate = true;
+    bool m_fixedCamera = true;
     std::map<std::string, Material> m_materials;
     std::vector<QuadState> m_quads;
     std::map<std::vector<std::string>, GlProgram> m_programs;  ///< by defines

@@ -192,7 +192,7 @@ private:
 };
 
 Status Viewer::start() {
-    Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(m_input.scene);
+    Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(m_input.scene, {.fixedCamera = false});
     if (!renderer) return Error{renderer.error()};
     m_renderer = std::move(*renderer);
     if (!m_input.scene.quads.empty()) m_bank = m_renderer->bank(m_input.scene.quads[0].material);

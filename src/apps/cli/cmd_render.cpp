@@ -77,6 +77,7 @@ Status runSceneRender(const RenderOptions& o) {
                   << "\nquads drawn: " << stats.quadsDrawn << " (" << stats.quadsUnlit << " unlit), culled: "
                   << stats.quadsCulled << "\nPTMs loaded (for ptm quads): " << list(stats.loadedPtms)
                   << "\nmeasured images loaded (for nearest quads): " << stats.imagesLoaded
+                  << "\nview layers decoded: " << stats.viewLayersLoaded << " of " << stats.viewLayers
                   << "\ntexture memory: " << stats.textureBytes.total() << " bytes (references "
                   << stats.textureBytes.reference << ", LUTs " << stats.textureBytes.luts << ", PTMs "
                   << stats.textureBytes.ptm << ", measured images " << stats.textureBytes.images << ")\n";
