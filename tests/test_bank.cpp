@@ -204,3 +204,32 @@ TEST_CASE("rgb mode bakes one exact LUT per channel") {
     REQUIRE_FALSE(refused.ok());
     CHECK(refused.error().find("needs colour images") != std::string::npos);
 }
+
+TEST_CASE("lookups say how the light and the view were obtained; coverage is the hull's solid angle") {
+    TempDir dir;
+    Dataset ds = openSynthetic(dir);
+    auto bank = bakeBank(ds, {});
+    REQUIRE(bank.ok());
+    // One frontal view layer: any other view is clamped to it, while the light is measured.
+    const BankLookup oblique = bank->lookup(Direction::fromDegrees(30, 0), Direction::fromDegrees(40, 0));
+    CHECK(oblique.lightProvenance == Provenance::Measured);
+    CHECK(oblique.viewProvenance == Provenance::Extrapolated);
+    CHECK(oblique.provenance == Provenance::Extrapolated);
+    const BankLookup between = bank->lookup(Direction::fromDegrees(20, 30));
+    CHECK(between.lightProvenance == Provenance::Interpolated);
+    CHECK(between.viewProvenance == Provenance::Measured);
+    CHECK(bank->lookup(Direction::fromDegrees(80, 180)).lightProvenance == Provenance::Extrapolated);
+    CHECK(bank->nearestNode(Direction::fromDegrees(50, 65)).node == 4);  // (55, 60)
+
+    // The hull of the six lights reaches theta 55 at most: within the cap of theta <= 55,
+    // which holds 1 - cos 55 = 43% of the hemisphere.
+    const double coverage = bank->lightCoverage(0);
+    CHECK(coverage > 0.05);
+    CHECK(coverage < 1 - std::cos(55 * M_PI / 180) + 0.01);
+    TempDir ringDir;
+    std::vector<SyntheticShot> ring{{0, 0, 0, 0, 0, 1}};
+    for (int k = 0; k < 24; ++k) ring.push_back({89, 15.0 * k, 0, 0, 1 + k % 3, 1});
+    auto full = bakeBank(openSynthetic(ringDir, ring), {});
+    REQUIRE(full.ok());
+    CHECK(full->lightCoverage(0) > 0.95);  // a 24-gon at theta 89 covers 97% of the disk
+}

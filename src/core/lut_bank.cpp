@@ -100,6 +100,21 @@ void LutBank::fillGrids() {
     }
 }
 
+double LutBank::lightCoverage(std::size_t layer) const {
+    // Equal-area disk: the share of sample points of the unit disk inside the hull is the
+    // share of solid angle.
+    constexpr int n = 128;
+    int inside = 0, total = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const DiskPoint p{-1 + (i + 0.5) * 2.0 / n, -1 + (j + 0.5) * 2.0 / n};
+            if (p.x * p.x + p.y * p.y > 1) continue;
+            ++total;
+            inside += layers[layer].lights.weightsAt(p).inside;
+        }
+    return static_cast<double>(inside) / total;
+}
+
 std::vector<std::size_t> LutBank::layersFor(Direction view) const {
     std::vector<std::size_t> used;
     const Weights w = views.weightsAt(toDisk(view));
@@ -137,11 +152,12 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
         const bool exact = angleBetween(layer.view, view) < kSameDirection &&
                            angleBetween(layer.nodes[n.node].light, light) < kSameDirection;
         out.provenance = exact ? Provenance::Measured : Provenance::Interpolated;
+        out.lightProvenance = out.viewProvenance = out.provenance;
         return out;
     }
     out.values.assign(length, 0.f);
     Weights vw = views.weightsAt(toDisk(view));
-    out.provenance = provenanceOf(vw);
+    out.viewProvenance = provenanceOf(vw);
     std::vector<double> accumulated(length, 0.0);
     const DiskPoint lightPoint = toDisk(light);
     for (int v = 0; v < vw.count; ++v) {
@@ -149,7 +165,7 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
         const ViewLayer& layer = layers[static_cast<std::size_t>(vw.index[v])];
         BTFLUT_CHECK(layer.lutsLoaded);
         Weights lw = layer.lights.weightsAt(lightPoint);
-        out.provenance = combine(out.provenance, provenanceOf(lw));
+        out.lightProvenance = combine(out.lightProvenance, provenanceOf(lw));
         for (int l = 0; l < lw.count; ++l) {
             const double w = vw.weight[v] * lw.weight[l];
             const float* lut = &layer.nodeLuts[static_cast<std::size_t>(lw.index[l]) * length];
@@ -157,6 +173,7 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
         }
     }
     for (std::size_t k = 0; k < length; ++k) out.values[k] = static_cast<float>(accumulated[k]);
+    out.provenance = combine(out.lightProvenance, out.viewProvenance);
     return out;
 }
 

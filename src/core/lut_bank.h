@@ -58,7 +58,8 @@ struct ViewLayer {
 
 struct BankLookup {
     std::vector<float> values;  ///< channels x entries
-    Provenance provenance = Provenance::Measured;
+    Provenance provenance = Provenance::Measured;  ///< the worse of the two below
+    Provenance lightProvenance = Provenance::Measured, viewProvenance = Provenance::Measured;
 };
 
 struct LutBank {
@@ -96,6 +97,10 @@ struct LutBank {
 
     /// Disk point of grid node (i, j): x = -1 + 2 i / (gridSize - 1), likewise y.
     DiskPoint gridPoint(int i, int j) const;
+
+    /// The share of the hemisphere of light directions (by solid angle) inside the measured
+    /// lights' hull of a layer, where lookups interpolate rather than clamp.
+    double lightCoverage(std::size_t layer) const;
 
     /// The layers that lookups at a view direction use: those the view triangulation blends
     /// there, and the nearest by angle.

@@ -186,6 +186,7 @@ private:
     int m_compositeWidth = 0, m_compositeHeight = 0;
     std::vector<float> m_renderedHistogram, m_targetHistogram, m_lutCurve;
     std::string m_provenance;
+    double m_coverage = 0;  ///< of the hemisphere of lights, inside layer 0's measured hull
     double m_sceneMs = 0;
     std::string m_status;
     int m_screenshots = 0;
@@ -199,6 +200,7 @@ Status Viewer::start() {
     if (m_bank) {
         m_referenceGrey = countGreyLevels(m_bank->reference, fullMask(m_bank->reference.width, m_bank->reference.height));
         for (const LightNode& n : m_bank->layers[0].nodes) m_nodes.push_back(n.light);
+        m_coverage = m_bank->lightCoverage(0);
         const SceneMaterial& material = m_input.scene.materials.at(m_input.scene.quads[0].material);
         m_haveImages = !material.images.empty();
         m_havePtm = m_bank->ptmInFile;
@@ -289,7 +291,7 @@ void Viewer::updatePlots() {
     for (float& v : m_renderedHistogram) v = total > 0 ? static_cast<float>(v / total) : 0.f;
 
     const BankLookup lut = m_renderer->centreLut(0, lightVector());
-    m_provenance = provenanceName(lut.provenance);
+    m_provenance = std::string("light ") + provenanceName(lut.lightProvenance) + ", view " + provenanceName(lut.viewProvenance);
     m_lutCurve.assign(lut.values.begin(), lut.values.begin() + m_bank->entries);
     m_targetHistogram.assign(kHistogramBins, 0.f);
     total = 0;
@@ -379,8 +381,10 @@ bool Viewer::panel(int width, int height) {
             }
         ImGui::Text("%d x %d reference, %s LUTs of %d entries", m_bank->reference.width, m_bank->reference.height,
                     m_bank->colour == ColourMode::Rgb ? "rgb" : "grey", m_bank->entries);
-        ImGui::Text("%zu view layer(s), %zu measured nodes (theta up to %.0f)", m_bank->layers.size(), nodes, maxTheta);
-        ImGui::Text("%d x %d grid; here: %s", m_bank->gridSize, m_bank->gridSize, m_provenance.c_str());
+        ImGui::Text("%zu view layer(s), %zu lights (theta <= %.0f)", m_bank->layers.size(), nodes, maxTheta);
+        ImGui::Text("%.0f%% of light directions inside the measured", 100 * m_coverage);
+        ImGui::Text("hull (interpolated; outside: clamped)");
+        ImGui::Text("here: %s", m_provenance.c_str());
         ImGui::Text("PTM: %s, measured images: %s", m_havePtm ? "yes" : "no", m_haveImages ? "yes" : "no");
         if (m_input.modelParameters.is_object()) {
             ImGui::TextUnformatted("model parameters:");
