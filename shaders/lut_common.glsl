@@ -14,10 +14,11 @@ float btflutDitherOffset(uint x, uint y, uint c) {
     return float(h >> 8) * (1.0 / 16777216.0) - 0.5;
 }
 
-// The LUT (a 1D texture of `entries` texels, linear filtering) at v in [0, 1].
+// The LUT (a 1D texture of `entries` texels, linear filtering) at v in [0, 1]. textureLod: a
+// LUT has no mipmaps, so the fetch needs no derivatives.
 float btflutApplyLut(sampler1D lut, int entries, float v) {
     float position = clamp(v, 0.0, 1.0) * float(entries - 1);
-    return texture(lut, (position + 0.5) / float(entries)).r;
+    return textureLod(lut, (position + 0.5) / float(entries), 0.0).r;
 }
 
 // Dithered application: input moved within its code's cell [v - code, v), output raised

@@ -6,8 +6,9 @@
 // BRDF_MODE: the paper's 2D texture mapping, brightness scaled by the target-to-reference ratio.
 // PTM_MODE: the polynomial texture map, as RTI viewers draw it.
 // FLAT_MODE: the plain texture. NEAREST_MODE: `reference` is the nearest measured image.
+// UNLIT: the light is behind the quad (every mode but flat): black, a program of its own so
+// the lit ones test nothing per fragment.
 uniform sampler2D reference;
-uniform int unlit;        // the light is behind the quad (every mode but flat draws black)
 uniform float brightness; // brdf mode
 
 in vec2 uv;
@@ -22,9 +23,9 @@ uniform int viewGrid;
 float lutAt(int channel, float v) {
     vec3 at = vec3((clamp(v, 0.0, 1.0) * float(entries - 1) + 0.5) / float(entries),
                    (quadPosition * float(viewGrid - 1) + 0.5) / float(viewGrid));
-    if (channel == 0) return texture(lut[0], at).r;
-    if (channel == 1) return texture(lut[1], at).r;
-    return texture(lut[2], at).r;
+    if (channel == 0) return textureLod(lut[0], at, 0.0).r;
+    if (channel == 1) return textureLod(lut[1], at, 0.0).r;
+    return textureLod(lut[2], at, 0.0).r;
 }
 #else
 uniform sampler1D lut[3];
@@ -43,14 +44,11 @@ uniform float ptmOffset;
 #endif
 
 void main() {
-#if defined(FLAT_MODE)
+#if defined(UNLIT)
+    colour = vec4(0.0, 0.0, 0.0, 1.0);
+#elif defined(FLAT_MODE)
     colour = vec4(texture(reference, uv).rgb, 1.0);
-#else
-    if (unlit != 0) {
-        colour = vec4(0.0, 0.0, 0.0, 1.0);
-        return;
-    }
-#if defined(PTM_MODE)
+#elif defined(PTM_MODE)
     float luminance = dot(texture(ptmLow, uv).rgb, ptmWeightsLow) + dot(texture(ptmHigh, uv).rgb, ptmWeightsHigh) +
                       ptmOffset;
     colour = vec4(clamp(texture(ptmAlbedo, uv).rgb * luminance, 0.0, 1.0), 1.0);
@@ -67,6 +65,5 @@ void main() {
     vec3 texel = texture(reference, uv).rgb;
     float grey = (texel.r + texel.g + texel.b) * (1.0 / 3.0);
     colour = vec4(btflutSetGrey(texel, lutAt(0, grey)), 1.0);
-#endif
 #endif
 }

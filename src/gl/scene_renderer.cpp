@@ -127,11 +127,11 @@ const LutBank* SceneRenderer::bank(const std::string& material) const {
     return it == m_materials.end() ? nullptr : &it->second.bank;
 }
 
-Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank) {
-    std::vector<std::string> defines{modeDefine(mode)};
-    if (mode == RenderMode::Lut && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
-    if (mode == RenderMode::Lut && bank.layers.size() > 1) defines.push_back("VIEW_GRID");
-    if (mode == RenderMode::Lut && bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
+Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool unlit) {
+    std::vector<std::string> defines{unlit ? "UNLIT" : modeDefine(mode)};
+    if (!unlit && mode == RenderMode::Lut && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+    if (!unlit && mode == RenderMode::Lut && bank.layers.size() > 1) defines.push_back("VIEW_GRID");
+    if (!unlit && mode == RenderMode::Lut && bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
     auto found = m_programs.find(defines);
     if (found == m_programs.end()) {
         Result<GlProgram> p = buildProgram({"scene.vert"}, {"lut_common.glsl", "scene.frag"}, defines);
@@ -310,7 +310,8 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
         update(q, light, mode);
         if (Status s = prepare(q, mode, light); !s) return s;
         const Material& material = m_materials.at(quad.material);
-        Result<GLuint> p = program(mode, material.bank);
+        const bool unlit = mode != RenderMode::Flat && q.unlit;
+        Result<GLuint> p = program(mode, material.bank, unlit);
         if (!p) return Error{p.error()};
         gl.UseProgram(*p);
         auto bind = [&](int unit, GLenum target, GLuint texture, const char* name) {
@@ -318,8 +319,9 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
             gl.BindTexture(target, texture);
             gl.Uniform1i(gl.GetUniformLocation(*p, name), unit);
         };
-        const bool unlit = mode != RenderMode::Flat && q.unlit;
-        if (mode == RenderMode::Ptm) {
+        if (unlit) {
+            // black: nothing to bind
+        } else if (mode == RenderMode::Ptm) {
             bind(0, GL_TEXTURE_2D, material.ptm[0].id(), "ptmLow");
             bind(1, GL_TEXTURE_2D, material.ptm[1].id(), "ptmHigh");
             bind(2, GL_TEXTURE_2D, material.ptm[2].id(), "ptmAlbedo");
@@ -327,12 +329,12 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
             gl.Uniform3f(gl.GetUniformLocation(*p, "ptmWeightsLow"), w[0], w[1], w[2]);
             gl.Uniform3f(gl.GetUniformLocation(*p, "ptmWeightsHigh"), w[3], w[4], w[5]);
             gl.Uniform1f(gl.GetUniformLocation(*p, "ptmOffset"), w[6]);
-        } else if (mode == RenderMode::Nearest && !unlit) {
+        } else if (mode == RenderMode::Nearest) {
             bind(0, GL_TEXTURE_2D, material.imageTextures.at(q.nearestImage).id(), "reference");
         } else {
             bind(0, GL_TEXTURE_2D, material.reference.id(), "reference");
         }
-        if (mode == RenderMode::Lut) {
+        if (mode == RenderMode::Lut && !unlit) {
             const GLenum target = material.bank.layers.size() > 1 ? GL_TEXTURE_3D : GL_TEXTURE_1D;
             for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
                 const std::string name = "lut[" + std::to_string(c) + "]";
@@ -342,7 +344,6 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
             gl.Uniform1i(gl.GetUniformLocation(*p, "entries"), material.bank.entries);
             gl.Uniform1i(gl.GetUniformLocation(*p, "viewGrid"), kViewGrid);
         }
-        gl.Uniform1i(gl.GetUniformLocation(*p, "unlit"), unlit ? 1 : 0);
         gl.Uniform1f(gl.GetUniformLocation(*p, "brightness"), q.brightness);
         gl.UniformMatrix4fv(gl.GetUniformLocation(*p, "viewProjection"), 1, GL_FALSE, matrix.data());
         const Vec3 t = quad.tangent, b = cross(quad.normal, quad.tangent);
