@@ -6,6 +6,8 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <unistd.h>
 
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -14,6 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "core/bank_file.h"
 #include "core/dataset.h"
@@ -130,6 +133,33 @@ struct Orbit {
     }
 };
 
+// Which pixels of a frame show a point of `quad` inside the material's sample mask: each
+// pixel's ray is intersected with the quad's plane and the texel it lands on looked up.
+std::vector<std::uint8_t> maskedPixels(const Scene& scene, const SceneQuad& quad, const Mask& mask,
+                                       const std::vector<std::uint8_t>& covered) {
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(glm::make_mat4(viewProjection(scene).data())));
+    const glm::dvec3 centre(quad.center.x, quad.center.y, quad.center.z), normal(quad.normal.x, quad.normal.y, quad.normal.z),
+        tangent(quad.tangent.x, quad.tangent.y, quad.tangent.z), bitangent = glm::cross(normal, tangent);
+    std::vector<std::uint8_t> inside(covered.size(), 0);
+    for (int row = 0; row < scene.height; ++row)
+        for (int x = 0; x < scene.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(row) * scene.width + x;
+            if (!covered[i]) continue;
+            const double nx = (x + 0.5) / scene.width * 2 - 1, ny = 1 - (row + 0.5) / scene.height * 2;
+            const glm::dvec4 near = inverse * glm::dvec4(nx, ny, -1, 1), far = inverse * glm::dvec4(nx, ny, 1, 1);
+            const glm::dvec3 a = glm::dvec3(near) / near.w, direction = glm::dvec3(far) / far.w - a;
+            const double along = glm::dot(normal, direction);
+            if (std::abs(along) < 1e-12) continue;
+            const glm::dvec3 point = a + direction * (glm::dot(normal, centre - a) / along);
+            const double u = (0.5 + glm::dot(point - centre, tangent) / quad.width) * quad.uvScale;
+            const double v = (0.5 - glm::dot(point - centre, bitangent) / quad.height) * quad.uvScale;
+            const int tx = std::clamp(static_cast<int>((u - std::floor(u)) * mask.width), 0, mask.width - 1);
+            const int ty = std::clamp(static_cast<int>((v - std::floor(v)) * mask.height), 0, mask.height - 1);
+            inside[i] = mask.inside[static_cast<std::size_t>(ty) * mask.width + tx] != 0;
+        }
+    return inside;
+}
+
 Status saveFramebufferPng(int width, int height, const std::string& path) {
     std::vector<unsigned char> rgba(static_cast<std::size_t>(width) * height * 4);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
@@ -171,7 +201,8 @@ private:
     Window& m_window;
     std::unique_ptr<SceneRenderer> m_renderer;
     const LutBank* m_bank = nullptr;  ///< quad 0's material, when visible
-    LevelCounts m_referenceGrey;
+    LevelCounts m_referenceGrey;     ///< over the sample mask, when the dataset has one
+    std::optional<Mask> m_mask;      ///< the dataset's sample mask (single-quad views)
     std::vector<Direction> m_nodes;
 
     Direction m_light = Direction::fromDegrees(45, 30);
@@ -189,7 +220,7 @@ private:
     double m_coverage = 0;  ///< of the hemisphere of lights, inside layer 0's measured hull
     double m_sceneMs = 0;
     std::string m_status;
-    int m_screenshots = 0;
+    bool m_screenshotRequested = false;  ///< taken once the frame is drawn
 };
 
 Status Viewer::start() {
@@ -198,7 +229,15 @@ Status Viewer::start() {
     m_renderer = std::move(*renderer);
     if (!m_input.scene.quads.empty()) m_bank = m_renderer->bank(m_input.scene.quads[0].material);
     if (m_bank) {
-        m_referenceGrey = countGreyLevels(m_bank->reference, fullMask(m_bank->reference.width, m_bank->reference.height));
+        const SceneMaterial& paths = m_input.scene.materials.at(m_input.scene.quads[0].material);
+        if (m_input.singleQuad && !paths.images.empty()) {  // the dataset's sample mask, for the plots
+            Result<Dataset> dataset = openDataset(paths.images);
+            if (!dataset) return Error{dataset.error()};
+            Result<Mask> mask = loadDatasetMask(*dataset, m_bank->reference.width, m_bank->reference.height);
+            if (!mask) return Error{mask.error()};
+            if (!dataset->maskPath.empty()) m_mask = std::move(*mask);
+        }
+        m_referenceGrey = countGreyLevels(m_bank->reference, m_mask ? *m_mask : fullMask(m_bank->reference.width, m_bank->reference.height));
         for (const LightNode& n : m_bank->layers[0].nodes) m_nodes.push_back(n.light);
         m_coverage = m_bank->lightCoverage(0);
         const SceneMaterial& material = m_input.scene.materials.at(m_input.scene.quads[0].material);
@@ -279,7 +318,8 @@ Status Viewer::renderPanes(int width, int height) {
 void Viewer::updatePlots() {
     if (!m_bank) return;
     const Image frame = m_renderer->readBack();
-    const std::vector<std::uint8_t> covered = m_renderer->coverage();
+    std::vector<std::uint8_t> covered = m_renderer->coverage();
+    if (m_mask) covered = maskedPixels(m_renderer->scene(), m_renderer->scene().quads[0], *m_mask, covered);
     m_renderedHistogram.assign(kHistogramBins, 0.f);
     double total = 0;
     for (std::size_t i = 0; i < frame.pixelCount(); ++i) {
@@ -361,7 +401,7 @@ bool Viewer::panel(int width, int height) {
         ImGui::SameLine();
         if (ImGui::Button("Screenshot (S)")) {
             m_status = "screenshot: next frame";
-            m_screenshots = -1;  // taken after this frame is drawn
+            m_screenshotRequested = true;
         }
         if (!m_status.empty()) ImGui::TextWrapped("%s", m_status.c_str());
     }
@@ -428,7 +468,7 @@ bool Viewer::sceneInput(int width, int height) {
             resetCamera(width, height);
             changed = true;
         }
-        if (ImGui::IsKeyPressed(GLFW_KEY_S) || ImGui::IsKeyPressed(GLFW_KEY_F12)) m_screenshots = -1;
+        if (ImGui::IsKeyPressed(GLFW_KEY_S) || ImGui::IsKeyPressed(GLFW_KEY_F12)) m_screenshotRequested = true;
     }
     return changed;
 }
@@ -543,12 +583,12 @@ Status Viewer::run() {
         if (scripted && !m_options.screenshotDir.empty())
             if (Status s = saveScriptedFrame(frame, width, height); !s) return s;
         const bool last = scripted && frame + 1 == m_options.frames;
-        if (m_screenshots < 0 || (last && !m_options.screenshot.empty())) {
+        if (m_screenshotRequested || (last && !m_options.screenshot.empty())) {
             const std::string path = !m_options.screenshot.empty() ? m_options.screenshot
                                                                    : "btflut-screenshot-" + std::to_string(::getpid()) + "-" +
                                                                          std::to_string(frame) + ".png";
             if (Status s = screenshot(path, width, height); !s) return s;
-            m_screenshots = 0;
+            m_screenshotRequested = false;
             idleFrames = 0;  // show the status line
         }
         glfwSwapBuffers(window);
