@@ -97,3 +97,25 @@ TEST_CASE("bad scenes are refused naming the file and the field") {
         CHECK(r.error().find(c.needle) != std::string::npos);
     }
 }
+
+TEST_CASE("a pixel's ray finds the texture coordinates of the quad point it shows") {
+    Scene s;
+    s.width = 64;
+    s.height = 48;
+    s.eye = {0.3, -2, 2.5};
+    s.target = {0, 0, 0};
+    SceneQuad q{"a", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2, 1, 3, RenderMode::Lut};
+    s.quads = {q};
+    // Project known quad points to pixels, and come back.
+    const auto m = viewProjection(s);
+    for (auto [su, sv] : {std::pair{0.5, 0.5}, {0.1, 0.8}, {0.9, 0.3}}) {
+        const double wx = (su - 0.5) * q.width, wy = (0.5 - sv) * q.height;  // texture y runs down the bitangent
+        const double cx = m[0] * wx + m[4] * wy + m[12], cy = m[1] * wx + m[5] * wy + m[13], cw = m[3] * wx + m[7] * wy + m[15];
+        const double px = (cx / cw + 1) / 2 * s.width, py = (1 - cy / cw) / 2 * s.height;
+        auto uv = quadTextureAt(s, q, static_cast<int>(px), static_cast<int>(py));
+        REQUIRE(uv.has_value());
+        // Within the pixel's footprint (a pixel spans about 0.05 quad units here), times uv_scale 3.
+        CHECK((*uv)[0] == doctest::Approx(su * 3).epsilon(0.06));
+        CHECK((*uv)[1] == doctest::Approx(sv * 3).epsilon(0.06));
+    }
+}

@@ -235,6 +235,19 @@ std::vector<std::size_t> visibleQuads(const Scene& s) {
     return visible;
 }
 
+std::optional<std::array<double, 2>> quadTextureAt(const Scene& scene, const SceneQuad& quad, int x, int row) {
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(glm::make_mat4(viewProjection(scene).data())));
+    const double nx = (x + 0.5) / scene.width * 2 - 1, ny = 1 - (row + 0.5) / scene.height * 2;
+    const glm::dvec4 near = inverse * glm::dvec4(nx, ny, -1, 1), far = inverse * glm::dvec4(nx, ny, 1, 1);
+    const glm::dvec3 origin = glm::dvec3(near) / near.w, direction = glm::dvec3(far) / far.w - origin;
+    const glm::dvec3 n = g(quad.normal), t = g(quad.tangent), b = glm::cross(n, t), c = g(quad.center);
+    const double along = glm::dot(n, direction);
+    if (std::abs(along) < 1e-12 * glm::length(direction)) return std::nullopt;
+    const glm::dvec3 point = origin + direction * (glm::dot(n, c - origin) / along);
+    return std::array<double, 2>{(0.5 + glm::dot(point - c, t) / quad.width) * quad.uvScale,
+                                 (0.5 - glm::dot(point - c, b) / quad.height) * quad.uvScale};
+}
+
 Vec3 toQuadFrame(const SceneQuad& q, const Vec3& world) {
     const glm::dvec3 t = g(q.tangent), n = g(q.normal), b = glm::cross(n, t), w = g(world);
     return {glm::dot(w, t), glm::dot(w, b), glm::dot(w, n)};

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,12 @@ std::array<float, 16> viewProjection(const Scene& scene);
 
 /// Indices of the quads not entirely outside the view frustum.
 std::vector<std::size_t> visibleQuads(const Scene& scene);
+
+/// The texture coordinates (uv scale applied, not wrapped; x along the tangent, y down the
+/// image like its rows) of the point of `quad`'s plane seen through the pixel centre
+/// (x + 1/2, row + 1/2) of the scene's image (row 0 at the top); nothing when the ray is
+/// parallel to the plane.
+std::optional<std::array<double, 2>> quadTextureAt(const Scene& scene, const SceneQuad& quad, int x, int row);
 
 /// A world vector in a quad's tangent frame (the material's sample frame): z > 0 is in
 /// front of the quad.

@@ -6,8 +6,6 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <unistd.h>
 
-#include <glm/glm.hpp>
-#include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
 #include <array>
@@ -133,28 +131,19 @@ struct Orbit {
     }
 };
 
-// Which pixels of a frame show a point of `quad` inside the material's sample mask: each
-// pixel's ray is intersected with the quad's plane and the texel it lands on looked up.
+// Which covered pixels of a frame show a point of `quad` inside the material's sample mask.
 std::vector<std::uint8_t> maskedPixels(const Scene& scene, const SceneQuad& quad, const Mask& mask,
                                        const std::vector<std::uint8_t>& covered) {
-    const glm::dmat4 inverse = glm::inverse(glm::dmat4(glm::make_mat4(viewProjection(scene).data())));
-    const glm::dvec3 centre(quad.center.x, quad.center.y, quad.center.z), normal(quad.normal.x, quad.normal.y, quad.normal.z),
-        tangent(quad.tangent.x, quad.tangent.y, quad.tangent.z), bitangent = glm::cross(normal, tangent);
     std::vector<std::uint8_t> inside(covered.size(), 0);
     for (int row = 0; row < scene.height; ++row)
         for (int x = 0; x < scene.width; ++x) {
             const std::size_t i = static_cast<std::size_t>(row) * scene.width + x;
             if (!covered[i]) continue;
-            const double nx = (x + 0.5) / scene.width * 2 - 1, ny = 1 - (row + 0.5) / scene.height * 2;
-            const glm::dvec4 near = inverse * glm::dvec4(nx, ny, -1, 1), far = inverse * glm::dvec4(nx, ny, 1, 1);
-            const glm::dvec3 a = glm::dvec3(near) / near.w, direction = glm::dvec3(far) / far.w - a;
-            const double along = glm::dot(normal, direction);
-            if (std::abs(along) < 1e-12) continue;
-            const glm::dvec3 point = a + direction * (glm::dot(normal, centre - a) / along);
-            const double u = (0.5 + glm::dot(point - centre, tangent) / quad.width) * quad.uvScale;
-            const double v = (0.5 - glm::dot(point - centre, bitangent) / quad.height) * quad.uvScale;
-            const int tx = std::clamp(static_cast<int>((u - std::floor(u)) * mask.width), 0, mask.width - 1);
-            const int ty = std::clamp(static_cast<int>((v - std::floor(v)) * mask.height), 0, mask.height - 1);
+            const std::optional<std::array<double, 2>> uv = quadTextureAt(scene, quad, x, row);
+            if (!uv) continue;
+            const double u = (*uv)[0] - std::floor((*uv)[0]), v = (*uv)[1] - std::floor((*uv)[1]);  // repeats
+            const int tx = std::clamp(static_cast<int>(u * mask.width), 0, mask.width - 1);
+            const int ty = std::clamp(static_cast<int>(v * mask.height), 0, mask.height - 1);
             inside[i] = mask.inside[static_cast<std::size_t>(ty) * mask.width + tx] != 0;
         }
     return inside;
