@@ -16,13 +16,14 @@ in vec2 quadPosition;
 out vec4 colour;
 
 #if defined(LUT_MODE)
-uniform int entries;
+// The LUT's texel centres for v in [0, 1] (v comes from a unorm texture): (entries - 1) /
+// entries and 0.5 / entries, set per draw, so a fragment does one multiply-add, no division.
+uniform vec2 lutCoordinate;
 #if defined(VIEW_GRID)
 uniform sampler3D lut[3];
 uniform int viewGrid;
 float lutAt(int channel, float v) {
-    vec3 at = vec3((clamp(v, 0.0, 1.0) * float(entries - 1) + 0.5) / float(entries),
-                   (quadPosition * float(viewGrid - 1) + 0.5) / float(viewGrid));
+    vec3 at = vec3(v * lutCoordinate.x + lutCoordinate.y, (quadPosition * float(viewGrid - 1) + 0.5) / float(viewGrid));
     if (channel == 0) return textureLod(lut[0], at, 0.0).r;
     if (channel == 1) return textureLod(lut[1], at, 0.0).r;
     return textureLod(lut[2], at, 0.0).r;
@@ -30,9 +31,10 @@ float lutAt(int channel, float v) {
 #else
 uniform sampler1D lut[3];
 float lutAt(int channel, float v) {
-    if (channel == 0) return btflutApplyLut(lut[0], entries, v);
-    if (channel == 1) return btflutApplyLut(lut[1], entries, v);
-    return btflutApplyLut(lut[2], entries, v);
+    float at = v * lutCoordinate.x + lutCoordinate.y;
+    if (channel == 0) return textureLod(lut[0], at, 0.0).r;
+    if (channel == 1) return textureLod(lut[1], at, 0.0).r;
+    return textureLod(lut[2], at, 0.0).r;
 }
 #endif
 #endif

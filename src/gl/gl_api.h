@@ -64,6 +64,7 @@ typedef void(APIENTRYP PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first, GLsizei co
     X(PFNGLENABLEPROC, Enable)                                                              \
     X(PFNGLDISABLEPROC, Disable)                                                            \
     X(PFNGLGENERATEMIPMAPPROC, GenerateMipmap)                                              \
+    X(PFNGLUNIFORM2FPROC, Uniform2f)                                                        \
     X(PFNGLUNIFORM3FPROC, Uniform3f)                                                        \
     X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                          \
     X(PFNGLTEXIMAGE3DPROC, TexImage3D)                                                      \

@@ -341,7 +341,8 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
                 bind(1 + c, target, q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id(),
                      name.c_str());
             }
-            gl.Uniform1i(gl.GetUniformLocation(*p, "entries"), material.bank.entries);
+            const auto n = static_cast<float>(material.bank.entries);
+            gl.Uniform2f(gl.GetUniformLocation(*p, "lutCoordinate"), (n - 1) / n, 0.5f / n);
             gl.Uniform1i(gl.GetUniformLocation(*p, "viewGrid"), kViewGrid);
         }
         gl.Uniform1f(gl.GetUniformLocation(*p, "brightness"), q.brightness);
