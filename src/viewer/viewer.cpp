@@ -176,6 +176,10 @@ private:
         RenderMode mode;
     };
     std::vector<Pane> panes(int width, int height) const;
+    /// Side by side, as the paper's Figs. 10-11: 2D texture mapping | LUT | the measurement.
+    std::array<RenderMode, 3> splitModes() const {
+        return {RenderMode::Brdf, RenderMode::Lut, m_haveImages ? RenderMode::Nearest : RenderMode::Flat};
+    }
     Status renderPanes(int width, int height);
     void updatePlots();
     bool panel(int width, int height);
@@ -229,8 +233,7 @@ Status Viewer::start() {
         m_referenceGrey = countGreyLevels(m_bank->reference, m_mask ? *m_mask : fullMask(m_bank->reference.width, m_bank->reference.height));
         for (const LightNode& n : m_bank->layers[0].nodes) m_nodes.push_back(n.light);
         m_coverage = m_bank->lightCoverage(0);
-        const SceneMaterial& material = m_input.scene.materials.at(m_input.scene.quads[0].material);
-        m_haveImages = !material.images.empty();
+        m_haveImages = !paths.images.empty();
         m_havePtm = m_bank->ptmInFile;
     }
     if (!m_options.light.empty()) {
@@ -242,10 +245,11 @@ Status Viewer::start() {
     }
     Result<RenderMode> mode = parseRenderMode(m_options.mode);
     if (!mode) return Error{"--" + mode.error()};
-    m_paneModes[0] = *mode;
     m_split = m_options.split;
-    if (m_split == 2) m_paneModes = {RenderMode::Brdf, RenderMode::Lut, RenderMode::Nearest};
-    if (m_split == 3) m_paneModes = {RenderMode::Brdf, RenderMode::Lut, RenderMode::Nearest};
+    if (m_split > 1)
+        m_paneModes = splitModes();
+    else
+        m_paneModes[0] = *mode;
     for (int p = 0; p < m_split; ++p) {
         if (m_paneModes[static_cast<std::size_t>(p)] == RenderMode::Ptm && !m_havePtm)
             return Error{m_input.scene.file + ": mode ptm needs a bank baked with --ptm"};
@@ -362,7 +366,7 @@ bool Viewer::panel(int width, int height) {
             const std::string label = std::to_string(n) + "##split";
             if (ImGui::RadioButton(label.c_str(), m_split == n)) {
                 m_split = n;
-                if (n > 1) m_paneModes = {RenderMode::Brdf, RenderMode::Lut, m_haveImages ? RenderMode::Nearest : RenderMode::Flat};
+                if (n > 1) m_paneModes = splitModes();
                 resetCamera(width, height);
                 changed = true;
             }

@@ -14,7 +14,7 @@ void addViewCommand(CLI::App& root, Commands& commands) {
                     "M.btflut, a dataset (baked for the session) or SCENE.json; default: the bundled material");
     app->add_option("--images", o->images, "with a bank: the dataset it was baked from (for mode nearest)");
     app->add_option("--mode", o->mode, "lut, brdf, ptm, flat or nearest")->capture_default_str();
-    app->add_option("--split", o->split, "panes side by side: 1; 2 (brdf | lut); 3 (brdf | lut | nearest)")
+    app->add_option("--split", o->split, "panes side by side: 1; 2 (brdf | lut); 3 (brdf | lut | nearest, or flat without images)")
         ->check(CLI::Range(1, 3))
         ->capture_default_str();
     app->add_option("--light", o->light, "light THETA,PHI in degrees (world frame); default 45,30");
