@@ -212,7 +212,6 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
         return;
     }
     const std::size_t entries = static_cast<std::size_t>(bank.entries);
-    const BankLookup centre = bank.lookup(lightDirection, centreView, m_interpolate);
     if (viewGrid && mode == RenderMode::Lut) {
         // channel-major volumes: [channel][y][x][entry]
         constexpr int k = kViewGrid;
@@ -230,7 +229,10 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
             gl.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, bank.entries, k, k, GL_RED, GL_FLOAT,
                              &volume[c * k * k * entries]);
         }
-    } else if (mode == RenderMode::Lut) {
+        return;
+    }
+    const BankLookup centre = bank.lookup(lightDirection, centreView, m_interpolate);
+    if (mode == RenderMode::Lut) {
         for (std::size_t c = 0; c < q.luts.size(); ++c) {
             gl.BindTexture(GL_TEXTURE_1D, q.luts[c].id());
             gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, bank.entries, GL_RED, GL_FLOAT, &centre.values[c * entries]);

@@ -553,20 +553,21 @@ Status Viewer::run() {
         ImGui::NewFrame();
         dirty |= width != m_compositeWidth || height != m_compositeHeight;
         dirty |= sceneInput(width, height);
-        dirty |= panel(width, height);
-        const std::vector<Pane> all = panes(width, height);
-        for (const Pane& p : all)  // labels over the panes
-            if (all.size() > 1)
-                ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(p.x) + 8, 8), IM_COL32(255, 255, 255, 255),
-                                                        paneLabel(p.mode));
-        ImGui::Render();
+        // The scene first, so the panel shows its plots; what the panel changes is drawn in the
+        // next frame (which follows at once: `dirty` polls instead of waiting).
         if (dirty) {
             if (Status s = renderPanes(width, height); !s) return s;
             idleFrames = 0;
         } else {
             ++idleFrames;
         }
-        dirty = false;
+        dirty = panel(width, height);
+        const std::vector<Pane> all = panes(width, height);
+        for (const Pane& p : all)  // labels over the panes
+            if (all.size() > 1)
+                ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(p.x) + 8, 8), IM_COL32(255, 255, 255, 255),
+                                                        paneLabel(p.mode));
+        ImGui::Render();
         gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_composite.id());
         gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
         gl.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
