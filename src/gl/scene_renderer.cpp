@@ -369,19 +369,7 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
 
 void SceneRenderer::finish() const { gl.Finish(); }
 
-Image SceneRenderer::readBack() const {
-    std::vector<unsigned char> rgba(static_cast<std::size_t>(m_scene.width) * m_scene.height * 4);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.ReadPixels(0, 0, m_scene.width, m_scene.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    Image out(m_scene.width, m_scene.height, 3);
-    for (int row = 0; row < m_scene.height; ++row)
-        for (int x = 0; x < m_scene.width; ++x)
-            for (int c = 0; c < 3; ++c)
-                out.at(x, row, c) =
-                    rgba[(static_cast<std::size_t>(m_scene.height - 1 - row) * m_scene.width + x) * 4 + c] / 255.f;
-    return out;
-}
+Image SceneRenderer::readBack() const { return readFramebufferRgb(m_framebuffer.id(), m_scene.width, m_scene.height); }
 
 Result<Image> renderScene(const Scene& scene, RenderStats& stats) {
     Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(scene);

@@ -62,6 +62,19 @@ GlTexture allocateTexture2D(int width, int height, GLenum internalFormat, GLenum
     return texture;
 }
 
+Image readFramebufferRgb(GLuint framebuffer, int width, int height) {
+    std::vector<unsigned char> rgba(static_cast<std::size_t>(width) * height * 4);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    Image out(width, height, 3);
+    for (int row = 0; row < height; ++row)  // GL's rows run bottom up
+        for (int x = 0; x < width; ++x)
+            for (int c = 0; c < 3; ++c)
+                out.at(x, row, c) = rgba[(static_cast<std::size_t>(height - 1 - row) * width + x) * 4 + c] / 255.f;
+    return out;
+}
+
 std::vector<float> rgbSamples(const Image& image) {
     std::vector<float> rgb(image.pixelCount() * 3);
     for (std::size_t i = 0; i < image.pixelCount(); ++i)

@@ -1,5 +1,5 @@
 #pragma once
-// Texture uploads shared by the renderers.
+// Texture uploads and read-backs shared by the renderers and the viewer.
 
 #include <vector>
 
@@ -26,6 +26,9 @@ GlTexture uploadMipmapped(const Image& image, std::size_t& bytes);
 
 /// An empty 2D texture (a render target): `format`/`type` describe no data, only the kind.
 GlTexture allocateTexture2D(int width, int height, GLenum internalFormat, GLenum format, GLenum type);
+
+/// The RGBA8 colour of a framebuffer (0: the window's) as an 8-bit RGB image, top row first.
+Image readFramebufferRgb(GLuint framebuffer, int width, int height);
 
 /// An image's samples as RGB floats (grey repeated), top row first.
 std::vector<float> rgbSamples(const Image& image);

@@ -149,19 +149,6 @@ std::vector<std::uint8_t> maskedPixels(const Scene& scene, const SceneQuad& quad
     return inside;
 }
 
-Status saveFramebufferPng(int width, int height, const std::string& path) {
-    std::vector<unsigned char> rgba(static_cast<std::size_t>(width) * height * 4);
-    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.ReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    Image image(width, height, 3);
-    for (int row = 0; row < height; ++row)
-        for (int x = 0; x < width; ++x)
-            for (int c = 0; c < 3; ++c)
-                image.at(x, row, c) = rgba[(static_cast<std::size_t>(height - 1 - row) * width + x) * 4 + c] / 255.f;
-    return savePng(image, path);
-}
-
 class Viewer {
 public:
     Viewer(const ViewerOptions& options, ViewerInput input, Window& window)
@@ -478,7 +465,7 @@ void Viewer::resetCamera(int width, int height) {
 }
 
 Status Viewer::screenshot(const std::string& path, int width, int height) {
-    if (Status s = saveFramebufferPng(width, height, path); !s) return s;
+    if (Status s = savePng(readFramebufferRgb(0, width, height), path); !s) return s;
     m_status = "saved " + path;
     return success();
 }
