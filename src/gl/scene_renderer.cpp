@@ -145,12 +145,21 @@ Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool
 // visible quad that uses it (the centre is one of its points).
 std::vector<Direction> SceneRenderer::viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const {
     std::vector<Direction> views;
-    for (std::size_t i : visible) {
-        if (m_scene.quads[i].material != material) continue;
-        for (int j = 0; j < kViewGrid; ++j)
-            for (int k = 0; k < kViewGrid; ++k)
-                views.push_back(fromVector(viewAt(m_scene.quads[i], -1 + 2.0 * k / (kViewGrid - 1), -1 + 2.0 * j / (kViewGrid - 1))));
-    }
+    for (std::size_t i : visible)
+        if (m_scene.quads[i].material == material) {
+            const std::vector<Direction> grid = viewGridDirections(m_scene.quads[i]);
+            views.insert(views.end(), grid.begin(), grid.end());
+        }
+    return views;
+}
+
+// The view directions at kViewGrid x kViewGrid points spread over the quad, row by row from
+// its (-1, -1) corner: the nodes of the LUT volume of a bank with view layers.
+std::vector<Direction> SceneRenderer::viewGridDirections(const SceneQuad& quad) const {
+    std::vector<Direction> views;
+    for (int j = 0; j < kViewGrid; ++j)
+        for (int i = 0; i < kViewGrid; ++i)
+            views.push_back(fromVector(viewAt(quad, -1 + 2.0 * i / (kViewGrid - 1), -1 + 2.0 * j / (kViewGrid - 1))));
     return views;
 }
 
@@ -213,17 +222,15 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
     }
     const std::size_t entries = static_cast<std::size_t>(bank.entries);
     if (viewGrid && mode == RenderMode::Lut) {
-        // channel-major volumes: [channel][y][x][entry]
+        // channel-major volumes: [channel][grid point][entry]
         constexpr int k = kViewGrid;
-        std::vector<float> volume(q.luts.size() * k * k * entries);
-        for (int j = 0; j < k; ++j)
-            for (int i = 0; i < k; ++i) {
-                const Vec3 view = viewAt(quad, -1 + 2.0 * i / (k - 1), -1 + 2.0 * j / (k - 1));
-                const BankLookup lut = bank.lookup(lightDirection, fromVector(view), m_interpolate);
-                for (std::size_t c = 0; c < q.luts.size(); ++c)
-                    std::copy_n(&lut.values[c * entries], entries,
-                                &volume[((c * k + static_cast<std::size_t>(j)) * k + static_cast<std::size_t>(i)) * entries]);
-            }
+        const std::vector<Direction> views = viewGridDirections(quad);
+        std::vector<float> volume(q.luts.size() * views.size() * entries);
+        for (std::size_t v = 0; v < views.size(); ++v) {
+            const BankLookup lut = bank.lookup(lightDirection, views[v], m_interpolate);
+            for (std::size_t c = 0; c < q.luts.size(); ++c)
+                std::copy_n(&lut.values[c * entries], entries, &volume[(c * views.size() + v) * entries]);
+        }
         for (std::size_t c = 0; c < q.luts.size(); ++c) {
             gl.BindTexture(GL_TEXTURE_3D, q.luts[c].id());
             gl.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, bank.entries, k, k, GL_RED, GL_FLOAT,

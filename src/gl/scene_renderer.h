@@ -103,6 +103,7 @@ private:
     SceneRenderer() = default;
     Result<GLuint> program(RenderMode mode, const LutBank& bank, bool unlit);
     Vec3 viewAt(const SceneQuad& quad, double x, double y) const;
+    std::vector<Direction> viewGridDirections(const SceneQuad& quad) const;
     std::vector<Direction> viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const;
     void update(QuadState& q, const Vec3& light, RenderMode mode);
     Status prepare(QuadState& q, RenderMode mode, const Vec3& light);
