@@ -248,6 +248,8 @@ std::optional<std::array<double, 2>> quadTextureAt(const Scene& scene, const Sce
                                  (0.5 - glm::dot(point - c, b) / quad.height) * quad.uvScale};
 }
 
+Vec3 bitangentOf(const SceneQuad& quad) { return v3(glm::cross(g(quad.normal), g(quad.tangent))); }
+
 Vec3 toQuadFrame(const SceneQuad& q, const Vec3& world) {
     const glm::dvec3 t = g(q.tangent), n = g(q.normal), b = glm::cross(n, t), w = g(world);
     return {glm::dot(w, t), glm::dot(w, b), glm::dot(w, n)};

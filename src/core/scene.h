@@ -72,6 +72,9 @@ std::vector<std::size_t> visibleQuads(const Scene& scene);
 /// parallel to the plane.
 std::optional<std::array<double, 2>> quadTextureAt(const Scene& scene, const SceneQuad& quad, int x, int row);
 
+/// normal x tangent: the quad's texture y runs along it (up the image).
+Vec3 bitangentOf(const SceneQuad& quad);
+
 /// A world vector in a quad's tangent frame (the material's sample frame): z > 0 is in
 /// front of the quad.
 Vec3 toQuadFrame(const SceneQuad& quad, const Vec3& world);

@@ -24,10 +24,6 @@ const char* modeDefine(RenderMode mode) {
 
 bool sameVector(const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
 }  // namespace
 
 Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene, const SceneRendererOptions& options) {
@@ -166,7 +162,7 @@ std::vector<Direction> SceneRenderer::viewGridDirections(const SceneQuad& quad) 
 // The direction from the quad point at corner coordinates (x, y) in [-1, 1]^2 to the eye,
 // in the quad's frame; behind the quad it is clamped to just above the horizon.
 Vec3 SceneRenderer::viewAt(const SceneQuad& quad, double x, double y) const {
-    const Vec3 b = cross(quad.normal, quad.tangent);
+    const Vec3 b = bitangentOf(quad);
     const double u = x * quad.width / 2, v = y * quad.height / 2;
     const Vec3 point{quad.center.x + u * quad.tangent.x + v * b.x, quad.center.y + u * quad.tangent.y + v * b.y,
                      quad.center.z + u * quad.tangent.z + v * b.z};
@@ -356,7 +352,7 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
         }
         gl.Uniform1f(gl.GetUniformLocation(*p, "brightness"), q.brightness);
         gl.UniformMatrix4fv(gl.GetUniformLocation(*p, "viewProjection"), 1, GL_FALSE, matrix.data());
-        const Vec3 t = quad.tangent, b = cross(quad.normal, quad.tangent);
+        const Vec3 t = quad.tangent, b = bitangentOf(quad);
         auto f = [](double v) { return static_cast<float>(v); };
         gl.Uniform3f(gl.GetUniformLocation(*p, "center"), f(quad.center.x), f(quad.center.y), f(quad.center.z));
         gl.Uniform3f(gl.GetUniformLocation(*p, "halfTangent"), f(t.x * quad.width / 2), f(t.y * quad.width / 2),
