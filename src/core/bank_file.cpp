@@ -2,6 +2,7 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -160,17 +161,14 @@ Bytes encodePtm(const Ptm& ptm) {
     w.put(static_cast<std::uint32_t>(ptm.height));
     for (float v : ptm.scale) w.put(v);
     for (float v : ptm.bias) w.put(v);
-    auto plane = [&](const std::uint8_t* bytes, int stride) {
+    for (int p = 0; p < 3; ++p) {
+        const std::vector<std::uint8_t> bytes = ptm.plane(p);
         Image image(ptm.width, ptm.height, 3);
-        for (std::size_t i = 0; i < ptm.texels(); ++i)
-            for (int c = 0; c < 3; ++c) image.samples[i * 3 + c] = bytes[i * stride + c] / 255.f;
+        std::transform(bytes.begin(), bytes.end(), image.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
         const Bytes png = encodePng(image, 8);
         w.put(static_cast<std::uint32_t>(png.size()));
         w.putBytes(png.data(), png.size());
-    };
-    plane(ptm.coefficients.data(), Ptm::kTerms);
-    plane(ptm.coefficients.data() + 3, Ptm::kTerms);
-    plane(ptm.albedo.data(), 3);
+    }
     return std::move(w.bytes());
 }
 

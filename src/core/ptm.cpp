@@ -12,6 +12,14 @@ std::array<double, Ptm::kTerms> Ptm::terms(Direction light) {
     return {l.x * l.x, l.y * l.y, l.x * l.y, l.x, l.y, 1.0};
 }
 
+std::vector<std::uint8_t> Ptm::plane(int index) const {
+    if (index == 2) return albedo;
+    std::vector<std::uint8_t> out(texels() * 3);
+    for (std::size_t i = 0; i < texels(); ++i)
+        std::copy_n(&coefficients[i * kTerms + 3 * static_cast<std::size_t>(index)], 3, &out[i * 3]);
+    return out;
+}
+
 Image Ptm::render(Direction light) const {
     const std::array<double, kTerms> t = terms(light);
     Image out(width, height, 3);

@@ -37,6 +37,10 @@ struct Ptm {
     bool empty() const { return coefficients.empty(); }
     std::size_t texels() const { return static_cast<std::size_t>(width) * height; }
 
+    /// The three RGB planes textures and files hold, as bytes per texel: coefficients 0-2,
+    /// coefficients 3-5, and the albedo (plane 0, 1 or 2).
+    std::vector<std::uint8_t> plane(int index) const;
+
     /// (u^2, v^2, u v, u, v, 1) for a light direction.
     static std::array<double, kTerms> terms(Direction light);
     /// The relit image (RGB, 8-bit precision), clamped to [0, 1].

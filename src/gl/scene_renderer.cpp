@@ -262,14 +262,9 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
     if (mode == RenderMode::Ptm && !material.ptmLoaded) {
         Result<Ptm> ptm = loadBankPtm(paths.bank);
         if (!ptm) return Error{ptm.error()};
-        std::vector<std::uint8_t> plane(ptm->texels() * 3);
-        for (int p = 0; p < 2; ++p) {
-            for (std::size_t i = 0; i < ptm->texels(); ++i)
-                std::copy_n(&ptm->coefficients[i * Ptm::kTerms + 3 * static_cast<std::size_t>(p)], 3, &plane[i * 3]);
-            material.ptm[static_cast<std::size_t>(p)] =
-                uploadMipmapped(ptm->width, ptm->height, GL_RGB8, GL_RGB, GL_UNSIGNED_BYTE, plane.data(), bytes.ptm);
-        }
-        material.ptm[2] = uploadMipmapped(ptm->width, ptm->height, GL_RGB8, GL_RGB, GL_UNSIGNED_BYTE, ptm->albedo.data(), bytes.ptm);
+        for (int p = 0; p < 3; ++p)
+            material.ptm[static_cast<std::size_t>(p)] = uploadMipmapped(ptm->width, ptm->height, GL_RGB8, GL_RGB,
+                                                                        GL_UNSIGNED_BYTE, ptm->plane(p).data(), bytes.ptm);
         material.ptmScale = ptm->scale;
         material.ptmBias = ptm->bias;
         material.ptmLoaded = true;
