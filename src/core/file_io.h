@@ -16,8 +16,21 @@ using Bytes = std::vector<std::uint8_t>;
 /// Reads a whole file; errors name the file ("PATH: no such file", ...).
 Result<Bytes> readFile(const std::string& path);
 
-/// Writes bytes to `path` through a temporary file and a rename.
+/// Writes bytes to `path` through a temporary file and a rename. The temporary file is
+/// created exclusively under a random name beside `path` (nothing planted there is
+/// followed) and removed on failure.
 Status writeFileAtomically(const std::string& path, const void* data, std::size_t size);
+
+/// One output of writeFilesAtomically.
+struct FileContents {
+    std::string path;
+    const void* data;
+    std::size_t size;
+};
+
+/// Writes several files that belong together: all are complete in temporary files before
+/// the first is renamed into place, so a failure leaves every old output as it was.
+Status writeFilesAtomically(const std::vector<FileContents>& files);
 inline Status writeFileAtomically(const std::string& path, const Bytes& bytes) {
     return writeFileAtomically(path, bytes.data(), bytes.size());
 }
