@@ -6,8 +6,9 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  libstb-dev            # stb_image (decode PNG/JPEG/TGA/BMP, 8- and 16-bit)
-  libspng-dev zlib1g-dev  # PNG encode (8/16-bit), CRC-32 for .btflut files
+  libstb-dev            # stb_image (decodes TGA and BMP)
+  libspng-dev zlib1g-dev  # PNG decode and encode (8/16-bit), CRC-32 for .btflut files
+  libturbojpeg0-dev     # JPEG decode (libjpeg-turbo)
   libcli11-dev nlohmann-json3-dev doctest-dev
   libfftw3-dev          # spectral synthesis of rough height fields
   libeigen3-dev         # least squares (PTM fitting)

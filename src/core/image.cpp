@@ -1,9 +1,17 @@
-// The only place that sees stb_image and libspng: the rest of btflut gets owning Image values.
+// The only place that sees the decoders (libspng for PNG, libjpeg-turbo for JPEG, stb_image
+// for TGA and BMP) and the PNG encoder: the rest of btflut gets owning Image values.
+//
+// Every decoder is given the image's size from its header first, so a file that claims
+// more pixels than maxImagePixels() is refused before anything is allocated, and the
+// formats whose decoders fill missing data with zeros (stb's TGA and BMP) are checked for
+// truncation before decoding.
 #include "core/image.h"
 
 #include <spng.h>
+#include <turbojpeg.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -11,9 +19,7 @@
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_NO_STDIO  // every read goes through readFile, so errors name the file
 #define STBI_FAILURE_USERMSG
-#define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
-#define STBI_ONLY_TGA
+#define STBI_ONLY_TGA  // PNG and JPEG go to maintained decoders (libspng, libjpeg-turbo)
 #define STBI_ONLY_BMP
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wconversion"
@@ -27,57 +33,193 @@ namespace btflut {
 
 namespace {
 
+std::atomic<std::uint64_t> g_maxPixels{kDefaultMaxImagePixels};
+
 std::uint32_t le16(const Bytes& b, std::size_t at) { return b[at] | (b[at + 1] << 8); }
 std::uint32_t le32(const Bytes& b, std::size_t at) {
     return le16(b, at) | (static_cast<std::uint32_t>(le16(b, at + 2)) << 16);
 }
 
-// stb_image reads past the end of uncompressed TGA/BMP pixel data and of JPEG scans
-// without complaint (it fills zeros), so truncation is checked here, per format.
-std::string truncationProblem(const Bytes& b) {
-    std::size_t n = b.size();
-    if (n >= 2 && b[0] == 'B' && b[1] == 'M') {
-        if (n < 34) return "truncated BMP header";
-        std::uint64_t offset = le32(b, 10);
-        std::int32_t w = static_cast<std::int32_t>(le32(b, 18));
-        std::int32_t h = static_cast<std::int32_t>(le32(b, 22));
-        std::uint32_t bpp = le16(b, 28), compression = le32(b, 30);
-        if (compression == 0 || compression == 3) {
-            std::uint64_t stride = ((static_cast<std::uint64_t>(std::abs(w)) * bpp + 31) / 32) * 4;
-            if (offset + stride * static_cast<std::uint64_t>(std::abs(h)) > n)
-                return "truncated BMP (pixel data ends early)";
-        }
-        return {};
+enum class Format { Png, Jpeg, Bmp, Tga };
+
+Format formatOf(const Bytes& b) {
+    if (b.size() >= 8 && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G') return Format::Png;
+    if (b.size() >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return Format::Jpeg;
+    if (b.size() >= 2 && b[0] == 'B' && b[1] == 'M') return Format::Bmp;
+    return Format::Tga;  // the one format without a magic number
+}
+
+// The pixel limit, checked from a header's size before any allocation.
+Status checkSize(std::uint64_t width, std::uint64_t height, const std::string& name) {
+    if (width == 0 || height == 0) return Error{name + ": image has no pixels (" + std::to_string(width) + "x" +
+                                                std::to_string(height) + ")"};
+    const std::uint64_t limit = maxImagePixels();
+    if (width > limit || height > limit || width * height > limit)
+        return Error{name + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
+                     " pixels, over the limit of " + std::to_string(limit) + " pixels (raise it with --max-pixels)"};
+    return success();
+}
+
+// Decoded samples of `bytesPerSample` (1, or 2 in host order), `stride` per pixel, of which
+// the first `channels` are kept, into [0, 1] floats.
+Image toImage(const std::uint8_t* data, int width, int height, int channels, int stride, bool sixteen) {
+    Image image(width, height, channels, sixteen ? 16 : 8);
+    const std::size_t n = image.pixelCount();
+    float* out = image.samples.data();
+    if (sixteen) {
+        const auto* in = reinterpret_cast<const std::uint16_t*>(data);
+        for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < channels; ++c) *out++ = static_cast<float>(in[i * stride + c]) / 65535.f;
+    } else {
+        for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < channels; ++c) *out++ = static_cast<float>(data[i * stride + c]) / 255.f;
     }
-    if (n >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) {
-        // The end-of-image marker must follow the last start-of-scan marker. Entropy-coded
-        // data stuffs 0xFF as FF 00, so FF D9 there is a real marker.
-        std::size_t lastScan = 0;
-        for (std::size_t i = 2; i + 1 < n; ++i)
-            if (b[i] == 0xFF && b[i + 1] == 0xDA) lastScan = i;
-        for (std::size_t i = lastScan; i + 1 < n; ++i)
-            if (b[i] == 0xFF && b[i + 1] == 0xD9) return {};
-        return "truncated JPEG (no end-of-image marker)";
+    return image;
+}
+
+Result<Image> decodePng(const Bytes& b, const std::string& name) {
+    // libspng checks chunk CRCs, but stops at the end of the image data: a cut in the
+    // final IEND chunk is caught here.
+    bool complete = false;
+    for (std::size_t i = b.size() >= 12 ? b.size() - 12 : 0; i + 8 <= b.size(); ++i)
+        complete = complete || std::memcmp(&b[i], "IEND", 4) == 0;
+    if (!complete) return Error{name + ": truncated PNG (no complete IEND chunk)"};
+    std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> ctx(spng_ctx_new(0), spng_ctx_free);
+    if (!ctx) return Error{name + ": out of memory"};
+    auto fail = [&](int code) { return Error{name + ": corrupt PNG (" + spng_strerror(code) + ")"}; };
+    spng_set_chunk_limits(ctx.get(), 1u << 26, 1u << 26);  // ancillary chunks (text, ICC) up to 64 MiB
+    spng_set_png_buffer(ctx.get(), b.data(), b.size());
+    spng_ihdr ihdr{};
+    if (int e = spng_get_ihdr(ctx.get(), &ihdr)) return fail(e);
+    if (Status s = checkSize(ihdr.width, ihdr.height, name); !s) return Error{s.error()};
+    const bool grey = ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE || ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA;
+    const bool sixteen = ihdr.bit_depth == 16;
+    int format = 0, stride = 0;
+    if (grey && !sixteen)
+        format = SPNG_FMT_GA8, stride = 2;
+    else if (grey)
+        format = SPNG_FMT_GA16, stride = 2;
+    else if (!sixteen)
+        format = SPNG_FMT_RGB8, stride = 3;
+    else
+        format = SPNG_FMT_RGBA16, stride = 4;
+    std::size_t size = 0;
+    if (int e = spng_decoded_image_size(ctx.get(), format, &size)) return fail(e);
+    // Left uninitialised: pages a failing decode never reaches are never touched.
+    std::unique_ptr<std::uint8_t[]> pixels(new (std::nothrow) std::uint8_t[size]);
+    if (!pixels) return Error{name + ": out of memory for a " + std::to_string(ihdr.width) + "x" +
+                              std::to_string(ihdr.height) + " image"};
+    if (int e = spng_decode_image(ctx.get(), pixels.get(), size, format, 0)) return fail(e);
+    return toImage(pixels.get(), static_cast<int>(ihdr.width), static_cast<int>(ihdr.height), grey ? 1 : 3,
+                   stride, sixteen);
+}
+
+static_assert(sizeof(unsigned long) >= sizeof(std::size_t), "libjpeg-turbo takes the file length as unsigned long");
+
+Result<Image> decodeJpeg(const Bytes& b, const std::string& name) {
+    // The end-of-image marker must follow the last start-of-scan marker. Entropy-coded
+    // data stuffs 0xFF as FF 00, so FF D9 there is a real marker.
+    std::size_t lastScan = 0;
+    for (std::size_t i = 2; i + 1 < b.size(); ++i)
+        if (b[i] == 0xFF && b[i + 1] == 0xDA) lastScan = i;
+    bool ended = false;
+    for (std::size_t i = lastScan; i + 1 < b.size() && !ended; ++i) ended = b[i] == 0xFF && b[i + 1] == 0xD9;
+    if (!ended) return Error{name + ": truncated JPEG (no end-of-image marker)"};
+    std::unique_ptr<void, int (*)(tjhandle)> tj(tjInitDecompress(), tjDestroy);
+    if (!tj) return Error{name + ": cannot start the JPEG decoder"};
+    auto fail = [&] { return Error{name + ": corrupt JPEG (" + std::string(tjGetErrorStr2(tj.get())) + ")"}; };
+    int width = 0, height = 0, subsampling = 0, colourspace = 0;
+    if (tjDecompressHeader3(tj.get(), b.data(), static_cast<unsigned long>(b.size()), &width, &height, &subsampling,
+                            &colourspace) != 0)
+        return fail();
+    if (Status s = checkSize(static_cast<std::uint64_t>(std::max(width, 0)), static_cast<std::uint64_t>(std::max(height, 0)), name); !s)
+        return Error{s.error()};
+    if (colourspace == TJCS_CMYK || colourspace == TJCS_YCCK)
+        return Error{name + ": CMYK JPEG images are not supported (convert it to RGB)"};
+    const int channels = colourspace == TJCS_GRAY ? 1 : 3;
+    std::unique_ptr<std::uint8_t[]> pixels(
+        new (std::nothrow) std::uint8_t[static_cast<std::size_t>(width) * height * channels]);
+    if (!pixels) return Error{name + ": out of memory for a " + std::to_string(width) + "x" + std::to_string(height) + " image"};
+    // A warning (a corrupt or cut stream) is an error, and a progressive image may have
+    // at most 500 scans (a CPU bomb otherwise).
+    if (tjDecompress2(tj.get(), b.data(), static_cast<unsigned long>(b.size()), pixels.get(), width, 0, height,
+                      channels == 1 ? TJPF_GRAY : TJPF_RGB,
+                      TJFLAG_STOPONWARNING | TJFLAG_LIMITSCANS | TJFLAG_ACCURATEDCT) != 0)
+        return fail();
+    return toImage(pixels.get(), width, height, channels, channels, false);
+}
+
+// stb_image fills zeros past the end of TGA and BMP pixel data, so their length is
+// checked here; also the header's size, against the pixel limit.
+Status checkBmp(const Bytes& b, const std::string& name) {
+    const std::size_t n = b.size();
+    if (n < 34) return Error{name + ": truncated BMP header"};
+    const std::uint64_t offset = le32(b, 10);
+    const auto w = static_cast<std::int32_t>(le32(b, 18)), h = static_cast<std::int32_t>(le32(b, 22));
+    const std::uint64_t width = static_cast<std::uint64_t>(std::abs(static_cast<std::int64_t>(w)));
+    const std::uint64_t height = static_cast<std::uint64_t>(std::abs(static_cast<std::int64_t>(h)));
+    if (Status s = checkSize(width, height, name); !s) return s;
+    const std::uint32_t bpp = le16(b, 28), compression = le32(b, 30);
+    if (compression == 0 || compression == 3) {
+        const std::uint64_t stride = ((width * bpp + 31) / 32) * 4;
+        if (offset + stride * height > n) return Error{name + ": truncated BMP (pixel data ends early)"};
     }
-    if (n >= 8 && b[0] == 0x89 && b[1] == 'P') {
-        // stb stops at IEND without checking CRCs, so a cut in the last chunk goes unseen.
-        for (std::size_t i = n >= 12 ? n - 12 : 0; i + 8 <= n; ++i)
-            if (std::memcmp(&b[i], "IEND", 4) == 0 && i + 8 <= n) return {};
-        return "truncated PNG (no complete IEND chunk)";
-    }
-    // Otherwise TGA, which has no magic number: check uncompressed pixel data length.
-    if (n < 18) return "file too short to be an image";
-    std::uint32_t type = b[2];
+    return success();
+}
+
+Status checkTga(const Bytes& b, const std::string& name) {
+    const std::size_t n = b.size();
+    if (n < 18) return Error{name + ": file too short to be an image"};
+    const std::uint32_t type = b[2];
+    if (Status s = checkSize(le16(b, 12), le16(b, 14), name); !s) return s;
+    const std::uint64_t bytesPerPixel = (b[16] + 7u) / 8u;
+    const std::uint64_t palette = b[1] ? le16(b, 5) * ((b[7] + 7u) / 8u) : 0;
+    const std::uint64_t pixels = static_cast<std::uint64_t>(le16(b, 12)) * le16(b, 14);
+    std::uint64_t at = 18 + b[0] + palette;
     if (type == 1 || type == 2 || type == 3) {
-        std::uint64_t palette = b[1] ? le16(b, 5) * ((b[7] + 7u) / 8u) : 0;
-        std::uint64_t pixels = static_cast<std::uint64_t>(le16(b, 12)) * le16(b, 14) *
-                               ((b[16] + 7u) / 8u);
-        if (18 + b[0] + palette + pixels > n) return "truncated TGA (pixel data ends early)";
+        if (at + pixels * bytesPerPixel > n) return Error{name + ": truncated TGA (pixel data ends early)"};
+    } else if (type == 9 || type == 10 || type == 11) {
+        // Run-length packets: a header byte, then one pixel (a run) or count pixels (raw).
+        for (std::uint64_t done = 0; done < pixels;) {
+            if (at >= n) return Error{name + ": truncated TGA (run-length data ends early)"};
+            const std::uint32_t header = b[at++];
+            const std::uint64_t count = (header & 0x7F) + 1u;
+            at += (header & 0x80) ? bytesPerPixel : count * bytesPerPixel;
+            done += count;
+        }
+        if (at > n) return Error{name + ": truncated TGA (run-length data ends early)"};
     }
-    return {};
+    return success();
+}
+
+Result<Image> decodeWithStb(const Bytes& bytes, const std::string& name, Format format) {
+    if (bytes.size() > static_cast<std::size_t>(INT32_MAX)) return Error{name + ": file too large"};
+    const auto len = static_cast<int>(bytes.size());
+    // BMP has a magic number, so its header is checked first; a TGA is only known to be
+    // one once stb recognises its header (stbi_info allocates nothing).
+    if (format == Format::Bmp)
+        if (Status s = checkBmp(bytes, name); !s) return Error{s.error()};
+    int w = 0, h = 0, comp = 0;
+    if (!stbi_info_from_memory(bytes.data(), len, &w, &h, &comp))
+        return Error{name + ": not a readable PNG/JPEG/TGA/BMP image (" + stbi_failure_reason() + ")"};
+    if (format == Format::Tga)
+        if (Status s = checkTga(bytes, name); !s) return Error{s.error()};
+    const int channels = comp <= 2 ? 1 : 3;
+    int fw = 0, fh = 0, fc = 0;
+    std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load_from_memory(bytes.data(), len, &fw, &fh, &fc, channels),
+                                                   stbi_image_free);
+    if (!data) return Error{name + ": corrupt image (" + stbi_failure_reason() + ")"};
+    return toImage(data.get(), fw, fh, channels, channels, false);
 }
 
 }  // namespace
+
+std::uint64_t maxImagePixels() { return g_maxPixels.load(std::memory_order_relaxed); }
+void setMaxImagePixels(std::uint64_t pixels) { g_maxPixels.store(pixels, std::memory_order_relaxed); }
+
+Status checkImageSize(std::uint64_t width, std::uint64_t height, const std::string& name) {
+    return checkSize(width, height, name);
+}
 
 std::size_t Mask::count() const {
     return static_cast<std::size_t>(std::count_if(inside.begin(), inside.end(),
@@ -86,32 +228,11 @@ std::size_t Mask::count() const {
 
 Result<Image> decodeImage(const Bytes& bytes, const std::string& name) {
     if (bytes.empty()) return Error{name + ": empty file"};
-    if (bytes.size() > static_cast<std::size_t>(INT32_MAX)) return Error{name + ": file too large"};
-    auto len = static_cast<int>(bytes.size());
-    int w = 0, h = 0, comp = 0;
-    if (!stbi_info_from_memory(bytes.data(), len, &w, &h, &comp))
-        return Error{name + ": not a readable PNG/JPEG/TGA/BMP image (" + stbi_failure_reason() +
-                     ")"};
-    if (std::string problem = truncationProblem(bytes); !problem.empty())
-        return Error{name + ": " + problem};
-    const int channels = comp <= 2 ? 1 : 3;
-    const bool sixteen = stbi_is_16_bit_from_memory(bytes.data(), len);
-    Image image(w, h, channels, sixteen ? 16 : 8);
-    int fw = 0, fh = 0, fc = 0;
-    if (sixteen) {
-        std::unique_ptr<stbi_us, void (*)(void*)> data(
-            stbi_load_16_from_memory(bytes.data(), len, &fw, &fh, &fc, channels), stbi_image_free);
-        if (!data) return Error{name + ": corrupt image (" + stbi_failure_reason() + ")"};
-        for (std::size_t i = 0; i < image.samples.size(); ++i)
-            image.samples[i] = static_cast<float>(data.get()[i]) / 65535.f;
-    } else {
-        std::unique_ptr<stbi_uc, void (*)(void*)> data(
-            stbi_load_from_memory(bytes.data(), len, &fw, &fh, &fc, channels), stbi_image_free);
-        if (!data) return Error{name + ": corrupt image (" + stbi_failure_reason() + ")"};
-        for (std::size_t i = 0; i < image.samples.size(); ++i)
-            image.samples[i] = static_cast<float>(data.get()[i]) / 255.f;
+    switch (const Format format = formatOf(bytes)) {
+        case Format::Png: return decodePng(bytes, name);
+        case Format::Jpeg: return decodeJpeg(bytes, name);
+        default: return decodeWithStb(bytes, name, format);
     }
-    return image;
 }
 
 Result<Image> loadImage(const std::string& path) {

@@ -54,8 +54,21 @@ struct Mask {
     std::size_t count() const;
 };
 
+/// The default of maxImagePixels(): 2^28 pixels (16384 x 16384). A decoded image takes
+/// 4 bytes per sample (12 per RGB pixel), plus the decoder's buffer while decoding.
+constexpr std::uint64_t kDefaultMaxImagePixels = std::uint64_t{1} << 28;
+
+/// The most pixels an image file may declare; larger ones are refused from their header,
+/// before anything is allocated. Process-wide (`btflut --max-pixels N`).
+std::uint64_t maxImagePixels();
+void setMaxImagePixels(std::uint64_t pixels);
+
+/// Refuses a width x height (of something named `name`) that is empty or over
+/// maxImagePixels(), with the error decoders give.
+Status checkImageSize(std::uint64_t width, std::uint64_t height, const std::string& name);
+
 /// Decodes an image file. Errors name the file and say what is wrong (missing, unknown
-/// format, corrupt, truncated).
+/// format, corrupt, truncated, over the pixel limit).
 Result<Image> loadImage(const std::string& path);
 
 /// Decodes an image held in memory; `name` is used in error messages.
