@@ -9,6 +9,7 @@ packages=(
   libstb-dev            # stb_image (decodes TGA and BMP)
   libspng-dev zlib1g-dev  # PNG decode and encode (8/16-bit), CRC-32 for .btflut files
   libturbojpeg0-dev     # JPEG decode (libjpeg-turbo)
+  libqhull-dev          # Delaunay triangulation of measured directions (2-D and 3-D)
   libcli11-dev nlohmann-json3-dev doctest-dev
   libfftw3-dev          # spectral synthesis of rough height fields
   libeigen3-dev         # least squares (PTM fitting)
