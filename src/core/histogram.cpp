@@ -1,4 +1,5 @@
 #include "core/histogram.h"
+#include "core/json_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -113,7 +114,7 @@ std::string histogramsToJson(const std::vector<HistogramRow>& rows) {
                                      {"theta_r", row.view.thetaDegrees()},
                                      {"phi_r", row.view.phiDegrees()},
                                      {"values", row.bins}});
-    return doc.dump(1) + "\n";
+    return jsonText(doc);
 }
 
 Status saveHistograms(const std::vector<HistogramRow>& rows, const std::string& path) {

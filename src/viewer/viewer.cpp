@@ -409,7 +409,7 @@ bool Viewer::panel(int width, int height) {
         if (m_input.modelParameters.is_object()) {
             ImGui::TextUnformatted("model parameters:");
             for (const auto& [key, value] : m_input.modelParameters.items())
-                ImGui::BulletText("%s = %s", key.c_str(), value.dump().c_str());
+                ImGui::BulletText("%s = %s", key.c_str(), jsonText(value, -1).c_str());
         }
     }
     ImGui::End();
@@ -506,7 +506,7 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
                      // PNG pixels, origin top left: where the scene pane and the panel are
                      {"scene_viewport", {pane.x, height - pane.y - pane.height, pane.width, pane.height}},
                      {"panel", {width - static_cast<int>(kPanelWidth), 0, static_cast<int>(kPanelWidth), height}}};
-    return writeFileAtomically((dir / (std::string(stem) + ".json")).string(), state.dump(1) + "\n");
+    return writeFileAtomically((dir / (std::string(stem) + ".json")).string(), jsonText(state));
 }
 
 Status Viewer::run() {

@@ -17,6 +17,7 @@
 #include "core/synth/render.h"
 #include "gl/context.h"
 #include "gl/scene_renderer.h"
+#include "core/json_text.h"
 
 namespace btflut::cli {
 
@@ -75,7 +76,7 @@ Status runBenchBake(const BenchBakeOptions& o) {
                        {"seconds", all},
                        {"seconds_1_thread", one}};
     if (o.json) {
-        std::cout << out.dump(1) << "\n";
+        std::cout << jsonText(out);
     } else {
         char text[512];
         std::snprintf(text, sizeof text,
@@ -156,7 +157,7 @@ Status runBenchSimulate(const BenchSimulateOptions& o) {
     for (const Config& c : configs)
         out["configs"].push_back({{"label", c.label}, {"mean_emd", c.error}, {"seconds", median(c.seconds)}});
     if (o.json) {
-        std::cout << out.dump(1) << "\n";
+        std::cout << jsonText(out);
         return success();
     }
     char line[200];
@@ -202,7 +203,7 @@ Status runBenchSynth(const BenchSynthOptions& o) {
     nlohmann::json out{{"size", o.size}, {"rays_per_pixel", o.samples * o.samples}, {"seconds_1_thread", median(one)},
                        {"seconds", median(all)}, {"speedup_2_threads", speedup}};
     if (o.json) {
-        std::cout << out.dump(1) << "\n";
+        std::cout << jsonText(out);
         return success();
     }
     char text[256];
@@ -296,7 +297,7 @@ Status runBenchRender(const BenchRenderOptions& o) {
         }
     }
     if (o.json) {
-        std::cout << out.dump(1) << "\n";
+        std::cout << jsonText(out);
         return success();
     }
     std::cout << "render 4 quads, median frame times of " << o.repeat * o.frames << " frames per mode, "

@@ -6,6 +6,7 @@
 
 #include "cli/cli.h"
 #include "core/bank_file.h"
+#include "core/json_text.h"
 
 namespace btflut::cli {
 
@@ -60,7 +61,7 @@ Status runExport(const ExportOptions& o) {
     std::filesystem::path sidecar = std::filesystem::path(o.output).replace_extension(".json");
     // Both files are complete in memory before either is renamed into place.
     Bytes png = encodePng(atlas, 16);
-    if (Status s = writeFileAtomically(sidecar.string(), side.dump(1) + "\n"); !s) return s;
+    if (Status s = writeFileAtomically(sidecar.string(), jsonText(side)); !s) return s;
     if (Status s = writeFileAtomically(o.output, png); !s) return s;
     std::cout << "wrote " << o.output << " (" << atlas.width << "x" << atlas.height
               << ", 16-bit) and " << sidecar.string() << "\n";

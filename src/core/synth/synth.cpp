@@ -9,6 +9,7 @@
 #include "core/file_io.h"
 #include "core/image.h"
 #include "core/synth/render.h"
+#include "core/json_text.h"
 
 namespace btflut {
 
@@ -130,7 +131,7 @@ Status writeSynthDataset(const SynthMaterial& m, const std::vector<Geometry>& ge
     Image mask(m.surface.size, m.surface.size, 1);
     std::fill(mask.samples.begin(), mask.samples.end(), 1.f);
     if (Status s = savePng(mask, (tmp / "mask.png").string()); !s) return fail(s.error());
-    if (Status s = writeFileAtomically((tmp / "btflut-dataset.json").string(), manifest.dump(1) + "\n"); !s)
+    if (Status s = writeFileAtomically((tmp / "btflut-dataset.json").string(), jsonText(manifest)); !s)
         return fail(s.error());
     if (fixedView && geometry.front().view.theta == 0)
         if (Status s = writeFileAtomically((tmp / "synth.lp").string(), lp); !s) return fail(s.error());
