@@ -1,6 +1,7 @@
 #include "core/dataset.h"
 
 #include <algorithm>
+#include <charconv>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -40,6 +41,15 @@ std::vector<std::string> splitLines(const std::string& text) {
         lines.push_back(line);
     }
     return lines;
+}
+
+// The entries of a folder (unreadable folders are an error, not an exception).
+Result<std::vector<fs::path>> listFolder(const std::string& folder) {
+    std::error_code ec;
+    std::vector<fs::path> entries;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) entries.push_back(it->path());
+    if (ec) return Error{folder + ": cannot list the folder (" + ec.message() + ")"};
+    return entries;
 }
 
 bool isBlank(const std::string& line) {
@@ -98,14 +108,21 @@ Result<Dataset> openPsmFolder(const std::string& folder) {
     static const std::regex maskName(R"(^(.+)\.mask\.([A-Za-z]+)$)");
     std::map<std::string, std::map<long, std::string>> byName;
     std::map<std::string, std::string> masks;
-    for (const auto& entry : fs::directory_iterator(folder)) {
-        std::string file = entry.path().filename().string();
+    Result<std::vector<fs::path>> entries = listFolder(folder);
+    if (!entries) return Error{entries.error()};
+    for (const fs::path& entry : *entries) {
+        std::string file = entry.filename().string();
         if (!isImageExtension(fileExtension(file))) continue;
         std::smatch m;
-        if (std::regex_match(file, m, imageName))
-            byName[m[1]][std::stol(m[2])] = entry.path().string();
-        else if (std::regex_match(file, m, maskName))
-            masks[m[1]] = entry.path().string();
+        if (std::regex_match(file, m, imageName)) {
+            const std::string digits = m[2];
+            long k = 0;
+            if (std::from_chars(digits.data(), digits.data() + digits.size(), k).ec != std::errc{})
+                return Error{entry.string() + ": image number " + digits + " is out of range"};
+            byName[m[1]][k] = entry.string();
+        } else if (std::regex_match(file, m, maskName)) {
+            masks[m[1]] = entry.string();
+        }
     }
     if (byName.empty())
         return Error{folder + ": photometric-stereo folder has lights.txt but no NAME.K images"};
@@ -134,9 +151,13 @@ Result<Dataset> openBonnFolder(const std::string& folder) {
     Dataset ds;
     ds.source = folder;
     ds.format = "bonn";
+    Result<std::vector<fs::path>> entries = listFolder(folder);
+    if (!entries) return Error{entries.error()};
     std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(folder))
-        if (entry.is_regular_file()) names.push_back(entry.path().filename().string());
+    for (const fs::path& entry : *entries) {
+        std::error_code ec;
+        if (fs::is_regular_file(entry, ec)) names.push_back(entry.filename().string());
+    }
     std::sort(names.begin(), names.end());
     for (const std::string& name : names) {
         if (!isImageExtension(fileExtension(name))) continue;
@@ -241,7 +262,7 @@ Result<Dataset> parseManifest(const std::string& text, const std::string& file,
     if (!doc.is_object() || !doc.contains("images") || !doc["images"].is_array())
         return Error{file + ": not a btflut dataset manifest (no \"images\" array)"};
     if (doc.contains("btflut_dataset") && doc["btflut_dataset"] != 1)
-        return Error{file + ": unsupported manifest version " + doc["btflut_dataset"].dump()};
+        return Error{file + ": unsupported manifest version " + jsonText(doc["btflut_dataset"], -1)};
     Dataset ds;
     ds.source = file;
     ds.format = "manifest";
@@ -320,12 +341,14 @@ Result<Dataset> openDataset(const std::string& path) {
         if (ext == "json" || ext == "lp") return openFile(path, ext);
         return Error{path + ": not a dataset (expected a folder, a .json manifest or an .lp file)"};
     }
-    if (fs::exists(fs::path(path) / kManifestName))
+    if (fs::exists(fs::path(path) / kManifestName, ec))
         return openFile((fs::path(path) / kManifestName).string(), "json");
-    if (fs::exists(fs::path(path) / "lights.txt")) return openPsmFolder(path);
+    if (fs::exists(fs::path(path) / "lights.txt", ec)) return openPsmFolder(path);
+    Result<std::vector<fs::path>> entries = listFolder(path);
+    if (!entries) return Error{entries.error()};
     std::vector<std::string> lpFiles;
-    for (const auto& entry : fs::directory_iterator(path))
-        if (fileExtension(entry.path().string()) == "lp") lpFiles.push_back(entry.path().string());
+    for (const fs::path& entry : *entries)
+        if (fileExtension(entry.string()) == "lp") lpFiles.push_back(entry.string());
     if (lpFiles.size() == 1) return openFile(lpFiles.front(), "lp");
     if (lpFiles.size() > 1)
         return Error{path + ": several .lp files; name the one to use"};

@@ -28,6 +28,14 @@ Vec3 toVector(Direction d) {
     return {s * std::cos(d.phi), s * std::sin(d.phi), std::cos(d.theta)};
 }
 
+std::optional<Vec3> normalized(Vec3 v) {
+    const double scale = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(scale > 0) || !std::isfinite(scale)) return std::nullopt;
+    v = {v.x / scale, v.y / scale, v.z / scale};
+    const double length = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    return Vec3{v.x / length, v.y / length, v.z / length};
+}
+
 Direction fromVector(Vec3 v) {
     BTFLUT_DCHECK(v.x != 0 || v.y != 0 || v.z != 0);
     // atan2 keeps full precision near the pole, where acos(z) loses half the digits.

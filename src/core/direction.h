@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "core/result.h"
@@ -37,6 +38,10 @@ struct Direction {
 
 /// Unit vector of a direction.
 Vec3 toVector(Direction d);
+
+/// The unit vector along v, or nothing when v is zero or not finite. Safe for any finite
+/// v (no overflow or underflow in the length: v is scaled by its largest component first).
+std::optional<Vec3> normalized(Vec3 v);
 
 /// Direction of a vector. The vector must be finite and non-zero (it is normalised).
 Direction fromVector(Vec3 v);

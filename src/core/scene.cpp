@@ -27,9 +27,18 @@ Result<Vec3> readVector(const json& j, const std::string& where) {
     for (int i = 0; i < 3; ++i) {
         if (!j[static_cast<std::size_t>(i)].is_number()) return Error{where + ": expected numbers"};
         *out[i] = j[static_cast<std::size_t>(i)].get<double>();
-        if (!std::isfinite(*out[i])) return Error{where + ": not a finite vector"};
+        // Far beyond any scene's scale, and kept small enough that no product overflows.
+        if (!(std::abs(*out[i]) <= 1e9)) return Error{where + ": coordinates must be finite and within +-1e9"};
     }
     return v;
+}
+
+// A scene image's width or height: an integer in 1..16384, read wide so that a value
+// beyond int is refused rather than wrapped.
+std::optional<int> imageSide(const json& v) {
+    const bool inRange = v.is_number_unsigned() ? v.get<std::uint64_t>() - 1 < 16384
+                                                : v.get<std::int64_t>() >= 1 && v.get<std::int64_t>() <= 16384;
+    return inRange ? std::optional(static_cast<int>(v.get<std::int64_t>())) : std::nullopt;
 }
 
 Result<double> readNumber(const json& parent, const char* key, double fallback, const std::string& where) {
@@ -71,12 +80,13 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
         if (!im.is_object() || !im.contains("width") || !im.contains("height") || !im["width"].is_number_integer() ||
             !im["height"].is_number_integer())
             return Error{at + "image: expected {\"width\": pixels, \"height\": pixels}"};
-        scene.width = im["width"].get<int>();
-        scene.height = im["height"].get<int>();
+        const std::optional<int> width = imageSide(im["width"]), height = imageSide(im["height"]);
+        if (!width || !height)
+            return Error{at + "image size " + jsonText(im["width"], -1) + "x" + jsonText(im["height"], -1) +
+                         " is not within 1..16384"};
+        scene.width = *width;
+        scene.height = *height;
     }
-    if (scene.width <= 0 || scene.height <= 0 || scene.width > 16384 || scene.height > 16384)
-        return Error{at + "image size " + std::to_string(scene.width) + "x" + std::to_string(scene.height) +
-                     " is not within 1..16384"};
     if (doc.contains("camera")) {
         const json& c = doc["camera"];
         for (auto [key, out] : {std::pair{"position", &scene.eye}, {"target", &scene.target}, {"up", &scene.up}})
@@ -99,8 +109,9 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
         return Error{at + "light: expected {\"direction\": [x, y, z]} (towards the light, world frame)"};
     Result<Vec3> light = readVector(doc["light"]["direction"], at + "light.direction");
     if (!light) return Error{light.error()};
-    if (glm::length(g(*light)) < 1e-12) return Error{at + "light.direction is a zero vector"};
-    scene.light = v3(glm::normalize(g(*light)));
+    const std::optional<Vec3> lightUnit = normalized(*light);
+    if (!lightUnit) return Error{at + "light.direction is a zero vector"};
+    scene.light = *lightUnit;
 
     if (!doc.contains("materials") || !doc["materials"].is_object() || doc["materials"].empty())
         return Error{at + "materials: expected {\"name\": \"bank.btflut\", ...}"};
@@ -143,12 +154,12 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
             if (!v) return Error{v.error()};
             *out = *v;
         }
-        const glm::dvec3 n = g(quad.normal), t = g(quad.tangent);
-        if (glm::length(n) < 1e-12 || glm::length(t) < 1e-12) return Error{where + ": zero normal or tangent"};
-        const glm::dvec3 nn = glm::normalize(n);
-        const glm::dvec3 tt = t - glm::dot(t, nn) * nn;  // tangent made orthogonal to the normal
-        if (glm::length(tt) < 1e-9 * glm::length(t)) return Error{where + ": tangent is parallel to the normal (degenerate quad)"};
-        quad.normal = v3(nn);
+        const std::optional<Vec3> n = normalized(quad.normal), t = normalized(quad.tangent);
+        if (!n || !t) return Error{where + ": zero normal or tangent"};
+        const glm::dvec3 nn = g(*n);
+        const glm::dvec3 tt = g(*t) - glm::dot(g(*t), nn) * nn;  // tangent made orthogonal to the normal
+        if (glm::length(tt) < 1e-9) return Error{where + ": tangent is parallel to the normal (degenerate quad)"};
+        quad.normal = *n;
         quad.tangent = v3(glm::normalize(tt));
         if (q.contains("size")) {
             if (!q["size"].is_array() || q["size"].size() != 2 || !q["size"][0].is_number() || !q["size"][1].is_number())
@@ -156,12 +167,14 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
             quad.width = q["size"][0].get<double>();
             quad.height = q["size"][1].get<double>();
         }
-        if (!(quad.width > 0 && quad.height > 0) || !std::isfinite(quad.width) || !std::isfinite(quad.height))
-            return Error{where + ".size: width and height must be positive (degenerate quad)"};
+        if (!(quad.width > 0 && quad.height > 0 && quad.width <= 1e9 && quad.height <= 1e9))
+            return Error{where + ".size: width and height must be positive (degenerate quad) and within 1e9"};
         Result<double> uv = readNumber(q, "uv_scale", 1, where);
         if (!uv) return Error{uv.error()};
         if (!(*uv > 0)) return Error{where + ".uv_scale must be positive"};
         quad.uvScale = *uv;
+        if (q.contains("mode") && !q["mode"].is_string())
+            return Error{where + ".mode: expected a string (lut, brdf, ptm, flat or nearest)"};
         Result<RenderMode> mode = parseRenderMode(q.value("mode", std::string("lut")));
         if (!mode) return Error{where + "." + mode.error()};
         quad.mode = *mode;
@@ -191,7 +204,7 @@ std::string sceneToJson(const Scene& scene) {
         doc["quads"].push_back({{"material", q.material}, {"center", vec(q.center)}, {"normal", vec(q.normal)},
                                 {"tangent", vec(q.tangent)}, {"size", {q.width, q.height}}, {"uv_scale", q.uvScale},
                                 {"mode", renderModeName(q.mode)}});
-    return doc.dump(1) + "\n";
+    return jsonText(doc);
 }
 
 Result<Scene> loadScene(const std::string& path) {
