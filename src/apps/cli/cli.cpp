@@ -7,6 +7,7 @@
 
 #include "core/bank_file.h"
 #include "core/file_io.h"
+#include "core/image.h"
 
 namespace btflut::cli {
 
@@ -57,6 +58,13 @@ int run(const std::vector<std::string>& args) {
         "is THETA,PHI in the sample frame (z = surface normal, x = image right)."};
     root.name("btflut");
     root.require_subcommand(1);
+    root.fallthrough();  // root options may also follow the subcommand
+    std::uint64_t maxPixels = kDefaultMaxImagePixels;
+    root.add_option("--max-pixels", maxPixels,
+                    "largest image (width x height) any input may declare; larger files are refused "
+                    "from their header, before anything is allocated")
+        ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40))
+        ->capture_default_str();
     Commands commands;
     addHistCommand(root, commands);
     addBakeCommand(root, commands);
@@ -92,12 +100,21 @@ int run(const std::vector<std::string>& args) {
         std::cerr << "btflut: error: " << e.what() << " (see btflut --help)\n";
         return 2;
     }
+    setMaxImagePixels(maxPixels);
     for (const Command& command : commands) {
         if (!command.app->parsed()) continue;
-        Status status = command.run();
+        // Expected failures arrive as Status; an exception here is a bug, but still ends in
+        // one line and exit status 1, never an abort.
+        Status status = success();
+        try {
+            status = command.run();
+        } catch (const std::bad_alloc&) {
+            status = Error{"out of memory"};
+        } catch (const std::exception& e) {
+            status = Error{std::string("unexpected error: ") + e.what()};
+        }
         if (!status) {
-            std::cerr << "btflut " << command.app->get_name() << ": error: " << status.error()
-                      << "\n";
+            std::cerr << "btflut " << command.app->get_name() << ": error: " << status.error() << "\n";
             return 1;
         }
         return 0;
