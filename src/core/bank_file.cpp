@@ -19,6 +19,7 @@ namespace {
 constexpr std::uint8_t kSignature[8] = {0x89, 'B', 'T', 'F', 'L', 'U', 'T', 0x0A};
 constexpr std::uint32_t kMaxEntries = 65536;
 constexpr std::uint32_t kMaxGrid = 257;
+constexpr std::uint64_t kMaxChunk = 0xFFFFFFFFu;  // a chunk's length is a u32
 
 std::uint32_t tagOf(const char (&t)[5]) {
     return static_cast<std::uint32_t>(t[0]) | static_cast<std::uint32_t>(t[1]) << 8 |
@@ -114,6 +115,13 @@ void putDirection(Writer& w, Direction d) {
     w.put(d.phiDegrees());
 }
 
+Result<Direction> getDirection(Reader& in, const std::string& name, const std::string& what) {
+    const double theta = in.get<double>(), phi = in.get<double>();
+    if (!std::isfinite(theta) || !std::isfinite(phi) || theta < 0 || theta > 90)
+        return Error{name + ": invalid " + what + " direction"};
+    return Direction::fromDegrees(theta, phi);
+}
+
 // The chunks of a .btflut file, each checked against its CRC; HEAD first, END last.
 struct Chunk {
     std::uint32_t tag;
@@ -121,16 +129,21 @@ struct Chunk {
     std::uint32_t length;
 };
 
-Result<std::vector<Chunk>> splitChunks(const Bytes& bytes, const std::string& name) {
+struct Chunks {
+    std::uint32_t version = 0;
+    std::vector<Chunk> list;
+};
+
+Result<Chunks> splitChunks(const Bytes& bytes, const std::string& name) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
     if (bytes.size() < sizeof kSignature + 4 || std::memcmp(bytes.data(), kSignature, 8) != 0)
         return fail("not a .btflut file (bad signature)");
     Reader file(bytes.data() + 8, bytes.size() - 8);
-    auto version = file.get<std::uint32_t>();
-    if (version != kBankFormatVersion)
-        return fail("unsupported .btflut version " + std::to_string(version) + " (this btflut reads " +
+    Chunks chunks;
+    chunks.version = file.get<std::uint32_t>();
+    if (chunks.version < 1 || chunks.version > kBankFormatVersion)
+        return fail("unsupported .btflut version " + std::to_string(chunks.version) + " (this btflut reads 1 to " +
                     std::to_string(kBankFormatVersion) + ")");
-    std::vector<Chunk> chunks;
     for (;;) {
         if (file.remaining() == 0) return fail("truncated (no END chunk)");
         auto tag = file.get<std::uint32_t>();
@@ -141,16 +154,60 @@ Result<std::vector<Chunk>> splitChunks(const Bytes& bytes, const std::string& na
         if (!file.ok())
             return fail("truncated (chunk " + tagName(tag) + " declares " + std::to_string(length) +
                         " bytes)");
-        if (chunkCrc(tag, payload, length) != storedCrc)
+        if (chunkCrc(tag, payload, length) != storedCrc && !kFuzzingBuild)
             return fail("checksum mismatch in chunk " + tagName(tag) + " (file is corrupted)");
-        if (chunks.empty() && tag != kHead) return fail("first chunk is not HEAD");
+        if (chunks.list.empty() && tag != kHead) return fail("first chunk is not HEAD");
         if (tag == kEnd) {
             if (length != 0) return fail("END chunk is not empty");
             if (file.remaining() != 0) return fail("unexpected bytes after the END chunk");
             return chunks;
         }
-        chunks.push_back({tag, payload, length});
+        chunks.list.push_back({tag, payload, length});
     }
+}
+
+// HEAD, read and checked before any other chunk, so every size below is known to be sane.
+struct Head {
+    std::uint32_t layerCount = 0, refWidth = 0, refHeight = 0, refChannels = 0, refDepth = 0;
+    bool embedded = false;
+};
+
+Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::string& name, LutBank& bank) {
+    auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
+    Reader in(chunk.payload, chunk.length);
+    Head head;
+    bank.entries = static_cast<int>(in.get<std::uint32_t>());
+    const auto colour = in.get<std::uint32_t>();
+    bank.gridSize = static_cast<int>(in.get<std::uint32_t>());
+    head.layerCount = in.get<std::uint32_t>();
+    head.embedded = in.get<std::uint32_t>() == 1;
+    head.refWidth = in.get<std::uint32_t>();
+    head.refHeight = in.get<std::uint32_t>();
+    head.refChannels = in.get<std::uint32_t>();
+    head.refDepth = in.get<std::uint32_t>();
+    Result<Direction> rl = getDirection(in, name, "reference light");
+    Result<Direction> rv = getDirection(in, name, "reference view");
+    bank.referenceName = in.getString();
+    const auto domain = version >= 2 ? in.get<std::uint32_t>() : 0u;
+    if (!in.ok() || in.remaining() != 0) return fail("HEAD chunk has the wrong size");
+    if (!rl) return Error{rl.error()};
+    if (!rv) return Error{rv.error()};
+    bank.referenceLight = *rl;
+    bank.referenceView = *rv;
+    if (bank.entries < 2 || static_cast<std::uint32_t>(bank.entries) > kMaxEntries)
+        return fail("LUT entry count " + std::to_string(bank.entries) + " is invalid");
+    if (colour != 1 && colour != 3) return fail("colour mode " + std::to_string(colour) + " is invalid");
+    bank.colour = static_cast<ColourMode>(colour);
+    if (bank.gridSize < 2 || static_cast<std::uint32_t>(bank.gridSize) > kMaxGrid)
+        return fail("grid size " + std::to_string(bank.gridSize) + " is invalid");
+    if (head.layerCount == 0) return fail("bank has no view layers");
+    if (head.layerCount > kMaxBankNodes) return fail("bank declares " + std::to_string(head.layerCount) + " view layers, over the format's limit of " + std::to_string(kMaxBankNodes));
+    if ((head.refChannels != 1 && head.refChannels != 3) || (head.refDepth != 8 && head.refDepth != 16))
+        return fail("reference image description is invalid");
+    if (Status s = checkImageSize(head.refWidth, head.refHeight, name + ": reference image"); !s) return Error{s.error()};
+    if (domain > 1) return fail("interpolation domain " + std::to_string(domain) + " is invalid");
+    bank.domain = static_cast<BankDomain>(domain);
+    return head;
 }
 
 // PTMC payload: width, height (u32), scale[6], bias[6] (f32), then three PNGs, each
@@ -172,15 +229,21 @@ Bytes encodePtm(const Ptm& ptm) {
     return std::move(w.bytes());
 }
 
-Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name) {
+// The PTM of a bank whose reference image is width x height (from HEAD, already checked
+// against the pixel limit): its own size must match before anything is allocated.
+Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t width, std::uint32_t height) {
     auto fail = [&](const std::string& what) { return Error{name + ": PTM chunk: " + what}; };
     Reader in(chunk.payload, chunk.length);
+    const auto w = in.get<std::uint32_t>(), h = in.get<std::uint32_t>();
     Ptm ptm;
-    ptm.width = static_cast<int>(in.get<std::uint32_t>());
-    ptm.height = static_cast<int>(in.get<std::uint32_t>());
     for (float& v : ptm.scale) v = in.get<float>();
     for (float& v : ptm.bias) v = in.get<float>();
-    if (!in.ok() || ptm.width <= 0 || ptm.height <= 0) return fail("invalid header");
+    if (!in.ok()) return fail("invalid header");
+    if (w != width || h != height)
+        return Error{name + ": the PTM (" + std::to_string(w) + "x" + std::to_string(h) +
+                     ") does not match the reference image's size"};
+    ptm.width = static_cast<int>(w);
+    ptm.height = static_cast<int>(h);
     for (int k = 0; k < Ptm::kTerms; ++k)
         if (!std::isfinite(ptm.scale[k]) || !std::isfinite(ptm.bias[k]) || ptm.scale[k] <= 0)
             return fail("invalid scale or bias");
@@ -190,7 +253,7 @@ Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name) {
         auto length = in.get<std::uint32_t>();
         const std::uint8_t* png = in.getBytes(length);
         if (!in.ok()) return Error{name + ": PTM chunk: truncated " + what};
-        Result<Image> image = decodeImage(Bytes(png, png + length), name + " (PTM " + what + ")");
+        Result<Image> image = decodeImage(Bytes(png, png + length), name + " (PTM " + what + ")", ptm.width, ptm.height);
         if (!image) return Error{image.error()};
         if (image->width != ptm.width || image->height != ptm.height || image->channels != 3)
             return Error{name + ": PTM chunk: " + what + " has the wrong size"};
@@ -208,10 +271,37 @@ Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name) {
 
 }  // namespace
 
+std::uint32_t bankFormatVersion(const LutBank& bank) {
+    // The oldest version that holds everything: readers of version 1 keep reading the banks
+    // they always could.
+    return bank.domain == BankDomain::Layers ? 1u : 2u;
+}
+
+Status checkBankSize(const LutBank& bank) {
+    const std::uint64_t length = bank.lutLength(), cells = static_cast<std::uint64_t>(bank.gridSize) * bank.gridSize;
+    for (const ViewLayer& layer : bank.layers) {
+        std::uint64_t bytes = 20 + layer.nodes.size() * (20 + length * 4) + cells * (1 + length * 2);
+        for (const LightNode& node : layer.nodes) bytes += node.name.size();
+        if (bytes > kMaxChunk)
+            return Error{"a view layer of " + std::to_string(layer.nodes.size()) + " lights with a " +
+                         std::to_string(bank.gridSize) + "x" + std::to_string(bank.gridSize) + " grid of " +
+                         std::to_string(bank.entries) + "-entry LUTs takes " + std::to_string(bytes) +
+                         " bytes, over the .btflut format's 4 GiB chunk limit (use a smaller --grid or --entries)"};
+    }
+    std::size_t nodes = 0;
+    for (const ViewLayer& layer : bank.layers) nodes += layer.nodes.size();
+    if (nodes > kMaxBankNodes)
+        return Error{"the bank would hold " + std::to_string(nodes) + " measured directions, over the format's limit of " +
+                     std::to_string(kMaxBankNodes)};
+    return success();
+}
+
 Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
+    BTFLUT_CHECK(checkBankSize(bank).ok());
+    const std::uint32_t version = bankFormatVersion(bank);
     Writer file;
     file.putBytes(kSignature, sizeof kSignature);
-    file.put(kBankFormatVersion);
+    file.put(version);
 
     const bool embed = options.embedReference && !bank.reference.samples.empty();
     Writer head;
@@ -227,6 +317,7 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     putDirection(head, bank.referenceLight);
     putDirection(head, bank.referenceView);
     head.putString(bank.referenceName);
+    if (version >= 2) head.put(static_cast<std::uint32_t>(bank.domain));
     putChunk(file, kHead, head.bytes());
 
     for (const ViewLayer& layer : bank.layers) {
@@ -251,88 +342,64 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
 
 Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const BankReadOptions& options) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
-    Result<std::vector<Chunk>> chunks = splitChunks(bytes, name);
+    Result<Chunks> chunks = splitChunks(bytes, name);
     if (!chunks) return Error{chunks.error()};
+    LutBank bank;
+    Result<Head> head = readHead(chunks->list.front(), chunks->version, name, bank);
+    if (!head) return Error{head.error()};
 
-    // Which layers' LUTs to decode: from the layers' view directions alone (their first 16 bytes).
+    // Which layers' LUTs to decode: from the layers' view directions alone (their first 16
+    // bytes). In the isotropic domain every layer takes part in every lookup.
     std::vector<bool> wanted;
-    if (!options.views.empty()) {
+    if (!options.views.empty() && bank.domain == BankDomain::Layers) {
         LutBank views;
-        for (const Chunk& chunk : *chunks) {
+        for (const Chunk& chunk : chunks->list) {
             if (chunk.tag != kLayer) continue;
             Reader in(chunk.payload, chunk.length);
-            const double theta = in.get<double>(), phi = in.get<double>();
-            if (!in.ok() || !std::isfinite(theta) || !std::isfinite(phi) || theta < 0 || theta > 90) {
+            Result<Direction> view = getDirection(in, name, "layer view");
+            if (!view || views.layers.size() == head->layerCount) {
                 views.layers.clear();  // malformed: decode everything, and let the checks below say what is wrong
                 break;
             }
-            views.layers.push_back({Direction::fromDegrees(theta, phi), {}, {}, {}, {}, {}});
+            views.layers.push_back({*view, {}, {}, {}, {}, {}});
         }
         if (!views.layers.empty()) {
             std::vector<DiskPoint> points;
             for (const ViewLayer& layer : views.layers) points.push_back(toDisk(layer.view));
-            views.views = Triangulation(std::move(points));
-            wanted.assign(views.layers.size(), false);
-            for (Direction v : options.views)
-                for (std::size_t l : views.layersFor(v)) wanted[l] = true;
+            if (!hasNearDuplicates(points, 1e-9)) {
+                views.views = Triangulation(std::move(points));
+                wanted.assign(views.layers.size(), false);
+                for (Direction v : options.views)
+                    for (std::size_t l : views.layersFor(v)) wanted[l] = true;
+            }
         }
     }
 
-    LutBank bank;
-    bool haveHead = false, haveReference = false, havePtm = false, embedded = false;
-    std::uint32_t layerCount = 0, refW = 0, refH = 0, refC = 0, refDepth = 0;
-    for (const auto& [tag, payload, length] : *chunks) {
+    bool haveReference = false, havePtm = false;
+    std::size_t totalNodes = 0;
+    for (std::size_t c = 1; c < chunks->list.size(); ++c) {
+        const auto& [tag, payload, length] = chunks->list[c];
         Reader in(payload, length);
-        auto getDirection = [&](const std::string& what) -> Result<Direction> {
-            double theta = in.get<double>(), phi = in.get<double>();
-            if (!std::isfinite(theta) || !std::isfinite(phi) || theta < 0 || theta > 90)
-                return Error{name + ": invalid " + what + " direction"};
-            return Direction::fromDegrees(theta, phi);
-        };
-
         if (tag == kHead) {
-            if (haveHead) return fail("two HEAD chunks");
-            haveHead = true;
-            bank.entries = static_cast<int>(in.get<std::uint32_t>());
-            auto colour = in.get<std::uint32_t>();
-            bank.gridSize = static_cast<int>(in.get<std::uint32_t>());
-            layerCount = in.get<std::uint32_t>();
-            embedded = in.get<std::uint32_t>() == 1;
-            refW = in.get<std::uint32_t>();
-            refH = in.get<std::uint32_t>();
-            refC = in.get<std::uint32_t>();
-            refDepth = in.get<std::uint32_t>();
-            Result<Direction> rl = getDirection("reference light");
-            Result<Direction> rv = getDirection("reference view");
-            bank.referenceName = in.getString();
-            if (!in.ok() || in.remaining() != 0) return fail("HEAD chunk has the wrong size");
-            if (!rl) return Error{rl.error()};
-            if (!rv) return Error{rv.error()};
-            bank.referenceLight = *rl;
-            bank.referenceView = *rv;
-            if (bank.entries < 2 || static_cast<std::uint32_t>(bank.entries) > kMaxEntries)
-                return fail("LUT entry count " + std::to_string(bank.entries) + " is invalid");
-            if (colour != 1 && colour != 3) return fail("colour mode " + std::to_string(colour) + " is invalid");
-            bank.colour = static_cast<ColourMode>(colour);
-            if (bank.gridSize < 2 || static_cast<std::uint32_t>(bank.gridSize) > kMaxGrid)
-                return fail("grid size " + std::to_string(bank.gridSize) + " is invalid");
-            if (layerCount == 0) return fail("bank has no view layers");
-            if ((refC != 1 && refC != 3) || (refDepth != 8 && refDepth != 16) || refW == 0 || refH == 0)
-                return fail("reference image description is invalid");
+            return fail("two HEAD chunks");
         } else if (tag == kLayer) {
-            if (bank.layers.size() == layerCount)
-                return fail("more LAYR chunks than the " + std::to_string(layerCount) + " declared");
+            if (bank.layers.size() == head->layerCount)
+                return fail("more LAYR chunks than the " + std::to_string(head->layerCount) + " declared");
+            const std::string which = "layer " + std::to_string(bank.layers.size());
             const std::size_t length1 = bank.lutLength();
             const auto cells = static_cast<std::size_t>(bank.gridSize) * bank.gridSize;
             ViewLayer layer;
-            Result<Direction> view = getDirection("layer view");
+            Result<Direction> view = getDirection(in, name, "layer view");
             if (!view) return Error{view.error()};
             layer.view = *view;
             auto nodes = in.get<std::uint32_t>();
             if (!in.ok() || nodes == 0 || nodes > in.remaining() / 20)
-                return fail("layer " + std::to_string(bank.layers.size()) + " has an invalid node count");
+                return fail(which + " has an invalid node count");
+            totalNodes += nodes;
+            if (totalNodes > kMaxBankNodes)
+                return fail("more than " + std::to_string(kMaxBankNodes) + " measured directions (the format's limit)");
             for (std::uint32_t n = 0; n < nodes; ++n) {
-                Result<Direction> light = getDirection("node light");
+                Result<Direction> light = getDirection(in, name, "node light");
                 if (!light) return Error{light.error()};
                 std::string nodeName = in.getString();
                 layer.nodes.push_back({nodeName, *light});
@@ -340,8 +407,10 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             const std::uint8_t* luts = in.getBytes(nodes * length1 * sizeof(float));
             const std::uint8_t* kinds = in.getBytes(cells);
             const std::uint8_t* grid = in.getBytes(cells * length1 * sizeof(std::uint16_t));
-            if (!in.ok() || in.remaining() != 0)
-                return fail("LAYR chunk " + std::to_string(bank.layers.size()) + " has the wrong size");
+            if (!in.ok() || in.remaining() != 0) return fail("LAYR chunk " + std::to_string(bank.layers.size()) + " has the wrong size");
+            std::vector<DiskPoint> lights;
+            for (const LightNode& node : layer.nodes) lights.push_back(toDisk(node.light));
+            if (hasNearDuplicates(lights, 1e-9)) return fail("two nodes share one light direction");
             if (!wanted.empty() && !wanted[bank.layers.size()]) {
                 layer.lutsLoaded = false;
                 bank.layers.push_back(std::move(layer));
@@ -352,9 +421,9 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             for (std::size_t k = 0; k < layer.nodeLuts.size(); k += static_cast<std::size_t>(bank.entries))
                 if (!isValidLut(&layer.nodeLuts[k], static_cast<std::size_t>(bank.entries)))
                     return fail("a LUT is not monotonic in [0, 1] (file is corrupted)");
-            for (std::size_t c = 0; c < cells; ++c) {
-                if (kinds[c] > 2) return fail("invalid grid node provenance");
-                if (options.grids) layer.gridProvenance.push_back(static_cast<Provenance>(kinds[c]));
+            for (std::size_t g = 0; g < cells; ++g) {
+                if (kinds[g] > 2) return fail("invalid grid node provenance");
+                if (options.grids) layer.gridProvenance.push_back(static_cast<Provenance>(kinds[g]));
             }
             if (options.grids) {
                 layer.gridLuts.resize(cells * length1);
@@ -362,13 +431,12 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             }
             bank.layers.push_back(std::move(layer));
         } else if (tag == kReference) {
-            if (!embedded || haveReference) return fail("unexpected REFI chunk");
+            if (!head->embedded || haveReference) return fail("unexpected REFI chunk");
             haveReference = true;
-            Result<Image> image = decodeImage(Bytes(payload, payload + length), name + " (reference image)");
+            Result<Image> image = decodeImage(Bytes(payload, payload + length), name + " (reference image)",
+                                              static_cast<int>(head->refWidth), static_cast<int>(head->refHeight));
             if (!image) return Error{image.error()};
-            if (static_cast<std::uint32_t>(image->width) != refW ||
-                static_cast<std::uint32_t>(image->height) != refH ||
-                static_cast<std::uint32_t>(image->channels) != refC)
+            if (static_cast<std::uint32_t>(image->channels) != head->refChannels)
                 return fail("reference image does not match the header");
             bank.reference = std::move(*image);
         } else if (tag == kPtm) {
@@ -376,37 +444,35 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             havePtm = true;
             bank.ptmInFile = true;
             if (!options.ptm) continue;
-            Result<Ptm> ptm = decodePtm({tag, payload, length}, name);
+            Result<Ptm> ptm = decodePtm({tag, payload, length}, name, head->refWidth, head->refHeight);
             if (!ptm) return Error{ptm.error()};
-            if (ptm->width != static_cast<int>(refW) || ptm->height != static_cast<int>(refH))
-                return fail("the PTM does not match the reference image's size");
             bank.ptm = std::move(*ptm);
         } else {
             return fail("unknown chunk " + tagName(tag));
         }
     }
-    if (bank.layers.size() != layerCount)
-        return fail("declares " + std::to_string(layerCount) + " layers but holds " +
+    if (bank.layers.size() != head->layerCount)
+        return fail("declares " + std::to_string(head->layerCount) + " layers but holds " +
                     std::to_string(bank.layers.size()));
-    if (embedded && !haveReference) return fail("reference image chunk is missing");
-    if (!embedded) {  // keep the description, without pixels
-        bank.reference.width = static_cast<int>(refW);
-        bank.reference.height = static_cast<int>(refH);
-        bank.reference.channels = static_cast<int>(refC);
-        bank.reference.bitDepth = static_cast<int>(refDepth);
+    if (head->embedded && !haveReference) return fail("reference image chunk is missing");
+    if (!head->embedded) {  // keep the description, without pixels
+        bank.reference.width = static_cast<int>(head->refWidth);
+        bank.reference.height = static_cast<int>(head->refHeight);
+        bank.reference.channels = static_cast<int>(head->refChannels);
+        bank.reference.bitDepth = static_cast<int>(head->refDepth);
     }
-    if (bank.colour == ColourMode::Rgb && embedded && bank.reference.channels != 3)
-        return fail("rgb bank with a grey reference image");
-    for (const ViewLayer& l : bank.layers)
-        for (std::size_t a = 0; a < l.nodes.size(); ++a)
-            for (std::size_t b = a + 1; b < l.nodes.size(); ++b)
-                if (angleBetween(l.nodes[a].light, l.nodes[b].light) < 1e-9)
-                    return fail("two nodes share one light direction");
+    if (bank.colour == ColourMode::Rgb && head->refChannels != 3) return fail("rgb bank with a grey reference image");
+    std::vector<DiskPoint> views;
+    for (const ViewLayer& l : bank.layers) views.push_back(toDisk(l.view));
+    if (hasNearDuplicates(views, 1e-9)) return fail("two layers share one view direction");
     bank.buildTriangulations();
+    if (!bank.followsLight()) return fail("the bank's directions cannot follow the light (one light per view, and no "
+                                          "interpolation over the view)");
     return bank;
 }
 
 Status saveBank(const LutBank& bank, const std::string& path, const BankWriteOptions& options) {
+    if (Status s = checkBankSize(bank); !s) return Error{path + ": " + s.error()};
     return writeFileAtomically(path, encodeBank(bank, options));
 }
 
@@ -419,10 +485,13 @@ Result<LutBank> loadBank(const std::string& path, const BankReadOptions& options
 Result<Ptm> loadBankPtm(const std::string& path) {
     Result<Bytes> bytes = readFile(path);
     if (!bytes) return Error{bytes.error()};
-    Result<std::vector<Chunk>> chunks = splitChunks(*bytes, path);
+    Result<Chunks> chunks = splitChunks(*bytes, path);
     if (!chunks) return Error{chunks.error()};
-    for (const Chunk& chunk : *chunks)
-        if (chunk.tag == kPtm) return decodePtm(chunk, path);
+    LutBank description;
+    Result<Head> head = readHead(chunks->list.front(), chunks->version, path, description);
+    if (!head) return Error{head.error()};
+    for (const Chunk& chunk : chunks->list)
+        if (chunk.tag == kPtm) return decodePtm(chunk, path, head->refWidth, head->refHeight);
     return Error{path + ": the bank holds no PTM (bake it with --ptm)"};
 }
 

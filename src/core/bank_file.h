@@ -15,7 +15,19 @@
 
 namespace btflut {
 
-constexpr std::uint32_t kBankFormatVersion = 1;
+/// The newest version this btflut reads (it reads every older one) and writes when a bank
+/// needs it; bankFormatVersion says which a bank is written as.
+constexpr std::uint32_t kBankFormatVersion = 2;
+
+/// Most measured directions (nodes, over all layers) a bank may hold.
+constexpr std::size_t kMaxBankNodes = 65536;
+
+/// The version a bank is written as: the oldest that holds it (1 unless it needs the
+/// isotropic domain).
+std::uint32_t bankFormatVersion(const LutBank& bank);
+
+/// Refuses a bank the format cannot hold (a chunk over 4 GiB, too many nodes).
+Status checkBankSize(const LutBank& bank);
 
 struct BankWriteOptions {
     bool embedReference = true;  ///< store the reference image (PNG) inside the file

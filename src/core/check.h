@@ -19,3 +19,13 @@
 #else
 #define BTFLUT_DCHECK(cond) BTFLUT_CHECK(cond)
 #endif
+
+namespace btflut {
+/// True in the libFuzzer build (tools/fuzz.sh): readers then accept any checksum (btflut's
+/// chunk CRCs, PNG's CRCs and Adler-32), so that the fuzzer reaches the checks behind them.
+#ifdef BTFLUT_FUZZING
+inline constexpr bool kFuzzingBuild = true;
+#else
+inline constexpr bool kFuzzingBuild = false;
+#endif
+}  // namespace btflut

@@ -49,14 +49,25 @@ Format formatOf(const Bytes& b) {
     return Format::Tga;  // the one format without a magic number
 }
 
-// The pixel limit, checked from a header's size before any allocation.
-Status checkSize(std::uint64_t width, std::uint64_t height, const std::string& name) {
-    if (width == 0 || height == 0) return Error{name + ": image has no pixels (" + std::to_string(width) + "x" +
-                                                std::to_string(height) + ")"};
+// What a caller knows before decoding: the name for errors and, where it is known, the size.
+struct Request {
+    const std::string& name;
+    int width = 0, height = 0;  ///< 0: any
+};
+
+std::string sizeText(std::uint64_t width, std::uint64_t height) {
+    return std::to_string(width) + "x" + std::to_string(height);
+}
+
+// The pixel limit and the expected size, checked from a header before any allocation.
+Status checkSize(std::uint64_t width, std::uint64_t height, const Request& r) {
+    if (width == 0 || height == 0) return Error{r.name + ": image has no pixels (" + sizeText(width, height) + ")"};
     const std::uint64_t limit = maxImagePixels();
     if (width > limit || height > limit || width * height > limit)
-        return Error{name + ": image is " + std::to_string(width) + "x" + std::to_string(height) +
-                     " pixels, over the limit of " + std::to_string(limit) + " pixels (raise it with --max-pixels)"};
+        return Error{r.name + ": image is " + sizeText(width, height) + " pixels, over the limit of " +
+                     std::to_string(limit) + " pixels (raise it with --max-pixels)"};
+    if (r.width > 0 && (width != static_cast<std::uint64_t>(r.width) || height != static_cast<std::uint64_t>(r.height)))
+        return Error{r.name + ": image is " + sizeText(width, height) + ", expected " + sizeText(static_cast<std::uint64_t>(r.width), static_cast<std::uint64_t>(r.height))};
     return success();
 }
 
@@ -77,21 +88,24 @@ Image toImage(const std::uint8_t* data, int width, int height, int channels, int
     return image;
 }
 
-Result<Image> decodePng(const Bytes& b, const std::string& name) {
+Result<Image> decodePng(const Bytes& b, const Request& r) {
+    const std::string& name = r.name;
     // libspng checks chunk CRCs, but stops at the end of the image data: a cut in the
     // final IEND chunk is caught here.
     bool complete = false;
     for (std::size_t i = b.size() >= 12 ? b.size() - 12 : 0; i + 8 <= b.size(); ++i)
         complete = complete || std::memcmp(&b[i], "IEND", 4) == 0;
     if (!complete) return Error{name + ": truncated PNG (no complete IEND chunk)"};
-    std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> ctx(spng_ctx_new(0), spng_ctx_free);
+    std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> ctx(spng_ctx_new(kFuzzingBuild ? SPNG_CTX_IGNORE_ADLER32 : 0),
+                                                       spng_ctx_free);
     if (!ctx) return Error{name + ": out of memory"};
+    if (kFuzzingBuild) spng_set_crc_action(ctx.get(), SPNG_CRC_USE, SPNG_CRC_USE);
     auto fail = [&](int code) { return Error{name + ": corrupt PNG (" + spng_strerror(code) + ")"}; };
     spng_set_chunk_limits(ctx.get(), 1u << 26, 1u << 26);  // ancillary chunks (text, ICC) up to 64 MiB
     spng_set_png_buffer(ctx.get(), b.data(), b.size());
     spng_ihdr ihdr{};
     if (int e = spng_get_ihdr(ctx.get(), &ihdr)) return fail(e);
-    if (Status s = checkSize(ihdr.width, ihdr.height, name); !s) return Error{s.error()};
+    if (Status s = checkSize(ihdr.width, ihdr.height, r); !s) return Error{s.error()};
     const bool grey = ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE || ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA;
     const bool sixteen = ihdr.bit_depth == 16;
     int format = 0, stride = 0;
@@ -116,7 +130,8 @@ Result<Image> decodePng(const Bytes& b, const std::string& name) {
 
 static_assert(sizeof(unsigned long) >= sizeof(std::size_t), "libjpeg-turbo takes the file length as unsigned long");
 
-Result<Image> decodeJpeg(const Bytes& b, const std::string& name) {
+Result<Image> decodeJpeg(const Bytes& b, const Request& r) {
+    const std::string& name = r.name;
     // The end-of-image marker must follow the last start-of-scan marker. Entropy-coded
     // data stuffs 0xFF as FF 00, so FF D9 there is a real marker.
     std::size_t lastScan = 0;
@@ -132,7 +147,7 @@ Result<Image> decodeJpeg(const Bytes& b, const std::string& name) {
     if (tjDecompressHeader3(tj.get(), b.data(), static_cast<unsigned long>(b.size()), &width, &height, &subsampling,
                             &colourspace) != 0)
         return fail();
-    if (Status s = checkSize(static_cast<std::uint64_t>(std::max(width, 0)), static_cast<std::uint64_t>(std::max(height, 0)), name); !s)
+    if (Status s = checkSize(static_cast<std::uint64_t>(std::max(width, 0)), static_cast<std::uint64_t>(std::max(height, 0)), r); !s)
         return Error{s.error()};
     if (colourspace == TJCS_CMYK || colourspace == TJCS_YCCK)
         return Error{name + ": CMYK JPEG images are not supported (convert it to RGB)"};
@@ -151,14 +166,15 @@ Result<Image> decodeJpeg(const Bytes& b, const std::string& name) {
 
 // stb_image fills zeros past the end of TGA and BMP pixel data, so their length is
 // checked here; also the header's size, against the pixel limit.
-Status checkBmp(const Bytes& b, const std::string& name) {
+Status checkBmp(const Bytes& b, const Request& r) {
+    const std::string& name = r.name;
     const std::size_t n = b.size();
     if (n < 34) return Error{name + ": truncated BMP header"};
     const std::uint64_t offset = le32(b, 10);
     const auto w = static_cast<std::int32_t>(le32(b, 18)), h = static_cast<std::int32_t>(le32(b, 22));
     const std::uint64_t width = static_cast<std::uint64_t>(std::abs(static_cast<std::int64_t>(w)));
     const std::uint64_t height = static_cast<std::uint64_t>(std::abs(static_cast<std::int64_t>(h)));
-    if (Status s = checkSize(width, height, name); !s) return s;
+    if (Status s = checkSize(width, height, r); !s) return s;
     const std::uint32_t bpp = le16(b, 28), compression = le32(b, 30);
     if (compression == 0 || compression == 3) {
         const std::uint64_t stride = ((width * bpp + 31) / 32) * 4;
@@ -167,11 +183,12 @@ Status checkBmp(const Bytes& b, const std::string& name) {
     return success();
 }
 
-Status checkTga(const Bytes& b, const std::string& name) {
+Status checkTga(const Bytes& b, const Request& r) {
+    const std::string& name = r.name;
     const std::size_t n = b.size();
     if (n < 18) return Error{name + ": file too short to be an image"};
     const std::uint32_t type = b[2];
-    if (Status s = checkSize(le16(b, 12), le16(b, 14), name); !s) return s;
+    if (Status s = checkSize(le16(b, 12), le16(b, 14), r); !s) return s;
     const std::uint64_t bytesPerPixel = (b[16] + 7u) / 8u;
     const std::uint64_t palette = b[1] ? le16(b, 5) * ((b[7] + 7u) / 8u) : 0;
     const std::uint64_t pixels = static_cast<std::uint64_t>(le16(b, 12)) * le16(b, 14);
@@ -192,18 +209,19 @@ Status checkTga(const Bytes& b, const std::string& name) {
     return success();
 }
 
-Result<Image> decodeWithStb(const Bytes& bytes, const std::string& name, Format format) {
+Result<Image> decodeWithStb(const Bytes& bytes, const Request& r, Format format) {
+    const std::string& name = r.name;
     if (bytes.size() > static_cast<std::size_t>(INT32_MAX)) return Error{name + ": file too large"};
     const auto len = static_cast<int>(bytes.size());
     // BMP has a magic number, so its header is checked first; a TGA is only known to be
     // one once stb recognises its header (stbi_info allocates nothing).
     if (format == Format::Bmp)
-        if (Status s = checkBmp(bytes, name); !s) return Error{s.error()};
+        if (Status s = checkBmp(bytes, r); !s) return Error{s.error()};
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(bytes.data(), len, &w, &h, &comp))
         return Error{name + ": not a readable PNG/JPEG/TGA/BMP image (" + stbi_failure_reason() + ")"};
     if (format == Format::Tga)
-        if (Status s = checkTga(bytes, name); !s) return Error{s.error()};
+        if (Status s = checkTga(bytes, r); !s) return Error{s.error()};
     const int channels = comp <= 2 ? 1 : 3;
     int fw = 0, fh = 0, fc = 0;
     std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load_from_memory(bytes.data(), len, &fw, &fh, &fc, channels),
@@ -218,7 +236,7 @@ std::uint64_t maxImagePixels() { return g_maxPixels.load(std::memory_order_relax
 void setMaxImagePixels(std::uint64_t pixels) { g_maxPixels.store(pixels, std::memory_order_relaxed); }
 
 Status checkImageSize(std::uint64_t width, std::uint64_t height, const std::string& name) {
-    return checkSize(width, height, name);
+    return checkSize(width, height, {name});
 }
 
 std::size_t Mask::count() const {
@@ -226,12 +244,13 @@ std::size_t Mask::count() const {
                                                   [](std::uint8_t v) { return v != 0; }));
 }
 
-Result<Image> decodeImage(const Bytes& bytes, const std::string& name) {
+Result<Image> decodeImage(const Bytes& bytes, const std::string& name, int expectedWidth, int expectedHeight) {
     if (bytes.empty()) return Error{name + ": empty file"};
+    const Request request{name, expectedWidth, expectedHeight};
     switch (const Format format = formatOf(bytes)) {
-        case Format::Png: return decodePng(bytes, name);
-        case Format::Jpeg: return decodeJpeg(bytes, name);
-        default: return decodeWithStb(bytes, name, format);
+        case Format::Png: return decodePng(bytes, request);
+        case Format::Jpeg: return decodeJpeg(bytes, request);
+        default: return decodeWithStb(bytes, request, format);
     }
 }
 

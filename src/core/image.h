@@ -71,8 +71,10 @@ Status checkImageSize(std::uint64_t width, std::uint64_t height, const std::stri
 /// format, corrupt, truncated, over the pixel limit).
 Result<Image> loadImage(const std::string& path);
 
-/// Decodes an image held in memory; `name` is used in error messages.
-Result<Image> decodeImage(const Bytes& bytes, const std::string& name);
+/// Decodes an image held in memory; `name` is used in error messages. With an expected
+/// size, a file declaring another is refused from its header, before decoding.
+Result<Image> decodeImage(const Bytes& bytes, const std::string& name, int expectedWidth = 0,
+                          int expectedHeight = 0);
 
 /// A mask from an image file (non-zero in any channel = sample). It must be
 /// `width` x `height` and contain at least one sample pixel.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <mutex>
 #include <optional>
 
@@ -48,6 +49,20 @@ std::size_t chooseReference(const Dataset& dataset) {
 
 }  // namespace
 
+const char* domainName(BankDomain d) { return d == BankDomain::Isotropic ? "isotropic" : "layers"; }
+
+Result<BankDomain> parseDomain(const std::string& name) {
+    if (name == "layers") return BankDomain::Layers;
+    if (name == "isotropic") return BankDomain::Isotropic;
+    return Error{"domain '" + name + "' is not layers or isotropic"};
+}
+
+Point3 isotropicPoint(Direction light, Direction view) {
+    const double turn = view.theta > 0 ? view.phi : 0.0;
+    const DiskPoint l = toDisk({light.theta, light.phi - turn});
+    return {l.x, std::abs(l.y), std::numbers::sqrt2 * std::sin(0.5 * view.theta)};
+}
+
 const char* provenanceName(Provenance p) {
     switch (p) {
         case Provenance::Measured: return "measured";
@@ -71,6 +86,24 @@ void LutBank::buildTriangulations() {
         viewPoints.push_back(toDisk(layer.view));
     }
     views = Triangulation(std::move(viewPoints));
+    pairs = {};
+    pairNodes.clear();
+    if (domain != BankDomain::Isotropic) return;
+    // Points that the symmetry maps onto one another become one point of the domain.
+    std::vector<Point3> points;
+    std::map<std::array<long long, 3>, std::size_t> seen;
+    for (std::size_t l = 0; l < layers.size(); ++l)
+        for (std::size_t n = 0; n < layers[l].nodes.size(); ++n) {
+            const Point3 p = isotropicPoint(layers[l].nodes[n].light, layers[l].view);
+            const auto key = std::array{std::llround(p.x * 1e9), std::llround(p.y * 1e9), std::llround(p.z * 1e9)};
+            auto [it, added] = seen.emplace(key, points.size());
+            if (added) {
+                points.push_back(p);
+                pairNodes.emplace_back();
+            }
+            pairNodes[it->second].push_back({l, n});
+        }
+    pairs = Triangulation3(std::move(points));
 }
 
 void LutBank::fillGrids() {
@@ -79,23 +112,14 @@ void LutBank::fillGrids() {
         const auto cells = static_cast<std::size_t>(gridSize) * gridSize;
         layer.gridLuts.assign(cells * length, 0);
         layer.gridProvenance.assign(cells, Provenance::Extrapolated);
-        std::vector<float> blended(length);
         for (int j = 0; j < gridSize; ++j)
             for (int i = 0; i < gridSize; ++i) {
-                DiskPoint p = gridPoint(i, j);
-                double r = std::hypot(p.x, p.y);
-                if (r > 1) p = {p.x / r, p.y / r};  // beyond the horizon: the horizon's LUT
-                Weights w = layer.lights.weightsAt(p);
-                std::vector<const float*> luts;
-                for (int k = 0; k < w.count; ++k)
-                    luts.push_back(&layer.nodeLuts[static_cast<std::size_t>(w.index[k]) * length]);
-                blendLuts(luts, std::span(w.weight.data(), static_cast<std::size_t>(w.count)),
-                          length, blended.data());
+                // Beyond the horizon: the horizon's LUT (fromDisk pulls the point onto it).
+                const BankLookup lut = lookup(fromDisk(gridPoint(i, j)), layer.view);
                 const auto cell = static_cast<std::size_t>(j) * gridSize + i;
-                layer.gridProvenance[cell] = provenanceOf(w);
+                layer.gridProvenance[cell] = lut.lightProvenance;
                 for (std::size_t k = 0; k < length; ++k)
-                    layer.gridLuts[cell * length + k] =
-                        static_cast<std::uint16_t>(std::lround(blended[k] * 65535.0));
+                    layer.gridLuts[cell * length + k] = static_cast<std::uint16_t>(std::lround(lut.values[k] * 65535.0));
             }
     }
 }
@@ -110,13 +134,18 @@ double LutBank::lightCoverage(std::size_t layer) const {
             const DiskPoint p{-1 + (i + 0.5) * 2.0 / n, -1 + (j + 0.5) * 2.0 / n};
             if (p.x * p.x + p.y * p.y > 1) continue;
             ++total;
-            inside += layers[layer].lights.weightsAt(p).inside;
+            inside += domain == BankDomain::Isotropic ? pairs.weightsAt(isotropicPoint(fromDisk(p), layers[layer].view)).inside
+                                                      : layers[layer].lights.weightsAt(p).inside;
         }
     return static_cast<double>(inside) / total;
 }
 
 std::vector<std::size_t> LutBank::layersFor(Direction view) const {
     std::vector<std::size_t> used;
+    if (domain == BankDomain::Isotropic) {
+        for (std::size_t l = 0; l < layers.size(); ++l) used.push_back(l);
+        return used;
+    }
     const Weights w = views.weightsAt(toDisk(view));
     for (int v = 0; v < w.count; ++v)
         if (w.weight[v] != 0) used.push_back(static_cast<std::size_t>(w.index[v]));
@@ -127,6 +156,15 @@ std::vector<std::size_t> LutBank::layersFor(Direction view) const {
     return used;
 }
 
+bool LutBank::followsLight() const {
+    if (domain == BankDomain::Isotropic) {
+        for (const Point3& p : pairs.points())
+            if (std::hypot(p.x - pairs.points()[0].x, p.y - pairs.points()[0].y) > 1e-9) return true;
+        return false;
+    }
+    return std::any_of(layers.begin(), layers.end(), [](const ViewLayer& l) { return l.nodes.size() > 1; });
+}
+
 LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
     auto nearest = [](const auto& items, auto angleTo) {
         std::size_t best = 0;
@@ -134,6 +172,13 @@ LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
             if (angleTo(items[i]) < angleTo(items[best])) best = i;
         return best;
     };
+    if (domain == BankDomain::Isotropic) {
+        const Point3 q = isotropicPoint(light, view);
+        const std::size_t point = nearest(pairs.points(), [&](const Point3& p) {
+            return std::hypot(p.x - q.x, p.y - q.y, p.z - q.z);
+        });
+        return pairNodes[point].front();
+    }
     NodeRef ref;
     ref.layer = nearest(layers, [&](const ViewLayer& l) { return angleBetween(l.view, view); });
     ref.node = nearest(layers[ref.layer].nodes, [&](const LightNode& n) { return angleBetween(n.light, light); });
@@ -156,28 +201,43 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
         return out;
     }
     out.values.assign(length, 0.f);
+    std::vector<double> accumulated(length, 0.0);
+    auto add = [&](NodeRef n, double w) {
+        const ViewLayer& layer = layers[n.layer];
+        BTFLUT_CHECK(layer.lutsLoaded);
+        const float* lut = &layer.nodeLuts[n.node * length];
+        for (std::size_t k = 0; k < length; ++k) accumulated[k] += w * lut[k];
+    };
+    auto finish = [&] {
+        for (std::size_t k = 0; k < length; ++k) out.values[k] = static_cast<float>(accumulated[k]);
+        out.provenance = combine(out.lightProvenance, out.viewProvenance);
+        return out;
+    };
+    if (domain == BankDomain::Isotropic) {
+        const Weights w = pairs.weightsAt(isotropicPoint(light, view));
+        for (int p = 0; p < w.count; ++p) {
+            const std::vector<NodeRef>& nodes = pairNodes[static_cast<std::size_t>(w.index[p])];
+            for (NodeRef n : nodes) add(n, w.weight[p] / static_cast<double>(nodes.size()));
+        }
+        // One domain point carries both: measured only where light and view are.
+        out.lightProvenance = out.viewProvenance = provenanceOf(w);
+        return finish();
+    }
     Weights vw = views.weightsAt(toDisk(view));
     out.viewProvenance = provenanceOf(vw);
-    std::vector<double> accumulated(length, 0.0);
     const DiskPoint lightPoint = toDisk(light);
     for (int v = 0; v < vw.count; ++v) {
         if (vw.weight[v] == 0) continue;
-        const ViewLayer& layer = layers[static_cast<std::size_t>(vw.index[v])];
-        BTFLUT_CHECK(layer.lutsLoaded);
-        Weights lw = layer.lights.weightsAt(lightPoint);
+        const auto layer = static_cast<std::size_t>(vw.index[v]);
+        Weights lw = layers[layer].lights.weightsAt(lightPoint);
         out.lightProvenance = combine(out.lightProvenance, provenanceOf(lw));
-        for (int l = 0; l < lw.count; ++l) {
-            const double w = vw.weight[v] * lw.weight[l];
-            const float* lut = &layer.nodeLuts[static_cast<std::size_t>(lw.index[l]) * length];
-            for (std::size_t k = 0; k < length; ++k) accumulated[k] += w * lut[k];
-        }
+        for (int l = 0; l < lw.count; ++l) add({layer, static_cast<std::size_t>(lw.index[l])}, vw.weight[v] * lw.weight[l]);
     }
-    for (std::size_t k = 0; k < length; ++k) out.values[k] = static_cast<float>(accumulated[k]);
-    out.provenance = combine(out.lightProvenance, out.viewProvenance);
-    return out;
+    return finish();
 }
 
-void setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts) {
+Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,
+                const std::string& source) {
     const std::size_t length = bank.lutLength();
     bank.layers.clear();
     // Group by view into layers, and merge repeated light directions within a layer by
@@ -213,8 +273,22 @@ void setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts) {
             if (mergedCount[l][n] > 1)
                 for (std::size_t k = 0; k < length; ++k)
                     bank.layers[l].nodeLuts[n * length + k] /= static_cast<float>(mergedCount[l][n]);
+    bank.buildTriangulations();  // the layers' own, for the choice below
+    const bool layersSpanTheDisk = std::all_of(bank.layers.begin(), bank.layers.end(),
+                                               [](const ViewLayer& l) { return !l.lights.triangles().empty(); });
+    bank.domain = domain ? *domain
+                         : (bank.layers.size() == 1 || layersSpanTheDisk ? BankDomain::Layers : BankDomain::Isotropic);
     bank.buildTriangulations();
+    if (!bank.followsLight()) {
+        if (bank.domain == BankDomain::Layers && bank.layers.size() > 1)
+            return Error{source + ": each view direction has one light direction, so a bank over view layers cannot "
+                                  "follow the light; bake it with --domain isotropic (for isotropic materials)"};
+        return Error{source + ": the light directions do not vary" +
+                     (bank.domain == BankDomain::Isotropic ? std::string(" relative to the view") : std::string()) +
+                     ", so no bank baked from them can follow the light"};
+    }
     bank.fillGrids();
+    return success();
 }
 
 Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
@@ -317,7 +391,7 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         bank.reference = std::move(referenceStorage);
     else
         bank.reference = ref;
-    setNodes(bank, luts);
+    if (Status s = setNodes(bank, luts, options.domain, dataset.source); !s) return Error{s.error()};
     if (ptm) {
         Result<Ptm> fitted = ptm->finish(dataset.source);
         if (!fitted) return Error{fitted.error()};

@@ -12,13 +12,18 @@
 //   - grid: the LUTs resampled on a gridSize x gridSize regular grid over the equal-area
 //     disk (direction.h) — what an engine uploads as a texture array and reads with
 //     hardware bilinear filtering; nodes outside the unit disk hold the horizon's LUT.
-// Queries use the nodes: Delaunay interpolation over the measured light directions (and
-// over the layers' view directions), so a measured direction reproduces its measurement
-// exactly, and directions outside the measured hull are clamped to its boundary. Blending
-// LUTs blends quantile functions (lut.h).
+// Queries use the nodes: Delaunay interpolation over the measured directions, so a measured
+// direction reproduces its measurement exactly, and directions outside the measured hull
+// are clamped to its boundary. Blending LUTs blends quantile functions (lut.h). Two domains:
+//   - layers: within a layer over the light disk, then across the layers' view directions.
+//     Any material, when each layer's lights span the disk (a fixed camera, Bonn BTFs).
+//   - isotropic: over (theta_i, theta_r, phi_i - phi_r) in 3-D (isotropicPoint), for
+//     isotropic materials measured with light and view moving together (CUReT: 205
+//     light/view pairs; synth's curet-c2), where a layer holds one light or a few.
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +45,18 @@ enum class ColourMode : std::uint32_t {
 enum class Provenance : std::uint8_t { Measured = 0, Interpolated = 1, Extrapolated = 2 };
 
 const char* provenanceName(Provenance p);
+
+/// How lookups interpolate between the measured directions (see the top of this file).
+enum class BankDomain : std::uint32_t { Layers = 0, Isotropic = 1 };
+
+const char* domainName(BankDomain d);
+Result<BankDomain> parseDomain(const std::string& name);
+
+/// A light/view pair as a point of the isotropic domain: the light's equal-area disk point
+/// in the frame turned so that the view's azimuth is 0, mirrored to y >= 0 (isotropic
+/// surfaces look the same mirrored), and the view's equal-area radius as z. A frontal view
+/// keeps the sample frame.
+Point3 isotropicPoint(Direction light, Direction view);
 
 struct LightNode {
     std::string name;  ///< image it came from (merged duplicates: the first)
@@ -63,11 +80,21 @@ struct BankLookup {
 };
 
 struct LutBank {
+    /// A measured node: layer and node index.
+    struct NodeRef {
+        std::size_t layer = 0, node = 0;
+    };
+
     int entries = 256;
     ColourMode colour = ColourMode::Grey;
     int gridSize = 17;
+    BankDomain domain = BankDomain::Layers;
     std::vector<ViewLayer> layers;
-    Triangulation views;  ///< over the layers' view directions
+    Triangulation views;  ///< layers domain: over the layers' view directions
+    Triangulation3 pairs;  ///< isotropic domain: over the nodes' isotropicPoint
+    /// isotropic domain: the nodes at each point of `pairs` (several where the symmetry
+    /// maps measurements onto one point; they are averaged).
+    std::vector<std::vector<NodeRef>> pairNodes;
 
     std::string referenceName;
     Direction referenceLight, referenceView;
@@ -89,22 +116,23 @@ struct LutBank {
     BankLookup lookup(Direction light, Direction view = {}, bool interpolate = true) const;
 
     /// The measured node nearest to a light direction in the layer nearest to a view
-    /// direction (nearest by angle).
-    struct NodeRef {
-        std::size_t layer = 0, node = 0;
-    };
+    /// direction (nearest by angle); in the isotropic domain, the node nearest in it.
     NodeRef nearestNode(Direction light, Direction view = {}) const;
 
     /// Disk point of grid node (i, j): x = -1 + 2 i / (gridSize - 1), likewise y.
     DiskPoint gridPoint(int i, int j) const;
 
-    /// The share of the hemisphere of light directions (by solid angle) inside the measured
-    /// lights' hull of a layer, where lookups interpolate rather than clamp.
+    /// The share of the hemisphere of light directions (by solid angle) where lookups at a
+    /// layer's view interpolate rather than clamp.
     double lightCoverage(std::size_t layer) const;
 
     /// The layers that lookups at a view direction use: those the view triangulation blends
-    /// there, and the nearest by angle.
+    /// there, and the nearest by angle (every layer in the isotropic domain).
     std::vector<std::size_t> layersFor(Direction view) const;
+
+    /// True when lookups at some view give different LUTs for different lights (there are
+    /// two measured light directions to blend between, in a layer or in the isotropic domain).
+    bool followsLight() const;
 
     /// Rebuilds the triangulations from the node and layer directions (after loading).
     void buildTriangulations();
@@ -122,9 +150,12 @@ struct DirectionalLut {
 };
 
 /// Builds `bank`'s layers from LUTs: one layer per view direction, repeated light directions
-/// merged by averaging (the barycentre), then the triangulations and grids. bank.entries,
-/// colour and gridSize must be set; each LUT holds bank.lutLength() values.
-void setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts);
+/// merged by averaging (the barycentre), then the domain, triangulations and grids.
+/// bank.entries, colour and gridSize must be set; each LUT holds bank.lutLength() values.
+/// Without a domain: layers when there is one layer or every layer's lights span the light
+/// disk, isotropic otherwise. Refuses (naming `source`) a bank that could not follow the light.
+Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,
+                const std::string& source);
 
 struct BakeOptions {
     std::string referenceName;  ///< empty: the image nearest to frontal light and view
@@ -133,6 +164,7 @@ struct BakeOptions {
     ColourMode colour = ColourMode::Grey;
     int threads = 0;  ///< 0: all cores
     bool ptm = false;  ///< also fit a PTM (ptm.h) to the images of the reference's view
+    std::optional<BankDomain> domain;  ///< empty: chosen from the directions (setNodes)
     /// Called after each image with (done, total); may be empty.
     std::function<void(std::size_t, std::size_t)> progress;
 };

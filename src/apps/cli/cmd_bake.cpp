@@ -19,6 +19,7 @@ struct BakeCommandOptions {
     std::string mask;
     std::string referenceLight = "0,0";
     std::string colour = "grey";
+    std::string domain = "auto";
     int grid = 17;
     int entries = 0;
     int threads = 0;
@@ -59,6 +60,13 @@ Status runModelBake(const BakeCommandOptions& o) {
 
 Status runBake(const BakeCommandOptions& o) {
     if (Status s = requireExtension(o.output, {"btflut"}, "output"); !s) return s;
+    // A view layer's grid alone must fit a chunk of the file (4 GiB): refused before any work.
+    const std::uint64_t gridBytes = static_cast<std::uint64_t>(o.grid) * o.grid * (o.entries ? o.entries : 1024) *
+                                    (o.colour == "rgb" ? 3 : 1) * 2;
+    if (gridBytes > 0xFFFFFFFFu)
+        return Error{"--grid " + std::to_string(o.grid) + " with --entries " + std::to_string(o.entries) +
+                     " makes a grid of " + std::to_string(gridBytes) +
+                     " bytes per view, over the .btflut format's 4 GiB chunk limit"};
     if (!o.model.empty()) return runModelBake(o);
     if (o.dataset.empty()) return Error{"give a DATASET to bake, or --model PARAMS.json with --reference IMAGE"};
     Result<Dataset> dataset = openDataset(o.dataset);
@@ -70,6 +78,7 @@ Status runBake(const BakeCommandOptions& o) {
     options.threads = o.threads;
     options.ptm = o.ptm;
     options.colour = o.colour == "rgb" ? ColourMode::Rgb : ColourMode::Grey;
+    if (o.domain != "auto") options.domain = *parseDomain(o.domain);
     if (!o.quiet) options.progress = terminalProgress("baking");
     Result<LutBank> bank = bakeBank(*dataset, options);
     if (!bank) return Error{bank.error()};
@@ -80,7 +89,8 @@ Status runBake(const BakeCommandOptions& o) {
         std::cout << "wrote " << o.output << ": " << dataset->images.size() << " images, "
                   << bank->layers.size() << " view layer(s), " << nodes << " measured nodes, "
                   << bank->gridSize << "x" << bank->gridSize << " grid, " << bank->entries
-                  << " entries, reference " << bank->referenceName << (bank->ptm.empty() ? "" : ", PTM") << ", "
+                  << " entries, domain " << domainName(bank->domain) << ", reference " << bank->referenceName
+                  << (bank->ptm.empty() ? "" : ", PTM") << ", "
                   << std::filesystem::file_size(o.output) << " bytes\n";
     }
     return success();
@@ -111,7 +121,16 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
     app->add_option("--colour", o->colour, "grey: one LUT on the grey value; rgb: one per channel")
         ->check(CLI::IsMember({"grey", "rgb"}))
         ->capture_default_str();
-    app->add_option("--threads", o->threads, "worker threads (0 = all cores)")
+    app->add_option("--domain", o->domain,
+                    "what lookups interpolate over: layers (each view's lights, then between views; any "
+                    "material), isotropic (theta_i, theta_r, phi_i - phi_r; for isotropic materials measured "
+                    "with light and view moving together, as CUReT), or auto: layers when every view's "
+                    "lights span the light disk (or there is one view), isotropic otherwise")
+        ->check(CLI::IsMember({"auto", "layers", "isotropic"}))
+        ->capture_default_str();
+    app->add_option("--threads", o->threads,
+                    "worker threads (0 = all cores); images are decoded one per thread, so memory is "
+                    "about the reference plus one decoded image (4 bytes per sample) per thread")
         ->check(CLI::Range(0, 1024));
     app->add_flag("--ptm", o->ptm,
                   "also fit a polynomial texture map (6 luminance coefficients + RGB albedo per texel) "

@@ -25,7 +25,7 @@ Status runInfo(const InfoOptions& o) {
     Result<LutBank> bank = loadBank(o.bank);
     if (!bank) return Error{bank.error()};
     const LutBank& b = *bank;
-    std::cout << o.bank << ": btflut bank, format version " << kBankFormatVersion << ", "
+    std::cout << o.bank << ": btflut bank, format version " << bankFormatVersion(b) << ", "
               << std::filesystem::file_size(o.bank) << " bytes\n"
               << "  LUTs:      " << b.entries << " entries, "
               << (b.colour == ColourMode::Grey ? "grey (one LUT on the grey value)"
@@ -40,25 +40,30 @@ Status runInfo(const InfoOptions& o) {
                   << b.ptm.coefficients.size() + b.ptm.albedo.size() << " bytes)\n";
     std::cout << "  grid:      " << b.gridSize << "x" << b.gridSize
               << " nodes per view layer over the equal-area light disk\n"
-              << "  layers:    " << b.layers.size() << " view direction(s)\n";
+              << "  layers:    " << b.layers.size() << " view direction(s)\n"
+              << "  domain:    " << domainName(b.domain)
+              << (b.domain == BankDomain::Layers ? " (over each layer's lights, then between the layers' views)\n"
+                                                 : " (over theta_i, theta_r and phi_i - phi_r: an isotropic material)\n");
     for (std::size_t l = 0; l < b.layers.size(); ++l) {
         const ViewLayer& layer = b.layers[l];
-        std::size_t counts[3] = {0, 0, 0}, inDisk = 0;
+        std::size_t counts[3] = {0, 0, 0};
         for (int j = 0; j < b.gridSize; ++j)
             for (int i = 0; i < b.gridSize; ++i) {
                 DiskPoint p = b.gridPoint(i, j);
                 if (p.x * p.x + p.y * p.y > 1) continue;  // beyond the horizon
-                ++inDisk;
                 ++counts[static_cast<int>(layer.gridProvenance[static_cast<std::size_t>(j) * b.gridSize + i])];
             }
         double maxTheta = 0;
         for (const LightNode& n : layer.nodes) maxTheta = std::max(maxTheta, n.light.thetaDegrees());
+        // The share of light directions (by solid angle) where lookups interpolate; a grid
+        // too coarse to have nodes inside the hemisphere (--grid 2) still has a coverage.
         char line[320];
         std::snprintf(line, sizeof line,
                       "  layer %zu: view %s, %zu light nodes (theta up to %.1f), grid nodes in the "
-                      "hemisphere: %zu measured, %zu interpolated, %zu extrapolated (%.0f%% covered)\n",
+                      "hemisphere: %zu measured, %zu interpolated, %zu extrapolated; %.0f%% of light "
+                      "directions covered\n",
                       l, degrees(layer.view).c_str(), layer.nodes.size(), maxTheta, counts[0], counts[1],
-                      counts[2], 100.0 * static_cast<double>(counts[0] + counts[1]) / static_cast<double>(inDisk));
+                      counts[2], 100.0 * b.lightCoverage(l));
         std::cout << line;
     }
     return success();

@@ -34,6 +34,8 @@ Result<ModelBankParams> parseModelParams(const std::string& text, const std::str
         if (!*r) return Error{r->error()};
     if (!kd) return Error{kd.error()};
     if (!ks) return Error{ks.error()};
+    for (const char* key : {"brdf", "method"})
+        if (doc.contains(key) && !doc[key].is_string()) return Error{where + "\"" + key + "\" must be a string"};
     const std::string brdf = doc.value("brdf", std::string("lambert"));
     Result<SurfaceModel> model = makeSurfaceModel(*roughness, brdf, *kd, *ks, *sigma, *ior, *gain, where);
     if (!model) return Error{model.error()};
@@ -45,7 +47,8 @@ Result<ModelBankParams> parseModelParams(const std::string& text, const std::str
     p.simulation.method = *method;
     if (*bins < 2 || *bins > 65536) return Error{where + "\"bins\" must be within [2, 65536]"};
     if (*nodes < 1 || *nodes > 4096) return Error{where + "\"nodes\" must be within [1, 4096]"};
-    if (*samples < 1) return Error{where + "\"samples\" must be positive"};
+    if (!(*samples >= 1 && *samples <= 0x1p40)) return Error{where + "\"samples\" must be within [1, 2^40]"};
+    if (!(*seed >= 0 && *seed <= 0x1p53)) return Error{where + "\"seed\" must be an integer within [0, 2^53]"};
     if (!(*smooth >= 0)) return Error{where + "\"smooth\" must be >= 0"};
     p.simulation.bins = static_cast<int>(*bins);
     p.simulation.nodes = static_cast<int>(*nodes);
@@ -109,7 +112,7 @@ Result<LutBank> bakeModelBank(const ModelBankParams& params, const Image& refere
                       params.lights[i].phiDegrees());
         luts[i] = {name, params.lights[i], params.view, matchLut(refMass, target, bank.entries).values};
     });
-    setNodes(bank, luts);
+    if (Status s = setNodes(bank, luts, BankDomain::Layers, about.name); !s) return Error{s.error()};
     return bank;
 }
 
