@@ -22,9 +22,14 @@ GlTexture uploadReference(const Image& image) {
 
 }  // namespace
 
-Result<Image> renderNative(const LutBank& bank, Direction light, Direction view, bool dither) {
+Result<Image> renderNative(const LutBank& bank, Direction light, Direction view, bool dither, bool interpolate) {
     const Image& ref = bank.reference;
     if (ref.samples.empty()) return Error{"the bank has no reference image inside"};
+    GLint maxSize = 0;
+    gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+    if (ref.width > maxSize || ref.height > maxSize)
+        return Error{"the reference image (" + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
+                     ") is larger than this GL driver's largest texture (" + std::to_string(maxSize) + ")"};
     std::vector<std::string> defines;
     if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
     if (dither) defines.push_back("DITHER");
@@ -32,7 +37,7 @@ Result<Image> renderNative(const LutBank& bank, Direction light, Direction view,
     if (!program) return Error{program.error()};
 
     GlTexture reference = uploadReference(ref);
-    const BankLookup lookup = bank.lookup(light, view);
+    const BankLookup lookup = bank.lookup(light, view, interpolate);
     std::vector<GlTexture> luts;
     for (int c = 0; c < bank.channels(); ++c)
         luts.push_back(uploadLut(&lookup.values[static_cast<std::size_t>(c) * bank.entries], bank.entries));

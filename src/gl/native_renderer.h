@@ -11,6 +11,7 @@
 
 namespace btflut {
 
-Result<Image> renderNative(const LutBank& bank, Direction light, Direction view, bool dither);
+/// With `interpolate` false, the LUT of the nearest measured node (LutBank::lookup).
+Result<Image> renderNative(const LutBank& bank, Direction light, Direction view, bool dither, bool interpolate = true);
 
 }  // namespace btflut

@@ -24,10 +24,18 @@ Status requireExtension(const std::string& path, const std::vector<std::string>&
 Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::string& light, const std::string& view) {
     Result<Direction> l = parseDirection(light, "--light");
     if (!l) return Error{l.error()};
-    Result<Direction> v = parseDirection(view, "--view");
+    Result<Direction> v = view.empty() ? Result<Direction>(Direction{}) : parseDirection(view, "--view");
     if (!v) return Error{v.error()};
     Result<LutBank> bank = loadBank(bankPath);
     if (!bank) return Error{bank.error()};
+    if (view.empty()) {
+        v = bank->referenceView;
+    } else if (bank->layers.size() == 1 && angleBetween(bank->layers[0].view, *v) > 1e-6) {
+        // A bank measured from one view cannot change with the view: say so, never clamp silently.
+        const Direction only = bank->layers[0].view;
+        return Error{bankPath + ": the bank holds one view direction (" + std::to_string(only.thetaDegrees()) + ", " +
+                     std::to_string(only.phiDegrees()) + " degrees); it cannot relight for --view " + view};
+    }
     return BankAtDirection{std::move(*bank), *l, *v};
 }
 

@@ -46,7 +46,8 @@ Status requireExtension(const std::string& path, const std::vector<std::string>&
 void addLutImageOptions(CLI::App& app, int& depth, bool& noDither);
 
 /// A bank and the light and view to apply it at, from the command line's text
-/// (THETA,PHI in degrees), each validated.
+/// (THETA,PHI in degrees), each validated. An empty view means the bank's reference view; a
+/// view that a one-view bank does not hold is refused.
 struct BankAtDirection {
     LutBank bank;
     Direction light, view;

@@ -24,6 +24,10 @@ Status runExport(const ExportOptions& o) {
     const LutBank& b = *bank;
     const int cells = b.gridSize * b.gridSize;
     const int channels = b.channels();
+    const std::uint64_t rows = static_cast<std::uint64_t>(cells) * b.layers.size();
+    if (rows > 0x7FFFFFFFu || rows * static_cast<std::uint64_t>(b.entries) > maxImagePixels())
+        return Error{o.bank + ": its atlas would be " + std::to_string(b.entries) + "x" + std::to_string(rows) +
+                     " pixels, more than a PNG (or --max-pixels) allows; bake it with a smaller --grid"};
     // One row per grid node (layer-major, then j, then i), one column per LUT entry; RGB
     // banks use the three colour channels of the PNG.
     Image atlas(b.entries, cells * static_cast<int>(b.layers.size()), channels, 16);
@@ -59,10 +63,11 @@ Status runExport(const ExportOptions& o) {
                                   {"node_provenance", provenance}});
     }
     std::filesystem::path sidecar = std::filesystem::path(o.output).replace_extension(".json");
-    // Both files are complete in memory before either is renamed into place.
-    Bytes png = encodePng(atlas, 16);
-    if (Status s = writeFileAtomically(sidecar.string(), jsonText(side)); !s) return s;
-    if (Status s = writeFileAtomically(o.output, png); !s) return s;
+    // Both files are complete on disk before either is renamed into place.
+    const Bytes png = encodePng(atlas, 16);
+    const std::string text = jsonText(side);
+    if (Status s = writeFilesAtomically({{o.output, png.data(), png.size()}, {sidecar.string(), text.data(), text.size()}}); !s)
+        return s;
     std::cout << "wrote " << o.output << " (" << atlas.width << "x" << atlas.height
               << ", 16-bit) and " << sidecar.string() << "\n";
     return success();

@@ -13,7 +13,7 @@ namespace {
 struct RelightOptions {
     std::string bank;
     std::string light;
-    std::string view = "0,0";
+    std::string view;
     std::string output;
     std::string referenceImage;
     int depth = 8;
@@ -29,8 +29,16 @@ Status runRelight(const RelightOptions& o) {
     if (!o.referenceImage.empty()) {
         Result<Image> image = loadImage(o.referenceImage);
         if (!image) return Error{image.error()};
-        if (bank.colour == ColourMode::Rgb && image->channels != 3)
-            return Error{o.referenceImage + ": the bank is rgb but this image is grey"};
+        // The LUTs map the reference's own codes: another size, channel count or bit depth
+        // is another image.
+        const Image& ref = bank.reference;
+        if (image->width != ref.width || image->height != ref.height || image->channels != ref.channels ||
+            image->bitDepth != ref.bitDepth)
+            return Error{o.referenceImage + ": the bank's reference is " + std::to_string(ref.width) + "x" +
+                         std::to_string(ref.height) + " with " + std::to_string(ref.channels) + " channel(s) at " +
+                         std::to_string(ref.bitDepth) + " bits, this image is " + std::to_string(image->width) + "x" +
+                         std::to_string(image->height) + " with " + std::to_string(image->channels) + " at " +
+                         std::to_string(image->bitDepth)};
         bank.reference = std::move(*image);
     }
     if (bank.reference.samples.empty())
@@ -53,7 +61,7 @@ void addRelightCommand(CLI::App& root, Commands& commands) {
         "relight", "Apply the bank's LUT for a light (and view) direction to its reference image");
     app->add_option("BANK", o->bank, "M.btflut")->required();
     app->add_option("--light", o->light, "light direction THETA,PHI in degrees")->required();
-    app->add_option("--view", o->view, "view direction THETA,PHI in degrees")->capture_default_str();
+    app->add_option("--view", o->view, "view direction THETA,PHI in degrees (default: the reference image's view)");
     app->add_option("-o,--output", o->output, "out.png")->required();
     addLutImageOptions(*app, o->depth, o->noDither);
     app->add_option("--reference-image", o->referenceImage,

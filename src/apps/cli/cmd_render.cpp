@@ -19,7 +19,7 @@ struct RenderOptions {
     std::string interpolation;
     bool stats = false;
     std::string light;
-    std::string view = "0,0";
+    std::string view;
     std::string output;
     std::string backend = "auto";
     bool native = false;
@@ -88,19 +88,28 @@ Status runSceneRender(const RenderOptions& o) {
 
 Status runRender(const RenderOptions& o) {
     if (Status s = requireExtension(o.output, {"png"}, "output"); !s) return s;
+    if (!o.mode.empty())
+        if (Result<RenderMode> mode = parseRenderMode(o.mode); !mode) return Error{"--" + mode.error()};
     if (fileExtension(o.input) == "json") {
         if (o.native) return Error{"--native renders a bank (M.btflut), not a scene"};
+        if (!o.view.empty()) return Error{"--view applies to --native; a scene's camera sets the view"};
+        if (o.noDither) return Error{"--no-dither applies to --native; scenes apply the plain LUT"};
         return runSceneRender(o);
     }
     if (!o.native) return Error{"a bank (M.btflut) renders with --native: the frontal quad at its reference image's "
                                 "resolution; scenes are SCENE.json"};
+    // Options of scenes that --native cannot honour are refused, never ignored.
+    if (!o.mode.empty() && o.mode != "lut")
+        return Error{"--native draws the lut mode (relight's twin); --mode " + o.mode + " needs a scene (SCENE.json)"};
+    if (!o.size.empty()) return Error{"--native renders at the reference image's own size; --size is for scenes"};
+    if (o.stats) return Error{"--stats reports on scenes (SCENE.json), not --native"};
     if (o.light.empty()) return Error{"--native needs --light THETA,PHI"};
     Result<BankAtDirection> query = loadBankAt(o.input, o.light, o.view);
     if (!query) return Error{query.error()};
     LutBank& bank = query->bank;
     Result<std::unique_ptr<HeadlessContext>> context = makeContext(o);
     if (!context) return Error{context.error()};
-    Result<Image> image = renderNative(bank, query->light, query->view, !o.noDither);
+    Result<Image> image = renderNative(bank, query->light, query->view, !o.noDither, o.interpolation != "nearest");
     if (!image) return Error{o.input + ": " + image.error()};
     if (Status s = savePng(*image, o.output, o.depth); !s) return s;
     std::cout << "wrote " << o.output << " (" << image->width << "x" << image->height << ")\n";
@@ -119,13 +128,15 @@ void addRenderCommand(CLI::App& root, Commands& commands) {
                     "light THETA,PHI in degrees (bank: its sample frame; scene: the world, z up; "
                     "overrides the file)");
     app->add_option("--size", o->size, "scene image size WxH (overrides the file)");
-    app->add_option("--mode", o->mode, "lut, brdf, ptm, flat or nearest for every quad (overrides the file)");
+    app->add_option("--mode", o->mode,
+                    "lut, brdf, ptm, flat or nearest for every quad (overrides the file); --native draws lut only");
     app->add_option("--interpolation", o->interpolation,
                     "linear: LUTs interpolated between the measured directions; nearest: the nearest one's "
                     "(overrides the file)")
         ->check(CLI::IsMember({"linear", "nearest"}));
     app->add_flag("--stats", o->stats, "print what was loaded, what was skipped and the texture memory");
-    app->add_option("--view", o->view, "view direction THETA,PHI in degrees")->capture_default_str();
+    app->add_option("--view", o->view,
+                    "with --native: view direction THETA,PHI in degrees (default: the reference image's view)");
     app->add_flag("--native", o->native, "the frontal quad at the reference image's own resolution");
     app->add_option("-o,--output", o->output, "out.png")->required();
     app->add_option("--backend", o->backend, "auto (EGL, then OSMesa), osmesa or egl")->capture_default_str();

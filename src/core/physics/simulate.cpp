@@ -300,7 +300,8 @@ const char* simulationMethodName(SimulationMethod m) {
 std::vector<double> smoothHistogram(const std::vector<double>& h, double width) {
     if (width <= 0) return h;
     const int n = static_cast<int>(h.size());
-    const int reach = static_cast<int>(std::ceil(4 * width));
+    // Four widths, but never past the histogram (a huge width would overflow an int).
+    const int reach = static_cast<int>(std::min(std::ceil(4 * width), static_cast<double>(n)));
     std::vector<double> out(h.size(), 0.0);
     for (int i = 0; i < n; ++i) {
         if (h[static_cast<std::size_t>(i)] == 0) continue;

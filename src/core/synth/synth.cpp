@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -63,6 +65,29 @@ Result<std::vector<double>> albedoMap(const SynthMaterial& m) {
     return albedo;
 }
 
+// The files an earlier `btflut synth` wrote into `folder` (its manifest says so), as plain
+// names inside it; refuses a folder that synth did not write.
+Result<std::vector<std::string>> synthFilesIn(const std::string& folder) {
+    const std::string manifestPath = (fs::path(folder) / "btflut-dataset.json").string();
+    const std::string refuse = folder + ": --force replaces only a folder written by btflut synth, and this one ";
+    std::error_code ec;
+    if (!fs::exists(manifestPath, ec)) return Error{refuse + "has no btflut-dataset.json"};
+    Result<Bytes> text = readFile(manifestPath);
+    if (!text) return Error{text.error()};
+    Result<nlohmann::json> doc = parseJsonText(std::string(text->begin(), text->end()), manifestPath);
+    if (!doc) return Error{doc.error()};
+    if (!doc->is_object() || !doc->contains("synth") || !(*doc)["images"].is_array())
+        return Error{refuse + "has a manifest synth did not write"};
+    std::vector<std::string> names{"btflut-dataset.json", "mask.png", "synth.lp"};
+    for (const nlohmann::json& image : (*doc)["images"])
+        if (image.is_object() && image.contains("file") && image["file"].is_string()) {
+            const std::string name = image["file"].get<std::string>();
+            // Only a plain file name: a manifest must not point the removal elsewhere.
+            if (fs::path(name).filename() == name && name != "." && name != "..") names.push_back(name);
+        }
+    return names;
+}
+
 std::string lpLine(const std::string& file, Direction light) {
     const Vec3 l = toVector(light);
     char buf[64];
@@ -81,10 +106,16 @@ Status writeSynthDataset(const SynthMaterial& m, const std::vector<Geometry>& ge
             return Error{"--geometry " + g.name + ": light and view must be above the horizon (theta < 90)"};
     if (out.bitDepth != 8 && out.bitDepth != 16) return Error{"--depth must be 8 or 16"};
     std::error_code ec;
+    // --force replaces what an earlier `btflut synth` wrote there, and nothing else.
+    std::vector<std::string> replaced;
     if (fs::exists(folder, ec)) {
         if (!fs::is_directory(folder, ec)) return Error{folder + ": exists and is not a folder"};
-        if (!fs::is_empty(folder, ec) && !out.force)
-            return Error{folder + ": exists and is not empty (use --force to replace it)"};
+        if (!fs::is_empty(folder, ec)) {
+            if (!out.force) return Error{folder + ": exists and is not empty (use --force to replace it)"};
+            Result<std::vector<std::string>> earlier = synthFilesIn(folder);
+            if (!earlier) return Error{earlier.error()};
+            replaced = std::move(*earlier);
+        }
     }
     Result<HeightField> field = synthesizeHeightField(m.surface);
     if (!field) return Error{field.error()};
@@ -97,9 +128,12 @@ Status writeSynthDataset(const SynthMaterial& m, const std::vector<Geometry>& ge
     SurfaceModel model = m.model;
     model.roughness = m.surface.roughness;
 
-    const fs::path tmp = folder + ".tmp." + std::to_string(::getpid());
-    fs::remove_all(tmp, ec);
-    if (!fs::create_directories(tmp, ec) || ec) return Error{folder + ": cannot create (" + ec.message() + ")"};
+    // A new folder of our own beside the target (mkdtemp: exclusive, random name).
+    std::string pattern = fs::path(folder).lexically_normal().string();
+    while (pattern.size() > 1 && pattern.back() == '/') pattern.pop_back();
+    pattern += ".tmp.XXXXXX";
+    if (!::mkdtemp(pattern.data())) return Error{folder + ": cannot create a folder beside it (" + std::strerror(errno) + ")"};
+    const fs::path tmp = pattern;
     auto fail = [&](const std::string& message) {
         fs::remove_all(tmp, ec);
         return Error{message};
@@ -135,10 +169,20 @@ Status writeSynthDataset(const SynthMaterial& m, const std::vector<Geometry>& ge
         return fail(s.error());
     if (fixedView && geometry.front().view.theta == 0)
         if (Status s = writeFileAtomically((tmp / "synth.lp").string(), lp); !s) return fail(s.error());
-    // Into place: the old folder (empty, or replaced with --force) goes only now.
-    fs::remove_all(folder, ec);
-    fs::rename(tmp, folder, ec);
-    if (ec) return fail(folder + ": cannot move into place (" + ec.message() + ")");
+    // Into place, only now: a new folder moves as a whole; into an existing one, the earlier
+    // synth files go and the new ones move in, other files stay.
+    if (!fs::exists(folder, ec)) {
+        fs::rename(tmp, folder, ec);
+        if (ec) return fail(folder + ": cannot move into place (" + ec.message() + ")");
+        return success();
+    }
+    for (const std::string& name : replaced) fs::remove(fs::path(folder) / name, ec);
+    for (fs::directory_iterator it(tmp, ec), end; !ec && it != end; it.increment(ec)) {
+        std::error_code moved;
+        fs::rename(it->path(), fs::path(folder) / it->path().filename(), moved);
+        if (moved) return fail(folder + ": cannot move " + it->path().filename().string() + " into place (" + moved.message() + ")");
+    }
+    fs::remove_all(tmp, ec);
     return success();
 }
 

@@ -39,7 +39,7 @@ Status validateSynthMaterial(const SynthMaterial& material);
 struct SynthOutput {
     int samplesPerAxis = 2;
     int bitDepth = 8;
-    bool force = false;  ///< replace an existing, non-empty folder
+    bool force = false;  ///< replace the files of an earlier synth output in the folder (others stay)
     int threads = 0;
     std::function<void(std::size_t, std::size_t)> progress;
 };
