@@ -16,6 +16,7 @@ packages=(
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libimgui-dev
   python3 python3-numpy python3-skimage python3-pil  # reference checks in tools/
   xvfb xauth
+  clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (tools/fuzz.sh)
 )
 
 missing=()
