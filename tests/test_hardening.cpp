@@ -170,6 +170,7 @@ TEST_CASE("synth --force replaces only what synth wrote") {
         args.insert(args.end(), extra.begin(), extra.end());
         return runCli(args);
     };
+    REQUIRE(with({"-o", dir / "new/folders/out", "--geometry", "rti-1"}).status == 0);  // parents are made
     REQUIRE(with({"-o", dir / "out", "--geometry", "rti-3"}).status == 0);
     std::ofstream(dir / "out/notes.txt") << "mine";
     requireOneLineError(with({"-o", dir / "out", "--geometry", "rti-3"}), "exists and is not empty");

@@ -1,5 +1,7 @@
 #include "gl/context.h"
 
+#include <dlfcn.h>
+
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/osmesa.h>
@@ -105,7 +107,23 @@ Result<GlBackend> parseGlBackend(const std::string& name) {
     return Error{"--backend '" + name + "' is not auto, osmesa or egl"};
 }
 
+void keepGlDriversLoadedForLeakChecks() {
+#ifdef BTFLUT_SANITIZE
+    // LeakSanitizer reports at exit, after Mesa has unloaded its driver modules, so the
+    // allocations Mesa keeps until exit would come from no named module, and the
+    // suppressions (tests/sanitizers/lsan.supp) could not match them. Loading the modules
+    // once more with RTLD_NODELETE keeps them (the driver's own loads reuse them).
+    static const bool pinned = [] {
+        for (const char* module : {"libEGL_mesa.so.0", "libGLX_mesa.so.0", BTFLUT_DRI_DIR "/swrast_dri.so"})
+            ::dlopen(module, RTLD_LAZY | RTLD_LOCAL | RTLD_NODELETE);
+        return true;
+    }();
+    (void)pinned;
+#endif
+}
+
 Result<std::unique_ptr<HeadlessContext>> createHeadlessContext(GlBackend backend) {
+    keepGlDriversLoadedForLeakChecks();
     if (backend == GlBackend::OsMesa) return OsMesaContext::create();
     if (backend == GlBackend::Egl) return EglContext::create();
     Result<std::unique_ptr<HeadlessContext>> egl = EglContext::create();

@@ -27,4 +27,8 @@ public:
 /// error says what each backend answered.
 Result<std::unique_ptr<HeadlessContext>> createHeadlessContext(GlBackend backend);
 
+/// In sanitized builds (BTFLUT_SANITIZE), keeps Mesa's driver modules loaded until exit so
+/// that leak reports can name them; does nothing otherwise. Called before any context is made.
+void keepGlDriversLoadedForLeakChecks();
+
 }  // namespace btflut

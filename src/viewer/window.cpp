@@ -2,6 +2,7 @@
 
 #include <GLFW/glfw3.h>
 
+#include "gl/context.h"
 #include "gl/gl_api.h"
 
 namespace btflut {
@@ -17,6 +18,7 @@ void recordGlfwError(int, const char* description) { g_lastGlfwError = descripti
 Result<std::unique_ptr<Window>> Window::create(int width, int height, const std::string& title, bool vsync) {
     glfwSetErrorCallback(recordGlfwError);
     g_lastGlfwError.clear();
+    keepGlDriversLoadedForLeakChecks();
     if (!glfwInit())
         return Error{"no display (" + (g_lastGlfwError.empty() ? std::string("GLFW cannot start") : g_lastGlfwError) +
                      "): btflut view needs a window; for headless rendering use `btflut render`"};

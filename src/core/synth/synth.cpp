@@ -128,9 +128,11 @@ Status writeSynthDataset(const SynthMaterial& m, const std::vector<Geometry>& ge
     SurfaceModel model = m.model;
     model.roughness = m.surface.roughness;
 
-    // A new folder of our own beside the target (mkdtemp: exclusive, random name).
+    // A new folder of our own beside the target (mkdtemp: exclusive, random name), in a
+    // parent made first when missing.
     std::string pattern = fs::path(folder).lexically_normal().string();
     while (pattern.size() > 1 && pattern.back() == '/') pattern.pop_back();
+    if (const fs::path parent = fs::path(pattern).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
     pattern += ".tmp.XXXXXX";
     if (!::mkdtemp(pattern.data())) return Error{folder + ": cannot create a folder beside it (" + std::strerror(errno) + ")"};
     const fs::path tmp = pattern;
