@@ -26,7 +26,8 @@ std::uint32_t tagOf(const char (&t)[5]) {
            static_cast<std::uint32_t>(t[2]) << 16 | static_cast<std::uint32_t>(t[3]) << 24;
 }
 const std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
-                    kEnd = tagOf("END ");
+                    kEnd = tagOf("END "), kReferences = tagOf("REFS"), kMask = tagOf("MASK"), kLabels = tagOf("LABL"),
+                    kAlbedo = tagOf("ALBD");
 
 std::string tagName(std::uint32_t tag) {
     std::string s;
@@ -110,6 +111,13 @@ void putChunk(Writer& file, std::uint32_t tag, const Bytes& payload) {
     file.put(chunkCrc(tag, payload.data(), payload.size()));
 }
 
+// Bytes per texel (a mask as 0/1, labels) as an 8-bit grey image: value * scale / 255.
+Image maskImage(const std::vector<std::uint8_t>& bytes, int width, int height, int scale) {
+    Image image(width, height, 1);
+    for (std::size_t i = 0; i < bytes.size(); ++i) image.samples[i] = static_cast<float>(bytes[i] * scale) / 255.f;
+    return image;
+}
+
 void putDirection(Writer& w, Direction d) {
     w.put(d.thetaDegrees());
     w.put(d.phiDegrees());
@@ -169,6 +177,7 @@ Result<Chunks> splitChunks(const Bytes& bytes, const std::string& name) {
 // HEAD, read and checked before any other chunk, so every size below is known to be sane.
 struct Head {
     std::uint32_t layerCount = 0, refWidth = 0, refHeight = 0, refChannels = 0, refDepth = 0;
+    std::uint32_t references = 0;  // version 3, banks that make their LUTs at run time
     bool embedded = false;
 };
 
@@ -189,6 +198,19 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
     Result<Direction> rv = getDirection(in, name, "reference view");
     bank.referenceName = in.getString();
     const auto domain = version >= 2 ? in.get<std::uint32_t>() : 0u;
+    if (version >= 3) {
+        head.references = in.get<std::uint32_t>();
+        const auto regions = in.get<std::uint32_t>(), quantiles = in.get<std::uint32_t>();
+        if (in.ok() && quantiles > 0) {
+            if (head.references < 1 || head.references > 255 || regions < 1 || regions > 255 || quantiles < 2 ||
+                quantiles > 65536)
+                return fail("references, regions or quantiles out of range");
+            bank.blend.regions = static_cast<int>(regions);
+            bank.blend.quantiles = static_cast<int>(quantiles);
+        } else if (in.ok() && (head.references != 0 || regions != 0)) {
+            return fail("references and regions without quantiles");
+        }
+    }
     if (!in.ok() || in.remaining() != 0) return fail("HEAD chunk has the wrong size");
     if (!rl) return Error{rl.error()};
     if (!rv) return Error{rv.error()};
@@ -196,7 +218,8 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
     bank.referenceView = *rv;
     if (bank.entries < 2 || static_cast<std::uint32_t>(bank.entries) > kMaxEntries)
         return fail("LUT entry count " + std::to_string(bank.entries) + " is invalid");
-    if (colour != 1 && colour != 3) return fail("colour mode " + std::to_string(colour) + " is invalid");
+    if (colour != 1 && colour != 3 && !(colour == 4 && bank.makesLuts()))
+        return fail("colour mode " + std::to_string(colour) + " is invalid");
     bank.colour = static_cast<ColourMode>(colour);
     if (bank.gridSize < 2 || static_cast<std::uint32_t>(bank.gridSize) > kMaxGrid)
         return fail("grid size " + std::to_string(bank.gridSize) + " is invalid");
@@ -274,11 +297,12 @@ Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t
 std::uint32_t bankFormatVersion(const LutBank& bank) {
     // The oldest version that holds everything: readers of version 1 keep reading the banks
     // they always could.
+    if (bank.makesLuts()) return 3;
     return bank.domain == BankDomain::Layers ? 1u : 2u;
 }
 
 Status checkBankSize(const LutBank& bank) {
-    const std::uint64_t length = bank.lutLength(), cells = static_cast<std::uint64_t>(bank.gridSize) * bank.gridSize;
+    const std::uint64_t length = bank.nodeLength(), cells = static_cast<std::uint64_t>(bank.gridSize) * bank.gridSize;
     for (const ViewLayer& layer : bank.layers) {
         std::uint64_t bytes = 20 + layer.nodes.size() * (20 + length * 4) + cells * (1 + length * 2);
         for (const LightNode& node : layer.nodes) bytes += node.name.size();
@@ -318,6 +342,11 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     putDirection(head, bank.referenceView);
     head.putString(bank.referenceName);
     if (version >= 2) head.put(static_cast<std::uint32_t>(bank.domain));
+    if (version >= 3) {
+        head.put(static_cast<std::uint32_t>(bank.blend.references.size()));
+        head.put(static_cast<std::uint32_t>(bank.blend.regions));
+        head.put(static_cast<std::uint32_t>(bank.blend.quantiles));
+    }
     putChunk(file, kHead, head.bytes());
 
     for (const ViewLayer& layer : bank.layers) {
@@ -335,10 +364,89 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         putChunk(file, kLayer, w.bytes());
     }
     if (embed) putChunk(file, kReference, encodePng(bank.reference, bank.reference.bitDepth));
+    if (bank.makesLuts()) {
+        const LutBank::Blend& blend = bank.blend;
+        Writer refs;
+        for (std::size_t k = 0; k < blend.references.size(); ++k) {
+            putDirection(refs, blend.lights[k].light);
+            refs.putString(blend.lights[k].name);
+            const Bytes png = encodePng(blend.references[k], blend.references[k].bitDepth);
+            refs.put(static_cast<std::uint32_t>(png.size()));
+            refs.putBytes(png.data(), png.size());
+        }
+        putChunk(file, kReferences, refs.bytes());
+        putChunk(file, kMask, encodePng(maskImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
+        if (!blend.labels.empty()) putChunk(file, kLabels, encodePng(maskImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
+        if (!blend.albedo.samples.empty()) putChunk(file, kAlbedo, encodePng(blend.albedo, 8));
+    }
     if (!bank.ptm.empty()) putChunk(file, kPtm, encodePtm(bank.ptm));
     putChunk(file, kEnd, {});
     return std::move(file.bytes());
 }
+
+namespace {
+
+// The chunks of version 3 banks that make their LUTs at run time (LutBank::Blend); sizes
+// are checked against HEAD before anything is decoded, and each chunk may come once.
+Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, const Head& head, LutBank& bank) {
+    auto fail = [&](const std::string& what) { return Error{name + ": " + tagName(tag) + " chunk: " + what}; };
+    LutBank::Blend& blend = bank.blend;
+    const int w = static_cast<int>(head.refWidth), h = static_cast<int>(head.refHeight);
+    auto png = [&](const std::string& what) -> Result<Image> {
+        const auto length = in.get<std::uint32_t>();
+        const std::uint8_t* bytes = in.getBytes(length);
+        if (!in.ok()) return fail("truncated " + what);
+        return decodeImage(Bytes(bytes, bytes + length), name + " (" + what + ")", w, h);
+    };
+    auto whole = [&](const std::string& what) -> Result<Image> {  // a chunk that is one PNG
+        const std::size_t length = in.remaining();
+        const std::uint8_t* bytes = in.getBytes(length);
+        return decodeImage(Bytes(bytes, bytes + length), name + " (" + what + ")", w, h);
+    };
+    if (tag == kReferences) {
+        if (!blend.references.empty()) return fail("twice");
+        for (std::uint32_t k = 0; k < head.references; ++k) {
+            Result<Direction> light = getDirection(in, name, "reference light");
+            if (!light) return Error{light.error()};
+            std::string referenceName = in.getString();
+            Result<Image> image = png("reference " + std::to_string(k));
+            if (!image) return Error{image.error()};
+            const int channels = bank.colour == ColourMode::Lrgb ? 1 : static_cast<int>(head.refChannels);
+            if (image->channels != channels) return fail("reference " + std::to_string(k) + " has the wrong channels");
+            blend.lights.push_back({referenceName, *light});
+            blend.references.push_back(std::move(*image));
+        }
+        if (in.remaining() != 0) return fail("has the wrong size");
+        std::vector<DiskPoint> points;
+        for (const LightNode& node : blend.lights) points.push_back(toDisk(node.light));
+        if (hasNearDuplicates(points, 1e-9)) return fail("two references share one light direction");
+        return success();
+    }
+    if (tag == kMask || tag == kLabels) {
+        if (!(tag == kMask ? blend.mask.inside : blend.labels).empty()) return fail("twice");
+        Result<Image> image = whole(tag == kMask ? "mask" : "labels");
+        if (!image) return Error{image.error()};
+        if (image->channels != 1 || image->bitDepth != 8) return fail("not an 8-bit grey image");
+        std::vector<std::uint8_t> bytes(image->pixelCount());
+        for (std::size_t i = 0; i < bytes.size(); ++i)
+            bytes[i] = static_cast<std::uint8_t>(std::lround(image->samples[i] * 255) / (tag == kMask ? 255 : 1));
+        if (tag == kLabels) {
+            blend.labels = std::move(bytes);
+            return success();
+        }
+        blend.mask = {w, h, std::move(bytes)};
+        if (blend.mask.count() == 0) return fail("has no sample pixels");
+        return success();
+    }
+    if (!blend.albedo.samples.empty()) return fail("twice");
+    Result<Image> image = whole("albedo");
+    if (!image) return Error{image.error()};
+    if (image->channels != 3) return fail("not an RGB image");
+    blend.albedo = std::move(*image);
+    return success();
+}
+
+}  // namespace
 
 Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const BankReadOptions& options) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
@@ -386,7 +494,7 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             if (bank.layers.size() == head->layerCount)
                 return fail("more LAYR chunks than the " + std::to_string(head->layerCount) + " declared");
             const std::string which = "layer " + std::to_string(bank.layers.size());
-            const std::size_t length1 = bank.lutLength();
+            const std::size_t length1 = bank.nodeLength();
             const auto cells = static_cast<std::size_t>(bank.gridSize) * bank.gridSize;
             ViewLayer layer;
             Result<Direction> view = getDirection(in, name, "layer view");
@@ -418,9 +526,10 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             }
             layer.nodeLuts.resize(nodes * length1);
             std::memcpy(layer.nodeLuts.data(), luts, layer.nodeLuts.size() * sizeof(float));
-            for (std::size_t k = 0; k < layer.nodeLuts.size(); k += static_cast<std::size_t>(bank.entries))
-                if (!isValidLut(&layer.nodeLuts[k], static_cast<std::size_t>(bank.entries)))
-                    return fail("a LUT is not monotonic in [0, 1] (file is corrupted)");
+            for (std::size_t k = 0; k < layer.nodeLuts.size(); k += bank.segmentLength())
+                if (!isValidLut(&layer.nodeLuts[k], bank.segmentLength()))
+                    return fail(std::string(bank.makesLuts() ? "a quantile function" : "a LUT") +
+                                " is not monotonic in [0, 1] (file is corrupted)");
             for (std::size_t g = 0; g < cells; ++g) {
                 if (kinds[g] > 2) return fail("invalid grid node provenance");
                 if (options.grids) layer.gridProvenance.push_back(static_cast<Provenance>(kinds[g]));
@@ -439,6 +548,9 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             if (static_cast<std::uint32_t>(image->channels) != head->refChannels)
                 return fail("reference image does not match the header");
             bank.reference = std::move(*image);
+        } else if (tag == kReferences || tag == kMask || tag == kLabels || tag == kAlbedo) {
+            if (!bank.makesLuts()) return fail("unexpected chunk " + tagName(tag));
+            if (Status st = readBlendChunk(tag, in, name, *head, bank); !st) return Error{st.error()};
         } else if (tag == kPtm) {
             if (havePtm) return fail("two PTMC chunks");
             havePtm = true;
@@ -461,7 +573,17 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
         bank.reference.channels = static_cast<int>(head->refChannels);
         bank.reference.bitDepth = static_cast<int>(head->refDepth);
     }
-    if (bank.colour == ColourMode::Rgb && head->refChannels != 3) return fail("rgb bank with a grey reference image");
+    if (bank.colour != ColourMode::Grey && head->refChannels != 3)
+        return fail(std::string(colourName(bank.colour)) + " bank with a grey reference image");
+    if (bank.makesLuts()) {
+        const LutBank::Blend& blend = bank.blend;
+        if (!head->embedded || blend.references.size() != head->references || blend.mask.inside.empty() ||
+            (blend.regions > 1) != !blend.labels.empty() || (bank.colour == ColourMode::Lrgb) != !blend.albedo.samples.empty() ||
+            bank.layers.size() != 1)
+            return fail("the references, mask, labels or albedo of a bank that blends references are missing or do not fit");
+        for (std::uint8_t label : blend.labels)
+            if (label >= blend.regions) return fail("a region label is beyond the bank's regions");
+    }
     std::vector<DiskPoint> views;
     for (const ViewLayer& l : bank.layers) views.push_back(toDisk(l.view));
     if (hasNearDuplicates(views, 1e-9)) return fail("two layers share one view direction");

@@ -177,7 +177,11 @@ Result<Dataset> openFile(const std::string& path, const std::string& ext) {
     std::string folder = fs::path(path).parent_path().string();
     if (folder.empty()) folder = ".";
     if (ext == "json") return parseManifest(text, path, folder);
-    return parseLpFile(text, path, folder);
+    Result<Dataset> rti = parseLpFile(text, path, folder);
+    // RTI captures have no place for a mask in the .lp file: a mask.png beside it is the mask.
+    std::error_code ec;
+    if (rti && fs::is_regular_file(fs::path(folder) / "mask.png", ec)) rti->maskPath = joinPath(folder, "mask.png");
+    return rti;
 }
 
 }  // namespace

@@ -3,7 +3,8 @@
 // under, and an optional sample mask. Four on-disk forms are recognised from one path:
 //
 //   btflut manifest  FILE.json, or a folder holding btflut-dataset.json   (docs/datasets.md)
-//   RTI capture      FILE.lp, or a folder holding exactly one .lp file    (fixed frontal view)
+//   RTI capture      FILE.lp, or a folder holding exactly one .lp file    (fixed frontal view;
+//                    a mask.png beside the .lp file is its mask)
 //   photometric set  a folder with lights.txt, NAME.K.ext, NAME.mask.ext  (fixed frontal view)
 //   Bonn UBO2003     a folder of "tl015 pl000 tv000 pv000.jpg" images
 //

@@ -67,6 +67,18 @@ Lut matchLut(const LevelCounts& reference, const LevelCounts& target, int entrie
 /// weights with a positive sum, e.g. a model histogram).
 Lut matchLut(std::span<const double> reference, std::span<const double> target, int entries);
 
+/// The quantile function c_target^{-1} of a distribution over codes, as matchLut inverts it
+/// (linear across each present code's cell, jumping over absent codes), sampled at `samples`
+/// >= 2 evenly spaced probabilities u_m = m / (samples - 1). Quantile functions are what a
+/// bank keeps of a target when its LUTs are made at run time (several references, regions):
+/// blending them with weights blends the distributions as blending LUTs does.
+std::vector<float> quantileFunction(const LevelCounts& counts, int samples);
+
+/// The LUT that gives `reference` the distribution of the quantile function `quantiles`
+/// (sampled as quantileFunction does; read with linear interpolation): matchLut with the
+/// target given by its quantiles.
+Lut matchToQuantiles(const LevelCounts& reference, std::span<const float> quantiles, int entries);
+
 /// Dither for pixel (x, y) (and channel c), uniform in [-1/2, 1/2): a fixed integer hash,
 /// reproduced bit for bit by shaders/lut_common.glsl.
 inline float ditherOffset(std::uint32_t x, std::uint32_t y, std::uint32_t c = 0) {

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/parallel.h"
+#include "core/references.h"
 
 namespace btflut {
 
@@ -49,6 +50,15 @@ std::size_t chooseReference(const Dataset& dataset) {
 
 }  // namespace
 
+const char* colourName(ColourMode c) {
+    switch (c) {
+        case ColourMode::Grey: return "grey";
+        case ColourMode::Rgb: return "rgb";
+        case ColourMode::Lrgb: return "lrgb";
+    }
+    return "?";
+}
+
 const char* domainName(BankDomain d) { return d == BankDomain::Isotropic ? "isotropic" : "layers"; }
 
 Result<BankDomain> parseDomain(const std::string& name) {
@@ -86,6 +96,11 @@ void LutBank::buildTriangulations() {
         viewPoints.push_back(toDisk(layer.view));
     }
     views = Triangulation(std::move(viewPoints));
+    if (!blend.lights.empty()) {
+        std::vector<DiskPoint> points;
+        for (const LightNode& node : blend.lights) points.push_back(toDisk(node.light));
+        blend.triangulation = Triangulation(std::move(points));
+    }
     pairs = {};
     pairNodes.clear();
     if (domain != BankDomain::Isotropic) return;
@@ -107,7 +122,7 @@ void LutBank::buildTriangulations() {
 }
 
 void LutBank::fillGrids() {
-    const std::size_t length = lutLength();
+    const std::size_t length = nodeLength();
     for (ViewLayer& layer : layers) {
         const auto cells = static_cast<std::size_t>(gridSize) * gridSize;
         layer.gridLuts.assign(cells * length, 0);
@@ -186,7 +201,7 @@ LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
 }
 
 BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) const {
-    const std::size_t length = lutLength();
+    const std::size_t length = nodeLength();
     BankLookup out;
     if (!interpolate) {
         const NodeRef n = nearestNode(light, view);
@@ -238,7 +253,7 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
 
 Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,
                 const std::string& source) {
-    const std::size_t length = bank.lutLength();
+    const std::size_t length = bank.nodeLength();
     bank.layers.clear();
     // Group by view into layers, and merge repeated light directions within a layer by
     // averaging their LUTs (the barycentre of the repeated measurements).
@@ -291,6 +306,84 @@ Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::opt
     return success();
 }
 
+namespace {
+
+// What a bank that makes its LUTs at run time is baked with besides the classic reference:
+// the other references, the regions (as one mask each) and, for lrgb, the albedo.
+struct BlendSetup {
+    std::vector<std::size_t> references;  // dataset indices, the classic reference first
+    std::vector<Mask> regionMasks;         // the sample mask split by region
+    Regions regions;
+};
+
+Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex, const Image& ref,
+                              const Mask& mask, const ImageProvider& images) {
+    BlendSetup setup;
+    if (!dataset.fixedView())
+        return Error{dataset.source + ": --references, --regions and --colour lrgb need one view (a fixed camera); "
+                                      "this dataset has several"};
+    std::vector<Direction> lights;
+    for (const DatasetImage& im : dataset.images) lights.push_back(im.light);
+    std::vector<DiskPoint> points;
+    for (Direction l : lights) points.push_back(toDisk(l));
+    std::size_t distinct = 0;  // distinct light directions
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        bool seen = false;
+        for (std::size_t j = 0; j < i && !seen; ++j) seen = angleBetween(lights[i], lights[j]) < kSameDirection;
+        distinct += !seen;
+    }
+    if (options.references < 1 || static_cast<std::size_t>(options.references) > distinct)
+        return Error{"--references " + std::to_string(options.references) + " must be within 1.." + std::to_string(distinct) +
+                     " (the distinct light directions of " + dataset.source + ")"};
+    setup.references = pickReferences(lights, refIndex, static_cast<std::size_t>(options.references));
+
+    if (!options.labelsPath.empty()) {
+        Result<Image> labels = loadImage(options.labelsPath);
+        if (!labels) return Error{labels.error()};
+        Result<Regions> r = regionsFromLabels(*labels, mask, ref.width, ref.height, options.labelsPath);
+        if (!r) return Error{r.error()};
+        setup.regions = std::move(*r);
+    } else if (options.regions > 1) {
+        // Responses under at most 32 lights spread over the measured ones.
+        const std::vector<std::size_t> spread = spreadLights(lights, 32);
+        Responses responses{ref.width, ref.height, static_cast<int>(spread.size()),
+                            std::vector<std::uint8_t>(ref.pixelCount() * spread.size())};
+        for (std::size_t k = 0; k < spread.size(); ++k) {
+            Image storage;
+            Result<const Image*> image = spread[k] == refIndex ? Result<const Image*>(&ref) : images(spread[k], storage);
+            if (!image) return Error{image.error()};
+            if (Status size = requireSameSize(**image, dataset.images[spread[k]].path, ref.width, ref.height,
+                                              dataset.images[refIndex].path + " (the reference)");
+                !size)
+                return Error{size.error()};
+            for (std::size_t i = 0; i < ref.pixelCount(); ++i)
+                responses.values[i * spread.size() + k] = static_cast<std::uint8_t>(std::lround((*image)->grey(i) * 255.f));
+        }
+        Result<Regions> r = segmentRegions(responses, mask, options.regions, dataset.source);
+        if (!r) return Error{r.error()};
+        setup.regions = std::move(*r);
+    } else {
+        setup.regions = {1, std::vector<std::uint8_t>(ref.pixelCount(), 0)};
+    }
+    for (int r = 0; r < setup.regions.count; ++r) {
+        Mask m = mask;
+        for (std::size_t i = 0; i < m.inside.size(); ++i) m.inside[i] = m.inside[i] && setup.regions.labels[i] == r;
+        setup.regionMasks.push_back(std::move(m));
+    }
+    return setup;
+}
+
+// A reference as the blend stores it: its grey value alone for lrgb, else as it is.
+Image blendForm(const Image& image, ColourMode colour) {
+    if (colour != ColourMode::Lrgb || image.channels == 1) return image;
+    Image grey(image.width, image.height, 1, image.bitDepth);
+    const float code = static_cast<float>(image.maxCode());
+    for (std::size_t i = 0; i < grey.pixelCount(); ++i) grey.samples[i] = std::round(image.grey(i) * code) / code;
+    return grey;
+}
+
+}  // namespace
+
 Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
                          const ImageProvider& provider) {
     const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {
@@ -305,6 +398,9 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         return Error{"--grid " + std::to_string(options.gridSize) + " is outside [2, 257]"};
     if (options.entries != 0 && (options.entries < 2 || options.entries > 65536))
         return Error{"--entries " + std::to_string(options.entries) + " is outside [2, 65536]"};
+    if (options.regions < 1 || options.regions > 255) return Error{"--regions " + std::to_string(options.regions) + " is outside [1, 255]"};
+    if (options.quantiles < 2 || options.quantiles > 65536)
+        return Error{"--quantiles " + std::to_string(options.quantiles) + " is outside [2, 65536]"};
 
     std::size_t refIndex = chooseReference(dataset);
     if (!options.referenceName.empty()) {
@@ -323,17 +419,11 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     Result<const Image*> reference = images(refIndex, referenceStorage);
     if (!reference) return Error{reference.error()};
     const Image& ref = **reference;
-    if (options.colour == ColourMode::Rgb && ref.channels != 3)
-        return Error{refInfo.path + ": --colour rgb needs colour images, this one is grey"};
+    if (options.colour != ColourMode::Grey && ref.channels != 3)
+        return Error{refInfo.path + ": --colour " + colourName(options.colour) + " needs colour images, this one is grey"};
     Result<Mask> loadedMask = loadDatasetMask(dataset, ref.width, ref.height);
     if (!loadedMask) return Error{loadedMask.error()};
     const Mask& mask = *loadedMask;
-    const std::vector<LevelCounts> refLevels = countLevels(ref, mask, options.colour);
-    for (const LevelCounts& levels : refLevels)
-        if (levels.presentCodes() < 2)
-            return Error{refInfo.path + ": reference image is constant over the sample, so no "
-                                        "LUT can give it another histogram; choose another "
-                                        "with --reference"};
 
     LutBank bank;
     bank.colour = options.colour;
@@ -342,14 +432,39 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     bank.referenceName = refInfo.name;
     bank.referenceLight = refInfo.light;
     bank.referenceView = refInfo.view;
-    const std::size_t length = bank.lutLength();
 
-    // Stream through the images: decode, count, match, forget.
+    // Banks that make their LUTs at run time keep each image's target per region as a
+    // quantile function; classic banks keep each image's LUT from the reference.
+    const bool makesLuts = options.references > 1 || options.regions > 1 || !options.labelsPath.empty() ||
+                           options.colour == ColourMode::Lrgb;
+    BlendSetup blend;
+    std::vector<LevelCounts> refLevels;
+    if (makesLuts) {
+        Result<BlendSetup> setup = setUpBlend(dataset, options, refIndex, ref, mask, images);
+        if (!setup) return Error{setup.error()};
+        blend = std::move(*setup);
+        bank.blend.regions = blend.regions.count;
+        bank.blend.quantiles = options.quantiles;
+    } else {
+        refLevels = countLevels(ref, mask, options.colour);
+        for (const LevelCounts& levels : refLevels)
+            if (levels.presentCodes() < 2)
+                return Error{refInfo.path + ": reference image is constant over the sample, so no "
+                                            "LUT can give it another histogram; choose another "
+                                            "with --reference"};
+    }
+    const std::size_t length = bank.nodeLength();
+
+    // Stream through the images: decode, count, match (or keep the quantiles), forget.
     std::vector<ImageLuts> results(dataset.images.size());
     std::mutex progressMutex;
     std::size_t done = 0;
     std::optional<PtmFitter> ptm;
     if (options.ptm) ptm.emplace(ref.width, ref.height);
+    std::optional<AlbedoAccumulator> albedo;
+    if (options.colour == ColourMode::Lrgb) albedo.emplace(ref.width, ref.height);
+    // The references as the blend keeps them, in pick order.
+    std::vector<Image> blendReferences(blend.references.size());
     parallelFor(dataset.images.size(), options.threads, [&](std::size_t i) {
         const DatasetImage& info = dataset.images[i];
         ImageLuts& out = results[i];
@@ -362,15 +477,27 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
                                                  refInfo.path + " (the reference)");
                    !size) {
             out.error = size.error();
-        } else if (options.colour == ColourMode::Rgb && (*image)->channels != 3) {
-            out.error = info.path + ": --colour rgb needs colour images, this one is grey";
+        } else if (options.colour != ColourMode::Grey && (*image)->channels != 3) {
+            out.error = info.path + ": --colour " + std::string(colourName(options.colour)) + " needs colour images, this one is grey";
         } else {
             if (ptm && angleBetween(info.view, refInfo.view) < 1e-9) ptm->add(**image, info.light);
-            std::vector<LevelCounts> levels = countLevels(**image, mask, options.colour);
+            if (albedo) albedo->add(**image);
             out.values.reserve(length);
-            for (std::size_t c = 0; c < levels.size(); ++c) {
-                Lut lut = matchLut(refLevels[c], levels[c], bank.entries);
-                out.values.insert(out.values.end(), lut.values.begin(), lut.values.end());
+            if (makesLuts) {
+                const ColourMode counted = options.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey;
+                for (const Mask& region : blend.regionMasks)
+                    for (const LevelCounts& levels : countLevels(**image, region, counted)) {
+                        const std::vector<float> q = quantileFunction(levels, options.quantiles);
+                        out.values.insert(out.values.end(), q.begin(), q.end());
+                    }
+                for (std::size_t k = 0; k < blend.references.size(); ++k)
+                    if (blend.references[k] == i) blendReferences[k] = blendForm(**image, options.colour);
+            } else {
+                std::vector<LevelCounts> levels = countLevels(**image, mask, options.colour);
+                for (std::size_t c = 0; c < levels.size(); ++c) {
+                    Lut lut = matchLut(refLevels[c], levels[c], bank.entries);
+                    out.values.insert(out.values.end(), lut.values.begin(), lut.values.end());
+                }
             }
         }
         if (options.progress) {
@@ -391,6 +518,18 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         bank.reference = std::move(referenceStorage);
     else
         bank.reference = ref;
+    if (makesLuts) {
+        bank.blend.references = std::move(blendReferences);
+        for (std::size_t k : blend.references) bank.blend.lights.push_back({dataset.images[k].name, dataset.images[k].light});
+        bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
+        if (albedo) bank.blend.albedo = albedo->finish();
+        bank.blend.mask = mask;
+        for (const Image& r : bank.blend.references) {
+            const std::vector<LevelCounts> levels = countLevels(r, mask, bank.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey);
+            for (const LevelCounts& l : levels)
+                if (l.presentCodes() < 2) return Error{dataset.source + ": a reference image is constant over the sample"};
+        }
+    }
     if (Status s = setNodes(bank, luts, options.domain, dataset.source); !s) return Error{s.error()};
     if (ptm) {
         Result<Ptm> fitted = ptm->finish(dataset.source);
@@ -431,31 +570,27 @@ Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>&
         return out;
     }
     for (std::size_t i = 0; i < n; ++i) {
-        float* p = &out.samples[i * 3];
         const float grey = image.grey(i);
-        const float target = map(values.data(), grey, i, 0);
-        if (grey <= 0.f) {
-            p[0] = p[1] = p[2] = target;
-            continue;
-        }
-        const float scale = target / grey;
-        float top = 0.f;
-        for (int c = 0; c < 3; ++c) top = std::max(top, p[c] *= scale);
-        if (top > 1.f) {
-            // Pull the colour towards its grey until the brightest channel is 1: the
-            // mean (the grey value) stays at target.
-            const float k = (1.f - target) / (top - target);
-            for (int c = 0; c < 3; ++c) p[c] = target + (p[c] - target) * k;
-        }
+        setGrey(&out.samples[i * 3], grey, map(values.data(), grey, i, 0));
     }
     return out;
 }
 
-Image relight(const LutBank& bank, Direction light, Direction view, bool dither) {
-    BTFLUT_CHECK(!bank.reference.samples.empty());
-    BankLookup lut = bank.lookup(light, view);
-    return applyLuts(bank.reference, bank.colour, lut.values, bank.entries,
-                     dither ? bank.targetCode() : 0.f);
+void setGrey(float* rgb, float grey, float target) {
+    if (grey <= 0.f) {
+        rgb[0] = rgb[1] = rgb[2] = target;
+        return;
+    }
+    const float scale = target / grey;
+    float top = 0.f;
+    for (int c = 0; c < 3; ++c) top = std::max(top, rgb[c] *= scale);
+    if (top > 1.f) {
+        // Pull the colour towards its grey until the brightest channel is 1: the mean (the
+        // grey value) stays at target.
+        const float k = (1.f - target) / (top - target);
+        for (int c = 0; c < 3; ++c) rgb[c] = target + (rgb[c] - target) * k;
+    }
 }
+
 
 }  // namespace btflut

@@ -38,7 +38,10 @@ namespace btflut {
 enum class ColourMode : std::uint32_t {
     Grey = 1,  ///< one LUT on the grey value; pixel colour ratios kept
     Rgb = 3,   ///< one LUT per channel
+    Lrgb = 4,  ///< grey references and one RGB albedo: a LUT on the grey value, the albedo's chroma
 };
+
+const char* colourName(ColourMode c);
 
 /// How a LUT was obtained: from a measurement at that direction, by interpolating
 /// measurements around it, or by clamping to the nearest measured boundary.
@@ -66,15 +69,17 @@ struct LightNode {
 struct ViewLayer {
     Direction view;
     std::vector<LightNode> nodes;
-    std::vector<float> nodeLuts;          ///< nodes x channels x entries
-    std::vector<std::uint16_t> gridLuts;  ///< gridSize^2 x channels x entries, unorm16
+    /// nodes x nodeLength(): each node's LUTs (channels x entries), or, in banks that make
+    /// their LUTs at run time, its targets' quantile functions (regions x channels x quantiles)
+    std::vector<float> nodeLuts;
+    std::vector<std::uint16_t> gridLuts;  ///< gridSize^2 x nodeLength(), unorm16
     std::vector<Provenance> gridProvenance;  ///< gridSize^2; node (i, j) at j * gridSize + i
     Triangulation lights;                 ///< over the nodes' disk points
     bool lutsLoaded = true;               ///< false: read without its LUTs (BankReadOptions::views)
 };
 
 struct BankLookup {
-    std::vector<float> values;  ///< channels x entries
+    std::vector<float> values;  ///< nodeLength(): LUTs, or quantile functions (LutBank::blend)
     Provenance provenance = Provenance::Measured;  ///< the worse of the two below
     Provenance lightProvenance = Provenance::Measured, viewProvenance = Provenance::Measured;
 };
@@ -102,7 +107,23 @@ struct LutBank {
     Ptm ptm;          ///< the baseline PTM of the reference view; empty unless baked with one
     bool ptmInFile = false;  ///< read from a file holding a PTM (decoded or skipped)
 
-    int channels() const { return static_cast<int>(colour); }
+    /// Banks that make their LUTs at run time (bake --references K > 1, --regions, --colour
+    /// lrgb; relighter.h): K references blended per light, and regions of the sample, each
+    /// matched to its own target. Their nodes hold the targets' quantile functions.
+    struct Blend {
+        std::vector<Image> references;   ///< K, as blended: grey (lrgb) or as the source
+        std::vector<LightNode> lights;   ///< each reference's light and image
+        Triangulation triangulation;     ///< over their lights: the blend weights
+        Image albedo;                    ///< lrgb: the chroma, RGB 8-bit
+        std::vector<std::uint8_t> labels;  ///< per texel its region (all texels); empty: one region
+        Mask mask;                         ///< the sample texels: the blend's statistics are theirs
+        int regions = 1;
+        int quantiles = 0;  ///< samples per quantile function; 0: a bank of LUTs
+    } blend;
+
+    /// True for banks that make their LUTs at run time (see Blend).
+    bool makesLuts() const { return blend.quantiles > 0; }
+    int channels() const { return colour == ColourMode::Rgb ? 3 : 1; }
     /// One code of the values the LUTs map to (those of the reference's format: 1/765 for
     /// the grey of 8-bit RGB), the unit of the dithered output shift.
     float targetCode() const {
@@ -110,6 +131,12 @@ struct LutBank {
         return 1.f / static_cast<float>(perValue * (reference.bitDepth == 16 ? 65535 : 255));
     }
     std::size_t lutLength() const { return static_cast<std::size_t>(channels()) * entries; }
+    /// Values per node: lutLength(), or regions x channels x quantiles (makesLuts).
+    std::size_t nodeLength() const {
+        return makesLuts() ? static_cast<std::size_t>(blend.regions) * channels() * blend.quantiles : lutLength();
+    }
+    /// The length of one monotonic segment of a node's values: entries or quantiles.
+    std::size_t segmentLength() const { return static_cast<std::size_t>(makesLuts() ? blend.quantiles : entries); }
 
     /// The LUT for a light and view direction (any direction in the upper hemisphere);
     /// with `interpolate` false, the LUT of the nearest measured node (for comparisons).
@@ -151,7 +178,7 @@ struct DirectionalLut {
 
 /// Builds `bank`'s layers from LUTs: one layer per view direction, repeated light directions
 /// merged by averaging (the barycentre), then the domain, triangulations and grids.
-/// bank.entries, colour and gridSize must be set; each LUT holds bank.lutLength() values.
+/// bank.entries, colour, gridSize (and blend) must be set; each holds bank.nodeLength() values.
 /// Without a domain: layers when there is one layer or every layer's lights span the light
 /// disk, isotropic otherwise. Refuses (naming `source`) a bank that could not follow the light.
 Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,
@@ -165,6 +192,10 @@ struct BakeOptions {
     int threads = 0;  ///< 0: all cores
     bool ptm = false;  ///< also fit a PTM (ptm.h) to the images of the reference's view
     std::optional<BankDomain> domain;  ///< empty: chosen from the directions (setNodes)
+    int references = 1;       ///< K references blended per light (a fixed camera; relighter.h)
+    int regions = 1;          ///< regions segmented from the images' responses over the lights
+    std::string labelsPath;   ///< instead: a label image (each grey value one region)
+    int quantiles = 1024;     ///< samples of the targets' quantile functions (banks that make LUTs)
     /// Called after each image with (done, total); may be empty.
     std::function<void(std::size_t, std::size_t)> progress;
 };
@@ -181,7 +212,8 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
                          const ImageProvider& provider = {});
 
 /// The reference image with the LUT for (light, view) applied to every pixel (see
-/// applyLuts), dithered unless `dither` is false.
+/// applyLuts), dithered unless `dither` is false; for banks that make their LUTs at run time,
+/// the references blended and matched (relighter.h).
 Image relight(const LutBank& bank, Direction light, Direction view = {}, bool dither = true);
 
 /// One code of the value a LUT maps for this image: of a channel in rgb mode or for a grey
@@ -196,5 +228,10 @@ float inputCode(const Image& image, ColourMode colour);
 /// which reproduces the target histogram closely; with 0, plainly.
 Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
                 int entries, float targetCode);
+
+/// Grey mode's colour step: an RGB pixel of grey value `grey` (the mean of its channels)
+/// gets grey `target`: its colour is scaled by target / grey and, where a channel would
+/// exceed 1, desaturated towards grey so the grey stays `target` (black pixels become grey).
+void setGrey(float* rgb, float grey, float target);
 
 }  // namespace btflut

@@ -39,6 +39,15 @@ Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::strin
     return BankAtDirection{std::move(*bank), *l, *v};
 }
 
+Result<Dataset> openDatasetWithMask(const std::string& path, const std::string& mask) {
+    Result<Dataset> dataset = openDataset(path);
+    if (dataset && !mask.empty()) {
+        if (Result<Bytes> exists = readFile(mask); !exists) return Error{exists.error()};
+        dataset->maskPath = mask;
+    }
+    return dataset;
+}
+
 void addLutImageOptions(CLI::App& app, int& depth, bool& noDither) {
     app.add_option("--depth", depth, "bits per sample of the PNG")
         ->check(CLI::IsMember({8, 16}))

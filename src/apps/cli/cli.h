@@ -54,6 +54,9 @@ struct BankAtDirection {
 };
 Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::string& light, const std::string& view);
 
+/// Opens a dataset; a non-empty `mask` replaces the dataset's own mask (--mask).
+Result<Dataset> openDatasetWithMask(const std::string& path, const std::string& mask);
+
 /// A progress bar on stderr when it is a terminal; does nothing otherwise.
 std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label);
 

@@ -22,6 +22,9 @@ struct BakeCommandOptions {
     std::string domain = "auto";
     int grid = 17;
     int entries = 0;
+    int references = 1;
+    int regions = 1;
+    std::string labels;
     int threads = 0;
     bool noReference = false;
     bool ptm = false;
@@ -69,7 +72,7 @@ Status runBake(const BakeCommandOptions& o) {
                      " bytes per view, over the .btflut format's 4 GiB chunk limit"};
     if (!o.model.empty()) return runModelBake(o);
     if (o.dataset.empty()) return Error{"give a DATASET to bake, or --model PARAMS.json with --reference IMAGE"};
-    Result<Dataset> dataset = openDataset(o.dataset);
+    Result<Dataset> dataset = openDatasetWithMask(o.dataset, o.mask);
     if (!dataset) return Error{dataset.error()};
     BakeOptions options;
     options.referenceName = o.reference;
@@ -77,8 +80,14 @@ Status runBake(const BakeCommandOptions& o) {
     options.entries = o.entries;
     options.threads = o.threads;
     options.ptm = o.ptm;
-    options.colour = o.colour == "rgb" ? ColourMode::Rgb : ColourMode::Grey;
+    options.colour = o.colour == "rgb" ? ColourMode::Rgb : o.colour == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
     if (o.domain != "auto") options.domain = *parseDomain(o.domain);
+    options.references = o.references;
+    options.regions = o.regions;
+    options.labelsPath = o.labels;
+    if (!o.labels.empty() && o.regions > 1) return Error{"give --regions or --labels, not both"};
+    if (o.noReference && (o.references > 1 || o.regions > 1 || !o.labels.empty() || options.colour == ColourMode::Lrgb))
+        return Error{"--no-reference: a bank that blends references or matches regions keeps its references"};
     if (!o.quiet) options.progress = terminalProgress("baking");
     Result<LutBank> bank = bakeBank(*dataset, options);
     if (!bank) return Error{bank.error()};
@@ -89,7 +98,11 @@ Status runBake(const BakeCommandOptions& o) {
         std::cout << "wrote " << o.output << ": " << dataset->images.size() << " images, "
                   << bank->layers.size() << " view layer(s), " << nodes << " measured nodes, "
                   << bank->gridSize << "x" << bank->gridSize << " grid, " << bank->entries
-                  << " entries, domain " << domainName(bank->domain) << ", reference " << bank->referenceName
+                  << " entries, domain " << domainName(bank->domain) << ", colour " << colourName(bank->colour)
+                  << (bank->makesLuts() ? ", " + std::to_string(bank->blend.references.size()) + " reference(s), " +
+                                              std::to_string(bank->blend.regions) + " region(s)"
+                                        : std::string())
+                  << ", reference " << bank->referenceName
                   << (bank->ptm.empty() ? "" : ", PTM") << ", "
                   << std::filesystem::file_size(o.output) << " bytes\n";
     }
@@ -108,7 +121,9 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
                     "and view); with --model: the reference image file");
     app->add_option("--model", o->model,
                     "PARAMS.json: bake from the rough-surface model instead (docs/model-params.md)");
-    app->add_option("--mask", o->mask, "with --model: mask of the reference image (non-zero = sample)");
+    app->add_option("--mask", o->mask,
+                    "sample mask (non-zero = sample): with a DATASET instead of its own (an .lp capture's own is "
+                    "the mask.png beside it); with --model, of the reference image");
     app->add_option("--reference-light", o->referenceLight,
                     "with --model: THETA,PHI of the light the reference image was taken under")
         ->capture_default_str();
@@ -118,9 +133,25 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
     app->add_option("--entries", o->entries,
                     "LUT entries (default 256, or 1024 for a 16-bit reference)")
         ->check(CLI::Range(2, 65536));
-    app->add_option("--colour", o->colour, "grey: one LUT on the grey value; rgb: one per channel")
-        ->check(CLI::IsMember({"grey", "rgb"}))
+    app->add_option("--colour", o->colour,
+                    "grey: one LUT on the grey value, the references' chroma kept; rgb: one LUT per channel; lrgb: "
+                    "grey references and one RGB albedo (the PTM's layout: K + 3 bytes per texel)")
+        ->check(CLI::IsMember({"grey", "rgb", "lrgb"}))
         ->capture_default_str();
+    app->add_option("--references", o->references,
+                    "K reference images spread over the measured lights (a fixed camera): at a light the references "
+                    "around it are blended per texel and one LUT maps the blend onto the light's histogram, so "
+                    "shadows and highlights move while the histogram stays the measured one. They are held in memory "
+                    "while baking; 1 is the classic bank")
+        ->check(CLI::Range(1, 255))
+        ->capture_default_str();
+    app->add_option("--regions", o->regions,
+                    "N regions segmented from how each pixel responds to the lights, each with its own histograms and "
+                    "LUTs (a relief beside a flat background, paint beside gold leaf); the responses to up to 32 "
+                    "lights are held in memory (32 bytes per pixel)")
+        ->check(CLI::Range(1, 255))
+        ->capture_default_str();
+    app->add_option("--labels", o->labels, "instead of --regions: a label image, each grey value one region");
     app->add_option("--domain", o->domain,
                     "what lookups interpolate over: layers (each view's lights, then between views; any "
                     "material), isotropic (theta_i, theta_r, phi_i - phi_r; for isotropic materials measured "

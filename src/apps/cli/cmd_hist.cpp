@@ -15,11 +15,12 @@ struct HistOptions {
     std::string output;
     int bins = 64;
     std::string channels = "grey";
+    std::string mask;
 };
 
 Status runHist(const HistOptions& o) {
     if (Status s = requireExtension(o.output, {"csv", "json"}, "output"); !s) return s;
-    Result<Dataset> dataset = openDataset(o.dataset);
+    Result<Dataset> dataset = openDatasetWithMask(o.dataset, o.mask);
     if (!dataset) return Error{dataset.error()};
     const bool rgb = o.channels == "rgb";
     const std::size_t perImage = rgb ? 3 : 1;
@@ -83,6 +84,7 @@ void addHistCommand(CLI::App& root, Commands& commands) {
                     "grey: mean of R, G, B; rgb: one row per channel, named NAME:R, NAME:G, NAME:B")
         ->check(CLI::IsMember({"grey", "rgb"}))
         ->capture_default_str();
+    app->add_option("--mask", o->mask, "sample mask instead of the dataset's own (non-zero = sample)");
     commands.push_back({app, [o] { return runHist(*o); }});
 }
 

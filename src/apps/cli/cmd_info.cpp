@@ -28,13 +28,29 @@ Status runInfo(const InfoOptions& o) {
     std::cout << o.bank << ": btflut bank, format version " << bankFormatVersion(b) << ", "
               << std::filesystem::file_size(o.bank) << " bytes\n"
               << "  LUTs:      " << b.entries << " entries, "
-              << (b.colour == ColourMode::Grey ? "grey (one LUT on the grey value)"
-                                               : "rgb (one LUT per channel)")
+              << (b.colour == ColourMode::Grey  ? "grey (one LUT on the grey value)"
+                  : b.colour == ColourMode::Rgb ? "rgb (one LUT per channel)"
+                                                : "lrgb (one LUT on the grey value, the albedo's chroma)")
               << "\n  reference: " << b.referenceName << ", light " << degrees(b.referenceLight)
               << ", view " << degrees(b.referenceView) << ", ";
     std::cout << b.reference.width << "x" << b.reference.height << "x" << b.reference.channels
               << " " << b.reference.bitDepth << "-bit, "
               << (b.reference.samples.empty() ? "not embedded" : "embedded") << "\n";
+    if (b.makesLuts()) {
+        std::cout << "  blend:     " << b.blend.references.size() << " reference(s) blended per light, LUTs made at run "
+                  << "time from " << b.blend.quantiles << "-sample quantile functions; " << b.blend.regions << " region(s)";
+        if (b.blend.regions > 1) {
+            std::vector<std::size_t> texels(static_cast<std::size_t>(b.blend.regions), 0);
+            for (std::size_t i = 0; i < b.blend.labels.size(); ++i) texels[b.blend.labels[i]] += b.blend.mask.inside[i];
+            std::cout << " (sample pixels:";
+            for (std::size_t n : texels) std::cout << " " << n;
+            std::cout << ")";
+        }
+        std::cout << "\n";
+        for (std::size_t k = 0; k < b.blend.lights.size(); ++k)
+            std::cout << "    reference " << k << ": " << b.blend.lights[k].name << ", light "
+                      << degrees(b.blend.lights[k].light) << "\n";
+    }
     if (!b.ptm.empty())
         std::cout << "  ptm: " << b.ptm.width << "x" << b.ptm.height << ", 6 coefficients + RGB albedo per texel ("
                   << b.ptm.coefficients.size() + b.ptm.albedo.size() << " bytes)\n";

@@ -1,0 +1,65 @@
+#pragma once
+// Relighting a bank's reference(s) for one light: what the renderer's shader does and its
+// CPU twin. For a classic bank (one reference, one region) the frame is the bank's LUT for
+// the light (LutBank::lookup) and applying it is applyLuts. A bank that makes its LUTs at run
+// time (LutBank::Blend: several references, regions, lrgb) is relit in two steps:
+//   1. blend: the references around the light (a Delaunay triangle of their lights, clamped
+//      outside their hull) are blended per texel with barycentric weights, on their codes;
+//   2. match: per region, the blend's exact distribution over the region's sample texels is
+//      counted, and ONE LUT maps it onto the target distribution at the light (the nodes'
+//      quantile functions blended, as LutBank::lookup blends LUTs).
+// So the histogram is the target's, as with one reference, while shadows and highlights come
+// from the references lit most like the light. Colour: grey blends RGB references and keeps
+// the blend's chroma; rgb matches each channel; lrgb blends grey references and takes the
+// chroma of the albedo.
+//
+//   Relighter relighter(bank);                        // per-texel codes, once per bank
+//   RelightFrame frame = relighter.frame(light);      // per light change: weights and LUTs
+//   Image image = relighter.apply(frame, true);       // the CPU twin of the shader
+
+#include <array>
+#include <vector>
+
+#include "core/lut_bank.h"
+
+namespace btflut {
+
+struct RelightFrame {
+    int count = 1;                       ///< references blended, 1 to 3
+    std::array<int, 3> references{0, 0, 0};
+    std::array<float, 3> weights{1, 0, 0};
+    std::vector<float> luts;             ///< regions x channels x entries
+    Provenance provenance = Provenance::Measured;  ///< of the target (LutBank::lookup)
+};
+
+class Relighter {
+public:
+    explicit Relighter(const LutBank& bank);
+
+    /// The blend and the LUTs for a light (and view); with `interpolate` false, the target of
+    /// the nearest node.
+    RelightFrame frame(Direction light, Direction view = {}, bool interpolate = true) const;
+
+    /// The relit image at the reference's size; dithered (lut.h) unless `dither` is false.
+    Image apply(const RelightFrame& frame, bool dither) const;
+
+    /// The alternative that blending per-reference LUTs gives (each reference matched to the
+    /// target, the results blended): measured against blend-then-match by `btflut eval`; the
+    /// blend of matched images does not keep the target's histogram.
+    Image applyBlendingLuts(Direction light, Direction view, bool dither) const;
+
+    /// The scale of a blend's codes: 1 / (number of codes - 1) of the values the LUT reads.
+    float inputCode() const { return 1.f / static_cast<float>(m_codes); }
+
+private:
+    std::vector<float> lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const;
+    double blendCode(const RelightFrame& frame, std::size_t texel, int channel) const;
+
+    const LutBank& m_bank;
+    int m_codes = 255;                       // codes of a blended value (765 for the grey of RGB8)
+    int m_counted = 1;                       // channels counted: 3 for rgb, else 1 (grey)
+    std::vector<std::vector<std::uint32_t>> m_referenceCodes;  // [reference][texel * counted + c]
+    std::vector<std::vector<std::uint32_t>> m_regionTexels;    // sample texels of each region
+};
+
+}  // namespace btflut
