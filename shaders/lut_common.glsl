@@ -41,3 +41,57 @@ vec3 btflutSetGrey(vec3 rgb, float target) {
     float factor = min(target / max(grey, 1e-20), (1.0 - target) / max(top - grey, 1e-20));
     return vec3(target) + (rgb - vec3(grey)) * factor;
 }
+
+// Banks that blend references (src/core/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
+// REGIONS). The references are blended on their codes, the blend is rounded to its code
+// scale (the CPU counts exactly these codes), and the LUT of the texel's region is applied.
+#if defined(BLEND)
+uniform sampler2DArray blendReferences;  // grey and rgb: one reference per layer; lrgb: four per RGBA layer
+#if defined(BLEND_PACKED)
+uniform int blendLayers;
+uniform vec4 blendWeights[4];            // per layer, the weights of its four references
+#else
+uniform int blendLayer[3];               // the (up to) three references around the light
+uniform float blendWeight[3];
+#endif
+uniform float blendCodes;                // codes of a blended value: 765 for the grey of RGB8, 255 for one channel
+uniform sampler2D blendLuts[3];          // per channel: a LUT per region (row)
+uniform int blendEntries;
+uniform int blendRegions;
+#if defined(REGIONS)
+uniform usampler2D blendLabels;
+#endif
+
+// A reference layer's texel: defined by each shader (fetched or filtered).
+vec4 btflutBlendTexel(int layer);
+
+// The blended references: RGB (grey and rgb modes), or the grey value in .r (lrgb).
+vec3 btflutBlend() {
+#if defined(BLEND_PACKED)
+    float grey = 0.0;
+    for (int l = 0; l < blendLayers; ++l) grey += dot(btflutBlendTexel(l), blendWeights[l]);
+    return vec3(grey);
+#else
+    return blendWeight[0] * btflutBlendTexel(blendLayer[0]).rgb + blendWeight[1] * btflutBlendTexel(blendLayer[1]).rgb +
+           blendWeight[2] * btflutBlendTexel(blendLayer[2]).rgb;
+#endif
+}
+
+float btflutBlendQuantise(float v) { return round(v * blendCodes) / blendCodes; }
+
+// The LUT of a region at v in [0, 1] (linear between entries, as Lut::applyLut).
+float btflutBlendLut(int channel, uint region, float v) {
+    vec2 at = vec2((clamp(v, 0.0, 1.0) * float(blendEntries - 1) + 0.5) / float(blendEntries),
+                   (float(region) + 0.5) / float(blendRegions));
+    if (channel == 0) return textureLod(blendLuts[0], at, 0.0).r;
+    if (channel == 1) return textureLod(blendLuts[1], at, 0.0).r;
+    return textureLod(blendLuts[2], at, 0.0).r;
+}
+
+// The same, dithered as btflutApplyLutDithered (code: 1 / blendCodes).
+float btflutBlendLutDithered(int channel, uint region, float v, uvec2 pixel, float outCode) {
+    float moved = v + (btflutDitherOffset(pixel.x, pixel.y, uint(channel)) - 0.5) / blendCodes;
+    float value = btflutBlendLut(channel, region, moved);
+    return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
+}
+#endif

@@ -1,5 +1,6 @@
 // The reference image at its native size with one LUT applied: the GL twin of btflut relight.
-// Defines: RGB_MODE (a LUT per channel), DITHER.
+// Defines: RGB_MODE (a LUT per channel), DITHER; BLEND (and BLEND_PACKED, REGIONS) for banks
+// that blend references (lut_common.glsl).
 uniform sampler2D reference;   // texel (x, row), row 0 the image's top
 uniform sampler1D lut[3];      // grey mode uses lut[0]
 uniform int entries;
@@ -22,8 +23,42 @@ float mapValue(int channel, float v, uvec2 pixel) {
 #endif
 }
 
+#if defined(BLEND)
+uniform sampler2D blendAlbedo;  // lrgb
+vec4 btflutBlendTexel(int layer) {
+    return texelFetch(blendReferences, ivec3(uint(gl_FragCoord.x), uint(height - 1 - int(gl_FragCoord.y)), layer), 0);
+}
+float blendMap(int channel, uint region, float v, uvec2 pixel) {
+#ifdef DITHER
+    return btflutBlendLutDithered(channel, region, btflutBlendQuantise(v), pixel, outCode);
+#else
+    return btflutBlendLut(channel, region, btflutBlendQuantise(v));
+#endif
+}
+#endif
+
 void main() {
     uvec2 pixel = uvec2(uint(gl_FragCoord.x), uint(height - 1 - int(gl_FragCoord.y)));
+#if defined(BLEND)
+#if defined(REGIONS)
+    uint region = texelFetch(blendLabels, ivec2(pixel), 0).r;
+#else
+    uint region = 0u;
+#endif
+    vec3 blend = btflutBlend();
+#if defined(RGB_MODE)
+    colour = vec4(blendMap(0, region, blend.r, pixel), blendMap(1, region, blend.g, pixel), blendMap(2, region, blend.b, pixel), 1.0);
+#elif defined(BLEND_PACKED)
+    colour = vec4(btflutSetGrey(texelFetch(blendAlbedo, ivec2(pixel), 0).rgb, blendMap(0, region, blend.r, pixel)), 1.0);
+#else
+    if (referenceChannels == 1) {
+        colour = vec4(vec3(blendMap(0, region, blend.r, pixel)), 1.0);
+        return;
+    }
+    colour = vec4(btflutSetGrey(blend, blendMap(0, region, (blend.r + blend.g + blend.b) * (1.0 / 3.0), pixel)), 1.0);
+#endif
+    return;
+#endif
     vec3 texel = texelFetch(reference, ivec2(pixel), 0).rgb;
     if (referenceChannels == 1) {
         colour = vec4(vec3(mapValue(0, texel.r, pixel)), 1.0);

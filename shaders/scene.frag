@@ -1,4 +1,5 @@
-// A scene quad in one of five modes (one define each).
+// A scene quad in one of five modes (one define each). BLEND (with LUT_MODE): a bank that blends
+// references and matches regions (lut_common.glsl).
 // LUT_MODE: under a directional light a flat quad's light direction is constant, so its LUT
 //   is blended once per frame on the CPU; here one extra filtered fetch per channel. With
 //   VIEW_GRID (banks with several view layers) the LUT is a 3D texture over a grid of points
@@ -39,6 +40,12 @@ float lutAt(int channel, float v) {
 #endif
 #endif
 
+#if defined(BLEND)
+uniform sampler2D blendAlbedo;  // lrgb
+uniform ivec2 labelSize;
+vec4 btflutBlendTexel(int layer) { return texture(blendReferences, vec3(uv, float(layer))); }
+#endif
+
 #if defined(PTM_MODE)
 uniform sampler2D ptmLow, ptmHigh, ptmAlbedo;  // coefficients 0-2, 3-5 (bytes), RGB albedo
 uniform vec3 ptmWeightsLow, ptmWeightsHigh;    // the light's terms with scale and bias folded in
@@ -58,6 +65,23 @@ void main() {
     colour = vec4(texture(reference, uv).rgb, 1.0);
 #elif defined(BRDF_MODE)
     colour = vec4(min(texture(reference, uv).rgb * brightness, vec3(1.0)), 1.0);
+#elif defined(BLEND)
+    // A bank that blends references: the blend, rounded to its codes, through its region's LUT.
+#if defined(REGIONS)
+    uint region = texelFetch(blendLabels, ivec2(mod(floor(uv * vec2(labelSize)), vec2(labelSize))), 0).r;
+#else
+    uint region = 0u;
+#endif
+    vec3 blend = btflutBlend();
+#if defined(RGB_MODE)
+    colour = vec4(btflutBlendLut(0, region, btflutBlendQuantise(blend.r)), btflutBlendLut(1, region, btflutBlendQuantise(blend.g)),
+                  btflutBlendLut(2, region, btflutBlendQuantise(blend.b)), 1.0);
+#elif defined(BLEND_PACKED)
+    colour = vec4(btflutSetGrey(texture(blendAlbedo, uv).rgb, btflutBlendLut(0, region, btflutBlendQuantise(blend.r))), 1.0);
+#else
+    float greyValue = (blend.r + blend.g + blend.b) * (1.0 / 3.0);
+    colour = vec4(btflutSetGrey(blend, btflutBlendLut(0, region, btflutBlendQuantise(greyValue))), 1.0);
+#endif
 #elif defined(GREY_TEXTURE)
     colour = vec4(vec3(lutAt(0, texture(reference, uv).r)), 1.0);  // no chroma to keep
 #elif defined(RGB_MODE)

@@ -335,6 +335,9 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
     if (options.references < 1 || static_cast<std::size_t>(options.references) > distinct)
         return Error{"--references " + std::to_string(options.references) + " must be within 1.." + std::to_string(distinct) +
                      " (the distinct light directions of " + dataset.source + ")"};
+    if (options.colour == ColourMode::Lrgb && options.references > 16)
+        return Error{"--colour lrgb packs at most 16 references (four per texture layer); --references " +
+                     std::to_string(options.references) + " is more"};
     setup.references = pickReferences(lights, refIndex, static_cast<std::size_t>(options.references));
 
     if (!options.labelsPath.empty()) {
@@ -574,6 +577,37 @@ Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>&
         setGrey(&out.samples[i * 3], grey, map(values.data(), grey, i, 0));
     }
     return out;
+}
+
+float brdfScale(const LutBank& bank, const LevelCounts& referenceGrey, const BankLookup& lookup) {
+    double reference = 0, total = 0, target = 0;
+    for (std::size_t k = 0; k < referenceGrey.counts.size(); ++k) {
+        if (!referenceGrey.counts[k]) continue;
+        const double v = referenceGrey.valueOf(k), n = static_cast<double>(referenceGrey.counts[k]);
+        reference += n * v;
+        total += n;
+        if (!bank.makesLuts()) target += n * Lut::applyLut(lookup.values.data(), bank.entries, static_cast<float>(v));
+    }
+    if (bank.makesLuts()) {
+        // The target's mean grey: each region's quantile function's mean (trapezoids over
+        // [0, 1]), weighted by its sample texels; rgb banks: the mean over their channels.
+        const LutBank::Blend& blend = bank.blend;
+        const auto samples = static_cast<std::size_t>(blend.quantiles), channels = static_cast<std::size_t>(bank.channels());
+        std::vector<double> texels(static_cast<std::size_t>(blend.regions), 0);
+        for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
+            texels[blend.labels.empty() ? 0 : blend.labels[i]] += blend.mask.inside[i];
+        double mean = 0;
+        for (std::size_t r = 0; r < texels.size(); ++r)
+            for (std::size_t c = 0; c < channels; ++c) {
+                const float* q = &lookup.values[(r * channels + c) * samples];
+                double integral = 0;
+                for (std::size_t m = 0; m + 1 < samples; ++m) integral += 0.5 * (q[m] + q[m + 1]);
+                mean += texels[r] / static_cast<double>(blend.mask.count()) * integral / static_cast<double>(samples - 1) /
+                        static_cast<double>(channels);
+            }
+        target = mean * total;
+    }
+    return reference > 0 ? static_cast<float>(target / reference) : 1.f;
 }
 
 void setGrey(float* rgb, float grey, float target) {

@@ -229,6 +229,11 @@ float inputCode(const Image& image, ColourMode colour);
 Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
                 int entries, float targetCode);
 
+/// The paper's "2D texture mapping" (renderer mode brdf): the factor that brings the mean
+/// grey of the reference (its grey counts over all texels) to the target's at a lookup's
+/// direction; 1 for a black reference.
+float brdfScale(const LutBank& bank, const LevelCounts& referenceGrey, const BankLookup& lookup);
+
 /// Grey mode's colour step: an RGB pixel of grey value `grey` (the mean of its channels)
 /// gets grey `target`: its colour is scaled by target / grey and, where a channel would
 /// exceed 1, desaturated towards grey so the grey stays `target` (black pixels become grey).

@@ -42,8 +42,11 @@ double Relighter::blendCode(const RelightFrame& frame, std::size_t texel, int ch
 
 RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate) const {
     RelightFrame frame;
-    const BankLookup target = m_bank.lookup(light, view, interpolate);
+    frame.target = m_bank.lookup(light, view, interpolate);
+    const BankLookup& target = frame.target;
     frame.provenance = target.provenance;
+    frame.lightProvenance = target.lightProvenance;
+    frame.viewProvenance = target.viewProvenance;
     if (!m_bank.makesLuts()) {
         frame.luts = target.values;
         return frame;

@@ -29,7 +29,10 @@ struct RelightFrame {
     std::array<int, 3> references{0, 0, 0};
     std::array<float, 3> weights{1, 0, 0};
     std::vector<float> luts;             ///< regions x channels x entries
-    Provenance provenance = Provenance::Measured;  ///< of the target (LutBank::lookup)
+    /// Of the target (LutBank::lookup): the worse of the light's and the view's.
+    Provenance provenance = Provenance::Measured, lightProvenance = Provenance::Measured,
+               viewProvenance = Provenance::Measured;
+    BankLookup target;                   ///< the bank's lookup: LUTs, or quantile functions (blend)
 };
 
 class Relighter {

@@ -17,6 +17,8 @@ typedef void(APIENTRYP PFNGLBINDTEXTUREPROC)(GLenum target, GLuint texture);
 typedef void(APIENTRYP PFNGLTEXSUBIMAGE1DPROC)(GLenum target, GLint level, GLint xoffset, GLsizei width,
                                                GLenum format, GLenum type, const void* pixels);
 typedef void(APIENTRYP PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first, GLsizei count);
+typedef void(APIENTRYP PFNGLTEXSUBIMAGE2DPROC)(GLenum target, GLint level, GLint xoffset, GLint yoffset, GLsizei width,
+                                               GLsizei height, GLenum format, GLenum type, const void* pixels);
 
 #define BTFLUT_GL_FUNCTIONS(X)                                                              \
     X(PFNGLGETERRORPROC, GetError)                                                          \
@@ -69,7 +71,12 @@ typedef void(APIENTRYP PFNGLDRAWARRAYSPROC)(GLenum mode, GLint first, GLsizei co
     X(PFNGLUNIFORMMATRIX4FVPROC, UniformMatrix4fv)                                          \
     X(PFNGLTEXIMAGE3DPROC, TexImage3D)                                                      \
     X(PFNGLTEXSUBIMAGE3DPROC, TexSubImage3D)                                                \
-    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)
+    X(PFNGLBLITFRAMEBUFFERPROC, BlitFramebuffer)                                            \
+    X(PFNGLTEXSUBIMAGE2DPROC, TexSubImage2D)                                                \
+    X(PFNGLUNIFORM1FVPROC, Uniform1fv)                                                      \
+    X(PFNGLUNIFORM1IVPROC, Uniform1iv)                                                      \
+    X(PFNGLUNIFORM4FVPROC, Uniform4fv)                                                      \
+    X(PFNGLUNIFORM2IPROC, Uniform2i)
 
 struct GlFunctions {
 #define BTFLUT_GL_MEMBER(type, name) type name = nullptr;

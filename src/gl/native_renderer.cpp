@@ -1,5 +1,8 @@
 #include "gl/native_renderer.h"
 
+#include <optional>
+
+#include "gl/blend_textures.h"
 #include "gl/objects.h"
 #include "gl/shader.h"
 #include "gl/textures.h"
@@ -30,17 +33,27 @@ Result<Image> renderNative(const LutBank& bank, Direction light, Direction view,
     if (ref.width > maxSize || ref.height > maxSize)
         return Error{"the reference image (" + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
                      ") is larger than this GL driver's largest texture (" + std::to_string(maxSize) + ")"};
-    std::vector<std::string> defines;
-    if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+    std::vector<std::string> defines = bank.makesLuts() ? BlendTextures::defines(bank) : std::vector<std::string>{};
+    if (!bank.makesLuts() && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
     if (dither) defines.push_back("DITHER");
     Result<GlProgram> program = buildProgram({"quad.vert"}, {"lut_common.glsl", "native.frag"}, defines);
     if (!program) return Error{program.error()};
 
+    // The LUTs: the bank's for the light, or made from the blend (Relighter).
+    const Relighter relighter(bank);
+    const RelightFrame frame = relighter.frame(light, view, interpolate);
     GlTexture reference = uploadReference(ref);
-    const BankLookup lookup = bank.lookup(light, view, interpolate);
     std::vector<GlTexture> luts;
-    for (int c = 0; c < bank.channels(); ++c)
-        luts.push_back(uploadLut(&lookup.values[static_cast<std::size_t>(c) * bank.entries], bank.entries));
+    std::optional<BlendTextures> blend;
+    if (bank.makesLuts()) {
+        std::size_t bytes = 0;
+        blend = BlendTextures::upload(bank, bytes);
+        luts = blend->makeLutTables();
+        blend->updateLuts(luts, frame);
+    } else {
+        for (int c = 0; c < bank.channels(); ++c)
+            luts.push_back(uploadLut(&frame.luts[static_cast<std::size_t>(c) * bank.entries], bank.entries));
+    }
 
     // A float target, so the read-back is the shader's value, not an 8-bit rounding of it.
     GlTexture target = makeTexture();
@@ -57,11 +70,15 @@ Result<Image> renderNative(const LutBank& bank, Direction light, Direction view,
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, reference.id());
     gl.Uniform1i(gl.GetUniformLocation(p, "reference"), 0);
-    for (int c = 0; c < 3; ++c) {
-        gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE1 + c));
-        gl.BindTexture(GL_TEXTURE_1D, luts[static_cast<std::size_t>(std::min(c, bank.channels() - 1))].id());
-        const std::string name = "lut[" + std::to_string(c) + "]";
-        gl.Uniform1i(gl.GetUniformLocation(p, name.c_str()), 1 + c);
+    if (blend) {
+        blend->bind(p, frame, luts, 4);
+    } else {
+        for (int c = 0; c < 3; ++c) {
+            gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE1 + c));
+            gl.BindTexture(GL_TEXTURE_1D, luts[static_cast<std::size_t>(std::min(c, bank.channels() - 1))].id());
+            const std::string name = "lut[" + std::to_string(c) + "]";
+            gl.Uniform1i(gl.GetUniformLocation(p, name.c_str()), 1 + c);
+        }
     }
     const float inCode = inputCode(ref, bank.colour);
     gl.Uniform1i(gl.GetUniformLocation(p, "entries"), bank.entries);

@@ -49,14 +49,14 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene,
             if (bank->reference.samples.empty()) return Error{path + ": the bank has no reference image inside"};
             Material& m = r->m_materials[name];
             m.bank = std::move(*bank);
-            m.reference = uploadMipmapped(m.bank.reference, bytes.reference);
+            if (m.bank.makesLuts()) m.relighter.emplace(m.bank);
             m.referenceGrey = countGreyLevels(m.bank.reference, fullMask(m.bank.reference.width, m.bank.reference.height));
             r->m_stats.loadedMaterials.push_back(name);
         }
         QuadState q{i, {}};
         const LutBank& bank = r->m_materials.at(name).bank;
         const bool viewGrid = bank.layers.size() > 1;
-        for (int c = 0; c < bank.channels(); ++c) {
+        for (int c = 0; c < bank.channels() && !bank.makesLuts(); ++c) {
             if (viewGrid) {
                 q.luts.push_back(uploadLutVolume(nullptr, bank.entries, kViewGrid, kViewGrid));
                 bytes.luts += static_cast<std::size_t>(bank.entries) * kViewGrid * kViewGrid * 4;
@@ -125,9 +125,12 @@ const LutBank* SceneRenderer::bank(const std::string& material) const {
 
 Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool unlit) {
     std::vector<std::string> defines{unlit ? "UNLIT" : modeDefine(mode)};
-    if (!unlit && mode == RenderMode::Lut && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
-    if (!unlit && mode == RenderMode::Lut && bank.layers.size() > 1) defines.push_back("VIEW_GRID");
-    if (!unlit && mode == RenderMode::Lut && bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
+    if (!unlit && mode == RenderMode::Lut && bank.makesLuts()) defines = BlendTextures::defines(bank);
+    if (!unlit && mode == RenderMode::Lut && !bank.makesLuts()) {
+        if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+        if (bank.layers.size() > 1) defines.push_back("VIEW_GRID");
+        if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
+    }
     auto found = m_programs.find(defines);
     if (found == m_programs.end()) {
         Result<GlProgram> p = buildProgram({"scene.vert"}, {"lut_common.glsl", "scene.frag"}, defines);
@@ -171,12 +174,13 @@ Vec3 SceneRenderer::viewAt(const SceneQuad& quad, double x, double y) const {
     return view;
 }
 
-BankLookup SceneRenderer::centreLut(std::size_t quad, const Vec3& light) const {
+RelightFrame SceneRenderer::centreFrame(std::size_t quad, const Vec3& light) const {
     const SceneQuad& q = m_scene.quads[quad];
-    const LutBank& bank = m_materials.at(q.material).bank;
+    const Material& material = m_materials.at(q.material);
     const Vec3 local = toQuadFrame(q, light);
-    return bank.lookup(fromVector({local.x, local.y, std::max(local.z, 1e-9)}), fromVector(viewAt(q, 0, 0)),
-                       m_interpolate);
+    const Direction l = fromVector({local.x, local.y, std::max(local.z, 1e-9)}), v = fromVector(viewAt(q, 0, 0));
+    if (material.relighter) return material.relighter->frame(l, v, m_interpolate);
+    return Relighter(material.bank).frame(l, v, m_interpolate);  // a classic bank's: nothing to precompute
 }
 
 // Per quad and frame, only what the mode needs and only when the light, the camera (for
@@ -217,6 +221,12 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
         return;
     }
     const std::size_t entries = static_cast<std::size_t>(bank.entries);
+    if (bank.makesLuts() && mode == RenderMode::Lut) {
+        // The blend around the light and its LUTs, made from the blend's distribution.
+        q.frame = material.relighter->frame(lightDirection, centreView, m_interpolate);
+        if (material.blend) material.blend->updateLuts(q.luts, q.frame);
+        return;
+    }
     if (viewGrid && mode == RenderMode::Lut) {
         // channel-major volumes: [channel][grid point][entry]
         constexpr int k = kViewGrid;
@@ -240,16 +250,8 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
             gl.BindTexture(GL_TEXTURE_1D, q.luts[c].id());
             gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, bank.entries, GL_RED, GL_FLOAT, &centre.values[c * entries]);
         }
-    } else {  // brdf: the mean grey the LUT gives the reference, over the reference's own mean
-        const LevelCounts& grey = material.referenceGrey;
-        double target = 0, reference = 0;
-        for (std::size_t k = 0; k < grey.counts.size(); ++k) {
-            if (!grey.counts[k]) continue;
-            const auto v = static_cast<float>(grey.valueOf(k));
-            target += static_cast<double>(grey.counts[k]) * Lut::applyLut(centre.values.data(), bank.entries, v);
-            reference += static_cast<double>(grey.counts[k]) * v;
-        }
-        q.brightness = reference > 0 ? static_cast<float>(target / reference) : 1.f;
+    } else {  // brdf: the target's mean grey over the reference's own mean
+        q.brightness = brdfScale(bank, material.referenceGrey, centre);
     }
 }
 
@@ -259,6 +261,19 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
     Material& material = m_materials.at(quad.material);
     const SceneMaterial& paths = m_scene.materials.at(quad.material);
     TextureBytes& bytes = m_stats.textureBytes;
+    const bool blends = material.bank.makesLuts() && mode == RenderMode::Lut;
+    if (blends && !material.blend) {
+        material.blend = BlendTextures::upload(material.bank, bytes.blend);
+        for (QuadState& other : m_quads)  // their LUT tables and blends are due
+            if (m_scene.quads[other.index].material == quad.material) {
+                other.luts = material.blend->makeLutTables();
+                bytes.luts += material.blend->lutTableBytes();
+                other.lightUploaded = {0, 0, -2};
+            }
+        update(q, light, mode);
+    }
+    if (!blends && mode != RenderMode::Ptm && mode != RenderMode::Nearest && !material.reference.id())
+        material.reference = uploadMipmapped(material.bank.reference, bytes.reference);
     if (mode == RenderMode::Ptm && !material.ptmLoaded) {
         Result<Ptm> ptm = loadBankPtm(paths.bank);
         if (!ptm) return Error{ptm.error()};
@@ -331,10 +346,13 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
             gl.Uniform1f(gl.GetUniformLocation(*p, "ptmOffset"), w[6]);
         } else if (mode == RenderMode::Nearest) {
             bind(0, GL_TEXTURE_2D, material.imageTextures.at(q.nearestImage).id(), "reference");
-        } else {
+        } else if (!(mode == RenderMode::Lut && material.blend)) {
             bind(0, GL_TEXTURE_2D, material.reference.id(), "reference");
         }
-        if (mode == RenderMode::Lut && !unlit) {
+        if (mode == RenderMode::Lut && !unlit && material.blend) {
+            material.blend->bind(*p, q.frame, q.luts, 1);
+            gl.Uniform2i(gl.GetUniformLocation(*p, "labelSize"), material.bank.reference.width, material.bank.reference.height);
+        } else if (mode == RenderMode::Lut && !unlit) {
             const GLenum target = material.bank.layers.size() > 1 ? GL_TEXTURE_3D : GL_TEXTURE_1D;
             for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
                 const std::string name = "lut[" + std::to_string(c) + "]";

@@ -24,6 +24,8 @@
 #include "core/image.h"
 #include "core/lut_bank.h"
 #include "core/scene.h"
+#include "core/relighter.h"
+#include "gl/blend_textures.h"
 #include "gl/objects.h"
 
 namespace btflut {
@@ -31,8 +33,10 @@ namespace btflut {
 /// GPU memory of the textures, by use (bytes as the driver stores them: RGB padded to RGBA,
 /// mipmap chains included).
 struct TextureBytes {
-    std::size_t reference = 0, luts = 0, ptm = 0, images = 0;
-    std::size_t total() const { return reference + luts + ptm + images; }
+    std::size_t reference = 0;  ///< the reference image (modes lut of classic banks, brdf, flat)
+    std::size_t blend = 0;      ///< the references, albedo and labels of banks that blend references (mode lut)
+    std::size_t luts = 0, ptm = 0, images = 0;
+    std::size_t total() const { return reference + blend + luts + ptm + images; }
 };
 
 struct SceneRendererOptions {
@@ -76,13 +80,16 @@ public:
     const RenderStats& stats() const { return m_stats; }
     /// A visible quad's material bank, or null (for viewers that show LUTs and histograms).
     const LutBank* bank(const std::string& material) const;
-    /// The LUT a quad's centre gets for a light (what mode lut applies there).
-    BankLookup centreLut(std::size_t quad, const Vec3& light) const;
+    /// The LUT a quad's centre gets for a light (what mode lut applies there): its blend and,
+    /// per region and channel, its LUT.
+    RelightFrame centreFrame(std::size_t quad, const Vec3& light) const;
 
 private:
     struct Material {
         LutBank bank;
-        GlTexture reference;
+        GlTexture reference;        ///< uploaded when a mode first needs it
+        std::optional<Relighter> relighter;    ///< banks that blend references: their LUTs per light
+        std::optional<BlendTextures> blend;    ///< their textures, uploaded when mode lut first needs them
         LevelCounts referenceGrey;  ///< for the brdf mode's mean
         bool ptmLoaded = false;
         std::array<GlTexture, 3> ptm;  ///< coefficients 0-2, 3-5, albedo
@@ -92,7 +99,8 @@ private:
     };
     struct QuadState {
         std::size_t index;
-        std::vector<GlTexture> luts;  ///< one per channel: 1D, or 3D over the view grid
+        std::vector<GlTexture> luts;  ///< one per channel: 1D, 3D over the view grid, or 2D over the regions (blend)
+        RelightFrame frame;           ///< banks that blend references: the blend of the last update
         Vec3 lightUploaded{0, 0, -2}, eyeUploaded;  ///< what its state was computed for
         RenderMode modeUploaded = RenderMode::Flat;
         float brightness = 1;  ///< brdf mode

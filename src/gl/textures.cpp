@@ -55,6 +55,44 @@ GlTexture uploadMipmapped(const Image& image, std::size_t& bytes) {
     return uploadMipmapped(image.width, image.height, sixteen ? GL_RGB16 : GL_RGB8, GL_RGB, GL_FLOAT, rgb.data(), bytes);
 }
 
+GlTexture uploadLutTable(const float* values, int entries, int rows) {
+    GlTexture texture = makeTexture();
+    gl.BindTexture(GL_TEXTURE_2D, texture.id());
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, entries, rows, 0, GL_RED, GL_FLOAT, values);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
+GlTexture uploadMipmappedArray(int width, int height, int layers, int channels, const std::uint8_t* data,
+                               std::size_t& bytes) {
+    GlTexture texture = makeTexture();
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, texture.id());
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, channels == 4 ? GL_RGBA8 : GL_RGB8, width, height, layers, 0,
+                  channels == 4 ? GL_RGBA : GL_RGB, GL_UNSIGNED_BYTE, data);
+    gl.GenerateMipmap(GL_TEXTURE_2D_ARRAY);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    bytes += static_cast<std::size_t>(width) * height * layers * 4 * 4 / 3;  // RGB padded to RGBA; mipmaps
+    return texture;
+}
+
+GlTexture uploadLabels(int width, int height, const std::uint8_t* data, std::size_t& bytes) {
+    GlTexture texture = makeTexture();
+    gl.BindTexture(GL_TEXTURE_2D, texture.id());
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R8UI, width, height, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, data);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    bytes += static_cast<std::size_t>(width) * height;
+    return texture;
+}
+
 GlTexture allocateTexture2D(int width, int height, GLenum internalFormat, GLenum format, GLenum type) {
     GlTexture texture = makeTexture();
     gl.BindTexture(GL_TEXTURE_2D, texture.id());

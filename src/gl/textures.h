@@ -24,6 +24,18 @@ GlTexture uploadMipmapped(int width, int height, GLenum internalFormat, GLenum f
 /// An image at its own precision: R8/R16 for grey (read as RGB), RGB8/RGB16 for colour.
 GlTexture uploadMipmapped(const Image& image, std::size_t& bytes);
 
+/// Tables of LUTs: `rows` LUTs of `entries` floats as a GL_R32F 2D texture, linear along the
+/// entries, clamped (a row per region of a bank that blends references); values may be null.
+GlTexture uploadLutTable(const float* values, int entries, int rows);
+
+/// Layers of 8-bit RGBA or RGB texels as a repeating, trilinearly filtered 2D array texture
+/// with mipmaps (`layers` x width x height x channels bytes, top row first); adds its bytes.
+GlTexture uploadMipmappedArray(int width, int height, int layers, int channels, const std::uint8_t* data,
+                               std::size_t& bytes);
+
+/// Per texel bytes (region labels) as an unfiltered GL_R8UI texture, read with texelFetch.
+GlTexture uploadLabels(int width, int height, const std::uint8_t* data, std::size_t& bytes);
+
 /// An empty 2D texture (a render target): `format`/`type` describe no data, only the kind.
 GlTexture allocateTexture2D(int width, int height, GLenum internalFormat, GLenum format, GLenum type);
 

@@ -310,17 +310,31 @@ void Viewer::updatePlots() {
     }
     for (float& v : m_renderedHistogram) v = total > 0 ? static_cast<float>(v / total) : 0.f;
 
-    const BankLookup lut = m_renderer->centreLut(0, lightVector());
+    const RelightFrame lut = m_renderer->centreFrame(0, lightVector());
     m_provenance = std::string("light ") + provenanceName(lut.lightProvenance) + ", view " + provenanceName(lut.viewProvenance);
-    m_lutCurve.assign(lut.values.begin(), lut.values.begin() + m_bank->entries);
+    m_lutCurve.assign(lut.luts.begin(), lut.luts.begin() + m_bank->entries);  // region 0's, first channel
     m_targetHistogram.assign(kHistogramBins, 0.f);
     total = 0;
-    for (std::size_t k = 0; k < m_referenceGrey.counts.size(); ++k) {
-        if (!m_referenceGrey.counts[k]) continue;
-        const float v = Lut::applyLut(lut.values.data(), m_bank->entries, static_cast<float>(m_referenceGrey.valueOf(k)));
-        const int bin = std::min(kHistogramBins - 1, static_cast<int>(v * kHistogramBins));
-        m_targetHistogram[static_cast<std::size_t>(bin)] += static_cast<float>(m_referenceGrey.counts[k]);
-        total += static_cast<double>(m_referenceGrey.counts[k]);
+    auto add = [&](float v, double weight) {
+        m_targetHistogram[static_cast<std::size_t>(std::min(kHistogramBins - 1, static_cast<int>(v * kHistogramBins)))] +=
+            static_cast<float>(weight);
+        total += weight;
+    };
+    if (m_bank->makesLuts()) {
+        // The target's distribution from its quantile functions (first channel), each region
+        // weighted by its sample texels.
+        const LutBank::Blend& blend = m_bank->blend;
+        const auto samples = static_cast<std::size_t>(blend.quantiles), channels = static_cast<std::size_t>(m_bank->channels());
+        for (std::size_t i = 0; i < blend.mask.inside.size(); i += 16)  // every 16th texel: plenty for a plot
+            if (blend.mask.inside[i]) {
+                const std::size_t r = blend.labels.empty() ? 0 : blend.labels[i];
+                for (std::size_t m = 0; m < samples; m += 8) add(lut.target.values[r * channels * samples + m], 1);
+            }
+    } else {
+        for (std::size_t k = 0; k < m_referenceGrey.counts.size(); ++k)
+            if (m_referenceGrey.counts[k])
+                add(Lut::applyLut(lut.luts.data(), m_bank->entries, static_cast<float>(m_referenceGrey.valueOf(k))),
+                    static_cast<double>(m_referenceGrey.counts[k]));
     }
     for (float& v : m_targetHistogram) v = total > 0 ? static_cast<float>(v / total) : 0.f;
 }

@@ -5,6 +5,7 @@
 
 #include "cli/cli.h"
 #include "core/bank_file.h"
+#include "core/relighter.h"
 
 namespace btflut::cli {
 
@@ -27,6 +28,7 @@ Status runRelight(const RelightOptions& o) {
     if (!query) return Error{query.error()};
     LutBank& bank = query->bank;
     if (!o.referenceImage.empty()) {
+        if (bank.makesLuts()) return Error{o.bank + ": --reference-image: this bank blends its own references"};
         Result<Image> image = loadImage(o.referenceImage);
         if (!image) return Error{image.error()};
         // The LUTs map the reference's own codes: another size, channel count or bit depth
@@ -43,13 +45,13 @@ Status runRelight(const RelightOptions& o) {
     }
     if (bank.reference.samples.empty())
         return Error{o.bank + ": the bank has no reference image inside; give --reference-image"};
-    BankLookup lookup = bank.lookup(query->light, query->view);
-    Image out = applyLuts(bank.reference, bank.colour, lookup.values, bank.entries,
-                          o.noDither ? 0.f : bank.targetCode());
+    const Relighter relighter(bank);
+    const RelightFrame frame = relighter.frame(query->light, query->view);
+    Image out = relighter.apply(frame, !o.noDither);
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
     if (!o.quiet)
         std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT "
-                  << provenanceName(lookup.provenance) << ")\n";
+                  << provenanceName(frame.provenance) << ")\n";
     return success();
 }
 

@@ -1,0 +1,45 @@
+#pragma once
+// The GPU side of a bank that blends references and matches regions (LutBank::Blend,
+// core/relighter.h): its textures, the shader defines of lut_common.glsl's BLEND path, and
+// the per-light uniforms and LUT tables. Shared by the native and the scene renderer.
+//
+//   BlendTextures t = BlendTextures::upload(bank, bytes);     // per bank
+//   std::vector<GlTexture> luts = t.makeLutTables();          // per quad
+//   t.updateLuts(luts, frame);                                // per light change
+//   t.bind(program, frame, luts, 1);                          // per draw: units 1.. and uniforms
+
+#include <string>
+#include <vector>
+
+#include "core/relighter.h"
+#include "gl/objects.h"
+
+namespace btflut {
+
+class BlendTextures {
+public:
+    static constexpr int kUnits = 6;  ///< texture units bind uses from its first: references, albedo, labels, 3 LUTs
+
+    /// Uploads the references (grey and rgb: one RGB layer each; lrgb: four grey references
+    /// per RGBA layer), the albedo and the labels; adds their bytes to `bytes`.
+    static BlendTextures upload(const LutBank& bank, std::size_t& bytes);
+
+    /// BLEND, BLEND_PACKED (lrgb), REGIONS, RGB_MODE as the bank needs.
+    static std::vector<std::string> defines(const LutBank& bank);
+
+    /// LUT tables for one user of the bank (one per channel, a row per region), and their bytes.
+    std::vector<GlTexture> makeLutTables() const;
+    std::size_t lutTableBytes() const;
+    /// Uploads a frame's LUTs into tables made by makeLutTables.
+    void updateLuts(const std::vector<GlTexture>& tables, const RelightFrame& frame) const;
+    /// Binds the textures and `tables` to units first .. first + kUnits - 1 and sets the
+    /// frame's uniforms.
+    void bind(GLuint program, const RelightFrame& frame, const std::vector<GlTexture>& tables, int first) const;
+
+private:
+    const LutBank* m_bank = nullptr;
+    GlTexture m_references, m_albedo, m_labels;
+    int m_layers = 0;
+};
+
+}  // namespace btflut
