@@ -57,6 +57,12 @@ public:
         std::string copy = s;
         return stb_easy_font_width(copy.data()) * kTextScale;
     }
+    // An RGB image with its top-left corner at (x, y).
+    void blit(int x, int y, const Image& image) {
+        for (int v = 0; v < image.height; ++v)
+            for (int u = 0; u < image.width; ++u)
+                for (int c = 0; c < 3; ++c) m_image.at(x + u, y + v, c) = image.at(u, v, c);
+    }
     Image take() { return std::move(m_image); }
 
 private:
@@ -131,6 +137,56 @@ Image plotHistograms(const std::vector<PlotColumn>& columns) {
         }
         canvas.text(x0 + (kPanelW - Canvas::textWidth("grey value")) / 2, axisY + 22, "grey value", kAxis);
     }
+    return canvas.take();
+}
+
+namespace {
+
+// The image scaled to `width` pixels wide (box filter over the source pixels each output pixel covers), RGB.
+Image scaledTo(const Image& image, int width) {
+    const double step = static_cast<double>(image.width) / width;
+    const int height = std::max(1, static_cast<int>(image.height / step));
+    Image out(width, height, 3);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const int x0 = static_cast<int>(x * step), x1 = std::max(x0 + 1, static_cast<int>((x + 1) * step));
+            const int y0 = static_cast<int>(y * step), y1 = std::max(y0 + 1, static_cast<int>((y + 1) * step));
+            float sum[3] = {0, 0, 0};
+            int count = 0;
+            for (int v = y0; v < std::min(y1, image.height); ++v)
+                for (int u = x0; u < std::min(x1, image.width); ++u, ++count)
+                    for (int c = 0; c < 3; ++c) sum[c] += image.at(u, v, image.channels == 1 ? 0 : c);
+            for (int c = 0; c < 3; ++c) out.at(x, y, c) = count ? sum[c] / static_cast<float>(count) : 0.f;
+        }
+    return out;
+}
+
+}  // namespace
+
+Image contactSheet(const std::vector<std::vector<SheetCell>>& rows, int cellWidth) {
+    BTFLUT_CHECK(!rows.empty() && !rows.front().empty() && cellWidth > 0);
+    constexpr int kGap = 8, kLabel = 22;
+    std::size_t columns = 0;
+    int cellHeight = 0;
+    std::vector<std::vector<Image>> scaled;
+    for (const auto& row : rows) {
+        columns = std::max(columns, row.size());
+        scaled.emplace_back();
+        for (const SheetCell& cell : row) {
+            scaled.back().push_back(scaledTo(cell.image, cellWidth));
+            cellHeight = std::max(cellHeight, scaled.back().back().height);
+        }
+    }
+    const int width = static_cast<int>(columns) * (cellWidth + kGap) + kGap;
+    const int height = static_cast<int>(rows.size()) * (cellHeight + kLabel + kGap) + kGap;
+    Canvas canvas(width, height);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+        for (std::size_t c = 0; c < rows[r].size(); ++c) {
+            const int x = kGap + static_cast<int>(c) * (cellWidth + kGap);
+            const int y = kGap + static_cast<int>(r) * (cellHeight + kLabel + kGap);
+            canvas.text(x, y + 2, rows[r][c].label, kInk);
+            canvas.blit(x, y + kLabel, scaled[r][c]);
+        }
     return canvas.take();
 }
 

@@ -28,4 +28,14 @@ struct PlotColumn {
 /// with one row.
 Image plotHistograms(const std::vector<PlotColumn>& columns);
 
+/// A labelled image in a contact sheet.
+struct SheetCell {
+    std::string label;
+    Image image;  ///< grey or RGB
+};
+
+/// Rows of images side by side, each scaled (box filter) to `cellWidth` pixels wide, its
+/// label above it.
+Image contactSheet(const std::vector<std::vector<SheetCell>>& rows, int cellWidth);
+
 }  // namespace btflut

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -57,6 +58,36 @@ void addLutImageOptions(CLI::App& app, int& depth, bool& noDither) {
                  "so the LUT can split a level's pixels and reproduce the target histogram closely)");
 }
 
+double median(std::vector<double> v) {
+    BTFLUT_CHECK(!v.empty());
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+// A floor, a back wall and two side panels turned towards the camera, filling the view, each
+// with the bank's material. Every quad faces the bench's lights (which come from the camera's
+// side), so no mode draws a quad black: all modes shade the same fragments.
+Scene benchScene(const std::string& bank, int width, int height, const std::string& images) {
+    Scene s;
+    s.file = "bench";
+    s.width = width;
+    s.height = height;
+    s.eye = {0, -3.2, 1.6};
+    s.target = {0, 0, 0.6};
+    s.fovDegrees = 60;
+    s.materials["m"] = {bank, images};
+    s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 6, 6, 3, RenderMode::Lut},
+               {"m", {0, 2, 1.5}, {0, -1, 0}, {1, 0, 0}, 6, 3, 2, RenderMode::Lut},
+               {"m", {-2.2, 0.6, 1.5}, {0.7071, -0.7071, 0}, {0.7071, 0.7071, 0}, 4, 3, 2, RenderMode::Lut},
+               {"m", {2.2, 0.6, 1.5}, {-0.7071, -0.7071, 0}, {0.7071, -0.7071, 0}, 4, 3, 2, RenderMode::Lut}};
+    return s;
+}
+
+const std::array<Vec3, 2>& benchLights() {
+    static const std::array<Vec3, 2> lights{toVector(Direction::fromDegrees(40, 250)), toVector(Direction::fromDegrees(55, 300))};
+    return lights;
+}
+
 std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label) {
     if (!::isatty(STDERR_FILENO)) return {};
     return [label](std::size_t done, std::size_t total) {
@@ -95,6 +126,7 @@ int run(const std::vector<std::string>& args) {
     addRenderCommand(root, commands);
     addBenchCommand(root, commands);
     addViewCommand(root, commands);
+    addEvalCommand(root, commands);
 
     if (!args.empty() && !args.front().empty() && args.front()[0] != '-') {
         bool known = false;

@@ -4,11 +4,13 @@
 // stderr and exit status 1. Tests call `run` in-process.
 
 #include <CLI/CLI.hpp>
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "core/lut_bank.h"
+#include "core/scene.h"
 #include "core/result.h"
 
 namespace btflut::cli {
@@ -32,6 +34,7 @@ void addSynthCommand(CLI::App& root, Commands& commands);
 void addRenderCommand(CLI::App& root, Commands& commands);
 void addBenchCommand(CLI::App& root, Commands& commands);
 void addViewCommand(CLI::App& root, Commands& commands);
+void addEvalCommand(CLI::App& root, Commands& commands);
 
 /// Runs btflut with arguments (without the program name); returns the exit status.
 int run(const std::vector<std::string>& args);
@@ -56,6 +59,16 @@ Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::strin
 
 /// Opens a dataset; a non-empty `mask` replaces the dataset's own mask (--mask).
 Result<Dataset> openDatasetWithMask(const std::string& path, const std::string& mask);
+
+/// The median of a non-empty list (the upper one of an even count).
+double median(std::vector<double> values);
+
+/// The benchmarks' scene (bench render, eval): four quads of one material filling a
+/// width x height view, all lit by both benchLights(); `images` is the material's dataset
+/// (for mode nearest), may be empty.
+Scene benchScene(const std::string& bank, int width, int height, const std::string& images = {});
+/// Two lights, alternated frame by frame, so that every frame re-blends.
+const std::array<Vec3, 2>& benchLights();
 
 /// A progress bar on stderr when it is a terminal; does nothing otherwise.
 std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label);

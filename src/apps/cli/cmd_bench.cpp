@@ -30,11 +30,6 @@ struct BenchBakeOptions {
     bool json = false;
 };
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-}
-
 // The bake without decoding: images are decoded once up front and handed to bakeBank.
 Status runBenchBake(const BenchBakeOptions& o) {
     Result<Dataset> dataset = openDataset(o.dataset);
@@ -223,25 +218,6 @@ struct BenchRenderOptions {
     bool json = false;
 };
 
-// A floor, a back wall and two side panels turned towards the camera, filling the view, each
-// with the bank's material. Every quad faces the bench's lights (which come from the camera's
-// side), so no mode draws a quad black: all modes shade the same fragments.
-Scene benchScene(const std::string& bank, int width, int height) {
-    Scene s;
-    s.file = "bench";
-    s.width = width;
-    s.height = height;
-    s.eye = {0, -3.2, 1.6};
-    s.target = {0, 0, 0.6};
-    s.fovDegrees = 60;
-    s.materials["m"] = {bank, ""};
-    s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 6, 6, 3, RenderMode::Lut},
-               {"m", {0, 2, 1.5}, {0, -1, 0}, {1, 0, 0}, 6, 3, 2, RenderMode::Lut},
-               {"m", {-2.2, 0.6, 1.5}, {0.7071, -0.7071, 0}, {0.7071, 0.7071, 0}, 4, 3, 2, RenderMode::Lut},
-               {"m", {2.2, 0.6, 1.5}, {-0.7071, -0.7071, 0}, {0.7071, -0.7071, 0}, 4, 3, 2, RenderMode::Lut}};
-    return s;
-}
-
 Status runBenchRender(const BenchRenderOptions& o) {
     Result<GlBackend> backend = parseGlBackend(o.backend);
     if (!backend) return Error{backend.error()};
@@ -250,7 +226,7 @@ Status runBenchRender(const BenchRenderOptions& o) {
     nlohmann::json out{{"context", (*context)->description()}, {"bank", o.bank}, {"sizes", nlohmann::json::array()}};
     // Two lights, alternated every frame: each frame re-blends and uploads the LUTs (lut),
     // recomputes the brightness (brdf) or the PTM weights (ptm).
-    const Vec3 lights[2] = {toVector(Direction::fromDegrees(40, 250)), toVector(Direction::fromDegrees(55, 300))};
+    const std::array<Vec3, 2>& lights = benchLights();
     const RenderMode modes[] = {RenderMode::Lut, RenderMode::Flat, RenderMode::Brdf, RenderMode::Ptm};
     std::string text;
     for (auto [w, h] : {std::pair{1024, 1024}, std::pair{1920, 1080}}) {
