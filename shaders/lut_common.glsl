@@ -46,11 +46,17 @@ vec3 btflutSetGrey(vec3 rgb, float target) {
 // REGIONS). The references are blended on their codes, the blend is rounded to its code
 // scale (the CPU counts exactly these codes), and the LUT of the texel's region is applied.
 #if defined(BLEND)
-uniform sampler2DArray blendReferences;  // grey and rgb: one reference per layer; lrgb: four per RGBA layer
+// grey and rgb: one reference per layer; lrgb: four per RGBA layer; BLEND_PTM: the PTM's
+// coefficients 0-2, 3-5 and its albedo
+uniform sampler2DArray blendReferences;
+#if defined(BLEND_PTM)
+uniform vec3 blendPtmWeights[2];  // the light's terms with scale and bias folded in
+uniform float blendPtmOffset;
+#endif
 #if defined(BLEND_PACKED)
 uniform int blendLayers;
 uniform vec4 blendWeights[4];            // per layer, the weights of its four references
-#else
+#elif !defined(BLEND_PTM)
 uniform int blendLayer[3];               // the (up to) three references around the light
 uniform float blendWeight[3];
 #endif
@@ -65,9 +71,14 @@ uniform usampler2D blendLabels;
 // A reference layer's texel: defined by each shader (fetched or filtered).
 vec4 btflutBlendTexel(int layer);
 
-// The blended references: RGB (grey and rgb modes), or the grey value in .r (lrgb).
+// The blended references: RGB (grey and rgb modes), or the grey value in .r (lrgb); the
+// PTM's relit colour (BLEND_PTM).
 vec3 btflutBlend() {
-#if defined(BLEND_PACKED)
+#if defined(BLEND_PTM)
+    float luminance = dot(btflutBlendTexel(0).rgb, blendPtmWeights[0]) + dot(btflutBlendTexel(1).rgb, blendPtmWeights[1]) +
+                      blendPtmOffset;
+    return clamp(btflutBlendTexel(2).rgb * luminance, 0.0, 1.0);
+#elif defined(BLEND_PACKED)
     float grey = 0.0;
     for (int l = 0; l < blendLayers; ++l) grey += dot(btflutBlendTexel(l), blendWeights[l]);
     return vec3(grey);
@@ -77,7 +88,9 @@ vec3 btflutBlend() {
 #endif
 }
 
-float btflutBlendQuantise(float v) { return round(v * blendCodes) / blendCodes; }
+// The blend rounded to its code q, read at the top of its cell [q, q + 1) / (codes + 1)
+// (Relighter::inputCode).
+float btflutBlendQuantise(float v) { return (round(v * blendCodes) + 1.0) / (blendCodes + 1.0); }
 
 // The LUT of a region at v in [0, 1] (linear between entries, as Lut::applyLut).
 float btflutBlendLut(int channel, uint region, float v) {
@@ -88,9 +101,9 @@ float btflutBlendLut(int channel, uint region, float v) {
     return textureLod(blendLuts[2], at, 0.0).r;
 }
 
-// The same, dithered as btflutApplyLutDithered (code: 1 / blendCodes).
+// The same, dithered as btflutApplyLutDithered (code: 1 / (blendCodes + 1)).
 float btflutBlendLutDithered(int channel, uint region, float v, uvec2 pixel, float outCode) {
-    float moved = v + (btflutDitherOffset(pixel.x, pixel.y, uint(channel)) - 0.5) / blendCodes;
+    float moved = v + (btflutDitherOffset(pixel.x, pixel.y, uint(channel)) - 0.5) / (blendCodes + 1.0);
     float value = btflutBlendLut(channel, region, moved);
     return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
 }

@@ -202,11 +202,12 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
         head.references = in.get<std::uint32_t>();
         const auto regions = in.get<std::uint32_t>(), quantiles = in.get<std::uint32_t>();
         if (in.ok() && quantiles > 0) {
-            if (head.references < 1 || head.references > 255 || regions < 1 || regions > 255 || quantiles < 2 ||
-                quantiles > 65536)
+            // references 0: the PTM is the predictor (a PTMC chunk must follow)
+            if (head.references > 255 || regions < 1 || regions > 255 || quantiles < 2 || quantiles > 65536)
                 return fail("references, regions or quantiles out of range");
             bank.blend.regions = static_cast<int>(regions);
             bank.blend.quantiles = static_cast<int>(quantiles);
+            if (head.references == 0) bank.blend.predictor = LutBank::Blend::Predictor::Ptm;
         } else if (in.ok() && (head.references != 0 || regions != 0)) {
             return fail("references and regions without quantiles");
         }
@@ -374,7 +375,7 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
             refs.put(static_cast<std::uint32_t>(png.size()));
             refs.putBytes(png.data(), png.size());
         }
-        putChunk(file, kReferences, refs.bytes());
+        if (!blend.references.empty()) putChunk(file, kReferences, refs.bytes());
         putChunk(file, kMask, encodePng(maskImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
         if (!blend.labels.empty()) putChunk(file, kLabels, encodePng(maskImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
         if (!blend.albedo.samples.empty()) putChunk(file, kAlbedo, encodePng(blend.albedo, 8));
@@ -555,7 +556,7 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             if (havePtm) return fail("two PTMC chunks");
             havePtm = true;
             bank.ptmInFile = true;
-            if (!options.ptm) continue;
+            if (!options.ptm && bank.blend.predictor != LutBank::Blend::Predictor::Ptm) continue;  // the predictor's is needed
             Result<Ptm> ptm = decodePtm({tag, payload, length}, name, head->refWidth, head->refHeight);
             if (!ptm) return Error{ptm.error()};
             bank.ptm = std::move(*ptm);
@@ -577,6 +578,8 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
         return fail(std::string(colourName(bank.colour)) + " bank with a grey reference image");
     if (bank.makesLuts()) {
         const LutBank::Blend& blend = bank.blend;
+        const bool ptmPredictor = blend.predictor == LutBank::Blend::Predictor::Ptm;
+        if (ptmPredictor && (!havePtm || bank.colour != ColourMode::Grey)) return fail("a PTM-predicted bank without its PTM");
         if (!head->embedded || blend.references.size() != head->references || blend.mask.inside.empty() ||
             (blend.regions > 1) != !blend.labels.empty() || (bank.colour == ColourMode::Lrgb) != !blend.albedo.samples.empty() ||
             bank.layers.size() != 1)

@@ -335,10 +335,13 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
     if (options.references < 1 || static_cast<std::size_t>(options.references) > distinct)
         return Error{"--references " + std::to_string(options.references) + " must be within 1.." + std::to_string(distinct) +
                      " (the distinct light directions of " + dataset.source + ")"};
-    if (options.colour == ColourMode::Lrgb && options.references > 16)
+    if (options.ptmPredictor) {
+        // no references: the PTM is fitted from every image
+    } else if (options.colour == ColourMode::Lrgb && options.references > 16)
         return Error{"--colour lrgb packs at most 16 references (four per texture layer); --references " +
                      std::to_string(options.references) + " is more"};
-    setup.references = pickReferences(lights, refIndex, static_cast<std::size_t>(options.references));
+    else
+        setup.references = pickReferences(lights, refIndex, static_cast<std::size_t>(options.references));
 
     if (!options.labelsPath.empty()) {
         Result<Image> labels = loadImage(options.labelsPath);
@@ -439,7 +442,9 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     // Banks that make their LUTs at run time keep each image's target per region as a
     // quantile function; classic banks keep each image's LUT from the reference.
     const bool makesLuts = options.references > 1 || options.regions > 1 || !options.labelsPath.empty() ||
-                           options.colour == ColourMode::Lrgb;
+                           options.colour == ColourMode::Lrgb || options.ptmPredictor;
+    if (options.ptmPredictor && (options.references > 1 || options.colour != ColourMode::Grey))
+        return Error{"--predictor ptm relights with the PTM: it takes no --references, and its colour is the PTM's (grey)"};
     BlendSetup blend;
     std::vector<LevelCounts> refLevels;
     if (makesLuts) {
@@ -463,7 +468,7 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     std::mutex progressMutex;
     std::size_t done = 0;
     std::optional<PtmFitter> ptm;
-    if (options.ptm) ptm.emplace(ref.width, ref.height);
+    if (options.ptm || options.ptmPredictor) ptm.emplace(ref.width, ref.height);
     std::optional<AlbedoAccumulator> albedo;
     if (options.colour == ColourMode::Lrgb) albedo.emplace(ref.width, ref.height);
     // The references as the blend keeps them, in pick order.
@@ -521,7 +526,11 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         bank.reference = std::move(referenceStorage);
     else
         bank.reference = ref;
-    if (makesLuts) {
+    if (makesLuts && options.ptmPredictor) {
+        bank.blend.predictor = LutBank::Blend::Predictor::Ptm;
+        bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
+        bank.blend.mask = mask;
+    } else if (makesLuts) {
         bank.blend.references = std::move(blendReferences);
         for (std::size_t k : blend.references) bank.blend.lights.push_back({dataset.images[k].name, dataset.images[k].light});
         bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};

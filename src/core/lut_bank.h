@@ -111,6 +111,9 @@ struct LutBank {
     /// lrgb; relighter.h): K references blended per light, and regions of the sample, each
     /// matched to its own target. Their nodes hold the targets' quantile functions.
     struct Blend {
+        /// What is matched per light: the references blended, or the bank's PTM relit (the
+        /// PTM is then part of the bank's relighting, not only a baseline).
+        enum class Predictor : std::uint32_t { References = 0, Ptm = 1 } predictor = Predictor::References;
         std::vector<Image> references;   ///< K, as blended: grey (lrgb) or as the source
         std::vector<LightNode> lights;   ///< each reference's light and image
         Triangulation triangulation;     ///< over their lights: the blend weights
@@ -193,6 +196,7 @@ struct BakeOptions {
     bool ptm = false;  ///< also fit a PTM (ptm.h) to the images of the reference's view
     std::optional<BankDomain> domain;  ///< empty: chosen from the directions (setNodes)
     int references = 1;       ///< K references blended per light (a fixed camera; relighter.h)
+    bool ptmPredictor = false;  ///< instead of references: the PTM relit, then matched (implies ptm)
     int regions = 1;          ///< regions segmented from the images' responses over the lights
     std::string labelsPath;   ///< instead: a label image (each grey value one region)
     int quantiles = 1024;     ///< samples of the targets' quantile functions (banks that make LUTs)

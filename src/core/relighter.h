@@ -3,8 +3,9 @@
 // CPU twin. For a classic bank (one reference, one region) the frame is the bank's LUT for
 // the light (LutBank::lookup) and applying it is applyLuts. A bank that makes its LUTs at run
 // time (LutBank::Blend: several references, regions, lrgb) is relit in two steps:
-//   1. blend: the references around the light (a Delaunay triangle of their lights, clamped
-//      outside their hull) are blended per texel with barycentric weights, on their codes;
+//   1. predict: the references around the light (a Delaunay triangle of their lights,
+//      clamped outside their hull) are blended per texel with barycentric weights, on their
+//      codes; or the bank's PTM is evaluated for the light (--predictor ptm);
 //   2. match: per region, the blend's exact distribution over the region's sample texels is
 //      counted, and ONE LUT maps it onto the target distribution at the light (the nodes'
 //      quantile functions blended, as LutBank::lookup blends LUTs).
@@ -25,7 +26,8 @@
 namespace btflut {
 
 struct RelightFrame {
-    int count = 1;                       ///< references blended, 1 to 3
+    Direction light;                     ///< what the frame is for (the PTM predictor's terms)
+    int count = 1;                       ///< references blended, 1 to 3 (0 for the PTM predictor)
     std::array<int, 3> references{0, 0, 0};
     std::array<float, 3> weights{1, 0, 0};
     std::vector<float> luts;             ///< regions x channels x entries
@@ -51,18 +53,28 @@ public:
     /// blend of matched images does not keep the target's histogram.
     Image applyBlendingLuts(Direction light, Direction view, bool dither) const;
 
-    /// The scale of a blend's codes: 1 / (number of codes - 1) of the values the LUT reads.
-    float inputCode() const { return 1.f / static_cast<float>(m_codes); }
+    /// One code of the values the LUTs read. A predicted code q is read at (q + 1) /
+    /// (codes + 1), the top of its cell [q, q + 1) / (codes + 1): unlike a classic
+    /// reference's code 0, whose cell lies below [0, 1], every cell is inside, so dithering
+    /// splits black and white too (predictors make spikes there: a PTM clips).
+    float inputCode() const { return 1.f / static_cast<float>(m_codes + 1); }
 
 private:
     std::vector<float> lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const;
     double blendCode(const RelightFrame& frame, std::size_t texel, int channel) const;
+    /// The PTM predictor: a texel's relit colour for a light's terms (as Ptm::render).
+    void ptmColour(const std::array<double, Ptm::kTerms>& terms, std::size_t texel, float* rgb) const;
+    /// A texel's predicted code, 0 .. codes: the blend, or the PTM's grey.
+    std::size_t predictedCode(const RelightFrame& frame, const std::array<double, Ptm::kTerms>& terms, std::size_t texel,
+                              int channel) const;
+    bool usesPtm() const { return m_bank.blend.predictor == LutBank::Blend::Predictor::Ptm; }
 
     const LutBank& m_bank;
     int m_codes = 255;                       // codes of a blended value (765 for the grey of RGB8)
     int m_counted = 1;                       // channels counted: 3 for rgb, else 1 (grey)
     std::vector<std::vector<std::uint32_t>> m_referenceCodes;  // [reference][texel * counted + c]
     std::vector<std::vector<std::uint32_t>> m_regionTexels;    // sample texels of each region
+    std::vector<float> m_ptmCoefficients;                      // the PTM predictor: a_k per texel
 };
 
 }  // namespace btflut

@@ -13,13 +13,21 @@ std::uint8_t byteOf(float v) { return static_cast<std::uint8_t>(std::lround(std:
 BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     BTFLUT_CHECK(bank.makesLuts());
     const LutBank::Blend& blend = bank.blend;
-    const Image& first = blend.references.front();
+    const Image& first = blend.references.empty() ? bank.reference : blend.references.front();
     const auto texels = first.pixelCount();
     const auto k = static_cast<int>(blend.references.size());
     BlendTextures t;
     t.m_bank = &bank;
     std::vector<std::uint8_t> data;
-    if (bank.colour == ColourMode::Lrgb) {
+    if (blend.predictor == LutBank::Blend::Predictor::Ptm) {
+        // The PTM's three RGB planes as three layers.
+        t.m_layers = 3;
+        for (int p = 0; p < 3; ++p) {
+            const std::vector<std::uint8_t> plane = bank.ptm.plane(p);
+            data.insert(data.end(), plane.begin(), plane.end());
+        }
+        t.m_references = uploadMipmappedArray(bank.ptm.width, bank.ptm.height, 3, 3, data.data(), bytes);
+    } else if (bank.colour == ColourMode::Lrgb) {
         // Four grey references per RGBA layer (reference j: layer j / 4, channel j % 4).
         t.m_layers = (k + 3) / 4;
         data.assign(static_cast<std::size_t>(t.m_layers) * texels * 4, 0);
@@ -48,6 +56,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
 
 std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
     std::vector<std::string> d{"BLEND"};
+    if (bank.blend.predictor == LutBank::Blend::Predictor::Ptm) d.push_back("BLEND_PTM");
     if (bank.colour == ColourMode::Lrgb) d.push_back("BLEND_PACKED");
     if (bank.colour == ColourMode::Rgb) d.push_back("RGB_MODE");
     if (bank.blend.regions > 1) d.push_back("REGIONS");
@@ -91,12 +100,25 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
         unit(3 + c, GL_TEXTURE_2D, tables[std::min<std::size_t>(static_cast<std::size_t>(c), tables.size() - 1)].id(), name.c_str());
     }
     const LutBank& bank = *m_bank;
-    const Image& reference = bank.blend.references.front();
-    const int codes = reference.maxCode() * (bank.colour == ColourMode::Grey ? reference.channels : 1);
+    const bool ptm = bank.blend.predictor == LutBank::Blend::Predictor::Ptm;
+    const Image& reference = ptm ? bank.reference : bank.blend.references.front();
+    const int codes = ptm ? 765 : reference.maxCode() * (bank.colour == ColourMode::Grey ? reference.channels : 1);
     gl.Uniform1f(gl.GetUniformLocation(p, "blendCodes"), static_cast<float>(codes));
     gl.Uniform1i(gl.GetUniformLocation(p, "blendEntries"), bank.entries);
     gl.Uniform1i(gl.GetUniformLocation(p, "blendRegions"), bank.blend.regions);
-    if (bank.colour == ColourMode::Lrgb) {
+    if (ptm) {
+        // As the renderer's ptm mode: the light's terms with each coefficient's scale and
+        // bias folded into six weights and an offset (the CPU twin: Relighter::ptmColour).
+        const std::array<double, Ptm::kTerms> t = Ptm::terms(frame.light);
+        float weights[6];
+        double offset = 0;
+        for (std::size_t k = 0; k < Ptm::kTerms; ++k) {
+            weights[k] = static_cast<float>(255.0 * bank.ptm.scale[k] * t[k]);
+            offset -= double{bank.ptm.bias[k]} * bank.ptm.scale[k] * t[k];
+        }
+        gl.Uniform3fv(gl.GetUniformLocation(p, "blendPtmWeights"), 2, weights);
+        gl.Uniform1f(gl.GetUniformLocation(p, "blendPtmOffset"), static_cast<float>(offset));
+    } else if (bank.colour == ColourMode::Lrgb) {
         std::vector<float> weights(16, 0.f);
         for (int k = 0; k < frame.count; ++k)
             weights[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])] = frame.weights[static_cast<std::size_t>(k)];

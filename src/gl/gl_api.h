@@ -76,7 +76,8 @@ typedef void(APIENTRYP PFNGLTEXSUBIMAGE2DPROC)(GLenum target, GLint level, GLint
     X(PFNGLUNIFORM1FVPROC, Uniform1fv)                                                      \
     X(PFNGLUNIFORM1IVPROC, Uniform1iv)                                                      \
     X(PFNGLUNIFORM4FVPROC, Uniform4fv)                                                      \
-    X(PFNGLUNIFORM2IPROC, Uniform2i)
+    X(PFNGLUNIFORM2IPROC, Uniform2i)                                                        \
+    X(PFNGLUNIFORM3FVPROC, Uniform3fv)
 
 struct GlFunctions {
 #define BTFLUT_GL_MEMBER(type, name) type name = nullptr;

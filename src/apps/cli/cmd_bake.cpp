@@ -25,6 +25,7 @@ struct BakeCommandOptions {
     int references = 1;
     int regions = 1;
     std::string labels;
+    std::string predictor = "references";
     int threads = 0;
     bool noReference = false;
     bool ptm = false;
@@ -83,10 +84,12 @@ Status runBake(const BakeCommandOptions& o) {
     options.colour = o.colour == "rgb" ? ColourMode::Rgb : o.colour == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
     if (o.domain != "auto") options.domain = *parseDomain(o.domain);
     options.references = o.references;
+    options.ptmPredictor = o.predictor == "ptm";
     options.regions = o.regions;
     options.labelsPath = o.labels;
     if (!o.labels.empty() && o.regions > 1) return Error{"give --regions or --labels, not both"};
-    if (o.noReference && (o.references > 1 || o.regions > 1 || !o.labels.empty() || options.colour == ColourMode::Lrgb))
+    if (o.noReference && (o.references > 1 || o.regions > 1 || !o.labels.empty() || options.colour == ColourMode::Lrgb ||
+                          options.ptmPredictor))
         return Error{"--no-reference: a bank that blends references or matches regions keeps its references"};
     if (!o.quiet) options.progress = terminalProgress("baking");
     Result<LutBank> bank = bakeBank(*dataset, options);
@@ -99,9 +102,11 @@ Status runBake(const BakeCommandOptions& o) {
                   << bank->layers.size() << " view layer(s), " << nodes << " measured nodes, "
                   << bank->gridSize << "x" << bank->gridSize << " grid, " << bank->entries
                   << " entries, domain " << domainName(bank->domain) << ", colour " << colourName(bank->colour)
-                  << (bank->makesLuts() ? ", " + std::to_string(bank->blend.references.size()) + " reference(s), " +
-                                              std::to_string(bank->blend.regions) + " region(s)"
-                                        : std::string())
+                  << (!bank->makesLuts() ? std::string()
+                      : bank->blend.predictor == LutBank::Blend::Predictor::Ptm
+                          ? ", the PTM matched, " + std::to_string(bank->blend.regions) + " region(s)"
+                          : ", " + std::to_string(bank->blend.references.size()) + " reference(s), " +
+                                std::to_string(bank->blend.regions) + " region(s)")
                   << ", reference " << bank->referenceName
                   << (bank->ptm.empty() ? "" : ", PTM") << ", "
                   << std::filesystem::file_size(o.output) << " bytes\n";
@@ -152,6 +157,12 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::Range(1, 255))
         ->capture_default_str();
     app->add_option("--labels", o->labels, "instead of --regions: a label image, each grey value one region");
+    app->add_option("--predictor", o->predictor,
+                    "what is matched per light: references (the --references blended) or ptm (the bank's PTM, "
+                    "fitted to every image, relit; then matched like a blend: the PTM's placement, the measured "
+                    "histogram)")
+        ->check(CLI::IsMember({"references", "ptm"}))
+        ->capture_default_str();
     app->add_option("--domain", o->domain,
                     "what lookups interpolate over: layers (each view's lights, then between views; any "
                     "material), isotropic (theta_i, theta_r, phi_i - phi_r; for isotropic materials measured "

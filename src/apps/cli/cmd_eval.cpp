@@ -37,6 +37,7 @@ struct EvalOptions {
     std::string references = "1";
     std::string regions = "1";
     std::string colours = "grey";
+    std::string predictors = "references";
     std::string mask;
     std::string backend = "auto";
     bool blendedLuts = false;
@@ -51,10 +52,11 @@ struct EvalOptions {
 struct Variant {
     std::string name;
     RenderMode mode = RenderMode::Lut;
-    int references = 1, regions = 1;
+    int references = 1, regions = 1;  // references 0: the PTM predictor
     ColourMode colour = ColourMode::Grey;
     bool blendedLuts = false;  // the alternative: per-reference LUTs blended
     bool base() const { return references == 1 && regions == 1 && colour == ColourMode::Grey; }
+    std::tuple<int, int, ColourMode> setting() const { return {references, regions, colour}; }
 
     std::vector<ImageErrors> errors;
     std::vector<std::string> images;
@@ -103,6 +105,13 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             variants.push_back({name, *mode});
             continue;
         }
+        for (const std::string& predictor : split(o.predictors)) {
+            if (predictor == "references") continue;
+            if (predictor != "ptm") return Error{"--predictor '" + predictor + "' is not references or ptm"};
+            for (int r : *rs) variants.push_back({"lut ptm R" + std::to_string(r) + " grey", RenderMode::Lut, 0, r});
+        }
+        const std::vector<std::string> predictors = split(o.predictors);
+        if (std::find(predictors.begin(), predictors.end(), "references") == predictors.end()) continue;
         for (const std::string& colourText : split(o.colours)) {
             if (colourText != "grey" && colourText != "rgb" && colourText != "lrgb")
                 return Error{"--colour '" + colourText + "' is not grey, rgb or lrgb"};
@@ -127,7 +136,8 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
 BakeOptions bakeOptionsOf(const Variant& v, const EvalOptions& o, bool ptm) {
     BakeOptions b;
     b.gridSize = o.grid;
-    b.references = v.references;
+    b.references = std::max(v.references, 1);
+    b.ptmPredictor = v.references == 0;
     b.regions = v.regions;
     b.colour = v.colour;
     b.ptm = ptm;
@@ -140,6 +150,7 @@ double bytesPerTexel(const Variant& v, const LutBank& bank) {
     switch (v.mode) {
         case RenderMode::Lut:
             if (!bank.makesLuts()) return reference;
+            if (bank.blend.predictor == LutBank::Blend::Predictor::Ptm) return 9 + (bank.blend.regions > 1 ? 1 : 0);
             return static_cast<double>(bank.blend.references.size()) * bank.blend.references.front().channels +
                    (bank.colour == ColourMode::Lrgb ? 3 : 0) + (bank.blend.regions > 1 ? 1 : 0);
         case RenderMode::Ptm: return 9;
@@ -276,7 +287,9 @@ Status runEval(const EvalOptions& o) {
     bool ptm = false;
     for (const Variant& v : variants) {
         minimumTraining = std::max<std::size_t>(minimumTraining, static_cast<std::size_t>(v.references));
-        if (v.mode == RenderMode::Ptm) ptm = true, minimumTraining = std::max<std::size_t>(minimumTraining, 6);
+        if (v.mode == RenderMode::Ptm) ptm = true;
+        if (v.mode == RenderMode::Ptm || (v.mode == RenderMode::Lut && v.references == 0))
+            minimumTraining = std::max<std::size_t>(minimumTraining, 6);
     }
     Result<std::vector<Fold>> folds = holdoutFolds(*dataset, o.holdout, minimumTraining);
     if (!folds) return Error{folds.error()};
@@ -307,8 +320,7 @@ Status runEval(const EvalOptions& o) {
         std::map<std::tuple<int, int, ColourMode>, std::unique_ptr<LutBank>> banks;
         std::map<std::tuple<int, int, ColourMode>, std::unique_ptr<Relighter>> relighters;
         auto bankFor = [&](Variant& v) -> Result<LutBank*> {
-            const auto key = std::tuple{v.mode == RenderMode::Lut ? v.references : 1, v.mode == RenderMode::Lut ? v.regions : 1,
-                                        v.mode == RenderMode::Lut ? v.colour : ColourMode::Grey};
+            const auto key = v.mode == RenderMode::Lut ? v.setting() : std::tuple{1, 1, ColourMode::Grey};
             if (!banks.count(key)) {
                 Variant setting = v;
                 std::tie(setting.references, setting.regions, setting.colour) = key;
@@ -319,7 +331,7 @@ Status runEval(const EvalOptions& o) {
                 banks[key] = std::make_unique<LutBank>(std::move(*bank));
                 relighters[key] = std::make_unique<Relighter>(*banks[key]);
                 for (Variant& other : variants)
-                    if (other.mode == RenderMode::Lut && std::tuple{other.references, other.regions, other.colour} == key)
+                    if (other.mode == RenderMode::Lut && other.setting() == key)
                         other.bakeSeconds.push_back(took);
             }
             LutBank* bank = banks[key].get();
@@ -353,7 +365,7 @@ Status runEval(const EvalOptions& o) {
                 const LutBank& bank = **found;
                 Image predicted;
                 if (v.mode == RenderMode::Lut) {
-                    const Relighter& relighter = *relighters.at(std::tuple{v.references, v.regions, v.colour});
+                    const Relighter& relighter = *relighters.at(v.setting());
                     const auto start = Clock::now();
                     predicted = v.blendedLuts ? relighter.applyBlendingLuts(info.light, info.view, true)
                                               : relighter.apply(relighter.frame(info.light, info.view), true);
@@ -429,6 +441,8 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
     app->add_option("--references", o->references, "lut: references per bank, a list (e.g. 1,4,6)")->capture_default_str();
     app->add_option("--regions", o->regions, "lut: regions per bank, a list")->capture_default_str();
     app->add_option("--colour", o->colours, "lut: grey, rgb, lrgb, a list")->capture_default_str();
+    app->add_option("--predictor", o->predictors, "lut: references, ptm (the PTM relit, then matched), a list")
+        ->capture_default_str();
     app->add_flag("--blended-luts", o->blendedLuts,
                   "also the alternative to blend-then-match: each reference matched alone, the results blended");
     app->add_option("--mask", o->mask, "sample mask instead of the dataset's own");

@@ -37,8 +37,12 @@ Status runInfo(const InfoOptions& o) {
               << " " << b.reference.bitDepth << "-bit, "
               << (b.reference.samples.empty() ? "not embedded" : "embedded") << "\n";
     if (b.makesLuts()) {
-        std::cout << "  blend:     " << b.blend.references.size() << " reference(s) blended per light, LUTs made at run "
-                  << "time from " << b.blend.quantiles << "-sample quantile functions; " << b.blend.regions << " region(s)";
+        if (b.blend.predictor == LutBank::Blend::Predictor::Ptm)
+            std::cout << "  blend:     the PTM relit per light and matched, LUTs made at run time from ";
+        else
+            std::cout << "  blend:     " << b.blend.references.size() << " reference(s) blended per light, LUTs made at run "
+                      << "time from ";
+        std::cout << b.blend.quantiles << "-sample quantile functions; " << b.blend.regions << " region(s)";
         if (b.blend.regions > 1) {
             std::vector<std::size_t> texels(static_cast<std::size_t>(b.blend.regions), 0);
             for (std::size_t i = 0; i < b.blend.labels.size(); ++i) texels[b.blend.labels[i]] += b.blend.mask.inside[i];
