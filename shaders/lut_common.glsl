@@ -54,8 +54,7 @@ uniform vec3 blendPtmWeights[2];  // the light's terms with scale and bias folde
 uniform float blendPtmOffset;
 #endif
 #if defined(BLEND_PACKED)
-uniform int blendLayers;
-uniform vec4 blendWeights[4];            // per layer, the weights of its four references
+uniform vec4 blendWeights[BLEND_LAYERS]; // per layer, the weights of its four references (BLEND_LAYERS: 1 to 4)
 #elif !defined(BLEND_PTM)
 uniform int blendLayer[3];               // the (up to) three references around the light
 uniform float blendWeight[3];
@@ -80,7 +79,7 @@ vec3 btflutBlend() {
     return clamp(btflutBlendTexel(2).rgb * luminance, 0.0, 1.0);
 #elif defined(BLEND_PACKED)
     float grey = 0.0;
-    for (int l = 0; l < blendLayers; ++l) grey += dot(btflutBlendTexel(l), blendWeights[l]);
+    for (int l = 0; l < BLEND_LAYERS; ++l) grey += dot(btflutBlendTexel(l), blendWeights[l]);  // unrolled: a constant bound
     return vec3(grey);
 #else
     return blendWeight[0] * btflutBlendTexel(blendLayer[0]).rgb + blendWeight[1] * btflutBlendTexel(blendLayer[1]).rgb +

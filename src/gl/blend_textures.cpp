@@ -57,7 +57,10 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
 std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
     std::vector<std::string> d{"BLEND"};
     if (bank.blend.predictor == LutBank::Blend::Predictor::Ptm) d.push_back("BLEND_PTM");
-    if (bank.colour == ColourMode::Lrgb) d.push_back("BLEND_PACKED");
+    if (bank.colour == ColourMode::Lrgb) {
+        d.push_back("BLEND_PACKED");
+        d.push_back("BLEND_LAYERS " + std::to_string((bank.blend.references.size() + 3) / 4));
+    }
     if (bank.colour == ColourMode::Rgb) d.push_back("RGB_MODE");
     if (bank.blend.regions > 1) d.push_back("REGIONS");
     return d;
@@ -119,11 +122,10 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
         gl.Uniform3fv(gl.GetUniformLocation(p, "blendPtmWeights"), 2, weights);
         gl.Uniform1f(gl.GetUniformLocation(p, "blendPtmOffset"), static_cast<float>(offset));
     } else if (bank.colour == ColourMode::Lrgb) {
-        std::vector<float> weights(16, 0.f);
+        std::vector<float> weights(static_cast<std::size_t>(m_layers) * 4, 0.f);
         for (int k = 0; k < frame.count; ++k)
             weights[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])] = frame.weights[static_cast<std::size_t>(k)];
-        gl.Uniform1i(gl.GetUniformLocation(p, "blendLayers"), m_layers);
-        gl.Uniform4fv(gl.GetUniformLocation(p, "blendWeights"), 4, weights.data());
+        gl.Uniform4fv(gl.GetUniformLocation(p, "blendWeights"), m_layers, weights.data());
     } else {
         GLint layers[3] = {0, 0, 0};
         float weights[3] = {0, 0, 0};
