@@ -293,6 +293,17 @@ TEST_CASE("bake refuses bad settings of references, regions and labels with one 
     CHECK(info.out.find("2 region(s)") != std::string::npos);
     REQUIRE(runCli({"relight", out, "--light", "30,40", "-o", dir / "r.png", "-q"}).status == 0);
     CHECK(loadImage(dir / "r.png")->channels == 3);
+
+    // export: the atlas (a row per grid node and region, a column per quantile sample) and
+    // the textures the bank relights from.
+    REQUIRE(runCli({"export", out, "-o", dir / "x.png"}).status == 0);
+    const Image atlas = *loadImage(dir / "x.png");
+    CHECK(atlas.width == 1024);
+    CHECK(atlas.height == 17 * 17 * 2);
+    const auto side = nlohmann::json::parse(readText(dir / "x.json"));
+    CHECK(side["blend"]["references"].size() == 4);
+    CHECK(side["blend"]["regions"] == 2);
+    for (const char* file : {"x-reference-3.png", "x-albedo.png", "x-labels.png", "x-mask.png"}) CHECK(fs::exists(dir / file));
 }
 
 TEST_CASE("hold-out folds, and eval end to end on a small material") {

@@ -88,9 +88,13 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
     if (fs::path(path).extension() != ".btflut") {  // a dataset: bake it for this session
         Result<Dataset> dataset = openDataset(path);
         if (!dataset) return Error{dataset.error()};
-        Result<LutBank> baked = bakeBank(*dataset, {.ptm = true});
-        if (!baked && baked.error().find("a PTM needs") != std::string::npos)
-            baked = bakeBank(*dataset, {});  // too few lights for a PTM: mode ptm stays off
+        BakeOptions bake = o.bake;
+        bake.ptm = true;
+        Result<LutBank> baked = bakeBank(*dataset, bake);
+        if (!baked && baked.error().find("a PTM needs") != std::string::npos && !bake.ptmPredictor) {
+            bake.ptm = false;  // too few lights for a PTM: mode ptm stays off
+            baked = bakeBank(*dataset, bake);
+        }
         if (!baked) return Error{baked.error()};
         in.temporaryBank = (fs::temp_directory_path() / ("btflut-view-" + std::to_string(::getpid()) + ".btflut")).string();
         if (Status s = saveBank(*baked, in.temporaryBank); !s) return Error{s.error()};
@@ -414,7 +418,14 @@ bool Viewer::panel(int width, int height) {
                 maxTheta = std::max(maxTheta, n.light.thetaDegrees());
             }
         ImGui::Text("%d x %d reference, %s LUTs of %d entries", m_bank->reference.width, m_bank->reference.height,
-                    m_bank->colour == ColourMode::Rgb ? "rgb" : "grey", m_bank->entries);
+                    colourName(m_bank->colour), m_bank->entries);
+        if (m_bank->makesLuts()) {
+            const LutBank::Blend& blend = m_bank->blend;
+            if (blend.predictor == LutBank::Blend::Predictor::Ptm)
+                ImGui::Text("lut: the PTM relit, matched in %d region(s)", blend.regions);
+            else
+                ImGui::Text("lut: %zu references blended, matched in %d region(s)", blend.references.size(), blend.regions);
+        }
         ImGui::Text("%zu view layer(s), %zu lights (theta <= %.0f)", m_bank->layers.size(), nodes, maxTheta);
         ImGui::Text("%.0f%% of light directions inside the measured", 100 * m_coverage);
         ImGui::Text("hull (interpolated; outside: clamped)");

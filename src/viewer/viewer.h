@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "core/lut_bank.h"
+
 #include "core/result.h"
 
 namespace btflut {
@@ -24,6 +26,8 @@ struct ViewerOptions {
     bool lightSweep = false;    ///< with frames: the light spirals from theta 10 to 80 over the frames
     std::string screenshot;     ///< PNG of the last frame (and the S key's target interactively)
     std::string screenshotDir;  ///< every scripted frame: frame-NNNN.png, .json (state), .scene.json
+    /// A dataset is baked with these (references, regions, colour, predictor).
+    BakeOptions bake;
 };
 
 Status runViewer(const ViewerOptions& options);

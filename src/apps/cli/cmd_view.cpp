@@ -26,7 +26,20 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--screenshot", o->screenshot, "PNG of the last scripted frame; interactively the S key's file");
     app->add_option("--screenshot-dir", o->screenshotDir,
                     "scripted: every frame as frame-NNNN.png with its state (.json) and scene (.scene.json)");
-    commands.push_back({app, [o] { return runViewer(*o); }});
+    app->add_option("--references", o->bake.references, "with a dataset: references blended per light (bake --references)")
+        ->check(CLI::Range(1, 255));
+    app->add_option("--regions", o->bake.regions, "with a dataset: regions matched apart (bake --regions)")->check(CLI::Range(1, 255));
+    auto colour = std::make_shared<std::string>("grey");
+    auto predictor = std::make_shared<std::string>("references");
+    app->add_option("--colour", *colour, "with a dataset: grey, rgb or lrgb (bake --colour)")
+        ->check(CLI::IsMember({"grey", "rgb", "lrgb"}));
+    app->add_option("--predictor", *predictor, "with a dataset: references or ptm (bake --predictor)")
+        ->check(CLI::IsMember({"references", "ptm"}));
+    commands.push_back({app, [o, colour, predictor] {
+                            o->bake.colour = *colour == "rgb" ? ColourMode::Rgb : *colour == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
+                            o->bake.ptmPredictor = *predictor == "ptm";
+                            return runViewer(*o);
+                        }});
 }
 
 }  // namespace btflut::cli
