@@ -107,6 +107,8 @@ inline Image randomGreyImage(int w, int h, unsigned seed) {
 
 #include <nlohmann/json.hpp>
 
+#include "core/scene.h"
+
 #include "core/direction.h"
 
 namespace btflut::test {
@@ -140,6 +142,23 @@ inline std::string writeSyntheticDataset(const TempDir& dir, const std::vector<S
     std::string path = dir / "btflut-dataset.json";
     std::ofstream(path) << manifest.dump(1);
     return path;
+}
+
+/// A scene whose quad (normal +z, tangent +x) fills a w x h image texel for texel under a
+/// frontal camera, so each pixel centre samples one texel centre (GL tests against CPU twins).
+inline Scene frontalScene(const std::string& bank, const std::string& images, int w, int h) {
+    constexpr double kFov = 45;
+    Scene s;
+    s.file = "frontal";
+    s.width = w;
+    s.height = h;
+    s.fovDegrees = kFov;
+    s.eye = {0, 0, 1 / std::tan(kFov / 2 * M_PI / 180)};
+    s.target = {0, 0, 0};
+    s.up = {0, 1, 0};
+    s.materials["m"] = {bank, images};
+    s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2.0 * w / h, 2, 1, RenderMode::Lut}};
+    return s;
 }
 
 }  // namespace btflut::test

@@ -40,33 +40,37 @@ double worstDifference(const Image& a, const Image& b) {
     return worst;
 }
 
-const std::vector<BakeOptions> kSettings{
-    {.references = 3},
-    {.colour = ColourMode::Rgb, .references = 3, .regions = 2},
-    {.colour = ColourMode::Lrgb, .references = 5, .regions = 2},
-    {.ptmPredictor = true, .regions = 2},
-};
+// The banks of each kind, baked from one material.
+std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
+    auto dataset = openDataset(colourMaterial(dir));
+    REQUIRE(dataset.ok());
+    std::vector<std::pair<std::string, LutBank>> banks;
+    for (const auto& [name, options] : {std::pair{"grey K3", BakeOptions{.references = 3}},
+                                        {"rgb K3 R2", BakeOptions{.colour = ColourMode::Rgb, .references = 3, .regions = 2}},
+                                        {"lrgb K5 R2", BakeOptions{.colour = ColourMode::Lrgb, .references = 5, .regions = 2}},
+                                        {"ptm R2", BakeOptions{.ptmPredictor = true, .regions = 2}}}) {
+        auto bank = bakeBank(*dataset, options);
+        REQUIRE(bank.ok());
+        banks.emplace_back(name, std::move(*bank));
+    }
+    return banks;
+}
 
 }  // namespace
 
 TEST_SUITE("gl") {
     TEST_CASE("render --native of banks that blend references equals their relighting (within 1/255)") {
         TempDir dir;
-        auto dataset = openDataset(colourMaterial(dir));
-        REQUIRE(dataset.ok());
         auto context = createHeadlessContext(GlBackend::Auto);
         if (!context.ok()) FAIL(context.error());
-        for (const BakeOptions& options : kSettings) {
-            auto bank = bakeBank(*dataset, options);
-            REQUIRE(bank.ok());
-            const Relighter relighter(*bank);
-            for (Direction light : {Direction::fromDegrees(20, 30), Direction::fromDegrees(50, 200), dataset->images[3].light})
+        for (const auto& [name, bank] : blendingBanks(dir)) {
+            const Relighter relighter(bank);
+            for (Direction light : {Direction::fromDegrees(20, 30), Direction::fromDegrees(50, 200), bank.layers[0].nodes[3].light})
                 for (bool dither : {false, true}) {
-                    auto gpu = renderNative(*bank, light, {}, dither);
+                    auto gpu = renderNative(bank, light, {}, dither);
                     if (!gpu.ok()) FAIL(gpu.error());
                     const double d = worstDifference(*gpu, relighter.apply(relighter.frame(light), dither));
-                    INFO(colourName(options.colour) << " K" << options.references << " R" << options.regions << " ptm "
-                                                    << options.ptmPredictor << " dither " << dither << ": " << d * 255 << "/255");
+                    INFO(name << " dither " << dither << ": " << d * 255 << "/255");
                     CHECK(d <= 1.0 / 255 + 1e-6);
                 }
         }
@@ -74,24 +78,11 @@ TEST_SUITE("gl") {
 
     TEST_CASE("the scene renderer draws banks that blend references as the Relighter does, uploading them only for lut") {
         TempDir dir;
-        auto dataset = openDataset(colourMaterial(dir));
-        REQUIRE(dataset.ok());
         auto context = createHeadlessContext(GlBackend::Auto);
         if (!context.ok()) FAIL(context.error());
-        for (const BakeOptions& options : kSettings) {
-            auto bank = bakeBank(*dataset, options);
-            REQUIRE(bank.ok());
-            REQUIRE(saveBank(*bank, dir / "b.btflut").ok());
-            // A frontal quad filling the image texel for texel.
-            Scene s;
-            s.file = "frontal";
-            s.width = s.height = 40;
-            s.fovDegrees = 45;
-            s.eye = {0, 0, 1 / std::tan(45.0 / 2 * M_PI / 180)};
-            s.up = {0, 1, 0};
-            s.materials["m"] = {dir / "b.btflut", ""};
-            s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2, 2, 1, RenderMode::Lut}};
-            auto renderer = SceneRenderer::create(s);
+        for (const auto& [name, bank] : blendingBanks(dir)) {
+            REQUIRE(saveBank(bank, dir / "b.btflut").ok());
+            auto renderer = SceneRenderer::create(frontalScene(dir / "b.btflut", "", 40, 40));
             REQUIRE(renderer.ok());
             const Direction light = Direction::fromDegrees(35, 100);
             REQUIRE((*renderer)->draw(toVector(light), RenderMode::Flat).ok());
@@ -99,7 +90,7 @@ TEST_SUITE("gl") {
             REQUIRE((*renderer)->draw(toVector(light)).ok());
             CHECK((*renderer)->stats().textureBytes.blend > 0);
             const Image gpu = (*renderer)->readBack();
-            const Relighter relighter(*bank);
+            const Relighter relighter(bank);
             const Image cpu = relighter.apply(relighter.frame(light), false);  // scenes apply the plain LUT
             const Image cpuRgb = cpu.channels == 3 ? cpu : [&] {
                 Image rgb(cpu.width, cpu.height, 3);
@@ -109,8 +100,7 @@ TEST_SUITE("gl") {
             double mean = 0;
             for (std::size_t i = 0; i < gpu.samples.size(); ++i) mean += std::abs(gpu.samples[i] - cpuRgb.samples[i]);
             mean /= static_cast<double>(gpu.samples.size());
-            INFO(colourName(options.colour) << " K" << options.references << " R" << options.regions << " ptm " << options.ptmPredictor
-                                            << ": worst " << worstDifference(gpu, cpuRgb) * 255 << "/255, mean " << mean * 255);
+            INFO(name << ": worst " << worstDifference(gpu, cpuRgb) * 255 << "/255, mean " << mean * 255);
             // 8-bit framebuffer rounding, and filtered fetches at texel centres.
             CHECK(worstDifference(gpu, cpuRgb) <= 1.5 / 255);
             CHECK(mean <= 0.6 / 255);

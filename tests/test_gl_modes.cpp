@@ -16,23 +16,6 @@ using namespace btflut::test;
 
 namespace {
 
-constexpr double kFov = 45;
-
-// The quad (normal +z, tangent +x) fills a w x h image exactly.
-Scene frontalScene(const std::string& bank, const std::string& images, int w, int h) {
-    Scene s;
-    s.file = "frontal";
-    s.width = w;
-    s.height = h;
-    s.fovDegrees = kFov;
-    s.eye = {0, 0, 1 / std::tan(kFov / 2 * M_PI / 180)};
-    s.target = {0, 0, 0};
-    s.up = {0, 1, 0};
-    s.materials["m"] = {bank, images};
-    s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2.0 * w / h, 2, 1, RenderMode::Lut}};
-    return s;
-}
-
 struct Difference {
     double mean = 0, worst = 0;
 };
@@ -174,7 +157,7 @@ TEST_SUITE("gl") {
         REQUIRE(context.ok());
         Scene scene = frontalScene(dir / "m.btflut", "", 32, 32);
         scene.eye.z *= 8;  // far away, narrow: every view within 3 degrees of frontal
-        scene.fovDegrees = kFov / 8;
+        scene.fovDegrees /= 8;
         auto fixed = SceneRenderer::create(scene);
         REQUIRE(fixed.ok());
         const Image few = draw(**fixed, Direction::fromDegrees(30, 10), RenderMode::Lut);

@@ -111,13 +111,6 @@ void putChunk(Writer& file, std::uint32_t tag, const Bytes& payload) {
     file.put(chunkCrc(tag, payload.data(), payload.size()));
 }
 
-// Bytes per texel (a mask as 0/1, labels) as an 8-bit grey image: value * scale / 255.
-Image maskImage(const std::vector<std::uint8_t>& bytes, int width, int height, int scale) {
-    Image image(width, height, 1);
-    for (std::size_t i = 0; i < bytes.size(); ++i) image.samples[i] = static_cast<float>(bytes[i] * scale) / 255.f;
-    return image;
-}
-
 void putDirection(Writer& w, Direction d) {
     w.put(d.thetaDegrees());
     w.put(d.phiDegrees());
@@ -376,8 +369,8 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
             refs.putBytes(png.data(), png.size());
         }
         if (!blend.references.empty()) putChunk(file, kReferences, refs.bytes());
-        putChunk(file, kMask, encodePng(maskImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
-        if (!blend.labels.empty()) putChunk(file, kLabels, encodePng(maskImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
+        putChunk(file, kMask, encodePng(byteImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
+        if (!blend.labels.empty()) putChunk(file, kLabels, encodePng(byteImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
         if (!blend.albedo.samples.empty()) putChunk(file, kAlbedo, encodePng(blend.albedo, 8));
     }
     if (!bank.ptm.empty()) putChunk(file, kPtm, encodePtm(bank.ptm));

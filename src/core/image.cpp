@@ -275,6 +275,13 @@ Result<Mask> loadMask(const std::string& path, int width, int height) {
     return mask;
 }
 
+Image byteImage(const std::vector<std::uint8_t>& bytes, int width, int height, int scale) {
+    BTFLUT_CHECK(bytes.size() == static_cast<std::size_t>(width) * height);
+    Image image(width, height, 1);
+    for (std::size_t i = 0; i < bytes.size(); ++i) image.samples[i] = static_cast<float>(bytes[i] * scale) / 255.f;
+    return image;
+}
+
 Mask fullMask(int width, int height) {
     return {width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height, 1)};
 }

@@ -83,6 +83,10 @@ Result<Mask> loadMask(const std::string& path, int width, int height);
 /// A mask with every pixel inside.
 Mask fullMask(int width, int height);
 
+/// Bytes per texel (a mask as 0/1, region labels) as an 8-bit grey image of value
+/// byte * scale / 255, for files.
+Image byteImage(const std::vector<std::uint8_t>& bytes, int width, int height, int scale);
+
 /// PNG bytes of an image at 8 or 16 bits per sample (values clamped to [0, 1]).
 Bytes encodePng(const Image& image, int bitDepth);
 

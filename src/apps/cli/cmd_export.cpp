@@ -52,15 +52,10 @@ Status runExport(const ExportOptions& o) {
     nlohmann::json blend;
     if (b.makesLuts()) {
         const LutBank::Blend& bl = b.blend;
-        auto bytesImage = [&](const std::vector<std::uint8_t>& bytes, int scale) {
-            Image image(b.reference.width, b.reference.height, 1);
-            for (std::size_t i = 0; i < bytes.size(); ++i) image.samples[i] = static_cast<float>(bytes[i] * scale) / 255.f;
-            return image;
-        };
         blend["quantiles"] = bl.quantiles;
         blend["regions"] = bl.regions;
-        blend["mask"] = texture("mask", bytesImage(bl.mask.inside, 255));
-        if (!bl.labels.empty()) blend["labels"] = texture("labels", bytesImage(bl.labels, 1));
+        blend["mask"] = texture("mask", byteImage(bl.mask.inside, b.reference.width, b.reference.height, 255));
+        if (!bl.labels.empty()) blend["labels"] = texture("labels", byteImage(bl.labels, b.reference.width, b.reference.height, 1));
         if (!bl.albedo.samples.empty()) blend["albedo"] = texture("albedo", bl.albedo);
         if (bl.predictor == LutBank::Blend::Predictor::Ptm) {
             blend["predictor"] = "ptm";
