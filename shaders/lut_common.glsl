@@ -56,8 +56,8 @@ uniform float blendPtmOffset;
 #if defined(BLEND_PACKED)
 uniform vec4 blendWeights[BLEND_LAYERS]; // per layer, the weights of its four references (BLEND_LAYERS: 1 to 4)
 #elif !defined(BLEND_PTM)
-uniform int blendLayer[3];               // the (up to) three references around the light
-uniform float blendWeight[3];
+uniform int blendLayer[BLEND_FETCHES];   // the references around the light (BLEND_FETCHES: min(K, 3))
+uniform float blendWeight[BLEND_FETCHES];
 #endif
 uniform float blendCodes;                // codes of a blended value: 765 for the grey of RGB8, 255 for one channel
 uniform sampler2D blendLuts[3];          // per channel: a LUT per region (row)
@@ -82,8 +82,9 @@ vec3 btflutBlend() {
     for (int l = 0; l < BLEND_LAYERS; ++l) grey += dot(btflutBlendTexel(l), blendWeights[l]);  // unrolled: a constant bound
     return vec3(grey);
 #else
-    return blendWeight[0] * btflutBlendTexel(blendLayer[0]).rgb + blendWeight[1] * btflutBlendTexel(blendLayer[1]).rgb +
-           blendWeight[2] * btflutBlendTexel(blendLayer[2]).rgb;
+    vec3 blend = vec3(0.0);
+    for (int k = 0; k < BLEND_FETCHES; ++k) blend += blendWeight[k] * btflutBlendTexel(blendLayer[k]).rgb;  // unrolled
+    return blend;
 #endif
 }
 

@@ -57,6 +57,8 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
 std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
     std::vector<std::string> d{"BLEND"};
     if (bank.blend.predictor == LutBank::Blend::Predictor::Ptm) d.push_back("BLEND_PTM");
+    if (bank.blend.predictor == LutBank::Blend::Predictor::References && bank.colour != ColourMode::Lrgb)
+        d.push_back("BLEND_FETCHES " + std::to_string(std::min<std::size_t>(bank.blend.references.size(), 3)));
     if (bank.colour == ColourMode::Lrgb) {
         d.push_back("BLEND_PACKED");
         d.push_back("BLEND_LAYERS " + std::to_string((bank.blend.references.size() + 3) / 4));
@@ -127,14 +129,15 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
             weights[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])] = frame.weights[static_cast<std::size_t>(k)];
         gl.Uniform4fv(gl.GetUniformLocation(p, "blendWeights"), m_layers, weights.data());
     } else {
+        const auto fetches = static_cast<GLsizei>(std::min<std::size_t>(bank.blend.references.size(), 3));
         GLint layers[3] = {0, 0, 0};
         float weights[3] = {0, 0, 0};
         for (int k = 0; k < frame.count; ++k) {
             layers[k] = frame.references[static_cast<std::size_t>(k)];
             weights[k] = frame.weights[static_cast<std::size_t>(k)];
         }
-        gl.Uniform1iv(gl.GetUniformLocation(p, "blendLayer"), 3, layers);
-        gl.Uniform1fv(gl.GetUniformLocation(p, "blendWeight"), 3, weights);
+        gl.Uniform1iv(gl.GetUniformLocation(p, "blendLayer"), fetches, layers);
+        gl.Uniform1fv(gl.GetUniformLocation(p, "blendWeight"), fetches, weights);
     }
 }
 

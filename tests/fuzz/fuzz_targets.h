@@ -14,6 +14,7 @@
 #include "core/histogram.h"
 #include "core/image.h"
 #include "core/physics/model_bank.h"
+#include "core/relighter.h"
 #include "core/scene.h"
 
 namespace btflut::fuzz {
@@ -34,6 +35,10 @@ inline bool bank(const std::uint8_t* data, std::size_t size) {
             b->lookup(Direction::fromDegrees(theta, phi), b->referenceView, false);
         }
     b->lightCoverage(0);
+    if (b->makesLuts()) {  // relighting from what the file holds: blend, count, match, apply
+        const Relighter relighter(*b);
+        BTFLUT_CHECK(relighter.apply(relighter.frame(Direction::fromDegrees(25, 40)), true).pixelCount() == b->reference.pixelCount());
+    }
     // The views option decodes some layers only.
     Result<LutBank> some = decodeBank(Bytes(data, data + size), "fuzz.btflut",
                                       {.ptm = false, .grids = false, .views = {Direction::fromDegrees(30, 10)}});

@@ -24,6 +24,7 @@ struct BakeCommandOptions {
     int entries = 0;
     int references = 1;
     int regions = 1;
+    int quantiles = 1024;
     std::string labels;
     std::string predictor = "references";
     int threads = 0;
@@ -86,6 +87,7 @@ Status runBake(const BakeCommandOptions& o) {
     options.references = o.references;
     options.ptmPredictor = o.predictor == "ptm";
     options.regions = o.regions;
+    options.quantiles = o.quantiles;
     options.labelsPath = o.labels;
     if (!o.labels.empty() && o.regions > 1) return Error{"give --regions or --labels, not both"};
     if (o.noReference && (o.references > 1 || o.regions > 1 || !o.labels.empty() || options.colour == ColourMode::Lrgb ||
@@ -157,6 +159,11 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::Range(1, 255))
         ->capture_default_str();
     app->add_option("--labels", o->labels, "instead of --regions: a label image, each grey value one region");
+    app->add_option("--quantiles", o->quantiles,
+                    "with --references, --regions or --predictor: samples of each target's quantile function (the "
+                    "bank keeps them instead of LUTs; 4 bytes each per light and region)")
+        ->check(CLI::Range(2, 65536))
+        ->capture_default_str();
     app->add_option("--predictor", o->predictor,
                     "what is matched per light: references (the --references blended) or ptm (the bank's PTM, "
                     "fitted to every image, relit; then matched like a blend: the PTM's placement, the measured "

@@ -175,8 +175,8 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                   "btflut eval %s: %zu images, hold-out %s (%zu fold(s), %zu predictions per mode), %zu sample pixels\n",
                   dataset.source.c_str(), dataset.images.size(), o.holdout.c_str(), folds.size(), tests, maskPixels);
     std::string text = line;
-    std::snprintf(line, sizeof line, "%-30s %7s %7s %7s %6s %9s %9s %8s %9s %8s\n", "mode", "L1", "EMD", "PSNR", "SSIM",
-                  "bytes/tx", "GPU B/tx", "bake s", "relight", "frame ms");
+    std::snprintf(line, sizeof line, "%-30s %7s %7s %7s %6s %9s %9s %8s %9s %8s %8s\n", "mode", "L1", "EMD", "PSNR", "SSIM",
+                  "bytes/tx", "GPU B/tx", "bake s", "relight", "frame ms", "GPU-CPU");
     text += line;
     for (const Variant& v : variants) {
         auto mean = [&](double ImageErrors::*field) {
@@ -192,8 +192,8 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         const double l1 = mean(&ImageErrors::l1), emd = mean(&ImageErrors::emd), psnr = mean(&ImageErrors::psnr),
                      ssim = mean(&ImageErrors::ssim), bake = meanOf(v.bakeSeconds),
                      relight = v.relightSeconds.empty() ? std::nan("") : median(v.relightSeconds) * 1e3;
-        std::snprintf(line, sizeof line, "%-30s %7.4f %7.4f %7.2f %6.3f %9.2f %9.2f %8.3f %6.2f ms %8.2f\n", v.name.c_str(),
-                      l1, emd, psnr, ssim, v.bytesPerTexel, v.gpuBytesPerTexel, bake, relight, v.frameMs);
+        std::snprintf(line, sizeof line, "%-30s %7.4f %7.4f %7.2f %6.3f %9.2f %9.2f %8.3f %6.2f ms %8.2f %8.1f\n", v.name.c_str(),
+                      l1, emd, psnr, ssim, v.bytesPerTexel, v.gpuBytesPerTexel, bake, relight, v.frameMs, v.gpuMaxDiff);
         text += line;
         auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
         json["modes"].push_back({{"name", v.name}, {"mode", renderModeName(v.mode)}, {"references", v.references},
@@ -208,7 +208,8 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
     }
     text += "L1, EMD: masked 64-bin grey histograms against the photograph's; PSNR (dB, RGB) and SSIM (grey) over the mask;\n"
             "bytes/tx: data per texel a mode draws from (GPU B/tx: as allocated, padding and mipmaps included); bake s per\n"
-            "bank; relight: CPU, one light change (LUTs and image); frame ms: GL, 4 quads at 1024x1024, the light moving.\n";
+            "bank; relight: CPU, one light change (LUTs and image); frame ms: GL, 4 quads at 1024x1024, the light moving;\n"
+            "GPU-CPU: the largest difference of render --native from relight, in 1/255.\n";
     if (!context.empty()) text += "GL: " + context + "\n";
     return {text, json};
 }
