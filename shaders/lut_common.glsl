@@ -43,21 +43,22 @@ vec3 btflutSetGrey(vec3 rgb, float target) {
 }
 
 // Banks that blend references (src/core/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
-// REGIONS). The references are blended on their codes, the blend is rounded to its code
-// scale (the CPU counts exactly these codes), and the LUT of the texel's region is applied.
+// BLEND_PTM for the PTM predictor, REGIONS). The blend is exact integer arithmetic in float
+// (8-bit codes times weights in 1/4096, sums below 2^24), so its code is the CPU's; the LUT
+// of the texel's region is applied to it.
 #if defined(BLEND)
 // grey and rgb: one reference per layer; lrgb: four per RGBA layer; BLEND_PTM: the PTM's
 // coefficients 0-2, 3-5 and its albedo
 uniform sampler2DArray blendReferences;
 #if defined(BLEND_PTM)
-uniform vec3 blendPtmWeights[2];  // the light's terms with scale and bias folded in
+uniform vec3 blendPtmWeights[2];  // integers (PtmFixed)
 uniform float blendPtmOffset;
-#endif
-#if defined(BLEND_PACKED)
-uniform vec4 blendWeights[BLEND_LAYERS]; // per layer, the weights of its four references (BLEND_LAYERS: 1 to 4)
-#elif !defined(BLEND_PTM)
+uniform float blendPtmScale;      // a power of two
+#elif defined(BLEND_PACKED)
+uniform vec4 blendWeights[BLEND_LAYERS]; // per layer, the integer weights of its four references (BLEND_LAYERS: 1 to 4)
+#else
 uniform int blendLayer[BLEND_FETCHES];   // the references around the light (BLEND_FETCHES: min(K, 3))
-uniform float blendWeight[BLEND_FETCHES];
+uniform float blendWeight[BLEND_FETCHES]; // integers summing to 4096
 #endif
 uniform float blendCodes;                // codes of a blended value: 765 for the grey of RGB8, 255 for one channel
 uniform sampler2D blendLuts[3];          // per channel: a LUT per region (row)
@@ -70,27 +71,48 @@ uniform usampler2D blendLabels;
 // A reference layer's texel: defined by each shader (fetched or filtered).
 vec4 btflutBlendTexel(int layer);
 
-// The blended references: RGB (grey and rgb modes), or the grey value in .r (lrgb); the
-// PTM's relit colour (BLEND_PTM).
-vec3 btflutBlend() {
+vec4 btflutBytes(vec4 texel) { return floor(texel * 255.0 + 0.5); }
+
+// The blend: its colour (chroma for grey mode), and its codes (per channel for rgb, else in
+// .x), integers in 0 .. blendCodes.
+struct BtflutBlend {
+    vec3 colour;
+    vec3 codes;
+};
+
+BtflutBlend btflutBlend() {
+    BtflutBlend b;
 #if defined(BLEND_PTM)
-    float luminance = dot(btflutBlendTexel(0).rgb, blendPtmWeights[0]) + dot(btflutBlendTexel(1).rgb, blendPtmWeights[1]) +
-                      blendPtmOffset;
-    return clamp(btflutBlendTexel(2).rgb * luminance, 0.0, 1.0);
+    float sum = blendPtmOffset + dot(btflutBytes(btflutBlendTexel(0)).rgb, blendPtmWeights[0]) +
+                dot(btflutBytes(btflutBlendTexel(1)).rgb, blendPtmWeights[1]);
+    float luminance = floor(sum * blendPtmScale);  // times 4096
+    vec3 channels = clamp(btflutBytes(btflutBlendTexel(2)).rgb * luminance, 0.0, 255.0 * 4096.0);
+    b.colour = channels / (255.0 * 4096.0);
+    b.codes = vec3(floor((channels.r + channels.g + channels.b) / 4096.0 + 0.5));
 #elif defined(BLEND_PACKED)
-    float grey = 0.0;
-    for (int l = 0; l < BLEND_LAYERS; ++l) grey += dot(btflutBlendTexel(l), blendWeights[l]);  // unrolled: a constant bound
-    return vec3(grey);
+    float sum = 0.0;
+    for (int l = 0; l < BLEND_LAYERS; ++l) sum += dot(btflutBytes(btflutBlendTexel(l)), blendWeights[l]);  // unrolled: a constant bound
+    b.codes = vec3(floor(sum / 4096.0 + 0.5));
+    b.colour = vec3(b.codes.x / 255.0);
 #else
-    vec3 blend = vec3(0.0);
-    for (int k = 0; k < BLEND_FETCHES; ++k) blend += blendWeight[k] * btflutBlendTexel(blendLayer[k]).rgb;  // unrolled
-    return blend;
+    vec3 sum = vec3(0.0);
+    b.colour = vec3(0.0);
+    for (int k = 0; k < BLEND_FETCHES; ++k) {  // unrolled
+        vec4 texel = btflutBlendTexel(blendLayer[k]);
+        sum += blendWeight[k] * btflutBytes(texel).rgb;
+        b.colour += blendWeight[k] / 4096.0 * texel.rgb;
+    }
+#if defined(RGB_MODE)
+    b.codes = floor(sum / 4096.0 + 0.5);
+#else
+    b.codes = vec3(floor((sum.r + sum.g + sum.b) / 4096.0 + 0.5));  // the grey of RGB: the channel codes' sum
 #endif
+#endif
+    return b;
 }
 
-// The blend rounded to its code q, read at the top of its cell [q, q + 1) / (codes + 1)
-// (Relighter::inputCode).
-float btflutBlendQuantise(float v) { return (round(v * blendCodes) + 1.0) / (blendCodes + 1.0); }
+// A code read at the top of its cell [q, q + 1) / (codes + 1) (Relighter::inputCode).
+float btflutBlendValue(float code) { return (code + 1.0) / (blendCodes + 1.0); }
 
 // The LUT of a region at v in [0, 1] (linear between entries, as Lut::applyLut).
 float btflutBlendLut(int channel, uint region, float v) {

@@ -28,11 +28,11 @@ uniform sampler2D blendAlbedo;  // lrgb
 vec4 btflutBlendTexel(int layer) {
     return texelFetch(blendReferences, ivec3(uint(gl_FragCoord.x), uint(height - 1 - int(gl_FragCoord.y)), layer), 0);
 }
-float blendMap(int channel, uint region, float v, uvec2 pixel) {
+float blendMap(int channel, uint region, float code, uvec2 pixel) {
 #ifdef DITHER
-    return btflutBlendLutDithered(channel, region, btflutBlendQuantise(v), pixel, outCode);
+    return btflutBlendLutDithered(channel, region, btflutBlendValue(code), pixel, outCode);
 #else
-    return btflutBlendLut(channel, region, btflutBlendQuantise(v));
+    return btflutBlendLut(channel, region, btflutBlendValue(code));
 #endif
 }
 #endif
@@ -45,17 +45,18 @@ void main() {
 #else
     uint region = 0u;
 #endif
-    vec3 blend = btflutBlend();
+    BtflutBlend blend = btflutBlend();
 #if defined(RGB_MODE)
-    colour = vec4(blendMap(0, region, blend.r, pixel), blendMap(1, region, blend.g, pixel), blendMap(2, region, blend.b, pixel), 1.0);
+    colour = vec4(blendMap(0, region, blend.codes.r, pixel), blendMap(1, region, blend.codes.g, pixel),
+                  blendMap(2, region, blend.codes.b, pixel), 1.0);
 #elif defined(BLEND_PACKED)
-    colour = vec4(btflutSetGrey(texelFetch(blendAlbedo, ivec2(pixel), 0).rgb, blendMap(0, region, blend.r, pixel)), 1.0);
+    colour = vec4(btflutSetGrey(texelFetch(blendAlbedo, ivec2(pixel), 0).rgb, blendMap(0, region, blend.codes.x, pixel)), 1.0);
 #else
     if (referenceChannels == 1) {
-        colour = vec4(vec3(blendMap(0, region, blend.r, pixel)), 1.0);
+        colour = vec4(vec3(blendMap(0, region, blend.codes.x, pixel)), 1.0);
         return;
     }
-    colour = vec4(btflutSetGrey(blend, blendMap(0, region, (blend.r + blend.g + blend.b) * (1.0 / 3.0), pixel)), 1.0);
+    colour = vec4(btflutSetGrey(blend.colour, blendMap(0, region, blend.codes.x, pixel)), 1.0);
 #endif
     return;
 #endif

@@ -72,15 +72,14 @@ void main() {
 #else
     uint region = 0u;
 #endif
-    vec3 blend = btflutBlend();
+    BtflutBlend blend = btflutBlend();
 #if defined(RGB_MODE)
-    colour = vec4(btflutBlendLut(0, region, btflutBlendQuantise(blend.r)), btflutBlendLut(1, region, btflutBlendQuantise(blend.g)),
-                  btflutBlendLut(2, region, btflutBlendQuantise(blend.b)), 1.0);
+    colour = vec4(btflutBlendLut(0, region, btflutBlendValue(blend.codes.r)), btflutBlendLut(1, region, btflutBlendValue(blend.codes.g)),
+                  btflutBlendLut(2, region, btflutBlendValue(blend.codes.b)), 1.0);
 #elif defined(BLEND_PACKED)
-    colour = vec4(btflutSetGrey(texture(blendAlbedo, uv).rgb, btflutBlendLut(0, region, btflutBlendQuantise(blend.r))), 1.0);
+    colour = vec4(btflutSetGrey(texture(blendAlbedo, uv).rgb, btflutBlendLut(0, region, btflutBlendValue(blend.codes.x))), 1.0);
 #else
-    float greyValue = (blend.r + blend.g + blend.b) * (1.0 / 3.0);
-    colour = vec4(btflutSetGrey(blend, btflutBlendLut(0, region, btflutBlendQuantise(greyValue))), 1.0);
+    colour = vec4(btflutSetGrey(blend.colour, btflutBlendLut(0, region, btflutBlendValue(blend.codes.x))), 1.0);
 #endif
 #elif defined(GREY_TEXTURE)
     colour = vec4(vec3(lutAt(0, texture(reference, uv).r)), 1.0);  // no chroma to keep

@@ -379,13 +379,17 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
     return setup;
 }
 
-// A reference as the blend stores it: its grey value alone for lrgb, else as it is.
+// A reference as the blend stores it: 8-bit (blends are integer sums of 8-bit codes,
+// relighter.h), its grey value alone for lrgb.
 Image blendForm(const Image& image, ColourMode colour) {
-    if (colour != ColourMode::Lrgb || image.channels == 1) return image;
-    Image grey(image.width, image.height, 1, image.bitDepth);
-    const float code = static_cast<float>(image.maxCode());
-    for (std::size_t i = 0; i < grey.pixelCount(); ++i) grey.samples[i] = std::round(image.grey(i) * code) / code;
-    return grey;
+    const bool grey = colour == ColourMode::Lrgb && image.channels == 3;
+    Image out(image.width, image.height, grey ? 1 : image.channels, 8);
+    for (std::size_t i = 0; i < out.pixelCount(); ++i)
+        for (int c = 0; c < out.channels; ++c) {
+            const float v = grey ? image.grey(i) : image.samples[i * static_cast<std::size_t>(image.channels) + static_cast<std::size_t>(c)];
+            out.samples[i * static_cast<std::size_t>(out.channels) + static_cast<std::size_t>(c)] = std::round(v * 255.f) / 255.f;
+        }
+    return out;
 }
 
 }  // namespace

@@ -34,6 +34,19 @@ Image Ptm::render(Direction light) const {
     return out;
 }
 
+PtmWeights ptmWeights(const std::array<float, Ptm::kTerms>& scale, const std::array<float, Ptm::kTerms>& bias,
+                      Direction light) {
+    const std::array<double, Ptm::kTerms> t = Ptm::terms(light);
+    PtmWeights w;
+    double offset = 0;
+    for (std::size_t k = 0; k < Ptm::kTerms; ++k) {
+        w.weights[k] = static_cast<float>(255.0 * scale[k] * t[k]);
+        offset -= double{bias[k]} * scale[k] * t[k];
+    }
+    w.offset = static_cast<float>(offset);
+    return w;
+}
+
 PtmFitter::PtmFitter(int width, int height)
     : m_width(width), m_height(height),
       m_moments(static_cast<std::size_t>(width) * height * Ptm::kTerms),

@@ -47,6 +47,16 @@ struct Ptm {
     Image render(Direction light) const;
 };
 
+/// A PTM's six per-coefficient weights and offset for a light, its terms with each
+/// coefficient's scale and bias folded in (as RTI viewers draw, once per light):
+/// luminance = sum_k byte_k / 255 * weights[k] + offset.
+struct PtmWeights {
+    std::array<float, Ptm::kTerms> weights{};
+    float offset = 0;
+};
+PtmWeights ptmWeights(const std::array<float, Ptm::kTerms>& scale, const std::array<float, Ptm::kTerms>& bias,
+                      Direction light);
+
 /// Accumulates the normal equations of the per-texel least-squares fit while images stream
 /// past; `add` may be called from several threads.
 class PtmFitter {

@@ -25,11 +25,27 @@
 
 namespace btflut {
 
+/// Blends are exact integer arithmetic, so that the CPU and a GPU (whose float sums of
+/// integers below 2^24 are exact, fused or not) get the same codes: reference weights are
+/// integers summing to kWeightUnit, applied to the references' 8-bit codes.
+constexpr int kWeightUnit = 4096;
+
+/// The PTM predictor's per-light integers (from ptmWeights): a texel's fixed-point luminance
+/// L = floor((offset + sum_k byte_k weights[k]) * scale), luminance * kWeightUnit; the sum
+/// stays below 2^23, scale is a power of two.
+struct PtmFixed {
+    std::array<std::int32_t, Ptm::kTerms> weights{};
+    std::int32_t offset = 0;
+    float scale = 1;
+};
+PtmFixed ptmFixed(const Ptm& ptm, Direction light);
+
 struct RelightFrame {
-    Direction light;                     ///< what the frame is for (the PTM predictor's terms)
+    Direction light;                     ///< what the frame is for
     int count = 1;                       ///< references blended, 1 to 3 (0 for the PTM predictor)
     std::array<int, 3> references{0, 0, 0};
-    std::array<float, 3> weights{1, 0, 0};
+    std::array<std::int32_t, 3> weights{kWeightUnit, 0, 0};  ///< in 1 / kWeightUnit, summing to kWeightUnit
+    PtmFixed ptm;                        ///< the PTM predictor's
     std::vector<float> luts;             ///< regions x channels x entries
     /// Of the target (LutBank::lookup): the worse of the light's and the view's.
     Provenance provenance = Provenance::Measured, lightProvenance = Provenance::Measured,
@@ -61,20 +77,18 @@ public:
 
 private:
     std::vector<float> lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const;
-    double blendCode(const RelightFrame& frame, std::size_t texel, int channel) const;
-    /// The PTM predictor: a texel's relit colour for a light's terms (as Ptm::render).
-    void ptmColour(const std::array<double, Ptm::kTerms>& terms, std::size_t texel, float* rgb) const;
+    /// The PTM predictor: a texel's channels times 255 * kWeightUnit, clipped (Ptm::render in
+    /// fixed point).
+    std::array<std::int64_t, 3> ptmChannels(const PtmFixed& ptm, std::size_t texel) const;
     /// A texel's predicted code, 0 .. codes: the blend, or the PTM's grey.
-    std::size_t predictedCode(const RelightFrame& frame, const std::array<double, Ptm::kTerms>& terms, std::size_t texel,
-                              int channel) const;
+    std::size_t predictedCode(const RelightFrame& frame, std::size_t texel, int channel) const;
     bool usesPtm() const { return m_bank.blend.predictor == LutBank::Blend::Predictor::Ptm; }
 
     const LutBank& m_bank;
     int m_codes = 255;                       // codes of a blended value (765 for the grey of RGB8)
     int m_counted = 1;                       // channels counted: 3 for rgb, else 1 (grey)
-    std::vector<std::vector<std::uint32_t>> m_referenceCodes;  // [reference][texel * counted + c]
+    std::vector<std::vector<std::int32_t>> m_referenceCodes;  // [reference][texel * counted + c]
     std::vector<std::vector<std::uint32_t>> m_regionTexels;    // sample texels of each region
-    std::vector<float> m_ptmCoefficients;                      // the PTM predictor: a_k per texel
 };
 
 }  // namespace btflut

@@ -114,19 +114,15 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
     if (ptm) {
         // As the renderer's ptm mode: the light's terms with each coefficient's scale and
         // bias folded into six weights and an offset (the CPU twin: Relighter::ptmColour).
-        const std::array<double, Ptm::kTerms> t = Ptm::terms(frame.light);
-        float weights[6];
-        double offset = 0;
-        for (std::size_t k = 0; k < Ptm::kTerms; ++k) {
-            weights[k] = static_cast<float>(255.0 * bank.ptm.scale[k] * t[k]);
-            offset -= double{bank.ptm.bias[k]} * bank.ptm.scale[k] * t[k];
-        }
+        float weights[Ptm::kTerms];
+        for (std::size_t k = 0; k < Ptm::kTerms; ++k) weights[k] = static_cast<float>(frame.ptm.weights[k]);
         gl.Uniform3fv(gl.GetUniformLocation(p, "blendPtmWeights"), 2, weights);
-        gl.Uniform1f(gl.GetUniformLocation(p, "blendPtmOffset"), static_cast<float>(offset));
+        gl.Uniform1f(gl.GetUniformLocation(p, "blendPtmOffset"), static_cast<float>(frame.ptm.offset));
+        gl.Uniform1f(gl.GetUniformLocation(p, "blendPtmScale"), frame.ptm.scale);
     } else if (bank.colour == ColourMode::Lrgb) {
         std::vector<float> weights(static_cast<std::size_t>(m_layers) * 4, 0.f);
         for (int k = 0; k < frame.count; ++k)
-            weights[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])] = frame.weights[static_cast<std::size_t>(k)];
+            weights[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])] = static_cast<float>(frame.weights[static_cast<std::size_t>(k)]);
         gl.Uniform4fv(gl.GetUniformLocation(p, "blendWeights"), m_layers, weights.data());
     } else {
         const auto fetches = static_cast<GLsizei>(std::min<std::size_t>(bank.blend.references.size(), 3));
@@ -134,7 +130,7 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
         float weights[3] = {0, 0, 0};
         for (int k = 0; k < frame.count; ++k) {
             layers[k] = frame.references[static_cast<std::size_t>(k)];
-            weights[k] = frame.weights[static_cast<std::size_t>(k)];
+            weights[k] = static_cast<float>(frame.weights[static_cast<std::size_t>(k)]);
         }
         gl.Uniform1iv(gl.GetUniformLocation(p, "blendLayer"), fetches, layers);
         gl.Uniform1fv(gl.GetUniformLocation(p, "blendWeight"), fetches, weights);

@@ -206,13 +206,9 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
         // As RTI viewers draw: the light's terms folded with each coefficient's scale and bias
         // into six weights and an offset, once per quad, so a fragment does two dot products.
         if (!material.ptmLoaded) return;
-        const std::array<double, Ptm::kTerms> t = Ptm::terms(lightDirection);
-        double offset = 0;
-        for (std::size_t k = 0; k < Ptm::kTerms; ++k) {
-            q.ptmWeights[k] = static_cast<float>(255.0 * material.ptmScale[k] * t[k]);
-            offset -= double{material.ptmBias[k]} * material.ptmScale[k] * t[k];
-        }
-        q.ptmWeights[6] = static_cast<float>(offset);
+        const PtmWeights w = ptmWeights(material.ptmScale, material.ptmBias, lightDirection);
+        std::copy(w.weights.begin(), w.weights.end(), q.ptmWeights.begin());
+        q.ptmWeights[6] = w.offset;
         return;
     }
     if (mode == RenderMode::Nearest) {
