@@ -184,7 +184,12 @@ Image contactSheet(const std::vector<std::vector<SheetCell>>& rows, int cellWidt
         for (std::size_t c = 0; c < rows[r].size(); ++c) {
             const int x = kGap + static_cast<int>(c) * (cellWidth + kGap);
             const int y = kGap + static_cast<int>(r) * (cellHeight + kLabel + kGap);
-            canvas.text(x, y + 2, rows[r][c].label, kInk);
+            std::string label = rows[r][c].label;  // clipped to its cell
+            if (Canvas::textWidth(label) > cellWidth) {
+                while (!label.empty() && Canvas::textWidth(label + "..") > cellWidth) label.pop_back();
+                label += "..";
+            }
+            canvas.text(x, y + 2, label, kInk);
             canvas.blit(x, y + kLabel, scaled[r][c]);
         }
     return canvas.take();
