@@ -1,7 +1,11 @@
 // btflut eval: the held-out protocol as a command. Bakes from the training images, predicts
 // every held-out image through the code users run (the Relighter behind `relight` and the GL
 // renderer, the PTM, the nearest training image, ...) and compares each with the photograph.
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -301,8 +305,9 @@ Status runEval(const EvalOptions& o) {
     if (!mask) return Error{mask.error()};
 
     // Banks for the GL figures (fold 0's), in a temporary folder removed at the end.
-    const fs::path scratch = fs::temp_directory_path() / ("btflut-eval-" + std::to_string(::getpid()));
-    fs::create_directories(scratch);
+    std::string pattern = (fs::temp_directory_path() / "btflut-eval-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) return Error{"cannot create a temporary folder (" + std::string(std::strerror(errno)) + ")"};
+    const fs::path scratch = pattern;
     struct Cleanup {
         fs::path path;
         ~Cleanup() {
