@@ -30,8 +30,9 @@ inline bool bank(const std::uint8_t* data, std::size_t size) {
     for (double theta : {0.0, 40.0, 85.0})
         for (double phi : {0.0, 135.0}) {
             const BankLookup lut = b->lookup(Direction::fromDegrees(theta, phi), Direction::fromDegrees(theta / 2, phi));
-            for (int c = 0; c < b->channels(); ++c)  // a blend of valid LUTs is valid (up to rounding)
-                BTFLUT_CHECK(isValidLut(&lut.values[static_cast<std::size_t>(c * b->entries)], static_cast<std::size_t>(b->entries)));
+            // A blend of valid LUTs (or quantile functions) is valid.
+            for (std::size_t at = 0; at < lut.values.size(); at += b->segmentLength())
+                BTFLUT_CHECK(isValidLut(&lut.values[at], b->segmentLength()));
             b->lookup(Direction::fromDegrees(theta, phi), b->referenceView, false);
         }
     b->lightCoverage(0);
