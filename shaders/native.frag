@@ -1,11 +1,11 @@
-// The reference image at its native size with one LUT applied: the GL twin of btflut relight.
-// Defines: RGB_MODE (a LUT per channel), DITHER; BLEND (and BLEND_PACKED, REGIONS) for banks
-// that blend references (lut_common.glsl).
-uniform sampler2D reference;   // texel (x, row), row 0 the image's top
+// The reference image at its native size with one LUT applied: the GL twin of btflut relight,
+// drawn by RelightPass (src/gl/relight_pass.h). Fragment (x, y) is image texel (x, row y),
+// row 0 the image's top, as the reference is stored. Defines: RGB_MODE (a LUT per channel),
+// DITHER; BLEND (and BLEND_PACKED, REGIONS) for banks that blend references (lut_common.glsl).
+uniform sampler2D reference;
 uniform sampler1D lut[3];      // grey mode uses lut[0]
 uniform int entries;
 uniform int referenceChannels; // 1 or 3
-uniform int height;
 uniform float inCode;          // one input code of the value a LUT maps
 uniform float outCode;         // one target code
 
@@ -26,7 +26,7 @@ float mapValue(int channel, float v, uvec2 pixel) {
 #if defined(BLEND)
 uniform sampler2D blendAlbedo;  // lrgb
 vec4 btflutBlendTexel(int layer) {
-    return texelFetch(blendReferences, ivec3(uint(gl_FragCoord.x), uint(height - 1 - int(gl_FragCoord.y)), layer), 0);
+    return texelFetch(blendReferences, ivec3(ivec2(gl_FragCoord.xy), layer), 0);
 }
 float blendMap(int channel, uint region, float code, uvec2 pixel) {
 #ifdef DITHER
@@ -38,7 +38,7 @@ float blendMap(int channel, uint region, float code, uvec2 pixel) {
 #endif
 
 void main() {
-    uvec2 pixel = uvec2(uint(gl_FragCoord.x), uint(height - 1 - int(gl_FragCoord.y)));
+    uvec2 pixel = uvec2(gl_FragCoord.xy);
 #if defined(BLEND)
 #if defined(REGIONS)
     uint region = texelFetch(blendLabels, ivec2(pixel), 0).r;

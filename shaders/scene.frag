@@ -1,12 +1,10 @@
-// A scene quad in one of five modes (one define each). BLEND (with LUT_MODE): a bank that blends
-// references and matches regions (lut_common.glsl).
-// LUT_MODE: under a directional light a flat quad's light direction is constant, so its LUT
-//   is blended once per frame on the CPU; here one extra filtered fetch per channel. With
-//   VIEW_GRID (banks with several view layers) the LUT is a 3D texture over a grid of points
-//   on the quad, so the view direction varies per fragment. RGB_MODE: a LUT per channel.
+// A scene quad in one of five modes (one define each).
+// LUT_MODE: banks with several view layers, whose LUT varies over the quad (banks of one view
+//   layer are relit in texture space and drawn by FLAT_MODE: RelightPass). RGB_MODE: a LUT per
+//   channel; GREY_TEXTURE: a grey reference.
 // BRDF_MODE: the paper's 2D texture mapping, brightness scaled by the target-to-reference ratio.
 // PTM_MODE: the polynomial texture map, as RTI viewers draw it.
-// FLAT_MODE: the plain texture. NEAREST_MODE: `reference` is the nearest measured image.
+// FLAT_MODE: the plain texture, or a relit one. NEAREST_MODE: `reference` is the nearest measured image.
 // UNLIT: the light is behind the quad (every mode but flat): black, a program of its own so
 // the lit ones test nothing per fragment.
 uniform sampler2D reference;
@@ -17,33 +15,34 @@ in vec2 quadPosition;
 out vec4 colour;
 
 #if defined(LUT_MODE)
-// The LUT's texel centres for v in [0, 1] (v comes from a unorm texture): (entries - 1) /
-// entries and 0.5 / entries, set per draw, so a fragment does one multiply-add, no division.
-uniform vec2 lutCoordinate;
-#if defined(VIEW_GRID)
+// Banks with view layers, whose LUT varies over the quad: LUTs at viewGrid x viewGrid points
+// on the quad and per mipmap level (MipLuts: level m's LUT gives a level-m texel the mean of
+// the LUT values of its block), a 3D texture per channel: x the LUT's entries, y the grid's
+// columns, z the grid's rows of level 0, then of level 1, ...
 uniform sampler3D lut[3];
+uniform vec2 lutCoordinate;  // (entries - 1) / entries, 0.5 / entries: texel centres for v in [0, 1]
 uniform int viewGrid;
-float lutAt(int channel, float v) {
-    vec3 at = vec3(v * lutCoordinate.x + lutCoordinate.y, (quadPosition * float(viewGrid - 1) + 0.5) / float(viewGrid));
+uniform int mipLevels;
+uniform vec2 referenceSize;
+float lutAt(int channel, float v, float level) {
+    float grid = float(viewGrid);
+    vec3 at = vec3(v * lutCoordinate.x + lutCoordinate.y, (quadPosition.x * (grid - 1.0) + 0.5) / grid,
+                   (level * grid + quadPosition.y * (grid - 1.0) + 0.5) / (grid * float(mipLevels)));
     if (channel == 0) return textureLod(lut[0], at, 0.0).r;
     if (channel == 1) return textureLod(lut[1], at, 0.0).r;
     return textureLod(lut[2], at, 0.0).r;
 }
+// A texel of mip level `level` through that level's LUT.
+vec3 shade(float level) {
+    vec3 texel = textureLod(reference, uv, level).rgb;
+#if defined(GREY_TEXTURE)
+    return vec3(lutAt(0, texel.r, level));  // no chroma to keep
+#elif defined(RGB_MODE)
+    return vec3(lutAt(0, texel.r, level), lutAt(1, texel.g, level), lutAt(2, texel.b, level));
 #else
-uniform sampler1D lut[3];
-float lutAt(int channel, float v) {
-    float at = v * lutCoordinate.x + lutCoordinate.y;
-    if (channel == 0) return textureLod(lut[0], at, 0.0).r;
-    if (channel == 1) return textureLod(lut[1], at, 0.0).r;
-    return textureLod(lut[2], at, 0.0).r;
+    return btflutSetGrey(texel, lutAt(0, (texel.r + texel.g + texel.b) * (1.0 / 3.0), level));
+#endif
 }
-#endif
-#endif
-
-#if defined(BLEND)
-uniform sampler2D blendAlbedo;  // lrgb
-uniform ivec2 labelSize;
-vec4 btflutBlendTexel(int layer) { return texture(blendReferences, vec3(uv, float(layer))); }
 #endif
 
 #if defined(PTM_MODE)
@@ -65,30 +64,12 @@ void main() {
     colour = vec4(texture(reference, uv).rgb, 1.0);
 #elif defined(BRDF_MODE)
     colour = vec4(min(texture(reference, uv).rgb * brightness, vec3(1.0)), 1.0);
-#elif defined(BLEND)
-    // A bank that blends references: the blend, rounded to its codes, through its region's LUT.
-#if defined(REGIONS)
-    uint region = texelFetch(blendLabels, ivec2(mod(floor(uv * vec2(labelSize)), vec2(labelSize))), 0).r;
-#else
-    uint region = 0u;
-#endif
-    BtflutBlend blend = btflutBlend();
-#if defined(RGB_MODE)
-    colour = vec4(btflutBlendLut(0, region, btflutBlendValue(blend.codes.r)), btflutBlendLut(1, region, btflutBlendValue(blend.codes.g)),
-                  btflutBlendLut(2, region, btflutBlendValue(blend.codes.b)), 1.0);
-#elif defined(BLEND_PACKED)
-    colour = vec4(btflutSetGrey(texture(blendAlbedo, uv).rgb, btflutBlendLut(0, region, btflutBlendValue(blend.codes.x))), 1.0);
-#else
-    colour = vec4(btflutSetGrey(blend.colour, btflutBlendLut(0, region, btflutBlendValue(blend.codes.x))), 1.0);
-#endif
-#elif defined(GREY_TEXTURE)
-    colour = vec4(vec3(lutAt(0, texture(reference, uv).r)), 1.0);  // no chroma to keep
-#elif defined(RGB_MODE)
-    vec3 texel = texture(reference, uv).rgb;
-    colour = vec4(lutAt(0, texel.r), lutAt(1, texel.g), lutAt(2, texel.b), 1.0);
-#else
-    vec3 texel = texture(reference, uv).rgb;
-    float grey = (texel.r + texel.g + texel.b) * (1.0 / 3.0);
-    colour = vec4(btflutSetGrey(texel, lutAt(0, grey)), 1.0);
+#elif defined(LUT_MODE)
+    // The two mip levels around the footprint, as trilinear filtering picks them, each through
+    // its own LUT.
+    vec2 dx = dFdx(uv * referenceSize), dy = dFdy(uv * referenceSize);
+    float lod = clamp(0.5 * log2(max(dot(dx, dx), dot(dy, dy))), 0.0, float(mipLevels - 1));
+    float lower = floor(lod);
+    colour = vec4(mix(shade(lower), shade(min(lower + 1.0, float(mipLevels - 1))), lod - lower), 1.0);
 #endif
 }

@@ -128,7 +128,6 @@ TEST_CASE("options are honoured or refused, never ignored") {
     requireOneLineError(runCli({"render", bank, "--native", "--light", "30,0", "--stats", "-o", out}), "--stats reports on scenes");
     requireOneLineError(runCli({"render", bank, "--native", "--light", "30,0", "--size", "8x8", "-o", out}), "--size is for scenes");
     requireOneLineError(runCli({"render", dir / "s.json", "--view", "30,0", "-o", out}), "a scene's camera sets the view");
-    requireOneLineError(runCli({"render", dir / "s.json", "--no-dither", "-o", out}), "--no-dither applies to --native");
     requireOneLineError(runCli({"relight", bank, "--light", "60,30", "--view", "30,0", "-o", out}),
                         "the bank holds one view direction (0.000000, 0.000000 degrees); it cannot relight for --view 30,0");
     CHECK(runCli({"relight", bank, "--light", "60,30", "--view", "0,0", "-o", out, "-q"}).status == 0);

@@ -137,6 +137,10 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
             return Error{at + "interpolation: expected \"linear\" or \"nearest\" (between the LUTs' directions)"};
         scene.interpolateLuts = i == "linear";
     }
+    if (doc.contains("dither")) {
+        if (!doc["dither"].is_boolean()) return Error{at + "dither: expected true or false"};
+        scene.dither = doc["dither"].get<bool>();
+    }
     if (!doc.contains("quads") || !doc["quads"].is_array() || doc["quads"].empty())
         return Error{at + "quads: expected a non-empty array"};
     for (std::size_t i = 0; i < doc["quads"].size(); ++i) {
@@ -191,6 +195,7 @@ std::string sceneToJson(const Scene& scene) {
                          {"fov_degrees", scene.fovDegrees}}},
              {"light", {{"direction", vec(scene.light)}}},
              {"interpolation", scene.interpolateLuts ? "linear" : "nearest"},
+             {"dither", scene.dither},
              {"materials", json::object()},
              {"quads", json::array()}};
     for (const auto& [name, m] : scene.materials) {

@@ -46,6 +46,7 @@ struct Scene {
     Vec3 light{0, 0, 1};  ///< unit vector towards the light, world frame
     std::map<std::string, SceneMaterial> materials;
     bool interpolateLuts = true;  ///< false: the LUT of the nearest measured direction (for comparison)
+    bool dither = true;           ///< mode lut dithers per texel (lut.h), so the histogram is the target's
     std::vector<SceneQuad> quads;
 };
 

@@ -77,7 +77,14 @@ typedef void(APIENTRYP PFNGLTEXSUBIMAGE2DPROC)(GLenum target, GLint level, GLint
     X(PFNGLUNIFORM1IVPROC, Uniform1iv)                                                      \
     X(PFNGLUNIFORM4FVPROC, Uniform4fv)                                                      \
     X(PFNGLUNIFORM2IPROC, Uniform2i)                                                        \
-    X(PFNGLUNIFORM3FVPROC, Uniform3fv)
+    X(PFNGLUNIFORM3FVPROC, Uniform3fv)                                                      \
+    X(PFNGLGENQUERIESPROC, GenQueries)                                                      \
+    X(PFNGLDELETEQUERIESPROC, DeleteQueries)                                                \
+    X(PFNGLBEGINQUERYPROC, BeginQuery)                                                      \
+    X(PFNGLENDQUERYPROC, EndQuery)                                                          \
+    X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)                                    \
+    X(PFNGLGETQUERYIVPROC, GetQueryiv)                                                      \
+    X(PFNGLFLUSHPROC, Flush)
 
 struct GlFunctions {
 #define BTFLUT_GL_MEMBER(type, name) type name = nullptr;

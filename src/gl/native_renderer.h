@@ -1,9 +1,9 @@
 #pragma once
-// The GPU path of `btflut relight`: the bank's reference image at its native size, drawn by
-// a fragment shader that applies the LUT for one light and view direction. Under a
-// directional light the LUT is the same for every fragment, so it is blended once on the CPU
-// (bank.lookup) and uploaded as a 1D texture; the shader does one linearly filtered fetch per
-// channel. Needs a current context (context.h).
+// The GPU path of `btflut relight`: the bank's reference image at its native size, relit by
+// one RelightPass (relight_pass.h) into a float texture and read back. Under a directional
+// light the LUT is the same for every texel, so it is blended once on the CPU (Relighter) and
+// uploaded; the shader does one linearly filtered fetch per channel. Needs a current context
+// (context.h).
 //
 //   Result<Image> img = renderNative(bank, light, view, /*dither=*/true);
 

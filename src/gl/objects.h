@@ -40,12 +40,14 @@ inline void deleteTexture(GLuint id) { gl.DeleteTextures(1, &id); }
 inline void deleteFramebuffer(GLuint id) { gl.DeleteFramebuffers(1, &id); }
 inline void deleteVertexArray(GLuint id) { gl.DeleteVertexArrays(1, &id); }
 inline void deleteProgram(GLuint id) { gl.DeleteProgram(id); }
+inline void deleteQuery(GLuint id) { gl.DeleteQueries(1, &id); }
 }  // namespace detail
 
 using GlTexture = GlObject<detail::deleteTexture>;
 using GlFramebuffer = GlObject<detail::deleteFramebuffer>;
 using GlVertexArray = GlObject<detail::deleteVertexArray>;
 using GlProgram = GlObject<detail::deleteProgram>;
+using GlQuery = GlObject<detail::deleteQuery>;
 
 static_assert(!std::is_copy_constructible_v<GlTexture> && std::is_nothrow_move_constructible_v<GlTexture>);
 
@@ -63,6 +65,11 @@ inline GlVertexArray makeVertexArray() {
     GLuint id = 0;
     gl.GenVertexArrays(1, &id);
     return GlVertexArray(id);
+}
+inline GlQuery makeQuery() {
+    GLuint id = 0;
+    gl.GenQueries(1, &id);
+    return GlQuery(id);
 }
 
 }  // namespace btflut

@@ -30,10 +30,10 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene,
     std::unique_ptr<SceneRenderer> r(new SceneRenderer());
     r->m_scene = scene;
     r->m_interpolate = scene.interpolateLuts;
+    r->m_dither = scene.dither;
     r->m_fixedCamera = options.fixedCamera;
     const std::vector<std::size_t> visible = visibleQuads(scene);
     r->m_stats.quadsCulled = scene.quads.size() - visible.size();
-    TextureBytes& bytes = r->m_stats.textureBytes;
     for (std::size_t i : visible) {
         const std::string& name = scene.quads[i].material;
         if (!r->m_materials.count(name)) {
@@ -49,23 +49,11 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene,
             if (bank->reference.samples.empty()) return Error{path + ": the bank has no reference image inside"};
             Material& m = r->m_materials[name];
             m.bank = std::move(*bank);
-            if (m.bank.makesLuts()) m.relighter.emplace(m.bank);
+            m.relighter.emplace(m.bank);
             m.referenceGrey = countGreyLevels(m.bank.reference, fullMask(m.bank.reference.width, m.bank.reference.height));
             r->m_stats.loadedMaterials.push_back(name);
         }
         QuadState q{i, {}};
-        const LutBank& bank = r->m_materials.at(name).bank;
-        const bool viewGrid = bank.layers.size() > 1;
-        for (int c = 0; c < bank.channels() && !bank.makesLuts(); ++c) {
-            if (viewGrid) {
-                q.luts.push_back(uploadLutVolume(nullptr, bank.entries, kViewGrid, kViewGrid));
-                bytes.luts += static_cast<std::size_t>(bank.entries) * kViewGrid * kViewGrid * 4;
-            } else {
-                const std::vector<float> zeros(static_cast<std::size_t>(bank.entries));
-                q.luts.push_back(uploadLut(zeros.data(), bank.entries));
-                bytes.luts += static_cast<std::size_t>(bank.entries) * 4;
-            }
-        }
         r->m_quads.push_back(std::move(q));
     }
     for (const auto& [name, paths] : scene.materials)
@@ -116,6 +104,7 @@ void SceneRenderer::setInterpolation(bool interpolate) {
     if (interpolate == m_interpolate) return;
     m_interpolate = interpolate;
     for (QuadState& q : m_quads) q.lightUploaded = {0, 0, -2};  // blend again
+    for (auto& [name, m] : m_materials) m.relit.clear();       // relight again
 }
 
 const LutBank* SceneRenderer::bank(const std::string& material) const {
@@ -124,11 +113,11 @@ const LutBank* SceneRenderer::bank(const std::string& material) const {
 }
 
 Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool unlit) {
+    // Mode lut on a bank of one view layer draws its relit texture: the flat shader.
+    if (mode == RenderMode::Lut && bank.layers.size() == 1) mode = RenderMode::Flat;
     std::vector<std::string> defines{unlit ? "UNLIT" : modeDefine(mode)};
-    if (!unlit && mode == RenderMode::Lut && bank.makesLuts()) defines = BlendTextures::defines(bank);
-    if (!unlit && mode == RenderMode::Lut && !bank.makesLuts()) {
+    if (!unlit && mode == RenderMode::Lut) {
         if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
-        if (bank.layers.size() > 1) defines.push_back("VIEW_GRID");
         if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
     }
     auto found = m_programs.find(defines);
@@ -179,13 +168,13 @@ RelightFrame SceneRenderer::centreFrame(std::size_t quad, const Vec3& light) con
     const Material& material = m_materials.at(q.material);
     const Vec3 local = toQuadFrame(q, light);
     const Direction l = fromVector({local.x, local.y, std::max(local.z, 1e-9)}), v = fromVector(viewAt(q, 0, 0));
-    if (material.relighter) return material.relighter->frame(l, v, m_interpolate);
-    return Relighter(material.bank).frame(l, v, m_interpolate);  // a classic bank's: nothing to precompute
+    return material.relighter->frame(l, v, m_interpolate);
 }
 
 // Per quad and frame, only what the mode needs and only when the light, the camera (for
-// banks with view layers) or the mode changed: the LUTs (lut, brdf), the PTM weights (ptm),
-// the nearest image's name (nearest).
+// banks with view layers) or the mode changed: the LUT volume (lut, banks with view layers),
+// the brightness (brdf), the PTM weights (ptm), the nearest image's name (nearest). Mode lut
+// on a bank of one view layer needs only the light in the quad's frame (relight()).
 void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
     const SceneQuad& quad = m_scene.quads[q.index];
     const Material& material = m_materials.at(quad.material);
@@ -197,10 +186,10 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
     q.modeUploaded = mode;
     q.lightUploaded = light;
     q.eyeUploaded = m_scene.eye;
-    const Vec3 local = toQuadFrame(quad, light);
-    q.unlit = local.z <= 1e-9;
-    if (q.unlit || mode == RenderMode::Flat) return;
-    const Direction lightDirection = fromVector(local);
+    q.light = toQuadFrame(quad, light);
+    q.unlit = q.light.z <= 1e-9;
+    if (q.unlit || mode == RenderMode::Flat || relitInTextureSpace(q, mode)) return;
+    const Direction lightDirection = fromVector(q.light);
     const Direction centreView = fromVector(viewAt(quad, 0, 0));
     if (mode == RenderMode::Ptm) {
         // As RTI viewers draw: the light's terms folded with each coefficient's scale and bias
@@ -217,59 +206,61 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
         return;
     }
     const std::size_t entries = static_cast<std::size_t>(bank.entries);
-    if (bank.makesLuts() && mode == RenderMode::Lut) {
-        // The blend around the light and its LUTs, made from the blend's distribution.
-        q.frame = material.relighter->frame(lightDirection, centreView, m_interpolate);
-        if (material.blend) material.blend->updateLuts(q.luts, q.frame);
-        return;
-    }
-    if (viewGrid && mode == RenderMode::Lut) {
-        // channel-major volumes: [channel][grid point][entry]
+    if (mode == RenderMode::Lut) {
+        // Volumes per channel: [mip level][grid row][grid column][entry], each grid point's
+        // LUT and the per-level LUTs made from it.
+        if (!material.mipLuts || q.luts.empty()) return;  // prepare() makes them, then updates again
         constexpr int k = kViewGrid;
+        const MipLuts& mips = *material.mipLuts;
+        const auto levels = static_cast<std::size_t>(mips.levels());
         const std::vector<Direction> views = viewGridDirections(quad);
-        std::vector<float> volume(q.luts.size() * views.size() * entries);
+        std::vector<std::vector<float>> volume(q.luts.size(), std::vector<float>(levels * views.size() * entries));
+        std::vector<float> perLevel(levels * entries);
         for (std::size_t v = 0; v < views.size(); ++v) {
             const BankLookup lut = bank.lookup(lightDirection, views[v], m_interpolate);
-            for (std::size_t c = 0; c < q.luts.size(); ++c)
-                std::copy_n(&lut.values[c * entries], entries, &volume[(c * views.size() + v) * entries]);
+            for (std::size_t c = 0; c < q.luts.size(); ++c) {
+                mips.apply(static_cast<int>(c), &lut.values[c * entries], perLevel.data());
+                for (std::size_t m = 0; m < levels; ++m)
+                    std::copy_n(&perLevel[m * entries], entries, &volume[c][(m * views.size() + v) * entries]);
+            }
         }
         for (std::size_t c = 0; c < q.luts.size(); ++c) {
             gl.BindTexture(GL_TEXTURE_3D, q.luts[c].id());
-            gl.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, bank.entries, k, k, GL_RED, GL_FLOAT,
-                             &volume[c * k * k * entries]);
+            gl.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, bank.entries, k, k * static_cast<int>(levels), GL_RED, GL_FLOAT,
+                             volume[c].data());
         }
         return;
     }
-    const BankLookup centre = bank.lookup(lightDirection, centreView, m_interpolate);
-    if (mode == RenderMode::Lut) {
-        for (std::size_t c = 0; c < q.luts.size(); ++c) {
-            gl.BindTexture(GL_TEXTURE_1D, q.luts[c].id());
-            gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, bank.entries, GL_RED, GL_FLOAT, &centre.values[c * entries]);
-        }
-    } else {  // brdf: the target's mean grey over the reference's own mean
-        q.brightness = brdfScale(bank, material.referenceGrey, centre);
-    }
+    // brdf: the target's mean grey over the reference's own mean
+    q.brightness = brdfScale(bank, material.referenceGrey, bank.lookup(lightDirection, centreView, m_interpolate));
 }
 
-// Loads what a mode needs beyond the reference and the LUTs, the first time it is needed.
+bool SceneRenderer::relitInTextureSpace(const QuadState& q, RenderMode mode) const {
+    return mode == RenderMode::Lut && m_materials.at(m_scene.quads[q.index].material).bank.layers.size() == 1;
+}
+
+// Loads what a mode needs beyond the reference, the first time it is needed.
 Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) {
     const SceneQuad& quad = m_scene.quads[q.index];
     Material& material = m_materials.at(quad.material);
     const SceneMaterial& paths = m_scene.materials.at(quad.material);
     TextureBytes& bytes = m_stats.textureBytes;
     const bool blends = material.bank.makesLuts() && mode == RenderMode::Lut;
-    if (blends && !material.blend) {
-        material.blend = BlendTextures::upload(material.bank, bytes.blend);
-        for (QuadState& other : m_quads)  // their LUT tables and blends are due
-            if (m_scene.quads[other.index].material == quad.material) {
-                other.luts = material.blend->makeLutTables();
-                bytes.luts += material.blend->lutTableBytes();
-                other.lightUploaded = {0, 0, -2};
-            }
-        update(q, light, mode);
-    }
+    if (blends && !material.blend) material.blend = BlendTextures::upload(material.bank, bytes.blend);
     if (!blends && mode != RenderMode::Ptm && mode != RenderMode::Nearest && !material.reference.id())
         material.reference = uploadMipmapped(material.bank.reference, bytes.reference);
+    if (relitInTextureSpace(q, mode) && !material.pass)
+        material.pass.emplace(material.bank, material.reference.id(), material.blend ? &*material.blend : nullptr);
+    if (mode == RenderMode::Lut && !relitInTextureSpace(q, mode) && q.luts.empty()) {
+        if (!material.mipLuts) material.mipLuts.emplace(material.bank.reference, material.bank.colour, material.bank.entries);
+        const int levels = material.mipLuts->levels();
+        for (int c = 0; c < material.mipLuts->channels(); ++c) {
+            q.luts.push_back(uploadLutVolume(nullptr, material.bank.entries, kViewGrid, kViewGrid * levels));
+            bytes.luts += static_cast<std::size_t>(material.bank.entries) * kViewGrid * kViewGrid * static_cast<std::size_t>(levels) * 4;
+        }
+        q.lightUploaded = {0, 0, -2};
+        update(q, light, mode);
+    }
     if (mode == RenderMode::Ptm && !material.ptmLoaded) {
         Result<Ptm> ptm = loadBankPtm(paths.bank);
         if (!ptm) return Error{ptm.error()};
@@ -306,7 +297,69 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
     return success();
 }
 
+// The relit textures of this frame: one per material and distinct light direction among the
+// lit quads drawn in mode lut. A texture already relit for a wanted direction is used as it
+// is; a new direction takes the texture unused for longest (relit again, mipmaps remade), or
+// a new one. Textures are kept when no quad wants them (a viewer pane in another mode, a
+// light that comes back), so a material holds as many as it ever needed at once.
+Status SceneRenderer::relight(const std::vector<RenderMode>& modes) {
+    ++m_frame;
+    m_stats.relitTextures = 0;
+    m_stats.textureBytes.relit = 0;
+    for (auto& [name, material] : m_materials) {
+        std::vector<Relit>& relit = material.relit;
+        auto find = [&](const Vec3& light) {
+            return std::find_if(relit.begin(), relit.end(), [&](const Relit& r) { return sameVector(r.light, light); });
+        };
+        std::vector<QuadState*> due;  // quads whose direction has no relit texture yet
+        for (std::size_t i = 0; i < m_quads.size(); ++i) {
+            QuadState& q = m_quads[i];
+            if (m_scene.quads[q.index].material != name || q.unlit || !relitInTextureSpace(q, modes[i])) continue;
+            if (auto found = find(q.light); found != relit.end()) {
+                found->lastUsed = m_frame;
+                q.relit = static_cast<std::size_t>(found - relit.begin());
+            } else {
+                due.push_back(&q);
+            }
+        }
+        for (QuadState* q : due) {
+            auto found = find(q->light);  // a quad before it may have made it
+            if (found == relit.end()) {
+                found = std::min_element(relit.begin(), relit.end(),
+                                         [](const Relit& a, const Relit& b) { return a.lastUsed < b.lastUsed; });
+                if (found == relit.end() || found->lastUsed == m_frame) {  // every texture is in use: one more
+                    relit.push_back({{}, allocateRelitTexture(material.bank.reference), material.pass->makeLuts(), 0});
+                    found = relit.end() - 1;
+                }
+                found->light = q->light;
+                const Direction light = fromVector(q->light), view = material.bank.layers.front().view;
+                if (Status s = material.pass->run(material.relighter->frame(light, view, m_interpolate), found->luts,
+                                                  found->texture.id(), m_dither);
+                    !s)
+                    return s;
+                gl.BindTexture(GL_TEXTURE_2D, found->texture.id());
+                gl.GenerateMipmap(GL_TEXTURE_2D);  // from the relit texels: far quads average LUT values
+                ++m_stats.relightPasses;
+            }
+            found->lastUsed = m_frame;
+            q->relit = static_cast<std::size_t>(found - relit.begin());
+        }
+        m_stats.relitTextures += relit.size();
+        if (!relit.empty())
+            m_stats.textureBytes.relit += relit.size() * (relitTextureBytes(material.bank.reference) + material.pass->lutBytes());
+    }
+    return success();
+}
+
 Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOverride) {
+    std::vector<RenderMode> modes;
+    for (QuadState& q : m_quads) {
+        const RenderMode mode = modeOverride.value_or(m_scene.quads[q.index].mode);
+        modes.push_back(mode);
+        update(q, light, mode);
+        if (Status s = prepare(q, mode, light); !s) return s;
+    }
+    if (Status s = relight(modes); !s) return s;
     gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
     gl.Viewport(0, 0, m_scene.width, m_scene.height);
     gl.ClearColor(0, 0, 0, 1);
@@ -315,11 +368,10 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
     gl.BindVertexArray(m_vertexArray.id());
     const std::array<float, 16> matrix = viewProjection(m_scene);
     m_stats.quadsDrawn = m_stats.quadsUnlit = 0;
-    for (QuadState& q : m_quads) {
+    for (std::size_t i = 0; i < m_quads.size(); ++i) {
+        QuadState& q = m_quads[i];
         const SceneQuad& quad = m_scene.quads[q.index];
-        const RenderMode mode = modeOverride.value_or(quad.mode);
-        update(q, light, mode);
-        if (Status s = prepare(q, mode, light); !s) return s;
+        const RenderMode mode = modes[i];
         const Material& material = m_materials.at(quad.material);
         const bool unlit = mode != RenderMode::Flat && q.unlit;
         Result<GLuint> p = program(mode, material.bank, unlit);
@@ -342,22 +394,23 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
             gl.Uniform1f(gl.GetUniformLocation(*p, "ptmOffset"), w[6]);
         } else if (mode == RenderMode::Nearest) {
             bind(0, GL_TEXTURE_2D, material.imageTextures.at(q.nearestImage).id(), "reference");
-        } else if (!(mode == RenderMode::Lut && material.blend)) {
+        } else if (relitInTextureSpace(q, mode)) {
+            bind(0, GL_TEXTURE_2D, material.relit[q.relit].texture.id(), "reference");
+        } else {
             bind(0, GL_TEXTURE_2D, material.reference.id(), "reference");
         }
-        if (mode == RenderMode::Lut && !unlit && material.blend) {
-            material.blend->bind(*p, q.frame, q.luts, 1);
-            gl.Uniform2i(gl.GetUniformLocation(*p, "labelSize"), material.bank.reference.width, material.bank.reference.height);
-        } else if (mode == RenderMode::Lut && !unlit) {
-            const GLenum target = material.bank.layers.size() > 1 ? GL_TEXTURE_3D : GL_TEXTURE_1D;
+        if (mode == RenderMode::Lut && !unlit && !relitInTextureSpace(q, mode)) {
             for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
                 const std::string name = "lut[" + std::to_string(c) + "]";
-                bind(1 + c, target, q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id(),
+                bind(1 + c, GL_TEXTURE_3D, q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id(),
                      name.c_str());
             }
             const auto n = static_cast<float>(material.bank.entries);
             gl.Uniform2f(gl.GetUniformLocation(*p, "lutCoordinate"), (n - 1) / n, 0.5f / n);
             gl.Uniform1i(gl.GetUniformLocation(*p, "viewGrid"), kViewGrid);
+            gl.Uniform1i(gl.GetUniformLocation(*p, "mipLevels"), material.mipLuts->levels());
+            gl.Uniform2f(gl.GetUniformLocation(*p, "referenceSize"), static_cast<float>(material.bank.reference.width),
+                         static_cast<float>(material.bank.reference.height));
         }
         gl.Uniform1f(gl.GetUniformLocation(*p, "brightness"), q.brightness);
         gl.UniformMatrix4fv(gl.GetUniformLocation(*p, "viewProjection"), 1, GL_FALSE, matrix.data());

@@ -2,17 +2,24 @@
 // Draws a Scene (core/scene.h) with OpenGL, doing only the work the view needs: quads outside
 // the frustum are culled; only materials that a visible quad uses are loaded and uploaded
 // (once); a material's PTM is read only when a quad is first drawn in mode ptm, and a
-// measured image only when mode nearest first needs it. Per frame, a lit quad's LUT is
-// blended on the CPU (under a directional light a flat quad's light direction is constant)
-// and uploaded only when the light or the camera changed. Needs the context that was
-// current at creation.
+// measured image only when mode nearest first needs it. Needs the context that was current
+// at creation.
 //
 //   Result<std::unique_ptr<SceneRenderer>> r = SceneRenderer::create(scene);
 //   (*r)->draw(scene.light);  Image img = (*r)->readBack();
 //
-// Banks with several view layers: the view direction changes across a quad under a
-// perspective camera, so the LUT is blended for a kViewGrid x kViewGrid grid of points on the
-// quad and the shader interpolates between them (one trilinear fetch of a 3D texture).
+// Mode lut, banks of one view layer: under a directional light a flat quad's LUT is constant,
+// so the reference is relit in texture space (RelightPass: one pass at the reference's size,
+// dithered per texel, mipmaps made from the relit texels) and the quad is drawn with the flat
+// shader. Quads of one material under the same light direction (in their own frames) share
+// the relit texture; it is redone only when the light changed, so a frame whose light did not
+// move costs what a flat frame costs.
+//
+// Mode lut, banks with several view layers: the view direction changes across a quad under a
+// perspective camera, so the LUT is blended on the CPU for a kViewGrid x kViewGrid grid of
+// points on the quad and the shader interpolates between them (a 3D texture). So that a far
+// quad is not the LUT of averaged texels, each mipmap level has its own LUT (MipLuts); the
+// shader picks the two levels around its footprint, as trilinear filtering would.
 
 #include <map>
 #include <memory>
@@ -23,9 +30,11 @@
 #include "core/dataset.h"
 #include "core/image.h"
 #include "core/lut_bank.h"
-#include "core/scene.h"
+#include "core/mip_luts.h"
 #include "core/relighter.h"
+#include "core/scene.h"
 #include "gl/blend_textures.h"
+#include "gl/relight_pass.h"
 #include "gl/objects.h"
 
 namespace btflut {
@@ -35,8 +44,9 @@ namespace btflut {
 struct TextureBytes {
     std::size_t reference = 0;  ///< the reference image (modes lut of classic banks, brdf, flat)
     std::size_t blend = 0;      ///< the references, albedo and labels of banks that blend references (mode lut)
+    std::size_t relit = 0;      ///< mode lut's relit textures (one per material and light direction) and their LUTs
     std::size_t luts = 0, ptm = 0, images = 0;
-    std::size_t total() const { return reference + blend + luts + ptm + images; }
+    std::size_t total() const { return reference + blend + relit + luts + ptm + images; }
 };
 
 struct SceneRendererOptions {
@@ -52,6 +62,8 @@ struct RenderStats {
     std::size_t imagesLoaded = 0;               ///< measured images read for mode nearest
     std::size_t viewLayers = 0, viewLayersLoaded = 0;  ///< over the loaded banks
     std::size_t quadsDrawn = 0, quadsCulled = 0, quadsUnlit = 0;
+    std::size_t relitTextures = 0;  ///< mode lut's relit textures held (per material and light direction)
+    std::size_t relightPasses = 0;  ///< passes run, since creation
     TextureBytes textureBytes;
 };
 
@@ -85,11 +97,21 @@ public:
     RelightFrame centreFrame(std::size_t quad, const Vec3& light) const;
 
 private:
+    /// A material's reference relit for one light direction (in the quads' own frame).
+    struct Relit {
+        Vec3 light;
+        GlTexture texture;
+        std::vector<GlTexture> luts;  ///< the pass's, of this texture alone
+        std::uint64_t lastUsed = 0;   ///< the frame that last drew it
+    };
     struct Material {
         LutBank bank;
         GlTexture reference;        ///< uploaded when a mode first needs it
-        std::optional<Relighter> relighter;    ///< banks that blend references: their LUTs per light
-        std::optional<BlendTextures> blend;    ///< their textures, uploaded when mode lut first needs them
+        std::optional<Relighter> relighter;  ///< the LUTs (and blend) per light
+        std::optional<BlendTextures> blend;  ///< banks that blend references: uploaded when mode lut first needs them
+        std::optional<RelightPass> pass;     ///< banks of one view layer, mode lut
+        std::vector<Relit> relit;            ///< by light direction
+        std::optional<MipLuts> mipLuts;      ///< banks with view layers, mode lut
         LevelCounts referenceGrey;  ///< for the brdf mode's mean
         bool ptmLoaded = false;
         std::array<GlTexture, 3> ptm;  ///< coefficients 0-2, 3-5, albedo
@@ -99,8 +121,9 @@ private:
     };
     struct QuadState {
         std::size_t index;
-        std::vector<GlTexture> luts;  ///< one per channel: 1D, 3D over the view grid, or 2D over the regions (blend)
-        RelightFrame frame;           ///< banks that blend references: the blend of the last update
+        std::vector<GlTexture> luts;  ///< banks with view layers: per channel, 3D over the view grid and mip levels
+        Vec3 light;                   ///< in the quad's frame
+        std::size_t relit = 0;        ///< mode lut of a bank of one view layer: its material's relit texture
         Vec3 lightUploaded{0, 0, -2}, eyeUploaded;  ///< what its state was computed for
         RenderMode modeUploaded = RenderMode::Flat;
         float brightness = 1;  ///< brdf mode
@@ -115,10 +138,15 @@ private:
     std::vector<Direction> viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const;
     void update(QuadState& q, const Vec3& light, RenderMode mode);
     Status prepare(QuadState& q, RenderMode mode, const Vec3& light);
+    /// Mode lut on banks of one view layer: the relit textures this frame's lights need.
+    Status relight(const std::vector<RenderMode>& modes);
+    bool relitInTextureSpace(const QuadState& q, RenderMode mode) const;
 
     Scene m_scene;
     bool m_interpolate = true;
     bool m_fixedCamera = true;
+    bool m_dither = true;
+    std::uint64_t m_frame = 0;
     std::map<std::string, Material> m_materials;
     std::vector<QuadState> m_quads;
     std::map<std::vector<std::string>, GlProgram> m_programs;  ///< by defines

@@ -66,8 +66,10 @@ double median(std::vector<double> v) {
 
 // A floor, a back wall and two side panels turned towards the camera, filling the view, each
 // with the bank's material. Every quad faces the bench's lights (which come from the camera's
-// side), so no mode draws a quad black: all modes shade the same fragments.
-Scene benchScene(const std::string& bank, int width, int height, const std::string& images) {
+// side), so no mode draws a quad black: all modes shade the same fragments. Each further
+// layer of the four lies 1 mm in front of the last and is drawn after it, so every layer
+// passes the depth test: `layers` times the fragment work (overdraw).
+Scene benchScene(const std::string& bank, int width, int height, const std::string& images, int layers) {
     Scene s;
     s.file = "bench";
     s.width = width;
@@ -76,10 +78,16 @@ Scene benchScene(const std::string& bank, int width, int height, const std::stri
     s.target = {0, 0, 0.6};
     s.fovDegrees = 60;
     s.materials["m"] = {bank, images};
-    s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 6, 6, 3, RenderMode::Lut},
-               {"m", {0, 2, 1.5}, {0, -1, 0}, {1, 0, 0}, 6, 3, 2, RenderMode::Lut},
-               {"m", {-2.2, 0.6, 1.5}, {0.7071, -0.7071, 0}, {0.7071, 0.7071, 0}, 4, 3, 2, RenderMode::Lut},
-               {"m", {2.2, 0.6, 1.5}, {-0.7071, -0.7071, 0}, {0.7071, -0.7071, 0}, 4, 3, 2, RenderMode::Lut}};
+    const std::vector<SceneQuad> quads{{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 6, 6, 3, RenderMode::Lut},
+                                       {"m", {0, 2, 1.5}, {0, -1, 0}, {1, 0, 0}, 6, 3, 2, RenderMode::Lut},
+                                       {"m", {-2.2, 0.6, 1.5}, {0.7071, -0.7071, 0}, {0.7071, 0.7071, 0}, 4, 3, 2, RenderMode::Lut},
+                                       {"m", {2.2, 0.6, 1.5}, {-0.7071, -0.7071, 0}, {0.7071, -0.7071, 0}, 4, 3, 2, RenderMode::Lut}};
+    for (int layer = 0; layer < layers; ++layer)
+        for (SceneQuad q : quads) {
+            const double offset = 0.001 * layer;
+            q.center = {q.center.x + offset * q.normal.x, q.center.y + offset * q.normal.y, q.center.z + offset * q.normal.z};
+            s.quads.push_back(q);
+        }
     return s;
 }
 

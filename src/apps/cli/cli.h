@@ -65,8 +65,8 @@ double median(std::vector<double> values);
 
 /// The benchmarks' scene (bench render, eval): four quads of one material filling a
 /// width x height view, all lit by both benchLights(); `images` is the material's dataset
-/// (for mode nearest), may be empty.
-Scene benchScene(const std::string& bank, int width, int height, const std::string& images = {});
+/// (for mode nearest), may be empty; `layers` copies of the four, each drawn over the last.
+Scene benchScene(const std::string& bank, int width, int height, const std::string& images = {}, int layers = 1);
 /// Two lights, alternated frame by frame, so that every frame re-blends.
 const std::array<Vec3, 2>& benchLights();
 

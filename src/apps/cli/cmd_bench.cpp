@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <map>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -16,6 +18,7 @@
 #include "core/physics/simulate.h"
 #include "core/synth/render.h"
 #include "gl/context.h"
+#include "gl/objects.h"
 #include "gl/scene_renderer.h"
 #include "core/json_text.h"
 
@@ -214,70 +217,164 @@ struct BenchRenderOptions {
     std::string bank;
     int frames = 10;
     int repeat = 3;
+    std::vector<std::string> sizes{"1024x1024", "1920x1080"};
+    int overdraw = 1;
     std::string backend = "auto";
     bool json = false;
 };
+
+// Frame times of one renderer: `frames` frames drawn back to back with no wait between them,
+// then one glFinish; wall time per frame is the whole run's over the frames. GPU time per
+// frame from GL_TIME_ELAPSED queries around each frame's draw calls, read after the finish
+// (NaN where the driver has no timer).
+struct FrameTimes {
+    double wall = 0, gpu = 0;
+};
+
+Result<FrameTimes> timeFrames(SceneRenderer& renderer, RenderMode mode, bool movingLight, int frames, bool timer) {
+    const std::array<Vec3, 2>& lights = benchLights();
+    std::vector<GlQuery> queries;
+    const auto start = std::chrono::steady_clock::now();
+    for (int f = 0; f < frames; ++f) {
+        if (timer) {
+            queries.push_back(makeQuery());
+            gl.BeginQuery(GL_TIME_ELAPSED, queries.back().id());
+        }
+        if (Status s = renderer.draw(lights[movingLight ? static_cast<std::size_t>(f % 2) : 0], mode); !s) return Error{s.error()};
+        if (timer) gl.EndQuery(GL_TIME_ELAPSED);
+    }
+    renderer.finish();
+    FrameTimes t;
+    t.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / frames;
+    t.gpu = std::numeric_limits<double>::quiet_NaN();
+    if (timer) {
+        GLuint64 total = 0;
+        for (const GlQuery& q : queries) {
+            GLuint64 ns = 0;
+            gl.GetQueryObjectui64v(q.id(), GL_QUERY_RESULT, &ns);
+            total += ns;
+        }
+        t.gpu = static_cast<double>(total) * 1e-9 / frames;
+    }
+    BTFLUT_CHECK(renderer.stats().quadsUnlit == 0);
+    return t;
+}
 
 Status runBenchRender(const BenchRenderOptions& o) {
     Result<GlBackend> backend = parseGlBackend(o.backend);
     if (!backend) return Error{backend.error()};
     Result<std::unique_ptr<HeadlessContext>> context = createHeadlessContext(*backend);
     if (!context) return Error{context.error()};
-    nlohmann::json out{{"context", (*context)->description()}, {"bank", o.bank}, {"sizes", nlohmann::json::array()}};
-    // Two lights, alternated every frame: each frame re-blends and uploads the LUTs (lut),
-    // recomputes the brightness (brdf) or the PTM weights (ptm).
-    const std::array<Vec3, 2>& lights = benchLights();
+    GLint timerBits = 0;
+    gl.GetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timerBits);
+    const bool timer = timerBits > 0;
+    nlohmann::json out{{"context", (*context)->description()}, {"bank", o.bank}, {"frames", o.frames},
+                       {"rounds", o.repeat},  {"overdraw", o.overdraw}, {"quads", 4 * o.overdraw},
+                       {"gpu_timer", timer},  {"sizes", nlohmann::json::array()}};
+    // Static: the light stays (lut relights nothing after the first frame). Moving: two lights
+    // alternated every frame, so each frame relights (lut), recomputes the brightness (brdf)
+    // or the PTM weights (ptm).
     const RenderMode modes[] = {RenderMode::Lut, RenderMode::Flat, RenderMode::Brdf, RenderMode::Ptm};
+    auto name = [](RenderMode m) { return std::string(renderModeName(m)); };
     std::string text;
-    for (auto [w, h] : {std::pair{1024, 1024}, std::pair{1920, 1080}}) {
-        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(benchScene(o.bank, w, h));
+    bool first = true;
+    for (const std::string& size : o.sizes) {
+        int w = 0, h = 0;
+        char x = 0, extra = 0;
+        if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 || w > 16384 ||
+            h > 16384)
+            return Error{"--size '" + size + "': expected WxH with both within 1..16384"};
+        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(benchScene(o.bank, w, h, {}, o.overdraw));
         if (!renderer) return Error{renderer.error()};
-        std::map<RenderMode, std::vector<double>> frameTimes;
-        for (int r = 0; r < o.repeat; ++r)
-            for (RenderMode mode : modes)
-                for (int f = 0; f < o.frames; ++f) {
-                    auto start = std::chrono::steady_clock::now();
-                    if (Status s = (*renderer)->draw(lights[f % 2], mode); !s) return s;
-                    (*renderer)->finish();
-                    BTFLUT_CHECK((*renderer)->stats().quadsUnlit == 0 && (*renderer)->stats().quadsDrawn == 4);
-                    frameTimes[mode].push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        std::map<std::pair<RenderMode, bool>, std::vector<double>> wall, gpu;
+        for (RenderMode mode : modes)  // the first frames load and upload
+            if (Status s = (*renderer)->draw(benchLights()[0], mode); !s) return s;
+        for (int r = 0; r < o.repeat; ++r)  // interleaved, so drift hits every mode alike
+            for (bool moving : {false, true})
+                for (RenderMode mode : modes) {
+                    if (!moving)  // the static run starts from its light
+                        if (Status s = (*renderer)->draw(benchLights()[0], mode); !s) return s;
+                    Result<FrameTimes> t = timeFrames(**renderer, mode, moving, o.frames, timer);
+                    if (!t) return Error{t.error()};
+                    wall[{mode, moving}].push_back(t->wall);
+                    gpu[{mode, moving}].push_back(t->gpu);
                 }
-        const double flat = median(frameTimes[RenderMode::Flat]), lut = median(frameTimes[RenderMode::Lut]),
-                     brdf = median(frameTimes[RenderMode::Brdf]), ptm = median(frameTimes[RenderMode::Ptm]);
-        out["sizes"].push_back({{"width", w}, {"height", h}, {"flat_ms", flat * 1e3}, {"lut_ms", lut * 1e3},
-                                {"brdf_ms", brdf * 1e3}, {"ptm_ms", ptm * 1e3}, {"lut_over_flat", lut / flat},
-                                {"lut_over_brdf", lut / brdf}, {"lut_over_ptm", lut / ptm}});
-        char line[256];
-        std::snprintf(line, sizeof line,
-                      "  %4dx%-4d  flat %6.2f ms  brdf %6.2f ms  ptm %6.2f ms  lut %6.2f ms   lut/flat %.3f  lut/ptm %.3f\n",
-                      w, h, flat * 1e3, brdf * 1e3, ptm * 1e3, lut * 1e3, lut / flat, lut / ptm);
+        nlohmann::json entry{{"width", w}, {"height", h}};
+        char line[320];
+        std::snprintf(line, sizeof line, "  %dx%d, %d quads\n    %-8s %13s %13s %13s %13s\n", w, h, 4 * o.overdraw, "",
+                      "static ms", "moving ms", "static GPU ms", "moving GPU ms");
         text += line;
-        if (w == 1024) {
-            out["lut_over_flat"] = lut / flat;
-            out["lut_over_ptm"] = lut / ptm;
-            // Per material: lut needs the reference texture and, per quad, one small LUT; ptm
-            // needs its three coefficient/albedo textures.
+        for (RenderMode mode : modes) {
+            const double sw = median(wall[{mode, false}]), mw = median(wall[{mode, true}]);
+            const double sg = timer ? median(gpu[{mode, false}]) : NAN, mg = timer ? median(gpu[{mode, true}]) : NAN;
+            entry[name(mode) + "_ms"] = mw * 1e3;
+            entry[name(mode) + "_static_ms"] = sw * 1e3;
+            if (timer) {
+                entry[name(mode) + "_gpu_ms"] = mg * 1e3;
+                entry[name(mode) + "_static_gpu_ms"] = sg * 1e3;
+            }
+            std::snprintf(line, sizeof line, "    %-8s %13.2f %13.2f %13.2f %13.2f\n", name(mode).c_str(), sw * 1e3,
+                          mw * 1e3, sg * 1e3, mg * 1e3);
+            text += line;
+        }
+        auto ratio = [&](RenderMode a, RenderMode b, bool moving, bool onGpu) {
+            auto& t = onGpu ? gpu : wall;
+            return median(t[{a, moving}]) / median(t[{b, moving}]);
+        };
+        // lut_over_flat and lut_over_ptm: the light moving every frame (as before this split).
+        entry["lut_over_flat"] = ratio(RenderMode::Lut, RenderMode::Flat, true, false);
+        entry["lut_over_ptm"] = ratio(RenderMode::Lut, RenderMode::Ptm, true, false);
+        entry["lut_over_brdf"] = ratio(RenderMode::Lut, RenderMode::Brdf, true, false);
+        entry["lut_over_flat_static"] = ratio(RenderMode::Lut, RenderMode::Flat, false, false);
+        entry["lut_over_ptm_static"] = ratio(RenderMode::Lut, RenderMode::Ptm, false, false);
+        if (timer) {
+            entry["gpu_lut_over_flat"] = ratio(RenderMode::Lut, RenderMode::Flat, true, true);
+            entry["gpu_lut_over_ptm"] = ratio(RenderMode::Lut, RenderMode::Ptm, true, true);
+            entry["gpu_lut_over_flat_static"] = ratio(RenderMode::Lut, RenderMode::Flat, false, true);
+            entry["gpu_lut_over_ptm_static"] = ratio(RenderMode::Lut, RenderMode::Ptm, false, true);
+        }
+        std::snprintf(line, sizeof line,
+                      "    lut/flat: static %.3f, moving %.3f (GPU %.3f, %.3f);  lut/ptm: static %.3f, moving %.3f "
+                      "(GPU %.3f, %.3f)\n",
+                      entry["lut_over_flat_static"].get<double>(), entry["lut_over_flat"].get<double>(),
+                      timer ? entry["gpu_lut_over_flat_static"].get<double>() : NAN,
+                      timer ? entry["gpu_lut_over_flat"].get<double>() : NAN, entry["lut_over_ptm_static"].get<double>(),
+                      entry["lut_over_ptm"].get<double>(), timer ? entry["gpu_lut_over_ptm_static"].get<double>() : NAN,
+                      timer ? entry["gpu_lut_over_ptm"].get<double>() : NAN);
+        text += line;
+        if (first) {  // the headline figures: the first size
+            first = false;
+            for (const char* key : {"lut_over_flat", "lut_over_ptm", "lut_over_flat_static", "lut_over_ptm_static",
+                                    "gpu_lut_over_flat", "gpu_lut_over_ptm", "gpu_lut_over_flat_static",
+                                    "gpu_lut_over_ptm_static"})
+                if (entry.contains(key)) out[key] = entry[key];
+            // Per material: lut reads the reference and draws one relit texture per light
+            // direction of its quads (here four); ptm needs its three coefficient/albedo textures.
             const TextureBytes& bytes = (*renderer)->stats().textureBytes;
-            const std::size_t quads = (*renderer)->stats().quadsDrawn;
-            const std::size_t lutBytes = bytes.reference + bytes.luts / std::max<std::size_t>(quads, 1);
+            const std::size_t directions = std::max<std::size_t>((*renderer)->stats().relitTextures, 1);
+            const std::size_t lutBytes = bytes.reference + bytes.blend + bytes.relit + bytes.luts;
             out["texture_bytes_lut"] = lutBytes;
-            out["texture_bytes_lut_per_quad"] = bytes.luts / std::max<std::size_t>(quads, 1);
+            out["texture_bytes_lut_per_direction"] = bytes.relit / directions;
+            out["light_directions"] = directions;
             out["texture_bytes_ptm"] = bytes.ptm;
             out["lut_over_ptm_texture_bytes"] = static_cast<double>(lutBytes) / static_cast<double>(bytes.ptm);
             std::snprintf(line, sizeof line,
-                          "  texture memory per material: lut %zu bytes (reference %zu + LUT %zu per quad), ptm %zu "
+                          "  texture memory per material: lut %zu bytes (source %zu + %zu relit textures of %zu), ptm %zu "
                           "bytes; lut/ptm %.4f\n",
-                          lutBytes, bytes.reference, lutBytes - bytes.reference, bytes.ptm,
+                          lutBytes, bytes.reference + bytes.blend, directions, bytes.relit / directions, bytes.ptm,
                           static_cast<double>(lutBytes) / static_cast<double>(bytes.ptm));
             text += line;
         }
+        out["sizes"].push_back(entry);
     }
     if (o.json) {
         std::cout << jsonText(out);
         return success();
     }
-    std::cout << "render 4 quads, median frame times of " << o.repeat * o.frames << " frames per mode, "
-              << (*context)->description() << "\n" << text;
+    std::cout << "render " << 4 * o.overdraw << " quads, frame times (median of " << o.repeat << " rounds of " << o.frames
+              << " frames, no wait between frames), " << (*context)->description()
+              << (timer ? "" : "; no GPU timer in this driver") << "\n"
+              << text;
     return success();
 }
 
@@ -313,10 +410,15 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
 
     auto ro = std::make_shared<BenchRenderOptions>();
     CLI::App* render = bench->add_subcommand(
-        "render", "Frame times of the scene renderer in modes flat, brdf, ptm and lut, interleaved");
+        "render", "Frame times of the scene renderer in modes flat, brdf, ptm and lut, light static and moving, "
+                  "wall and GPU time, interleaved");
     render->add_option("BANK", ro->bank, "M.btflut used for every quad (baked with --ptm)")->required();
     render->add_option("--frames", ro->frames, "frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();
     render->add_option("--repeat", ro->repeat, "rounds")->check(CLI::Range(1, 100))->capture_default_str();
+    render->add_option("--size", ro->sizes, "image sizes WxH (repeatable)")->capture_default_str();
+    render->add_option("--overdraw", ro->overdraw, "layers of the four quads, each drawn over the last")
+        ->check(CLI::Range(1, 64))
+        ->capture_default_str();
     render->add_option("--backend", ro->backend, "auto, osmesa or egl")->capture_default_str();
     render->add_flag("--json", ro->json, "print JSON");
     commands.push_back({render, [ro] { return runBenchRender(*ro); }});

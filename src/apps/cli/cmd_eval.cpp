@@ -254,7 +254,10 @@ Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std
         const double quads = static_cast<double>(std::max<std::size_t>(stats.quadsDrawn, 1));
         double bytes = 0;
         switch (v.mode) {
-            case RenderMode::Lut: bytes = static_cast<double>(bank->makesLuts() ? b.blend : b.reference) + static_cast<double>(b.luts) / quads; break;
+            case RenderMode::Lut:  // what it reads, and one relit texture (per light direction)
+                bytes = static_cast<double>(bank->makesLuts() ? b.blend : b.reference) + static_cast<double>(b.luts) / quads +
+                        static_cast<double>(b.relit) / static_cast<double>(std::max<std::size_t>(stats.relitTextures, 1));
+                break;
             case RenderMode::Ptm: bytes = static_cast<double>(b.ptm); break;
             case RenderMode::Nearest: bytes = static_cast<double>(b.images) / static_cast<double>(std::max<std::size_t>(stats.imagesLoaded, 1)); break;
             default: bytes = static_cast<double>(b.reference); break;

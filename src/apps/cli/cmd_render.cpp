@@ -60,6 +60,7 @@ Status runSceneRender(const RenderOptions& o) {
         for (SceneQuad& q : scene->quads) q.mode = *mode;
     }
     if (!o.interpolation.empty()) scene->interpolateLuts = o.interpolation == "linear";
+    if (o.noDither) scene->dither = false;
     Result<std::unique_ptr<HeadlessContext>> context = makeContext(o);
     if (!context) return Error{context.error()};
     RenderStats stats;
@@ -78,8 +79,10 @@ Status runSceneRender(const RenderOptions& o) {
                   << stats.quadsCulled << "\nPTMs loaded (for ptm quads): " << list(stats.loadedPtms)
                   << "\nmeasured images loaded (for nearest quads): " << stats.imagesLoaded
                   << "\nview layers decoded: " << stats.viewLayersLoaded << " of " << stats.viewLayers
+                  << "\nrelit textures (mode lut, one per material and light direction): " << stats.relitTextures
                   << "\ntexture memory: " << stats.textureBytes.total() << " bytes (references "
-                  << stats.textureBytes.reference << ", LUTs " << stats.textureBytes.luts << ", PTMs "
+                  << stats.textureBytes.reference << ", blended references " << stats.textureBytes.blend
+                  << ", relit " << stats.textureBytes.relit << ", LUTs " << stats.textureBytes.luts << ", PTMs "
                   << stats.textureBytes.ptm << ", measured images " << stats.textureBytes.images << ")\n";
     }
     std::cout << "wrote " << o.output << " (" << image->width << "x" << image->height << ")\n";
@@ -93,7 +96,6 @@ Status runRender(const RenderOptions& o) {
     if (fileExtension(o.input) == "json") {
         if (o.native) return Error{"--native renders a bank (M.btflut), not a scene"};
         if (!o.view.empty()) return Error{"--view applies to --native; a scene's camera sets the view"};
-        if (o.noDither) return Error{"--no-dither applies to --native; scenes apply the plain LUT"};
         return runSceneRender(o);
     }
     if (!o.native) return Error{"a bank (M.btflut) renders with --native: the frontal quad at its reference image's "

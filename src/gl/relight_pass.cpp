@@ -1,0 +1,106 @@
+#include "gl/relight_pass.h"
+
+#include "gl/shader.h"
+#include "gl/textures.h"
+
+namespace btflut {
+
+RelightPass::RelightPass(const LutBank& bank, GLuint reference, const BlendTextures* blend)
+    : m_bank(&bank), m_reference(reference), m_blend(blend) {
+    BTFLUT_CHECK(bank.makesLuts() == (blend != nullptr));
+    m_framebuffer = makeFramebuffer();
+    m_vertexArray = makeVertexArray();
+}
+
+std::vector<GlTexture> RelightPass::makeLuts() const {
+    if (m_blend) return m_blend->makeLutTables();
+    std::vector<GlTexture> luts;
+    for (int c = 0; c < m_bank->channels(); ++c) luts.push_back(uploadLut(nullptr, m_bank->entries));
+    return luts;
+}
+
+std::size_t RelightPass::lutBytes() const {
+    if (m_blend) return m_blend->lutTableBytes();
+    return static_cast<std::size_t>(m_bank->channels()) * static_cast<std::size_t>(m_bank->entries) * 4;
+}
+
+Result<GLuint> RelightPass::program(bool dither) {
+    auto found = m_programs.find(dither);
+    if (found == m_programs.end()) {
+        const LutBank& bank = *m_bank;
+        std::vector<std::string> defines = m_blend ? BlendTextures::defines(bank) : std::vector<std::string>{};
+        if (!m_blend && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+        if (dither) defines.push_back("DITHER");
+        Result<GlProgram> p = buildProgram({"quad.vert"}, {"lut_common.glsl", "native.frag"}, defines);
+        if (!p) return Error{p.error()};
+        found = m_programs.emplace(dither, std::move(*p)).first;
+    }
+    return found->second.id();
+}
+
+Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither) {
+    const LutBank& bank = *m_bank;
+    const Image& ref = bank.reference;
+    Result<GLuint> program = this->program(dither);
+    if (!program) return Error{program.error()};
+    const GLuint p = *program;
+    if (m_blend) {
+        m_blend->updateLuts(luts, frame);
+    } else {
+        for (std::size_t c = 0; c < luts.size(); ++c) {
+            gl.BindTexture(GL_TEXTURE_1D, luts[c].id());
+            gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, bank.entries, GL_RED, GL_FLOAT, &frame.luts[c * static_cast<std::size_t>(bank.entries)]);
+        }
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return Error{"the GL driver cannot render into the relit texture's format"};
+    gl.UseProgram(p);
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D, m_reference);
+    gl.Uniform1i(gl.GetUniformLocation(p, "reference"), 0);
+    if (m_blend) {
+        m_blend->bind(p, frame, luts, 4);
+    } else {
+        for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
+            gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE1 + c));
+            gl.BindTexture(GL_TEXTURE_1D, luts[static_cast<std::size_t>(std::min(c, bank.channels() - 1))].id());
+            const std::string name = "lut[" + std::to_string(c) + "]";
+            gl.Uniform1i(gl.GetUniformLocation(p, name.c_str()), 1 + c);
+        }
+    }
+    gl.Uniform1i(gl.GetUniformLocation(p, "entries"), bank.entries);
+    gl.Uniform1i(gl.GetUniformLocation(p, "referenceChannels"), ref.channels);
+    gl.Uniform1f(gl.GetUniformLocation(p, "inCode"), inputCode(ref, bank.colour));
+    gl.Uniform1f(gl.GetUniformLocation(p, "outCode"), bank.targetCode());
+    gl.BindVertexArray(m_vertexArray.id());
+    gl.Disable(GL_DEPTH_TEST);
+    gl.Viewport(0, 0, ref.width, ref.height);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    return success();
+}
+
+GlTexture allocateRelitTexture(const Image& reference) {
+    const bool grey = reference.channels == 1, sixteen = reference.bitDepth == 16;
+    const GLenum format = grey ? (sixteen ? GL_R16 : GL_R8) : (sixteen ? GL_RGBA16 : GL_RGBA8);
+    GlTexture texture = allocateTexture2D(reference.width, reference.height, format, grey ? GL_RED : GL_RGBA,
+                                          GL_UNSIGNED_BYTE);
+    gl.GenerateMipmap(GL_TEXTURE_2D);  // allocates the chain
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    if (grey) {
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_G, GL_RED);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_SWIZZLE_B, GL_RED);
+    }
+    return texture;
+}
+
+std::size_t relitTextureBytes(const Image& reference) {
+    const std::size_t texel = (reference.channels == 1 ? 1 : 4) * (reference.bitDepth == 16 ? 2 : 1);
+    return reference.pixelCount() * texel * 4 / 3;
+}
+
+}  // namespace btflut

@@ -1,0 +1,61 @@
+#pragma once
+// A bank's reference relit in texture space: the GL twin of `btflut relight`
+// (Relighter::apply). One draw at the reference's resolution writes every texel once through
+// the frame's LUTs, dithered per texel (so the dither moves with the texture, never with the
+// screen), into a colour texture: a float one for `render --native`, or one of the
+// reference's format whose mipmaps are then made from relit texels, so that a far quad shows
+// the mean of LUT values rather than the LUT of a mean. Texel (x, row) of the image, row 0
+// its top, is texel (x, row) of the target, as uploadMipmapped stores images. Banks that
+// blend references blend in the same draw. Needs a current context.
+//
+//   RelightPass pass(bank, reference.id(), blend ? &*blend : nullptr);  // per bank
+//   std::vector<GlTexture> luts = pass.makeLuts();                     // per target
+//   pass.run(frame, luts, target.id(), /*dither=*/true);               // per light change
+//
+// Each target has its LUT textures of its own: updating LUTs that a pending draw still reads
+// would make the driver wait for it.
+
+#include <map>
+#include <vector>
+
+#include "core/relighter.h"
+#include "gl/blend_textures.h"
+#include "gl/objects.h"
+
+namespace btflut {
+
+class RelightPass {
+public:
+    /// `reference`: the bank's reference as a 2D texture read with texelFetch at level 0
+    /// (unorm at the image's bit depth, or float); `blend`: the bank's textures when it blends
+    /// references (LutBank::makesLuts), else null. Both must outlive the pass.
+    RelightPass(const LutBank& bank, GLuint reference, const BlendTextures* blend);
+
+    /// The LUT textures one target needs (1D per channel, or the blend's tables) and their bytes.
+    std::vector<GlTexture> makeLuts() const;
+    std::size_t lutBytes() const;
+
+    /// Uploads the frame's LUTs into `luts` and draws the relit reference into level 0 of
+    /// `target` (a colour-renderable 2D texture of the reference's size). Leaves its own
+    /// framebuffer bound.
+    Status run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither);
+
+private:
+    Result<GLuint> program(bool dither);
+
+    const LutBank* m_bank;
+    GLuint m_reference;
+    const BlendTextures* m_blend;
+    std::map<bool, GlProgram> m_programs;  // by dither
+    GlFramebuffer m_framebuffer;
+    GlVertexArray m_vertexArray;
+};
+
+/// A relit texture for scenes: the reference's size and precision (R8 or R16 for grey, read
+/// as (v, v, v); RGBA8 or RGBA16 for colour: RGB is not renderable everywhere), repeating and
+/// trilinearly filtered; its mipmaps are made after each pass (GenerateMipmap).
+GlTexture allocateRelitTexture(const Image& reference);
+/// Its bytes on the GPU, mipmaps included.
+std::size_t relitTextureBytes(const Image& reference);
+
+}  // namespace btflut

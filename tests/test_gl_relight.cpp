@@ -1,0 +1,223 @@
+// The scene renderer's texture-space relighting (issue 12): a relit texture per material and
+// light direction, made only when that direction is new; mipmaps made after the LUT, so a far
+// quad shows the mean of relit texels; the dither per texel; per-mip LUTs where the LUT varies
+// over a quad (view layers); bench render's static and moving figures.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/bank_file.h"
+#include "core/relighter.h"
+#include "gl/context.h"
+#include "gl/scene_renderer.h"
+#include "helpers.h"
+
+using namespace btflut;
+using namespace btflut::test;
+
+namespace {
+
+Image draw(SceneRenderer& renderer, Direction light, RenderMode mode = RenderMode::Lut) {
+    Status s = renderer.draw(toVector(light), mode);
+    if (!s) FAIL(s.error());
+    return renderer.readBack();
+}
+
+// The grey of each block x block square, averaged (a box-filtered mip level).
+std::vector<double> boxMeans(const Image& image, int block) {
+    std::vector<double> out;
+    for (int by = 0; by + block <= image.height; by += block)
+        for (int bx = 0; bx + block <= image.width; bx += block) {
+            double sum = 0;
+            for (int y = by; y < by + block; ++y)
+                for (int x = bx; x < bx + block; ++x) sum += image.at(x, y, 0);
+            out.push_back(sum / (block * block));
+        }
+    return out;
+}
+
+std::vector<double> greys(const Image& image) {
+    std::vector<double> out;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) out.push_back(image.at(x, y, 0));
+    return out;
+}
+
+double meanDifference(const std::vector<double>& a, const std::vector<double>& b) {
+    REQUIRE(a.size() == b.size());
+    double sum = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) sum += std::abs(a[i] - b[i]);
+    return sum / static_cast<double>(a.size());
+}
+
+// Shots whose LUTs are steep: the brighter ones clip half the reference's levels.
+std::vector<SyntheticShot> steepShots(double viewTheta = 0, double viewPhi = 0) {
+    return {{0, 0, viewTheta, viewPhi, 0, 1}, {45, 0, viewTheta, viewPhi, 100, 2}, {45, 180, viewTheta, viewPhi, 0, 3},
+            {60, 90, viewTheta, viewPhi, 20, 1}, {60, 270, viewTheta, viewPhi, 60, 2}, {30, 45, viewTheta, viewPhi, 10, 1}};
+}
+
+// The bank of a synthetic dataset, saved as dir/m.btflut.
+LutBank savedBank(const TempDir& dir, const std::vector<SyntheticShot>& shots, int w = 40, int h = 30) {
+    auto ds = openDataset(writeSyntheticDataset(dir, shots, w, h));
+    REQUIRE(ds.ok());
+    auto bank = bakeBank(*ds, {});
+    REQUIRE(bank.ok());
+    REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+    return std::move(*bank);
+}
+
+}  // namespace
+
+TEST_SUITE("gl") {
+    TEST_CASE("mode lut relights once per material and light direction, and only when the light moved") {
+        TempDir dir;
+        const LutBank bank = savedBank(dir, steepShots());
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        Scene scene = frontalScene(dir / "m.btflut", "", 80, 30);
+        // Two quads side by side in the same orientation share a relit texture; a third,
+        // tilted, has a light direction of its own.
+        scene.quads[0].width = 1.2;
+        scene.quads[0].center = {-0.6, 0, 0};
+        SceneQuad twin = scene.quads[0], tilted = scene.quads[0];
+        twin.center = {0.6, 0, 0};
+        tilted.center = {0.6, 0.5, 0.1};
+        tilted.normal = {0, -0.2, 0.98};
+        const double length = std::hypot(tilted.normal.y, tilted.normal.z);
+        tilted.normal = {0, tilted.normal.y / length, tilted.normal.z / length};
+        scene.quads.push_back(twin);
+        scene.quads.push_back(tilted);
+        auto renderer = SceneRenderer::create(scene);
+        REQUIRE(renderer.ok());
+        SceneRenderer& r = **renderer;
+        const Direction a = Direction::fromDegrees(30, 20), b = Direction::fromDegrees(40, 200);
+        draw(r, a);
+        CHECK(r.stats().relightPasses == 2);
+        CHECK(r.stats().relitTextures == 2);
+        draw(r, a);  // the light did not move: nothing relit
+        CHECK(r.stats().relightPasses == 2);
+        draw(r, b);  // the same two textures, relit
+        CHECK(r.stats().relightPasses == 4);
+        CHECK(r.stats().relitTextures == 2);
+        draw(r, b, RenderMode::Flat);  // kept while no quad is in mode lut
+        draw(r, b);
+        CHECK(r.stats().relightPasses == 4);
+        CHECK(r.stats().textureBytes.relit >= 2 * bank.reference.pixelCount());
+    }
+
+    TEST_CASE("scene quads are dithered per texel, as relight is; --no-dither applies the plain LUT") {
+        TempDir dir;
+        const LutBank bank = savedBank(dir, steepShots());
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        const Direction light = Direction::fromDegrees(50, 40);
+        const BankLookup lut = bank.lookup(light);
+        for (bool dither : {true, false}) {
+            Scene scene = frontalScene(dir / "m.btflut", "", 40, 30);
+            scene.dither = dither;
+            auto renderer = SceneRenderer::create(scene);
+            REQUIRE(renderer.ok());
+            const Image gpu = draw(**renderer, light);
+            const Image cpu = applyLuts(bank.reference, bank.colour, lut.values, bank.entries, dither ? bank.targetCode() : 0);
+            double worst = 0;
+            for (int y = 0; y < 30; ++y)
+                for (int x = 0; x < 40; ++x) worst = std::max(worst, std::abs(static_cast<double>(gpu.at(x, y, 0)) - cpu.at(x, y, 0)));
+            INFO("dither " << dither << ": worst " << worst * 255 << "/255");
+            CHECK(worst <= 0.5 / 255 + 1e-6);  // the relit texture's and the framebuffer's 8-bit rounding
+        }
+        // The command: dithered by default, the plain LUT with --no-dither.
+        std::ofstream(dir / "s.json") << R"({"image": {"width": 40, "height": 30}, "camera": {"position": [0, 0, 2.4142135623730949],
+            "target": [0, 0, 0], "up": [0, 1, 0], "fov_degrees": 45}, "light": {"direction": [0.5, 0.4, 0.77]},
+            "materials": {"m": "m.btflut"},
+            "quads": [{"material": "m", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "size": [2.6666666666666665, 2]}]})";
+        REQUIRE(runCli({"render", dir / "s.json", "-o", dir / "d.png"}).status == 0);
+        REQUIRE(runCli({"render", dir / "s.json", "--no-dither", "-o", dir / "p.png"}).status == 0);
+        CHECK(meanDifference(greys(*loadImage(dir / "d.png")), greys(*loadImage(dir / "p.png"))) > 0.2 / 255);
+    }
+
+    TEST_CASE("a far quad shows the mean of the relit texels, not the LUT of averaged ones") {
+        TempDir dir;
+        const LutBank bank = savedBank(dir, steepShots(), 64, 48);
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        const Direction light = Direction::fromDegrees(45, 0);  // a node that clips half the levels
+        const Relighter relighter(bank);
+        const Image relit = relighter.apply(relighter.frame(light), true);
+        for (int block : {2, 4}) {
+            // The quad fills a (64 / block) x (48 / block) image: each pixel covers block x block texels.
+            auto renderer = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 64 / block, 48 / block));
+            REQUIRE(renderer.ok());
+            const std::vector<double> gpu = greys(draw(**renderer, light));
+            const std::vector<double> truth = boxMeans(relit, block);
+            // What applying the LUT to the mipmapped reference gives (the per-fragment LUT).
+            std::vector<double> lutOfMean = boxMeans(bank.reference, block);
+            for (double& v : lutOfMean) v = Lut::applyLut(&bank.lookup(light).values[0], bank.entries, static_cast<float>(v));
+            const double error = meanDifference(gpu, truth), plain = meanDifference(lutOfMean, truth);
+            INFO("blocks of " << block << ": " << error * 255 << "/255 from the mean of relit texels; the LUT of the mean "
+                              << plain * 255 << "/255");
+            CHECK(error <= 1.5 / 255);  // each mip level rounds to 8 bits
+            CHECK(plain > 3 * error);
+        }
+    }
+
+    TEST_CASE("banks with view layers: each mip level has its own LUT, so a far quad keeps its brightness") {
+        TempDir dir;
+        std::vector<SyntheticShot> shots;
+        for (auto [theta, phi] : {std::pair{0.0, 0.0}, {40.0, 0.0}, {40.0, 90.0}, {40.0, 180.0}, {40.0, 270.0}})
+            for (SyntheticShot s : steepShots(theta, phi)) shots.push_back(s);
+        const LutBank bank = savedBank(dir, shots, 64, 48);
+        REQUIRE(bank.layers.size() == 5);
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        const Direction light = Direction::fromDegrees(45, 0);
+        // Full size: the LUT per fragment (level 0); a quarter: each pixel covers 4 x 4 texels.
+        auto full = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 64, 48));
+        auto quarter = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 16, 12));
+        REQUIRE(full.ok());
+        REQUIRE(quarter.ok());
+        const Image near = draw(**full, light);
+        const std::vector<double> truth = boxMeans(near, 4), far = greys(draw(**quarter, light));
+        std::vector<double> lutOfMean = boxMeans(bank.reference, 4);
+        const BankLookup centre = bank.lookup(light, Direction{});
+        for (double& v : lutOfMean) v = Lut::applyLut(centre.values.data(), bank.entries, static_cast<float>(v));
+        // Per-mip LUTs keep the statistics of the blocks (a level's LUT is the expected mean of
+        // LUT values over the blocks with that mean), not each block's value: brightness and
+        // contrast, measured as the mean and the standard deviation over the quad.
+        auto moments = [](const std::vector<double>& v) {
+            double mean = 0, square = 0;
+            for (double x : v) mean += x / static_cast<double>(v.size());
+            for (double x : v) square += (x - mean) * (x - mean) / static_cast<double>(v.size());
+            return std::pair{mean, std::sqrt(square)};
+        };
+        const auto [farMean, farSd] = moments(far);
+        const auto [truthMean, truthSd] = moments(truth);
+        const auto [plainMean, plainSd] = moments(lutOfMean);
+        const double perPixel = meanDifference(far, truth), plainPerPixel = meanDifference(lutOfMean, truth);
+        INFO("mean " << truthMean * 255 << "/255, sd " << truthSd * 255 << "/255; per-mip LUTs: " << farMean * 255 << ", "
+                     << farSd * 255 << "; the LUT of the mean: " << plainMean * 255 << ", " << plainSd * 255
+                     << "; per pixel " << perPixel * 255 << " against " << plainPerPixel * 255);
+        CHECK(std::abs(farMean - truthMean) < std::abs(plainMean - truthMean) / 2);
+        CHECK(std::abs(farMean - truthMean) <= 2.0 / 255);
+        CHECK(std::abs(farSd - truthSd) < std::abs(plainSd - truthSd));
+    }
+}
+
+TEST_CASE("bench render reports static and moving frames, GPU time and overdraw") {
+    TempDir dir;
+    auto ds = openDataset(writeSyntheticDataset(dir, steepShots()));
+    REQUIRE(ds.ok());
+    REQUIRE(runCli({"bake", dir / "btflut-dataset.json", "--ptm", "-o", dir / "m.btflut", "-q"}).status == 0);
+    CliRun run = runCli({"bench", "render", dir / "m.btflut", "--size", "64x48", "--frames", "2", "--repeat", "1",
+                         "--overdraw", "2", "--json"});
+    REQUIRE(run.status == 0);
+    const nlohmann::json out = nlohmann::json::parse(run.out);
+    CHECK(out["quads"] == 8);
+    for (const char* key : {"lut_over_flat", "lut_over_ptm", "lut_over_flat_static", "lut_over_ptm_static"})
+        CHECK(out[key].get<double>() > 0);
+    REQUIRE(out["sizes"].size() == 1);
+    CHECK(out["sizes"][0]["width"] == 64);
+    CHECK(out["sizes"][0]["lut_static_ms"].get<double>() > 0);
+    if (out["gpu_timer"].get<bool>()) CHECK(out["sizes"][0].contains("lut_gpu_ms"));
+    requireOneLineError(runCli({"bench", "render", dir / "m.btflut", "--size", "64by48"}), "--size '64by48'");
+}
