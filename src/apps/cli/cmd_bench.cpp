@@ -289,11 +289,14 @@ Status runBenchRender(const BenchRenderOptions& o) {
         std::map<std::pair<RenderMode, bool>, std::vector<double>> wall, gpu;
         for (RenderMode mode : modes)  // the first frames load and upload
             if (Status s = (*renderer)->draw(benchLights()[0], mode); !s) return s;
+        (*renderer)->finish();
         for (int r = 0; r < o.repeat; ++r)  // interleaved, so drift hits every mode alike
             for (bool moving : {false, true})
                 for (RenderMode mode : modes) {
-                    if (!moving)  // the static run starts from its light
+                    if (!moving) {  // the static run starts from its light, relit before the clock starts
                         if (Status s = (*renderer)->draw(benchLights()[0], mode); !s) return s;
+                        (*renderer)->finish();
+                    }
                     Result<FrameTimes> t = timeFrames(**renderer, mode, moving, o.frames, timer);
                     if (!t) return Error{t.error()};
                     wall[{mode, moving}].push_back(t->wall);
