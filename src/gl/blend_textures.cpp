@@ -26,7 +26,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
             const std::vector<std::uint8_t> plane = bank.ptm.plane(p);
             data.insert(data.end(), plane.begin(), plane.end());
         }
-        t.m_references = uploadMipmappedArray(bank.ptm.width, bank.ptm.height, 3, 3, data.data(), bytes);
+        t.m_references = uploadTextureArray(bank.ptm.width, bank.ptm.height, 3, 3, data.data(), bytes);
     } else if (bank.colour == ColourMode::Lrgb) {
         // Four grey references per RGBA layer (reference j: layer j / 4, channel j % 4).
         t.m_layers = (k + 3) / 4;
@@ -35,7 +35,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
             for (std::size_t i = 0; i < texels; ++i)
                 data[(static_cast<std::size_t>(j / 4) * texels + i) * 4 + static_cast<std::size_t>(j % 4)] =
                     byteOf(blend.references[static_cast<std::size_t>(j)].samples[i]);
-        t.m_references = uploadMipmappedArray(first.width, first.height, t.m_layers, 4, data.data(), bytes);
+        t.m_references = uploadTextureArray(first.width, first.height, t.m_layers, 4, data.data(), bytes);
         const std::vector<float> rgb = rgbSamples(blend.albedo);
         t.m_albedo = uploadMipmapped(first.width, first.height, GL_RGB8, GL_RGB, GL_FLOAT, rgb.data(), bytes);
     } else {
@@ -48,7 +48,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
                     data[(static_cast<std::size_t>(j) * texels + i) * 3 + static_cast<std::size_t>(c)] =
                         byteOf(r.samples[i * static_cast<std::size_t>(r.channels) + (r.channels == 1 ? 0 : static_cast<std::size_t>(c))]);
         }
-        t.m_references = uploadMipmappedArray(first.width, first.height, k, 3, data.data(), bytes);
+        t.m_references = uploadTextureArray(first.width, first.height, k, 3, data.data(), bytes);
     }
     if (!blend.labels.empty()) t.m_labels = uploadLabels(first.width, first.height, blend.labels.data(), bytes);
     return t;

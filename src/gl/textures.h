@@ -28,10 +28,10 @@ GlTexture uploadMipmapped(const Image& image, std::size_t& bytes);
 /// entries, clamped (a row per region of a bank that blends references); values may be null.
 GlTexture uploadLutTable(const float* values, int entries, int rows);
 
-/// Layers of 8-bit RGBA or RGB texels as a repeating, trilinearly filtered 2D array texture
-/// with mipmaps (`layers` x width x height x channels bytes, top row first); adds its bytes.
-GlTexture uploadMipmappedArray(int width, int height, int layers, int channels, const std::uint8_t* data,
-                               std::size_t& bytes);
+/// Layers of 8-bit RGBA or RGB texels as an unfiltered 2D array texture read with texelFetch
+/// (`layers` x width x height x channels bytes, top row first); adds its bytes.
+GlTexture uploadTextureArray(int width, int height, int layers, int channels, const std::uint8_t* data,
+                             std::size_t& bytes);
 
 /// Per texel bytes (region labels) as an unfiltered GL_R8UI texture, read with texelFetch.
 GlTexture uploadLabels(int width, int height, const std::uint8_t* data, std::size_t& bytes);
