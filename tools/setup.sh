@@ -13,6 +13,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev doctest-dev
   libfftw3-dev          # spectral synthesis of rough height fields
   libeigen3-dev         # least squares (PTM fitting)
+  libceres-dev          # non-linear least squares (btflut fit)
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libimgui-dev
   python3 python3-numpy python3-skimage python3-pil  # reference checks in tools/
   xvfb xauth

@@ -123,6 +123,7 @@ int run(const std::vector<std::string>& args) {
         ->capture_default_str();
     Commands commands;
     addHistCommand(root, commands);
+    addFitCommand(root, commands);
     addBakeCommand(root, commands);
     addRelightCommand(root, commands);
     addInfoCommand(root, commands);

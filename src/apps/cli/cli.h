@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/histogram.h"
 #include "core/lut_bank.h"
 #include "core/scene.h"
 #include "core/result.h"
@@ -23,6 +24,7 @@ struct Command {
 using Commands = std::vector<Command>;
 
 void addHistCommand(CLI::App& root, Commands& commands);
+void addFitCommand(CLI::App& root, Commands& commands);
 void addBakeCommand(CLI::App& root, Commands& commands);
 void addRelightCommand(CLI::App& root, Commands& commands);
 void addInfoCommand(CLI::App& root, Commands& commands);
@@ -42,6 +44,10 @@ int run(const std::vector<std::string>& args);
 // Shared by the commands.
 
 /// Validates that `path` ends in one of `extensions` (lower case, no dot).
+/// The masked, normalised grey histogram of every image of a dataset (`btflut hist`), or
+/// three per image (R, G, B) with `rgb`; `mask` overrides the dataset's own when not empty.
+Result<std::vector<HistogramRow>> datasetHistograms(const std::string& dataset, const std::string& mask, int bins, bool rgb);
+
 Status requireExtension(const std::string& path, const std::vector<std::string>& extensions,
                         const std::string& what);
 

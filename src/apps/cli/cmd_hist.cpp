@@ -20,9 +20,16 @@ struct HistOptions {
 
 Status runHist(const HistOptions& o) {
     if (Status s = requireExtension(o.output, {"csv", "json"}, "output"); !s) return s;
-    Result<Dataset> dataset = openDatasetWithMask(o.dataset, o.mask);
+    Result<std::vector<HistogramRow>> rows = datasetHistograms(o.dataset, o.mask, o.bins, o.channels == "rgb");
+    if (!rows) return Error{rows.error()};
+    return saveHistograms(*rows, o.output);
+}
+
+}  // namespace
+
+Result<std::vector<HistogramRow>> datasetHistograms(const std::string& path, const std::string& maskPath, int bins, bool rgb) {
+    Result<Dataset> dataset = openDatasetWithMask(path, maskPath);
     if (!dataset) return Error{dataset.error()};
-    const bool rgb = o.channels == "rgb";
     const std::size_t perImage = rgb ? 3 : 1;
 
     // The first image fixes the size and the mask; the rest are decoded in parallel.
@@ -56,15 +63,13 @@ Status runHist(const HistOptions& o) {
             LevelCounts levels = rgb ? countChannelLevels(*image, *mask, static_cast<int>(c))
                                      : countGreyLevels(*image, *mask);
             rows[i * perImage + c] = {rgb ? info.name + suffix[c] : info.name, info.light,
-                                      info.view, binHistogram(levels, o.bins)};
+                                      info.view, binHistogram(levels, bins)};
         }
     });
     for (const std::string& e : errors)
         if (!e.empty()) return Error{e};
-    return saveHistograms(rows, o.output);
+    return rows;
 }
-
-}  // namespace
 
 void addHistCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<HistOptions>();
