@@ -62,13 +62,18 @@ struct DirectionResidual {
     }
 };
 
+// The sum of one direction's squared bin differences.
+double squaredError(const SurfaceModel& model, double smoothing, const HistogramRow& row, int nodes) {
+    const std::vector<double> h = simulated(model, smoothing, row, nodes);
+    double sum = 0;
+    for (std::size_t k = 0; k < h.size(); ++k) sum += (h[k] - row.bins[k]) * (h[k] - row.bins[k]);
+    return sum;
+}
+
 double sumOfSquares(FitBrdf brdf, const std::vector<double>& p, const std::vector<HistogramRow>& rows, int nodes) {
     double smoothing = 0, sum = 0;
     const SurfaceModel model = modelOf(brdf, p.data(), smoothing);
-    for (const HistogramRow& row : rows) {
-        const std::vector<double> h = simulated(model, smoothing, row, nodes);
-        for (std::size_t k = 0; k < h.size(); ++k) sum += (h[k] - row.bins[k]) * (h[k] - row.bins[k]);
-    }
+    for (const HistogramRow& row : rows) sum += squaredError(model, smoothing, row, nodes);
     return sum;
 }
 
@@ -169,6 +174,7 @@ Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, Fi
 
     SurfaceFit fit;
     fit.model = modelOf(brdf, p.data(), fit.smoothing);
+    fit.nodes = options.nodes;
     fit.iterations = static_cast<int>(summary.iterations.size());
     // Standard errors: the covariance of the parameters from the Jacobian at the optimum,
     // scaled by the residual variance (the solver's cost is half the sum of squares).
@@ -187,9 +193,7 @@ Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, Fi
     }
     double total = 0;
     for (const HistogramRow& row : measured) {
-        const std::vector<double> h = simulated(fit.model, fit.smoothing, row, options.nodes);
-        double sum = 0;
-        for (std::size_t k = 0; k < bins; ++k) sum += (h[k] - row.bins[k]) * (h[k] - row.bins[k]);
+        const double sum = squaredError(fit.model, fit.smoothing, row, options.nodes);
         fit.residuals.push_back(std::sqrt(sum / static_cast<double>(bins)));
         total += sum;
     }
@@ -198,8 +202,8 @@ Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, Fi
     return fit;
 }
 
-std::vector<double> fittedHistogram(const SurfaceFit& fit, const HistogramRow& row, int nodes) {
-    return simulated(fit.model, fit.smoothing, row, nodes);
+std::vector<double> fittedHistogram(const SurfaceFit& fit, const HistogramRow& row) {
+    return simulated(fit.model, fit.smoothing, row, fit.nodes);
 }
 
 }  // namespace btflut

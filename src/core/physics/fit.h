@@ -47,6 +47,7 @@ struct SurfaceFit {
     double rms = 0;                        ///< over every bin of every direction
     int iterations = 0;
     double seconds = 0;
+    int nodes = 0;                         ///< the quadrature's, as fitted
 };
 
 struct FitOptions {
@@ -58,7 +59,7 @@ struct FitOptions {
 /// counts, directions below the horizon, a fit that does not converge.
 Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, FitBrdf brdf, const FitOptions& options = {});
 
-/// The fitted model's histogram for one row's directions (what the fit compared).
-std::vector<double> fittedHistogram(const SurfaceFit& fit, const HistogramRow& row, int nodes = 16);
+/// The fitted model's histogram for one row's directions, as the fit compared it.
+std::vector<double> fittedHistogram(const SurfaceFit& fit, const HistogramRow& row);
 
 }  // namespace btflut
