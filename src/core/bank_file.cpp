@@ -27,7 +27,7 @@ std::uint32_t tagOf(const char (&t)[5]) {
 }
 const std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
                     kEnd = tagOf("END "), kReferences = tagOf("REFS"), kMask = tagOf("MASK"), kLabels = tagOf("LABL"),
-                    kAlbedo = tagOf("ALBD");
+                    kAlbedo = tagOf("ALBD"), kFill = tagOf("FILL");
 
 std::string tagName(std::uint32_t tag) {
     std::string s;
@@ -291,6 +291,7 @@ Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t
 std::uint32_t bankFormatVersion(const LutBank& bank) {
     // The oldest version that holds everything: readers of version 1 keep reading the banks
     // they always could.
+    if (!bank.modelFill.empty()) return 4;
     if (bank.makesLuts()) return 3;
     return bank.domain == BankDomain::Layers ? 1u : 2u;
 }
@@ -337,8 +338,9 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     head.putString(bank.referenceName);
     if (version >= 2) head.put(static_cast<std::uint32_t>(bank.domain));
     if (version >= 3) {
+        // All zero for a bank of LUTs (a version 4 bank need not make its LUTs at run time).
         head.put(static_cast<std::uint32_t>(bank.blend.references.size()));
-        head.put(static_cast<std::uint32_t>(bank.blend.regions));
+        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.regions : 0));
         head.put(static_cast<std::uint32_t>(bank.blend.quantiles));
     }
     putChunk(file, kHead, head.bytes());
@@ -356,6 +358,13 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         for (Provenance p : layer.gridProvenance) w.put(static_cast<std::uint8_t>(p));
         w.putBytes(layer.gridLuts.data(), layer.gridLuts.size() * sizeof(std::uint16_t));
         putChunk(file, kLayer, w.bytes());
+    }
+    if (!bank.modelFill.empty()) {  // version 4: which nodes the model filled, and the model
+        Writer w;
+        w.putString(bank.modelFill);
+        for (const ViewLayer& layer : bank.layers)
+            for (const LightNode& node : layer.nodes) w.put(static_cast<std::uint8_t>(node.modelled ? 1 : 0));
+        putChunk(file, kFill, w.bytes());
     }
     if (embed) putChunk(file, kReference, encodePng(bank.reference, bank.reference.bitDepth));
     if (bank.makesLuts()) {
@@ -479,6 +488,7 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
 
     bool haveReference = false, havePtm = false;
     std::size_t totalNodes = 0;
+    const Chunk* fill = nullptr;
     for (std::size_t c = 1; c < chunks->list.size(); ++c) {
         const auto& [tag, payload, length] = chunks->list[c];
         Reader in(payload, length);
@@ -525,7 +535,7 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
                     return fail(std::string(bank.makesLuts() ? "a quantile function" : "a LUT") +
                                 " is not monotonic in [0, 1] (file is corrupted)");
             for (std::size_t g = 0; g < cells; ++g) {
-                if (kinds[g] > 2) return fail("invalid grid node provenance");
+                if (kinds[g] > (chunks->version >= 4 ? 3 : 2)) return fail("invalid grid node provenance");
                 if (options.grids) layer.gridProvenance.push_back(static_cast<Provenance>(kinds[g]));
             }
             if (options.grids) {
@@ -533,6 +543,9 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
                 std::memcpy(layer.gridLuts.data(), grid, layer.gridLuts.size() * sizeof(std::uint16_t));
             }
             bank.layers.push_back(std::move(layer));
+        } else if (tag == kFill) {
+            if (chunks->version < 4 || fill) return fail("unexpected FILL chunk");
+            fill = &chunks->list[c];
         } else if (tag == kReference) {
             if (!head->embedded || haveReference) return fail("unexpected REFI chunk");
             haveReference = true;
@@ -561,6 +574,23 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
         return fail("declares " + std::to_string(head->layerCount) + " layers but holds " +
                     std::to_string(bank.layers.size()));
     if (head->embedded && !haveReference) return fail("reference image chunk is missing");
+    if (fill) {
+        Reader in(fill->payload, fill->length);
+        bank.modelFill = in.getString();
+        for (ViewLayer& layer : bank.layers) {
+            bool seen = false;  // a modelled node: every later one must be too
+            for (LightNode& node : layer.nodes) {
+                const auto modelled = in.get<std::uint8_t>();
+                if (modelled > 1 || (seen && modelled == 0))
+                    return fail("FILL chunk: invalid node flags (modelled nodes follow the measured ones)");
+                node.modelled = modelled == 1;
+                seen = node.modelled;
+            }
+            if (!layer.nodes.empty() && layer.nodes.front().modelled)
+                return fail("FILL chunk: a view layer without measured nodes");
+        }
+        if (!in.ok() || in.remaining() != 0 || bank.modelFill.empty()) return fail("FILL chunk has the wrong size");
+    }
     if (!head->embedded) {  // keep the description, without pixels
         bank.reference.width = static_cast<int>(head->refWidth);
         bank.reference.height = static_cast<int>(head->refHeight);

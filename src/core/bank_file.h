@@ -17,13 +17,14 @@ namespace btflut {
 
 /// The newest version this btflut reads (it reads every older one) and writes when a bank
 /// needs it; bankFormatVersion says which a bank is written as.
-constexpr std::uint32_t kBankFormatVersion = 3;
+constexpr std::uint32_t kBankFormatVersion = 4;
 
 /// Most measured directions (nodes, over all layers) a bank may hold.
 constexpr std::size_t kMaxBankNodes = 65536;
 
 /// The version a bank is written as: the oldest that holds it (1; 2 for the isotropic
-/// domain; 3 for banks that make their LUTs at run time).
+/// domain; 3 for banks that make their LUTs at run time; 4 for banks with nodes filled from
+/// the model).
 std::uint32_t bankFormatVersion(const LutBank& bank);
 
 /// Refuses a bank the format cannot hold (a chunk over 4 GiB, too many nodes).

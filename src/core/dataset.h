@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/direction.h"
+#include "core/histogram.h"
 #include "core/image.h"
 #include "core/result.h"
 
@@ -47,6 +48,11 @@ Result<Dataset> openDataset(const std::string& path);
 
 /// The dataset's mask for its images of width x height (every pixel when it has none).
 Result<Mask> loadDatasetMask(const Dataset& dataset, int width, int height);
+
+/// The normalised `bins`-bin histogram of every image over the dataset's mask: its grey value,
+/// or (rgb) one row per channel named NAME:R, NAME:G, NAME:B. Images are decoded in parallel;
+/// errors name the file (corrupt, another size, grey where rgb is asked).
+Result<std::vector<HistogramRow>> histogramsOf(const Dataset& dataset, int bins, bool rgb);
 
 /// Refuses `image` (decoded from `path`) unless it is width x height like the first
 /// image `firstPath`.

@@ -77,10 +77,14 @@ Lut matchLut(std::span<const double> reference, std::span<const double> target, 
 }
 
 std::vector<float> quantileFunction(const LevelCounts& counts, int samples) {
+    return quantileFunction(asMass(counts), samples);
+}
+
+std::vector<float> quantileFunction(std::span<const double> mass, int samples) {
     BTFLUT_CHECK(samples >= 2);
     std::vector<double> us(static_cast<std::size_t>(samples));
     for (int m = 0; m < samples; ++m) us[static_cast<std::size_t>(m)] = static_cast<double>(m) / (samples - 1);
-    return inverseCdf(asMass(counts), us);
+    return inverseCdf(mass, us);
 }
 
 Lut matchToQuantiles(const LevelCounts& reference, std::span<const float> quantiles, int entries) {

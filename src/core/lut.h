@@ -73,6 +73,8 @@ Lut matchLut(std::span<const double> reference, std::span<const double> target, 
 /// bank keeps of a target when its LUTs are made at run time (several references, regions):
 /// blending them with weights blends the distributions as blending LUTs does.
 std::vector<float> quantileFunction(const LevelCounts& counts, int samples);
+/// The same from masses per code (any non-negative weights with a positive sum).
+std::vector<float> quantileFunction(std::span<const double> mass, int samples);
 
 /// The LUT that gives `reference` the distribution of the quantile function `quantiles`
 /// (sampled as quantileFunction does; read with linear interpolation): matchLut with the

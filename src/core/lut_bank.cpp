@@ -15,7 +15,17 @@ namespace {
 
 constexpr double kSameDirection = 1e-6;  // radians: closer directions are one node
 
-Provenance combine(Provenance a, Provenance b) { return std::max(a, b); }
+int rank(Provenance p) {
+    switch (p) {
+        case Provenance::Measured: return 0;
+        case Provenance::Interpolated: return 1;
+        case Provenance::Modelled: return 2;
+        case Provenance::Extrapolated: return 3;
+    }
+    return 3;
+}
+
+Provenance combine(Provenance a, Provenance b) { return rank(a) >= rank(b) ? a : b; }
 
 Provenance provenanceOf(const Weights& w) {
     if (!w.inside) return Provenance::Extrapolated;
@@ -78,6 +88,7 @@ const char* provenanceName(Provenance p) {
         case Provenance::Measured: return "measured";
         case Provenance::Interpolated: return "interpolated";
         case Provenance::Extrapolated: return "extrapolated";
+        case Provenance::Modelled: return "modelled";
     }
     return "?";
 }
@@ -90,9 +101,14 @@ DiskPoint LutBank::gridPoint(int i, int j) const {
 void LutBank::buildTriangulations() {
     std::vector<DiskPoint> viewPoints;
     for (ViewLayer& layer : layers) {
-        std::vector<DiskPoint> points;
-        for (const LightNode& node : layer.nodes) points.push_back(toDisk(node.light));
+        std::vector<DiskPoint> points, modelled;
+        for (const LightNode& node : layer.nodes) {
+            BTFLUT_CHECK(node.modelled || modelled.empty());  // the measured nodes come first
+            (node.modelled ? modelled : points).push_back(toDisk(node.light));
+        }
+        layer.measuredNodes = points.size();
         layer.lights = Triangulation(std::move(points));
+        layer.modelLights = modelled.empty() ? Triangulation() : Triangulation(std::move(modelled));
         viewPoints.push_back(toDisk(layer.view));
     }
     views = Triangulation(std::move(viewPoints));
@@ -244,9 +260,29 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
     for (int v = 0; v < vw.count; ++v) {
         if (vw.weight[v] == 0) continue;
         const auto layer = static_cast<std::size_t>(vw.index[v]);
-        Weights lw = layers[layer].lights.weightsAt(lightPoint);
-        out.lightProvenance = combine(out.lightProvenance, provenanceOf(lw));
-        for (int l = 0; l < lw.count; ++l) add({layer, static_cast<std::size_t>(lw.index[l])}, vw.weight[v] * lw.weight[l]);
+        const ViewLayer& lights = layers[layer];
+        Weights lw = lights.lights.weightsAt(lightPoint);
+        double measured = 1;  // the measured nodes' share; the rest is the model's
+        if (!lw.inside && lights.measuredNodes < lights.nodes.size()) {
+            // Beyond the measured hull: from the measurements clamped to it to the model,
+            // over one grid step, so a LUT never jumps at the hull (model_fill.h).
+            DiskPoint onHull{0, 0};
+            for (int l = 0; l < lw.count; ++l) {
+                const DiskPoint q = lights.lights.points()[static_cast<std::size_t>(lw.index[l])];
+                onHull = {onHull.x + lw.weight[l] * q.x, onHull.y + lw.weight[l] * q.y};
+            }
+            const double distance = std::hypot(lightPoint.x - onHull.x, lightPoint.y - onHull.y);
+            measured = std::max(0.0, 1 - distance * (gridSize - 1) / 2.0);
+            const Weights mw = lights.modelLights.weightsAt(lightPoint);
+            for (int m = 0; m < mw.count; ++m)
+                add({layer, lights.measuredNodes + static_cast<std::size_t>(mw.index[m])},
+                    vw.weight[v] * mw.weight[m] * (1 - measured));
+            out.lightProvenance = combine(out.lightProvenance, Provenance::Modelled);
+        } else {
+            out.lightProvenance = combine(out.lightProvenance, provenanceOf(lw));
+        }
+        for (int l = 0; l < lw.count; ++l)
+            add({layer, static_cast<std::size_t>(lw.index[l])}, vw.weight[v] * lw.weight[l] * measured);
     }
     return finish();
 }

@@ -14,7 +14,9 @@
 //     hardware bilinear filtering; nodes outside the unit disk hold the horizon's LUT.
 // Queries use the nodes: Delaunay interpolation over the measured directions, so a measured
 // direction reproduces its measurement exactly, and directions outside the measured hull
-// are clamped to its boundary. Blending LUTs blends quantile functions (lut.h). Two domains:
+// are clamped to its boundary, or, in banks filled from the model (model_fill.h), move from
+// the clamped LUT to the model's within one grid step. Blending LUTs blends quantile
+// functions (lut.h). Two domains:
 //   - layers: within a layer over the light disk, then across the layers' view directions.
 //     Any material, when each layer's lights span the disk (a fixed camera, Bonn BTFs).
 //   - isotropic: over (theta_i, theta_r, phi_i - phi_r) in 3-D (isotropicPoint), for
@@ -44,8 +46,10 @@ enum class ColourMode : std::uint32_t {
 const char* colourName(ColourMode c);
 
 /// How a LUT was obtained: from a measurement at that direction, by interpolating
-/// measurements around it, or by clamping to the nearest measured boundary.
-enum class Provenance : std::uint8_t { Measured = 0, Interpolated = 1, Extrapolated = 2 };
+/// measurements around it, by clamping to the nearest measured boundary, or (wholly or in
+/// part) from the fitted rough-surface model that fills directions without measurements
+/// (model_fill.h). From best to worst: measured, interpolated, modelled, extrapolated.
+enum class Provenance : std::uint8_t { Measured = 0, Interpolated = 1, Extrapolated = 2, Modelled = 3 };
 
 const char* provenanceName(Provenance p);
 
@@ -64,6 +68,7 @@ Point3 isotropicPoint(Direction light, Direction view);
 struct LightNode {
     std::string name;  ///< image it came from (merged duplicates: the first)
     Direction light;
+    bool modelled = false;  ///< filled from the fitted model (model_fill.h), not measured
 };
 
 struct ViewLayer {
@@ -74,7 +79,9 @@ struct ViewLayer {
     std::vector<float> nodeLuts;
     std::vector<std::uint16_t> gridLuts;  ///< gridSize^2 x nodeLength(), unorm16
     std::vector<Provenance> gridProvenance;  ///< gridSize^2; node (i, j) at j * gridSize + i
-    Triangulation lights;                 ///< over the nodes' disk points
+    Triangulation lights;                 ///< over the measured nodes' disk points (they come first)
+    Triangulation modelLights;            ///< over the modelled nodes' (index + measuredNodes); empty without
+    std::size_t measuredNodes = 0;
     bool lutsLoaded = true;               ///< false: read without its LUTs (BankReadOptions::views)
 };
 
@@ -105,6 +112,9 @@ struct LutBank {
     Direction referenceLight, referenceView;
     Image reference;  ///< without samples when the bank was written without it
     Ptm ptm;          ///< the baseline PTM of the reference view; empty unless baked with one
+    /// The model's parameters (JSON, docs/model-params.md) where nodes were filled from the
+    /// fitted model (LightNode::modelled); empty otherwise.
+    std::string modelFill;
     bool ptmInFile = false;  ///< read from a file holding a PTM (decoded or skipped)
 
     /// Banks that make their LUTs at run time (bake --references K > 1, --regions, --colour
@@ -153,7 +163,7 @@ struct LutBank {
     DiskPoint gridPoint(int i, int j) const;
 
     /// The share of the hemisphere of light directions (by solid angle) where lookups at a
-    /// layer's view interpolate rather than clamp.
+    /// layer's view interpolate between measurements, rather than clamp or use the model.
     double lightCoverage(std::size_t layer) const;
 
     /// The layers that lookups at a view direction use: those the view triangulation blends

@@ -187,7 +187,7 @@ private:
     const LutBank* m_bank = nullptr;  ///< quad 0's material, when visible
     LevelCounts m_referenceGrey;     ///< over the sample mask, when the dataset has one
     std::optional<Mask> m_mask;      ///< the dataset's sample mask (single-quad views)
-    std::vector<Direction> m_nodes;
+    std::vector<LightNode> m_nodes;
 
     Direction m_light = Direction::fromDegrees(45, 30);
     Orbit m_orbit;
@@ -222,7 +222,7 @@ Status Viewer::start() {
             if (!dataset->maskPath.empty()) m_mask = std::move(*mask);
         }
         m_referenceGrey = countGreyLevels(m_bank->reference, m_mask ? *m_mask : fullMask(m_bank->reference.width, m_bank->reference.height));
-        for (const LightNode& n : m_bank->layers[0].nodes) m_nodes.push_back(n.light);
+        m_nodes = m_bank->layers[0].nodes;
         m_coverage = m_bank->lightCoverage(0);
         m_haveImages = !paths.images.empty();
         m_havePtm = m_bank->ptmInFile;
@@ -353,7 +353,7 @@ bool Viewer::panel(int width, int height) {
                 1000.0 / static_cast<double>(std::max(ImGui::GetIO().Framerate, 1e-3f)), m_sceneMs);
 
     if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
-        changed |= hemisphereWidget("##hemisphere", m_light, m_input.singleQuad ? m_nodes : std::vector<Direction>{}, 200);
+        changed |= hemisphereWidget("##hemisphere", m_light, m_input.singleQuad ? m_nodes : std::vector<LightNode>{}, 200);
         float theta = static_cast<float>(m_light.thetaDegrees()), phi = static_cast<float>(m_light.phiDegrees());
         bool edited = ImGui::InputFloat("theta", &theta, 1, 5, "%.1f");
         edited |= ImGui::InputFloat("phi", &phi, 1, 15, "%.1f");
@@ -410,10 +410,14 @@ bool Viewer::panel(int width, int height) {
                          ImVec2(kPanelWidth - 20, 90));
     }
     if (m_bank && ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) {
-        std::size_t nodes = 0;
+        std::size_t nodes = 0, modelled = 0;
         double maxTheta = 0;
         for (const ViewLayer& l : m_bank->layers)
             for (const LightNode& n : l.nodes) {
+                if (n.modelled) {
+                    ++modelled;
+                    continue;
+                }
                 ++nodes;
                 maxTheta = std::max(maxTheta, n.light.thetaDegrees());
             }
@@ -428,7 +432,10 @@ bool Viewer::panel(int width, int height) {
         }
         ImGui::Text("%zu view layer(s), %zu lights (theta <= %.0f)", m_bank->layers.size(), nodes, maxTheta);
         ImGui::Text("%.0f%% of light directions inside the measured", 100 * m_coverage);
-        ImGui::Text("hull (interpolated; outside: clamped)");
+        if (modelled > 0)
+            ImGui::Text("hull (interpolated; outside: the model, %zu nodes)", modelled);
+        else
+            ImGui::Text("hull (interpolated; outside: clamped)");
         ImGui::Text("here: %s", m_provenance.c_str());
         ImGui::Text("PTM: %s, measured images: %s", m_havePtm ? "yes" : "no", m_haveImages ? "yes" : "no");
         if (m_input.modelParameters.is_object()) {

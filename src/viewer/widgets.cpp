@@ -25,7 +25,7 @@ Direction directionOfDisk(double x, double y) {
 
 }  // namespace
 
-bool hemisphereWidget(const char* id, Direction& light, const std::vector<Direction>& nodes, float size) {
+bool hemisphereWidget(const char* id, Direction& light, const std::vector<LightNode>& nodes, float size) {
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     ImGui::InvisibleButton(id, ImVec2(size, size));
     const float radius = size * 0.5f - 4;
@@ -39,7 +39,12 @@ bool hemisphereWidget(const char* id, Direction& light, const std::vector<Direct
     draw->AddCircle(centre, radius, IM_COL32(140, 146, 156, 255), 64, 1.5f);
     draw->AddLine(ImVec2(centre.x - radius, centre.y), ImVec2(centre.x + radius, centre.y), IM_COL32(80, 86, 96, 255));
     draw->AddLine(ImVec2(centre.x, centre.y - radius), ImVec2(centre.x, centre.y + radius), IM_COL32(80, 86, 96, 255));
-    for (const Direction& n : nodes) draw->AddCircleFilled(toScreen(diskOf(n)), 2.5f, IM_COL32(120, 180, 255, 255));
+    for (const LightNode& n : nodes) {  // measured: filled blue; filled from the model: hollow grey
+        if (n.modelled)
+            draw->AddCircle(toScreen(diskOf(n.light)), 2.5f, IM_COL32(150, 150, 150, 255));
+        else
+            draw->AddCircleFilled(toScreen(diskOf(n.light)), 2.5f, IM_COL32(120, 180, 255, 255));
+    }
     const ImVec2 marker = toScreen(diskOf(light));
     draw->AddCircleFilled(marker, 6, IM_COL32(255, 210, 60, 255));
     draw->AddCircle(marker, 6, IM_COL32(20, 20, 20, 255));

@@ -5,7 +5,8 @@
 
 #include "cli/cli.h"
 #include "core/bank_file.h"
-#include "core/physics/model_bank.h"
+#include "core/physics/fit.h"
+#include "core/physics/model_fill.h"
 
 namespace btflut::cli {
 
@@ -27,6 +28,9 @@ struct BakeCommandOptions {
     int quantiles = 1024;
     std::string labels;
     std::string predictor = "references";
+    std::string fill = "clamp";
+    std::string params;
+    std::string fitBrdf = "lambert";
     int threads = 0;
     bool noReference = false;
     bool ptm = false;
@@ -63,6 +67,29 @@ Status runModelBake(const BakeCommandOptions& o) {
     return success();
 }
 
+// --fill model: the fitted model's LUTs where the measured lights do not reach; fits the
+// dataset's histograms first when no parameters file is given.
+Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, LutBank& bank) {
+    std::optional<ModelBankParams> params;
+    if (!o.params.empty()) {
+        Result<Bytes> text = readFile(o.params);
+        if (!text) return Error{text.error()};
+        Result<ModelBankParams> parsed = parseModelParams(std::string(text->begin(), text->end()), o.params);
+        if (!parsed) return Error{parsed.error()};
+        params = *parsed;
+    }
+    Result<FitBrdf> brdf = parseFitBrdf(o.fitBrdf);
+    if (!brdf) return Error{"--fit-" + brdf.error()};
+    Result<ModelFillReport> report = fillFromDataset(bank, dataset, params ? &*params : nullptr, *brdf);
+    if (!report) return Error{report.error()};
+    if (o.quiet) return success();
+    if (report->fit)
+        std::cout << "fitted " << fitBrdfName(*brdf) << ": r " << report->fit->model.roughness << ", gain "
+                  << report->fit->model.gain << ", residual " << report->fit->rms << "\n";
+    std::cout << "filled " << report->nodes << " directions from the model\n";
+    return success();
+}
+
 Status runBake(const BakeCommandOptions& o) {
     if (Status s = requireExtension(o.output, {"btflut"}, "output"); !s) return s;
     // A view layer's grid alone must fit a chunk of the file (4 GiB): refused before any work.
@@ -72,7 +99,12 @@ Status runBake(const BakeCommandOptions& o) {
         return Error{"--grid " + std::to_string(o.grid) + " with --entries " + std::to_string(o.entries) +
                      " makes a grid of " + std::to_string(gridBytes) +
                      " bytes per view, over the .btflut format's 4 GiB chunk limit"};
-    if (!o.model.empty()) return runModelBake(o);
+    if (o.fill != "model" && (!o.params.empty() || o.fitBrdf != "lambert"))
+        return Error{"--params and --fit-brdf go with --fill model"};
+    if (!o.model.empty()) {
+        if (o.fill == "model") return Error{"--fill model fills a measured bank; a --model bake is all model already"};
+        return runModelBake(o);
+    }
     if (o.dataset.empty()) return Error{"give a DATASET to bake, or --model PARAMS.json with --reference IMAGE"};
     Result<Dataset> dataset = openDatasetWithMask(o.dataset, o.mask);
     if (!dataset) return Error{dataset.error()};
@@ -96,10 +128,13 @@ Status runBake(const BakeCommandOptions& o) {
     if (!o.quiet) options.progress = terminalProgress("baking");
     Result<LutBank> bank = bakeBank(*dataset, options);
     if (!bank) return Error{bank.error()};
+    if (o.fill == "model")
+        if (Status s = fillFromFittedModel(o, *dataset, *bank); !s) return s;
     if (Status s = saveBank(*bank, o.output, {.embedReference = !o.noReference}); !s) return s;
     if (!o.quiet) {
         std::size_t nodes = 0;
-        for (const ViewLayer& l : bank->layers) nodes += l.nodes.size();
+        for (const ViewLayer& l : bank->layers)
+            for (const LightNode& n : l.nodes) nodes += !n.modelled;
         std::cout << "wrote " << o.output << ": " << dataset->images.size() << " images, "
                   << bank->layers.size() << " view layer(s), " << nodes << " measured nodes, "
                   << bank->gridSize << "x" << bank->gridSize << " grid, " << bank->entries
@@ -176,6 +211,16 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
                     "with light and view moving together, as CUReT), or auto: layers when every view's "
                     "lights span the light disk (or there is one view), isotropic otherwise")
         ->check(CLI::IsMember({"auto", "layers", "isotropic"}))
+        ->capture_default_str();
+    app->add_option("--fill", o->fill,
+                    "light directions the measured lights do not enclose: clamp (to the nearest measured boundary) or "
+                    "model (the fitted rough-surface model's LUTs there, marked as modelled in the bank; paper 6.5)")
+        ->check(CLI::IsMember({"clamp", "model"}))
+        ->capture_default_str();
+    app->add_option("--params", o->params,
+                    "with --fill model: the model's PARAMS.json (btflut fit writes it); without it the dataset is fitted "
+                    "first");
+    app->add_option("--fit-brdf", o->fitBrdf, "with --fill model and no --params: the BRDF to fit (lambert, ts, mix)")
         ->capture_default_str();
     app->add_option("--threads", o->threads,
                     "worker threads (0 = all cores); images are decoded one per thread, so memory is "

@@ -18,6 +18,7 @@
 #include "core/evaluation.h"
 #include "core/json_text.h"
 #include "core/metrics.h"
+#include "core/physics/model_fill.h"
 #include "core/plot.h"
 #include "core/relighter.h"
 #include "gl/context.h"
@@ -42,6 +43,7 @@ struct EvalOptions {
     std::string regions = "1";
     std::string colours = "grey";
     std::string predictors = "references";
+    std::string fills = "clamp";
     std::string mask;
     std::string backend = "auto";
     bool blendedLuts = false;
@@ -58,9 +60,11 @@ struct Variant {
     RenderMode mode = RenderMode::Lut;
     int references = 1, regions = 1;  // references 0: the PTM predictor
     ColourMode colour = ColourMode::Grey;
+    bool filled = false;       // bake --fill model (fitted to the training images)
     bool blendedLuts = false;  // the alternative: per-reference LUTs blended
-    bool base() const { return references == 1 && regions == 1 && colour == ColourMode::Grey; }
-    std::tuple<int, int, ColourMode> setting() const { return {references, regions, colour}; }
+    bool base() const { return references == 1 && regions == 1 && colour == ColourMode::Grey && !filled; }
+    using Setting = std::tuple<int, int, ColourMode, bool>;
+    Setting setting() const { return {references, regions, colour, filled}; }
 
     std::vector<ImageErrors> errors;
     std::vector<std::string> images;
@@ -132,6 +136,21 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
                 }
         }
     }
+    // Each lut bank clamped, filled from the model, or both.
+    std::vector<std::string> fills = split(o.fills);
+    if (fills.empty()) return Error{"--fill is empty"};
+    for (const std::string& fill : fills)
+        if (fill != "clamp" && fill != "model") return Error{"--fill '" + fill + "' is not clamp or model"};
+    std::vector<Variant> all;
+    for (const Variant& v : variants)
+        for (const std::string& fill : fills) {
+            if (v.mode != RenderMode::Lut && fill != fills.front()) continue;
+            Variant f = v;
+            f.filled = v.mode == RenderMode::Lut && fill == "model";
+            if (v.mode == RenderMode::Lut && fills.size() > 1) f.name += fill == "model" ? " fill" : " clamp";
+            all.push_back(f);
+        }
+    variants = std::move(all);
     // Lut variants first, then the baselines in the order asked.
     std::stable_partition(variants.begin(), variants.end(), [](const Variant& v) { return v.mode == RenderMode::Lut; });
     return variants;
@@ -201,7 +220,7 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         text += line;
         auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
         json["modes"].push_back({{"name", v.name}, {"mode", renderModeName(v.mode)}, {"references", v.references},
-                                 {"regions", v.regions}, {"colour", colourName(v.colour)}, {"luts_blended", v.blendedLuts},
+                                 {"regions", v.regions}, {"colour", colourName(v.colour)}, {"luts_blended", v.blendedLuts}, {"fill", v.filled ? "model" : "clamp"},
                                  {"l1", number(l1)}, {"emd", number(emd)}, {"psnr", number(psnr)}, {"ssim", number(ssim)},
                                  {"bytes_per_texel", v.bytesPerTexel}, {"gpu_bytes_per_texel", number(v.gpuBytesPerTexel)},
                                  {"bake_seconds", number(bake)}, {"relight_ms", number(relight)},
@@ -326,16 +345,18 @@ Status runEval(const EvalOptions& o) {
         const Fold& fold = (*folds)[f];
         const Dataset train = subset(*dataset, fold.train);
         // Banks per setting; the base (one grey reference) also serves brdf and ptm.
-        std::map<std::tuple<int, int, ColourMode>, std::unique_ptr<LutBank>> banks;
-        std::map<std::tuple<int, int, ColourMode>, std::unique_ptr<Relighter>> relighters;
+        std::map<Variant::Setting, std::unique_ptr<LutBank>> banks;
+        std::map<Variant::Setting, std::unique_ptr<Relighter>> relighters;
         auto bankFor = [&](Variant& v) -> Result<LutBank*> {
-            const auto key = v.mode == RenderMode::Lut ? v.setting() : std::tuple{1, 1, ColourMode::Grey};
+            const auto key = v.mode == RenderMode::Lut ? v.setting() : Variant::Setting{1, 1, ColourMode::Grey, false};
             if (!banks.count(key)) {
                 Variant setting = v;
-                std::tie(setting.references, setting.regions, setting.colour) = key;
+                std::tie(setting.references, setting.regions, setting.colour, setting.filled) = key;
                 const auto start = Clock::now();
                 Result<LutBank> bank = bakeBank(train, bakeOptionsOf(setting, o, ptm && setting.base()));
                 if (!bank) return Error{bank.error()};
+                if (setting.filled)  // fitted to the training images only
+                    if (Result<ModelFillReport> fill = fillFromDataset(*bank, train, nullptr); !fill) return Error{fill.error()};
                 const double took = seconds(start);
                 banks[key] = std::make_unique<LutBank>(std::move(*bank));
                 relighters[key] = std::make_unique<Relighter>(*banks[key]);
@@ -454,6 +475,10 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
         ->capture_default_str();
     app->add_flag("--blended-luts", o->blendedLuts,
                   "also the alternative to blend-then-match: each reference matched alone, the results blended");
+    app->add_option("--fill", o->fills,
+                    "lut: clamp, model (bake --fill model, the model fitted to the training images), or both: "
+                    "clamp,model")
+        ->capture_default_str();
     app->add_option("--mask", o->mask, "sample mask instead of the dataset's own");
     app->add_option("--grid", o->grid, "banks' grid size")->check(CLI::Range(2, 257))->capture_default_str();
     app->add_option("--frames", o->frames, "GL frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();

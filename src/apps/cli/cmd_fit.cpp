@@ -34,20 +34,9 @@ Result<std::vector<HistogramRow>> readHistograms(const FitCommandOptions& o) {
 }
 
 // The parameters file `bake --model` reads (docs/model-params.md), with the fit's report under
-// "fit". The smoothing is fitted in the histograms' bins; the file's "smooth" is in the bins
-// the bank is simulated at (1024 by default), so it is rescaled.
-nlohmann::json paramsJson(const SurfaceFit& fit, FitBrdf brdf, const std::vector<HistogramRow>& rows,
-                          const std::string& input) {
-    const auto bins = static_cast<double>(rows.front().bins.size());
-    const ModelBankParams defaults;
-    nlohmann::json out{{"brdf", fitBrdfName(brdf)},
-                       {"roughness", fit.model.roughness},
-                       {"kd", fit.model.brdf.kd},
-                       {"ks", fit.model.brdf.ks},
-                       {"sigma", fit.model.brdf.sigma},
-                       {"ior", fit.model.brdf.ior},
-                       {"gain", fit.model.gain},
-                       {"smooth", fit.smoothing * defaults.simulation.bins / bins}};
+// "fit".
+nlohmann::json paramsJson(const SurfaceFit& fit, const std::vector<HistogramRow>& rows, const std::string& input) {
+    nlohmann::json out = nlohmann::json::parse(modelParamsText(fittedModelParams(fit, rows.front().bins.size())));
     nlohmann::json report{{"histograms", input},       {"bins", rows.front().bins.size()}, {"rms", fit.rms},
                           {"iterations", fit.iterations}, {"seconds", fit.seconds},          {"parameters", nlohmann::json::array()},
                           {"residuals", nlohmann::json::array()}};
@@ -76,7 +65,7 @@ Status runFit(const FitCommandOptions& o) {
     Result<SurfaceFit> fit = fitSurfaceModel(*rows, *brdf);
     if (!fit) return Error{o.input + ": " + fit.error()};
 
-    const std::string json = jsonText(paramsJson(*fit, *brdf, *rows, o.input));
+    const std::string json = jsonText(paramsJson(*fit, *rows, o.input));
     std::vector<FileContents> files{{o.output, json.data(), json.size()}};
     Bytes plot;
     if (!o.plot.empty()) {

@@ -30,45 +30,7 @@ Status runHist(const HistOptions& o) {
 Result<std::vector<HistogramRow>> datasetHistograms(const std::string& path, const std::string& maskPath, int bins, bool rgb) {
     Result<Dataset> dataset = openDatasetWithMask(path, maskPath);
     if (!dataset) return Error{dataset.error()};
-    const std::size_t perImage = rgb ? 3 : 1;
-
-    // The first image fixes the size and the mask; the rest are decoded in parallel.
-    const DatasetImage& first = dataset->images.front();
-    Result<Image> firstImage = loadImage(first.path);
-    if (!firstImage) return Error{firstImage.error()};
-    Result<Mask> mask = loadDatasetMask(*dataset, firstImage->width, firstImage->height);
-    if (!mask) return Error{mask.error()};
-
-    std::vector<HistogramRow> rows(dataset->images.size() * perImage);
-    std::vector<std::string> errors(dataset->images.size());
-    parallelFor(dataset->images.size(), 0, [&](std::size_t i) {
-        const DatasetImage& info = dataset->images[i];
-        Result<Image> image = i == 0 ? Result<Image>(*firstImage) : loadImage(info.path);
-        if (!image) {
-            errors[i] = image.error();
-            return;
-        }
-        Status size = requireSameSize(*image, info.path, firstImage->width, firstImage->height,
-                                      first.path);
-        if (!size) {
-            errors[i] = size.error();
-            return;
-        }
-        if (rgb && image->channels != 3) {
-            errors[i] = info.path + ": --channels rgb needs colour images, this one is grey";
-            return;
-        }
-        static const char* const suffix[] = {":R", ":G", ":B"};
-        for (std::size_t c = 0; c < perImage; ++c) {
-            LevelCounts levels = rgb ? countChannelLevels(*image, *mask, static_cast<int>(c))
-                                     : countGreyLevels(*image, *mask);
-            rows[i * perImage + c] = {rgb ? info.name + suffix[c] : info.name, info.light,
-                                      info.view, binHistogram(levels, bins)};
-        }
-    });
-    for (const std::string& e : errors)
-        if (!e.empty()) return Error{e};
-    return rows;
+    return histogramsOf(*dataset, bins, rgb);
 }
 
 void addHistCommand(CLI::App& root, Commands& commands) {

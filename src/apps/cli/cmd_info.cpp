@@ -58,6 +58,8 @@ Status runInfo(const InfoOptions& o) {
     if (!b.ptm.empty())
         std::cout << "  ptm: " << b.ptm.width << "x" << b.ptm.height << ", 6 coefficients + RGB albedo per texel ("
                   << b.ptm.coefficients.size() + b.ptm.albedo.size() << " bytes)\n";
+    if (!b.modelFill.empty())
+        std::cout << "  model:     directions without measurements filled from " << b.modelFill << "\n";
     std::cout << "  grid:      " << b.gridSize << "x" << b.gridSize
               << " nodes per view layer over the equal-area light disk\n"
               << "  layers:    " << b.layers.size() << " view direction(s)\n"
@@ -66,7 +68,7 @@ Status runInfo(const InfoOptions& o) {
                                                  : " (over theta_i, theta_r and phi_i - phi_r: an isotropic material)\n");
     for (std::size_t l = 0; l < b.layers.size(); ++l) {
         const ViewLayer& layer = b.layers[l];
-        std::size_t counts[3] = {0, 0, 0};
+        std::size_t counts[4] = {0, 0, 0, 0}, modelled = 0;
         for (int j = 0; j < b.gridSize; ++j)
             for (int i = 0; i < b.gridSize; ++i) {
                 DiskPoint p = b.gridPoint(i, j);
@@ -74,16 +76,20 @@ Status runInfo(const InfoOptions& o) {
                 ++counts[static_cast<int>(layer.gridProvenance[static_cast<std::size_t>(j) * b.gridSize + i])];
             }
         double maxTheta = 0;
-        for (const LightNode& n : layer.nodes) maxTheta = std::max(maxTheta, n.light.thetaDegrees());
+        for (const LightNode& n : layer.nodes) {
+            modelled += n.modelled;
+            if (!n.modelled) maxTheta = std::max(maxTheta, n.light.thetaDegrees());
+        }
         // The share of light directions (by solid angle) where lookups interpolate; a grid
         // too coarse to have nodes inside the hemisphere (--grid 2) still has a coverage.
-        char line[320];
+        char line[400];
         std::snprintf(line, sizeof line,
-                      "  layer %zu: view %s, %zu light nodes (theta up to %.1f), grid nodes in the "
-                      "hemisphere: %zu measured, %zu interpolated, %zu extrapolated; %.0f%% of light "
-                      "directions covered\n",
-                      l, degrees(layer.view).c_str(), layer.nodes.size(), maxTheta, counts[0], counts[1],
-                      counts[2], 100.0 * b.lightCoverage(l));
+                      "  layer %zu: view %s, %zu light nodes (theta up to %.1f)%s, grid nodes in the "
+                      "hemisphere: %zu measured, %zu interpolated, %zu modelled, %zu extrapolated; %.0f%% of light "
+                      "directions covered by measurements%s\n",
+                      l, degrees(layer.view).c_str(), layer.nodes.size() - modelled, maxTheta,
+                      modelled ? (" + " + std::to_string(modelled) + " modelled").c_str() : "", counts[0], counts[1],
+                      counts[3], counts[2], 100.0 * b.lightCoverage(l), modelled ? ", the rest modelled" : "");
         std::cout << line;
     }
     return success();

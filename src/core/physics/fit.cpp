@@ -202,6 +202,13 @@ Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, Fi
     return fit;
 }
 
+ModelBankParams fittedModelParams(const SurfaceFit& fit, std::size_t bins) {
+    ModelBankParams params;
+    params.model = fit.model;
+    params.simulation.smooth = fit.smoothing * params.simulation.bins / static_cast<double>(bins);
+    return params;
+}
+
 std::vector<double> fittedHistogram(const SurfaceFit& fit, const HistogramRow& row) {
     return simulated(fit.model, fit.smoothing, row, fit.nodes);
 }

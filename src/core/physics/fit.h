@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/histogram.h"
+#include "core/physics/model_bank.h"
 #include "core/physics/simulate.h"
 
 namespace btflut {
@@ -58,6 +59,10 @@ struct FitOptions {
 /// Fits the model; errors: fewer directions than parameters, histograms of different bin
 /// counts, directions below the horizon, a fit that does not converge.
 Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, FitBrdf brdf, const FitOptions& options = {});
+
+/// The fitted model as bank parameters (bake --model, --fill model): the smoothing, fitted
+/// in the histograms' `bins`, rescaled to the bins the bank is simulated at.
+ModelBankParams fittedModelParams(const SurfaceFit& fit, std::size_t bins);
 
 /// The fitted model's histogram for one row's directions, as the fit compared it.
 std::vector<double> fittedHistogram(const SurfaceFit& fit, const HistogramRow& row);

@@ -83,6 +83,20 @@ Result<ModelBankParams> parseModelParams(const std::string& text, const std::str
     return p;
 }
 
+std::string modelParamsText(const ModelBankParams& params) {
+    const LocalBrdf& b = params.model.brdf;
+    const char* brdf = b.ks == 0 ? "lambert" : b.kd == 0 ? "ts" : "mix";
+    return jsonText(nlohmann::json{{"brdf", brdf},
+                                   {"roughness", params.model.roughness},
+                                   {"kd", b.kd},
+                                   {"ks", b.ks},
+                                   {"sigma", b.sigma},
+                                   {"ior", b.ior},
+                                   {"gain", params.model.gain},
+                                   {"smooth", params.simulation.smooth}},
+                    -1);
+}
+
 Result<LutBank> bakeModelBank(const ModelBankParams& params, const Image& reference, const Mask& mask,
                               const ModelReference& about) {
     LevelCounts refLevels = countGreyLevels(reference, mask);

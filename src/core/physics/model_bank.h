@@ -26,6 +26,10 @@ struct ModelBankParams {
 /// Parses a model parameters file (JSON); errors name the file and the field.
 Result<ModelBankParams> parseModelParams(const std::string& text, const std::string& file);
 
+/// The model part of a parameters file (brdf, roughness, kd, ks, sigma, ior, gain, smooth),
+/// as JSON text that parseModelParams reads back.
+std::string modelParamsText(const ModelBankParams& params);
+
 struct ModelReference {
     std::string name;
     Direction light;  ///< the light the reference image was taken under

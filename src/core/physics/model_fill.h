@@ -1,0 +1,41 @@
+#pragma once
+// Directions without measurements, filled from the fitted rough-surface model (paper
+// section 6.5, last paragraph) instead of clamped to the measured boundary.
+//
+//   Result<ModelBankParams> params = ...;                 // btflut fit's output
+//   Result<ModelFillReport> r = fillFromModel(bank, *params, mask);
+//
+// In every view layer, the grid nodes inside the light disk that the measured lights do not
+// enclose, their neighbours, and a ring of directions at the horizon become nodes of the bank
+// marked `modelled`: each LUT gives the reference the model's histogram at that light (and
+// the layer's view). Lookups inside the measured hull use the measurements alone; beyond it
+// they move from the measurements clamped to the hull to the model over one grid step, and
+// say "modelled".
+
+#include <optional>
+
+#include "core/lut_bank.h"
+#include "core/physics/fit.h"
+#include "core/physics/model_bank.h"
+
+namespace btflut {
+
+struct ModelFillReport {
+    std::size_t nodes = 0;  ///< modelled nodes added over every layer
+    std::optional<SurfaceFit> fit;  ///< fillFromDataset without parameters: the fit
+};
+
+/// Fills `bank` (domain layers; grey, or blending references in one region) from the model,
+/// then rebuilds its triangulations and grids. `mask` holds the sample pixels of the
+/// reference (the statistics a LUT matches). `description` (the model's parameters as JSON)
+/// is kept in the bank. Errors: a domain or colour the model cannot fill, a constant
+/// reference, a bank that already has modelled nodes.
+Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& params, const Mask& mask,
+                                      const std::string& description);
+
+/// fillFromModel for a bank baked from `dataset`: with `params` null, the model is first
+/// fitted (`brdf`) to the dataset's 64-bin histograms; the mask is the bank's or the dataset's.
+Result<ModelFillReport> fillFromDataset(LutBank& bank, const Dataset& dataset, const ModelBankParams* params,
+                                        FitBrdf brdf = FitBrdf::Lambert);
+
+}  // namespace btflut
