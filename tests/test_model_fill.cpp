@@ -135,10 +135,10 @@ TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured 
     CHECK_FALSE(fs::exists(out));
     LutBank rgb = *clamped;
     rgb.colour = ColourMode::Rgb;
-    Result<ModelFillReport> refused = fillFromModel(rgb, {}, fullMask(128, 128), "{}");
+    Result<ModelFillReport> refused = fillFromModel(rgb, {}, "{}");
     REQUIRE_FALSE(refused.ok());
     CHECK(refused.error().find("--colour grey or lrgb") != std::string::npos);
-    Result<ModelFillReport> twice = fillFromModel(*filled, {}, fullMask(128, 128), "{}");
+    Result<ModelFillReport> twice = fillFromModel(*filled, {}, "{}");
     REQUIRE_FALSE(twice.ok());
     CHECK(twice.error().find("already holds modelled nodes") != std::string::npos);
 }

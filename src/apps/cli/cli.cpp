@@ -22,6 +22,19 @@ Status requireExtension(const std::string& path, const std::vector<std::string>&
     return Error{path + ": " + what + " must be a " + list + " file"};
 }
 
+Result<SampleImage> loadSampleImage(const std::string& path, const std::string& maskPath) {
+    Result<Image> image = loadImage(path);
+    if (!image) return Error{image.error()};
+    Mask mask = fullMask(image->width, image->height);
+    if (!maskPath.empty()) {
+        Result<Mask> loaded = loadMask(maskPath, image->width, image->height);
+        if (!loaded) return Error{loaded.error()};
+        mask = std::move(*loaded);
+    }
+    if (mask.count() == 0) return Error{(maskPath.empty() ? path : maskPath) + ": the image has no sample pixels (the mask is empty)"};
+    return SampleImage{std::move(*image), std::move(mask)};
+}
+
 Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::string& light, const std::string& view) {
     Result<Direction> l = parseDirection(light, "--light");
     if (!l) return Error{l.error()};
@@ -124,6 +137,8 @@ int run(const std::vector<std::string>& args) {
     Commands commands;
     addHistCommand(root, commands);
     addFitCommand(root, commands);
+    addOrientCommand(root, commands);
+    addClassifyCommand(root, commands);
     addBakeCommand(root, commands);
     addRelightCommand(root, commands);
     addInfoCommand(root, commands);

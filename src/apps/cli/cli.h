@@ -37,6 +37,8 @@ void addRenderCommand(CLI::App& root, Commands& commands);
 void addBenchCommand(CLI::App& root, Commands& commands);
 void addViewCommand(CLI::App& root, Commands& commands);
 void addEvalCommand(CLI::App& root, Commands& commands);
+void addOrientCommand(CLI::App& root, Commands& commands);
+void addClassifyCommand(CLI::App& root, Commands& commands);
 
 /// Runs btflut with arguments (without the program name); returns the exit status.
 int run(const std::vector<std::string>& args);
@@ -47,6 +49,14 @@ int run(const std::vector<std::string>& args);
 /// The masked, normalised grey histogram of every image of a dataset (`btflut hist`), or
 /// three per image (R, G, B) with `rgb`; `mask` overrides the dataset's own when not empty.
 Result<std::vector<HistogramRow>> datasetHistograms(const std::string& dataset, const std::string& mask, int bins, bool rgb);
+
+/// An image and the mask of its sample pixels (`maskPath`, or every pixel when empty);
+/// refuses a mask without sample pixels.
+struct SampleImage {
+    Image image;
+    Mask mask;
+};
+Result<SampleImage> loadSampleImage(const std::string& path, const std::string& maskPath);
 
 Status requireExtension(const std::string& path, const std::vector<std::string>& extensions,
                         const std::string& what);

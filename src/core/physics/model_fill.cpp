@@ -39,9 +39,20 @@ std::vector<Direction> unmeasuredLights(const LutBank& bank, const ViewLayer& la
     return lights;
 }
 
+constexpr int kTransportEntries = 4096;
+
+// The model's histogram as masses per code: bin b covers [b, b + 1) / bins, the cell of code
+// b + 1 on a bins + 1 code scale.
+std::vector<double> modelMass(const SurfaceModel& model, Direction light, Direction view, const SimulationOptions& options) {
+    const std::vector<double> histogram = simulateHistogram(model, light, view, options);
+    std::vector<double> mass(histogram.size() + 1, 0.0);
+    std::copy(histogram.begin(), histogram.end(), mass.begin() + 1);
+    return mass;
+}
+
 }  // namespace
 
-Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& params, const Mask& mask,
+Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& params,
                                       const std::string& description) {
     if (bank.domain != BankDomain::Layers)
         return Error{"--fill model fills each view's light disk; this bank interpolates in the isotropic domain "
@@ -53,10 +64,6 @@ Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& para
     for (const ViewLayer& layer : bank.layers)
         for (const LightNode& node : layer.nodes)
             if (node.modelled) return Error{"the bank already holds modelled nodes"};
-    const LevelCounts refLevels = countGreyLevels(bank.reference, mask);
-    if (refLevels.presentCodes() < 2)
-        return Error{bank.referenceName + ": reference image is constant over the sample"};
-    const std::vector<double> refMass(refLevels.counts.begin(), refLevels.counts.end());
     const std::size_t length = bank.nodeLength();
 
     ModelFillReport report;
@@ -70,13 +77,22 @@ Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& para
         });
         std::vector<float> values(lights.size() * length);
         parallelFor(lights.size(), 0, [&](std::size_t i) {
-            const std::vector<double> histogram = simulateHistogram(params.model, lights[i], layer.view, simulation);
-            // Bin b covers [b, b + 1) / bins: the cell of code b + 1 on a bins + 1 code scale.
-            std::vector<double> target(histogram.size() + 1, 0.0);
-            std::copy(histogram.begin(), histogram.end(), target.begin() + 1);
-            const std::vector<float> node = bank.makesLuts() ? quantileFunction(target, bank.blend.quantiles)
-                                                             : matchLut(refMass, target, bank.entries).values;
-            std::copy(node.begin(), node.end(), values.begin() + static_cast<std::ptrdiff_t>(i * length));
+            // The measurements where the light leaves their hull (or at the light, inside
+            // it), carried on by the model's change from there: the transport that takes the
+            // model's distribution at that point to its distribution at the light.
+            const Weights w = layer.lights.weightsAt(toDisk(lights[i]));
+            DiskPoint anchor{0, 0};
+            std::vector<double> measured(length, 0.0);
+            for (int k = 0; k < w.count; ++k) {
+                const auto node = static_cast<std::size_t>(w.index[k]);
+                const DiskPoint p = layer.lights.points()[node];
+                anchor = {anchor.x + w.weight[k] * p.x, anchor.y + w.weight[k] * p.y};
+                for (std::size_t e = 0; e < length; ++e) measured[e] += w.weight[k] * layer.nodeLuts[node * length + e];
+            }
+            const Lut transport = matchLut(modelMass(params.model, fromDisk(anchor), layer.view, simulation),
+                                           modelMass(params.model, lights[i], layer.view, simulation), kTransportEntries);
+            for (std::size_t e = 0; e < length; ++e)
+                values[i * length + e] = transport.apply(static_cast<float>(measured[e]));
         });
         for (const Direction& light : lights) {
             char name[48];
@@ -106,13 +122,7 @@ Result<ModelFillReport> fillFromDataset(LutBank& bank, const Dataset& dataset, c
         fitted = fittedModelParams(*fit, kBins);
         params = &fitted;
     }
-    Mask mask = bank.blend.mask;
-    if (!bank.makesLuts()) {
-        Result<Mask> loaded = loadDatasetMask(dataset, bank.reference.width, bank.reference.height);
-        if (!loaded) return Error{loaded.error()};
-        mask = std::move(*loaded);
-    }
-    Result<ModelFillReport> report = fillFromModel(bank, *params, mask, modelParamsText(*params));
+    Result<ModelFillReport> report = fillFromModel(bank, *params, modelParamsText(*params));
     if (!report) return Error{dataset.source + ": " + report.error()};
     report->fit = std::move(fit);
     return report;
