@@ -84,6 +84,23 @@ TEST_CASE("orient: the tilt of rendered height fields within 5 degrees up to 60,
     CHECK(std::abs(orient(image, material, "--view", "0,0")["candidates"][0]["normal"]["theta"].get<double>() - 40) <= 5);
 }
 
+TEST_CASE("orient: a bank with view directions as the material (light and camera together, 0 to 75 degrees)") {
+    TempDir dir;
+    std::string pairs;
+    for (int t = 0; t < 80; t += 5) pairs += (pairs.empty() ? "" : ";") + std::to_string(t) + ",0," + std::to_string(t) + ",0";
+    REQUIRE(runCli({"synth", "--roughness", "0.4", "--size", "256", "--samples", "1", "--correlation-length", "8",
+                    "--geometry", pairs, "-q", "-o", dir / "coaxial"})
+                .status == 0);
+    REQUIRE(runCli({"bake", dir / "coaxial", "-o", dir / "coaxial.btflut", "-q"}).status == 0);
+    for (double tilt : {30.0, 50.0}) {
+        const std::string image = render(dir, "b" + std::to_string(static_cast<int>(tilt)),
+                                         tiltedGeometry(Direction::fromDegrees(0, 0), tilt, 250));
+        const double estimate = orient(image, dir / "coaxial.btflut", "--light", "0,0")["candidates"][0]["normal"]["theta"];
+        MESSAGE("bank: tilt " << tilt << " estimated " << estimate);
+        CHECK(std::abs(estimate - tilt) <= 5);
+    }
+}
+
 TEST_CASE("orient: with the light off the camera the histogram is ambiguous; the truth is among the candidates") {
     TempDir dir;
     const std::string material = fittedMaterial(dir);
