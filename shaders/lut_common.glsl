@@ -1,18 +1,7 @@
-// LUT application shared by btflut's fragment shaders: the GLSL twin of src/core/lut.h
-// (ditherOffset, lutInput, lutOutput) and of applyLuts' grey mode in src/core/lut_bank.cpp.
-// It must stay bit-for-bit equal to the C++ hash, so CPU relighting and GPU rendering agree.
+// LUT application shared by btflut's fragment shaders (after btflut.glsl, whose dither hash
+// and grey step they use): the GLSL twin of src/core/lut.h (lutInput, lutOutput) and of
+// applyLuts in src/core/lut_bank.cpp, bit for bit, so CPU relighting and GPU rendering agree.
 // (Compiled and tested against `btflut relight` by the renderer, issue 5.)
-
-// Uniform in [-1/2, 1/2) for pixel (x, y) and channel c.
-float btflutDitherOffset(uint x, uint y, uint c) {
-    uint h = x * 0x8da6b343u ^ y * 0xd8163841u ^ c * 0xcb1ab31fu;
-    h ^= h >> 16;
-    h *= 0x7feb352du;
-    h ^= h >> 15;
-    h *= 0x846ca68bu;
-    h ^= h >> 16;
-    return float(h >> 8) * (1.0 / 16777216.0) - 0.5;
-}
 
 // The LUT (a 1D texture of `entries` texels, linear filtering) at v in [0, 1]. textureLod: a
 // LUT has no mipmaps, so the fetch needs no derivatives.
@@ -28,18 +17,6 @@ float btflutApplyLutDithered(sampler1D lut, int entries, float v, uvec2 pixel, u
     float moved = v + (btflutDitherOffset(pixel.x, pixel.y, channel) - 0.5) * inCode;
     float value = btflutApplyLut(lut, entries, moved);
     return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
-}
-
-// Grey mode: the pixel's grey (mean of R, G, B) becomes `target`; its colour is scaled, and
-// desaturated towards grey where a channel would exceed 1, so the grey stays `target`.
-// Scaling gives target + (rgb - grey) * target / grey; desaturating so the top channel is 1
-// gives target + (rgb - grey) * (1 - target) / (top - grey); the smaller factor is the one
-// that applies, so no branch is needed (the same values as applyLuts in src/core/lut_bank.cpp).
-vec3 btflutSetGrey(vec3 rgb, float target) {
-    float grey = (rgb.r + rgb.g + rgb.b) * (1.0 / 3.0);
-    float top = max(rgb.r, max(rgb.g, rgb.b));
-    float factor = min(target / max(grey, 1e-20), (1.0 - target) / max(top - grey, 1e-20));
-    return vec3(target) + (rgb - vec3(grey)) * factor;
 }
 
 // Banks that blend references (src/core/relighter.h; defines BLEND, BLEND_PACKED for lrgb,

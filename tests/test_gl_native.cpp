@@ -102,7 +102,8 @@ TEST_SUITE("gl") {
         REQUIRE(context.ok());
         const std::string broken = "out vec4 colour;\nvoid main() {\n    colour = vec4(undefinedThing);\n}\n";
         auto program = buildProgramFromSources({{"quad.vert", embeddedShader("quad.vert")}},
-                                               {{"lut_common.glsl", embeddedShader("lut_common.glsl")},
+                                               {{"btflut.glsl", embeddedShader("btflut.glsl")},
+                                                {"lut_common.glsl", embeddedShader("lut_common.glsl")},
                                                 {"broken.frag", broken}},
                                                {});
         REQUIRE_FALSE(program.ok());

@@ -155,6 +155,12 @@ struct LutBank {
     /// with `interpolate` false, the LUT of the nearest measured node (for comparisons).
     BankLookup lookup(Direction light, Direction view = {}, bool interpolate = true) const;
 
+    /// The LUT an engine reads from the resampled grid (layer `layer`): bilinear between the
+    /// four grid nodes around the light's disk point, from their unorm16 values, as one
+    /// filtered fetch of the exported 3D texture does (shaders/btflut.glsl). It equals
+    /// lookup() at grid nodes; between them it differs most near the measured triangles' edges.
+    std::vector<float> gridLookup(Direction light, std::size_t layer = 0) const;
+
     /// The measured node nearest to a light direction in the layer nearest to a view
     /// direction (nearest by angle); in the isotropic domain, the node nearest in it.
     NodeRef nearestNode(Direction light, Direction view = {}) const;

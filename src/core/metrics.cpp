@@ -4,38 +4,63 @@
 #include <cmath>
 
 #include "core/histogram.h"
+#include "core/parallel.h"
 
 namespace btflut {
 
 namespace {
 
-std::vector<double> greyOf(const Image& image) {
-    std::vector<double> g(image.pixelCount());
-    for (std::size_t i = 0; i < g.size(); ++i) g[i] = image.grey(i);
-    return g;
-}
-
-// Separable Gaussian blur (sigma 1.5, radius 5), edges clamped.
-std::vector<double> blur(const std::vector<double>& v, int width, int height) {
+// Mean SSIM (Wang et al. 2004) of two grey images over a mask: Gaussian windows (sigma 1.5,
+// radius 5, edges clamped) of x, y, xx, yy and xy. One horizontal pass into five float
+// planes, then per output row the vertical sums and the SSIM term at once, rows in parallel
+// (each row's sum kept apart and added in order, so the result does not depend on threads).
+double meanSsim(const Image& p, const Image& q, const Mask& mask) {
     constexpr int kRadius = 5;
-    double kernel[2 * kRadius + 1], sum = 0;
-    for (int k = -kRadius; k <= kRadius; ++k) sum += kernel[k + kRadius] = std::exp(-0.5 * k * k / (1.5 * 1.5));
-    for (double& k : kernel) k /= sum;
-    std::vector<double> rows(v.size()), out(v.size());
-    auto at = [](int i, int n) { return std::clamp(i, 0, n - 1); };
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            double s = 0;
-            for (int k = -kRadius; k <= kRadius; ++k) s += kernel[k + kRadius] * v[static_cast<std::size_t>(y) * width + at(x + k, width)];
-            rows[static_cast<std::size_t>(y) * width + x] = s;
+    float kernel[2 * kRadius + 1];
+    double sum = 0;
+    for (int k = -kRadius; k <= kRadius; ++k) sum += std::exp(-0.5 * k * k / (1.5 * 1.5));
+    for (int k = -kRadius; k <= kRadius; ++k) kernel[k + kRadius] = static_cast<float>(std::exp(-0.5 * k * k / (1.5 * 1.5)) / sum);
+    const int w = q.width, h = q.height;
+    const std::size_t n = q.pixelCount();
+    std::vector<float> x(n), y(n);
+    for (std::size_t i = 0; i < n; ++i) x[i] = p.grey(i), y[i] = q.grey(i);
+    std::vector<float> planes(5 * n);  // horizontal sums of x, y, xx, yy, xy
+    parallelFor(static_cast<std::size_t>(h), 0, [&](std::size_t row) {
+        const float* xr = &x[row * w];
+        const float* yr = &y[row * w];
+        for (int c = 0; c < w; ++c) {
+            float s[5] = {0, 0, 0, 0, 0};
+            for (int k = -kRadius; k <= kRadius; ++k) {
+                const int at = std::clamp(c + k, 0, w - 1);
+                const float a = xr[at], b = yr[at], g = kernel[k + kRadius];
+                s[0] += g * a, s[1] += g * b, s[2] += g * a * a, s[3] += g * b * b, s[4] += g * a * b;
+            }
+            for (int m = 0; m < 5; ++m) planes[m * n + row * w + c] = s[m];
         }
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            double s = 0;
-            for (int k = -kRadius; k <= kRadius; ++k) s += kernel[k + kRadius] * rows[static_cast<std::size_t>(at(y + k, height)) * width + x];
-            out[static_cast<std::size_t>(y) * width + x] = s;
+    });
+    constexpr double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
+    std::vector<double> rowTotal(static_cast<std::size_t>(h), 0.0);
+    parallelFor(static_cast<std::size_t>(h), 0, [&](std::size_t row) {
+        std::vector<float> s(5 * static_cast<std::size_t>(w), 0.f);
+        for (int k = -kRadius; k <= kRadius; ++k) {
+            const std::size_t from = static_cast<std::size_t>(std::clamp(static_cast<int>(row) + k, 0, h - 1)) * w;
+            const float g = kernel[k + kRadius];
+            for (int m = 0; m < 5; ++m)
+                for (int c = 0; c < w; ++c) s[m * w + c] += g * planes[m * n + from + c];
         }
-    return out;
+        double total = 0;
+        for (int c = 0; c < w; ++c) {
+            if (!mask.inside[row * w + c]) continue;
+            const double mx = s[c], my = s[w + c];
+            const double vx = s[2 * w + c] - mx * mx, vy = s[3 * w + c] - my * my, cxy = s[4 * w + c] - mx * my;
+            total += (2 * mx * my + c1) * (2 * cxy + c2) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+        }
+        rowTotal[row] = total;
+    });
+    double total = 0;
+    for (double t : rowTotal) total += t;
+    const std::size_t inside = mask.count();
+    return inside ? total / static_cast<double>(inside) : 1.0;
 }
 
 }  // namespace
@@ -66,28 +91,15 @@ ImageErrors compareImages(const Image& predicted, const Image& photo, const Mask
             const float predictedValue = p.channels == q.channels ? p.samples[i * p.channels + c] : p.grey(i);
             const double d = static_cast<double>(predictedValue) - q.samples[i * q.channels + c];
             squared += d * d;
+            e.maxDifference = std::max(e.maxDifference, std::abs(d));
+            e.meanDifference += std::abs(d);
             ++count;
         }
     }
+    if (count > 0) e.meanDifference /= static_cast<double>(count);
     e.psnr = count == 0 || squared == 0 ? 99.0 : std::min(99.0, 10 * std::log10(static_cast<double>(count) / squared));
 
-    // SSIM (Wang et al. 2004) of the grey images, averaged over the mask.
-    const int w = q.width, h = q.height;
-    const std::vector<double> x = greyOf(p), y = greyOf(q);
-    std::vector<double> xx(x.size()), yy(x.size()), xy(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) xx[i] = x[i] * x[i], yy[i] = y[i] * y[i], xy[i] = x[i] * y[i];
-    const std::vector<double> mx = blur(x, w, h), my = blur(y, w, h), sxx = blur(xx, w, h), syy = blur(yy, w, h),
-                              sxy = blur(xy, w, h);
-    constexpr double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
-    double total = 0;
-    std::size_t inside = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        if (!mask.inside[i]) continue;
-        const double vx = sxx[i] - mx[i] * mx[i], vy = syy[i] - my[i] * my[i], cxy = sxy[i] - mx[i] * my[i];
-        total += (2 * mx[i] * my[i] + c1) * (2 * cxy + c2) / ((mx[i] * mx[i] + my[i] * my[i] + c1) * (vx + vy + c2));
-        ++inside;
-    }
-    e.ssim = inside ? total / static_cast<double>(inside) : 1.0;
+    e.ssim = meanSsim(p, q, mask);
     return e;
 }
 

@@ -17,6 +17,8 @@ struct ImageErrors {
     double emd = 0;   ///< earth mover's distance of the two histograms, grey scale units [0, 1]
     double psnr = 0;  ///< 10 log10(1 / MSE) over the mask's pixels and the photo's channels, dB (capped at 99)
     double ssim = 0;  ///< mean structural similarity of the grey images over the mask (Gaussian window, sigma 1.5)
+    double maxDifference = 0;   ///< largest |difference| of a sample over the mask, value units [0, 1]
+    double meanDifference = 0;  ///< mean |difference| over the mask's pixels and the photo's channels
 };
 
 /// The errors of `predicted` against `photo` (same size; mask of that size).

@@ -31,7 +31,7 @@ Result<GLuint> RelightPass::program(bool dither) {
         std::vector<std::string> defines = m_blend ? BlendTextures::defines(bank) : std::vector<std::string>{};
         if (!m_blend && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
         if (dither) defines.push_back("DITHER");
-        Result<GlProgram> p = buildProgram({"quad.vert"}, {"lut_common.glsl", "native.frag"}, defines);
+        Result<GlProgram> p = buildProgram({"quad.vert"}, {"btflut.glsl", "lut_common.glsl", "native.frag"}, defines);
         if (!p) return Error{p.error()};
         found = m_programs.emplace(dither, std::move(*p)).first;
     }

@@ -122,7 +122,7 @@ Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool
     }
     auto found = m_programs.find(defines);
     if (found == m_programs.end()) {
-        Result<GlProgram> p = buildProgram({"scene.vert"}, {"lut_common.glsl", "scene.frag"}, defines);
+        Result<GlProgram> p = buildProgram({"scene.vert"}, {"btflut.glsl", "lut_common.glsl", "scene.frag"}, defines);
         if (!p) return Error{p.error()};
         found = m_programs.emplace(defines, std::move(*p)).first;
     }

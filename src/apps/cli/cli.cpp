@@ -151,6 +151,7 @@ int run(const std::vector<std::string>& args) {
     addBenchCommand(root, commands);
     addViewCommand(root, commands);
     addEvalCommand(root, commands);
+    addCompareCommand(root, commands);
 
     if (!args.empty() && !args.front().empty() && args.front()[0] != '-') {
         bool known = false;
@@ -188,9 +189,9 @@ int run(const std::vector<std::string>& args) {
         }
         if (!status) {
             std::cerr << "btflut " << command.app->get_name() << ": error: " << status.error() << "\n";
-            return 1;
+            return command.errorExit;
         }
-        return 0;
+        return command.exitStatus ? command.exitStatus() : 0;
     }
     return 2;
 }

@@ -20,6 +20,8 @@ namespace btflut::cli {
 struct Command {
     CLI::App* app;
     std::function<Status()> run;
+    int errorExit = 1;               ///< the exit status of an Error
+    std::function<int()> exitStatus;  ///< after success (empty: 0); compare's 1 outside its tolerance
 };
 using Commands = std::vector<Command>;
 
@@ -39,6 +41,7 @@ void addViewCommand(CLI::App& root, Commands& commands);
 void addEvalCommand(CLI::App& root, Commands& commands);
 void addOrientCommand(CLI::App& root, Commands& commands);
 void addClassifyCommand(CLI::App& root, Commands& commands);
+void addCompareCommand(CLI::App& root, Commands& commands);
 
 /// Runs btflut with arguments (without the program name); returns the exit status.
 int run(const std::vector<std::string>& args);

@@ -1,4 +1,5 @@
-// btflut export: the bank's grid as a 16-bit PNG atlas and a JSON sidecar, for engines.
+// btflut export: a bank for engines (a folder: reference, 3D LUT texture, sidecar, shader
+// include; docs/engines.md), as the older 16-bit PNG atlas, or its PTM as an RTI .ptm file.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -7,6 +8,8 @@
 #include "cli/cli.h"
 #include "core/bank_file.h"
 #include "core/json_text.h"
+#include "core/ptm_file.h"
+#include "gl/shader.h"
 
 namespace btflut::cli {
 
@@ -15,13 +18,12 @@ namespace {
 struct ExportOptions {
     std::string bank;
     std::string output;
+    std::string ptm;
+    int grid = 0;
+    bool force = false;
 };
 
-Status runExport(const ExportOptions& o) {
-    if (Status s = requireExtension(o.output, {"png"}, "output"); !s) return s;
-    Result<LutBank> bank = loadBank(o.bank);
-    if (!bank) return Error{bank.error()};
-    const LutBank& b = *bank;
+Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     const int cells = b.gridSize * b.gridSize;
     const int channels = b.channels();
     const int width = static_cast<int>(b.segmentLength()), regions = b.makesLuts() ? b.blend.regions : 1;
@@ -119,15 +121,128 @@ Status runExport(const ExportOptions& o) {
     return success();
 }
 
+// The folder an engine loads: reference.png (its own bit depth), luts.png (the LUT grid as a
+// 3D texture's slices, 16-bit), material.json and btflut.glsl.
+Status exportFolder(const ExportOptions& o, const LutBank& b) {
+    namespace fs = std::filesystem;
+    if (b.makesLuts())
+        return Error{o.bank + ": this bank makes its LUTs at run time from blended references (relighter.h), which no "
+                              "single texture holds; export its atlas with -o atlas.png, or bake with --references 1"};
+    if (b.reference.samples.empty()) return Error{o.bank + ": the bank holds no reference image (baked with --no-reference)"};
+    std::error_code ec;
+    if (fs::exists(o.output, ec)) {
+        if (!fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
+        if (!fs::is_empty(o.output, ec) && !o.force)
+            return Error{o.output + ": the folder is not empty (--force writes over btflut's files in it)"};
+    }
+    const int g = b.gridSize, layers = static_cast<int>(b.layers.size()), channels = b.channels();
+    const std::uint64_t rows = static_cast<std::uint64_t>(g) * g * layers;
+    if (rows > 0x7FFFFFFFu || rows * static_cast<std::uint64_t>(b.entries) > maxImagePixels())
+        return Error{o.bank + ": its LUT texture would be " + std::to_string(b.entries) + "x" + std::to_string(rows) +
+                     " pixels, more than a PNG (or --max-pixels) allows; bake it with a smaller --grid"};
+    // Row (layer * G + j) * G + i holds node (i, j)'s LUT: in memory, the 3D texture of
+    // width entries, height G, depth G * layers.
+    Image luts(b.entries, static_cast<int>(rows), channels, 16);
+    for (int l = 0; l < layers; ++l)
+        for (std::size_t cell = 0; cell < static_cast<std::size_t>(g) * g; ++cell)
+            for (int c = 0; c < channels; ++c)
+                for (int k = 0; k < b.entries; ++k)
+                    luts.at(k, static_cast<int>(static_cast<std::size_t>(l) * g * g + cell), c) =
+                        b.layers[static_cast<std::size_t>(l)].gridLuts[(cell * channels + c) * b.entries + k] / 65535.f;
+    auto direction = [](Direction d) { return nlohmann::json{{"theta", d.thetaDegrees()}, {"phi", d.phiDegrees()}}; };
+    nlohmann::json side{
+        {"format", "btflut-material"},
+        {"version", 1},
+        {"shader", "btflut.glsl"},
+        {"shader_version", 1},
+        {"reference", {{"file", "reference.png"},
+                       {"width", b.reference.width},
+                       {"height", b.reference.height},
+                       {"channels", b.reference.channels},
+                       {"bit_depth", b.reference.bitDepth},
+                       {"name", b.referenceName},
+                       {"light", direction(b.referenceLight)},
+                       {"view", direction(b.referenceView)}}},
+        {"luts", {{"file", "luts.png"},
+                  {"texture", "3D, width entries, height grid_size, depth grid_size x layers; 16-bit unorm, " +
+                                  std::string(channels == 3 ? "RGB (one LUT per colour channel)" : "one channel")},
+                  {"entries", b.entries},
+                  {"grid_size", g},
+                  {"layers", layers},
+                  {"row_of_node", "(layer * grid_size + j) * grid_size + i"}}},
+        {"colour", colourName(b.colour)},
+        {"lut_input_code", inputCode(b.reference, b.colour)},
+        {"lut_output_code", b.targetCode()},
+        {"grid_mapping", "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise with j; a direction "
+                         "(theta, phi) maps to sqrt(2) sin(theta / 2) (cos phi, sin phi); z = surface normal, x = "
+                         "texture +u (image right), y = texture +v (image up)"},
+        {"views", nlohmann::json::array()}};
+    for (const ViewLayer& layer : b.layers) {
+        nlohmann::json provenance = nlohmann::json::array();
+        for (Provenance p : layer.gridProvenance) provenance.push_back(provenanceName(p));
+        side["views"].push_back({{"view", direction(layer.view)}, {"node_provenance", provenance}});
+    }
+    if (!b.modelFill.empty()) side["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
+
+    const Bytes reference = encodePng(b.reference, b.reference.bitDepth), lutPng = encodePng(luts, 16);
+    const std::string text = jsonText(side);
+    const std::string_view shader = embeddedShader("btflut.glsl");
+    fs::create_directories(o.output, ec);
+    if (ec) return Error{o.output + ": cannot create the folder (" + ec.message() + ")"};
+    const fs::path dir(o.output);
+    std::vector<FileContents> files{{(dir / "reference.png").string(), reference.data(), reference.size()},
+                                    {(dir / "luts.png").string(), lutPng.data(), lutPng.size()},
+                                    {(dir / "material.json").string(), text.data(), text.size()},
+                                    {(dir / "btflut.glsl").string(), shader.data(), shader.size()}};
+    if (Status s = writeFilesAtomically(files); !s) return s;
+    std::cout << "wrote " << o.output << ": reference.png (" << b.reference.width << "x" << b.reference.height << ", "
+              << b.reference.bitDepth << "-bit), luts.png (3D texture " << b.entries << "x" << g << "x" << g * layers
+              << ", 16-bit), material.json, btflut.glsl\n";
+    return success();
+}
+
+Status exportPtm(const ExportOptions& o, const LutBank& b) {
+    if (Status s = requireExtension(o.ptm, {"ptm"}, "--ptm"); !s) return s;
+    if (b.ptm.empty()) return Error{o.bank + ": the bank holds no PTM (bake it with --ptm)"};
+    if (Status s = writeFileAtomically(o.ptm, encodePtmFile(b.ptm)); !s) return s;
+    std::cout << "wrote " << o.ptm << " (PTM 1.2, LRGB, " << b.ptm.width << "x" << b.ptm.height << ")\n";
+    return success();
+}
+
+Status runExport(const ExportOptions& o) {
+    if (o.output.empty() && o.ptm.empty()) return Error{"give -o DIR (or -o atlas.png) and/or --ptm FILE.ptm"};
+    Result<LutBank> bank = loadBank(o.bank);
+    if (!bank) return Error{bank.error()};
+    if (!o.ptm.empty())
+        if (Status s = exportPtm(o, *bank); !s) return s;
+    if (o.output.empty()) return success();
+    if (o.grid > 0 && o.grid != bank->gridSize) {  // resampled from the measured directions
+        if (bank->makesLuts()) return Error{o.bank + ": --grid: this bank makes its LUTs at run time"};
+        const std::uint64_t bytes = static_cast<std::uint64_t>(o.grid) * o.grid * bank->lutLength() * 2 * bank->layers.size();
+        if (bytes > (std::uint64_t{1} << 31)) return Error{"--grid " + std::to_string(o.grid) + ": the LUT texture would take " + std::to_string(bytes) + " bytes"};
+        bank->gridSize = o.grid;
+        bank->fillGrids();
+    }
+    return fileExtension(o.output) == "png" ? exportAtlas(o, *bank) : exportFolder(o, *bank);
+}
+
 }  // namespace
 
 void addExportCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<ExportOptions>();
     CLI::App* app = root.add_subcommand(
-        "export", "Write a bank's LUT grid as a 16-bit PNG atlas with a JSON sidecar (and, for banks that blend "
-                  "references, their textures)");
+        "export", "Export a bank for engines: a folder with the reference, the LUT grid as a 3D texture, a JSON sidecar "
+                  "and the shader include (docs/engines.md); or the older atlas; or its PTM as an RTI .ptm file");
     app->add_option("BANK", o->bank, "M.btflut")->required();
-    app->add_option("-o,--output", o->output, "atlas.png (the sidecar is atlas.json)")->required();
+    app->add_option("-o,--output", o->output,
+                    "DIR: reference.png, luts.png, material.json, btflut.glsl; or atlas.png: the LUT grid as rows of a "
+                    "16-bit PNG with atlas.json (banks that blend references: with their textures)");
+    app->add_option("--ptm", o->ptm, "FILE.ptm: the bank's PTM (bake --ptm) as a PTM 1.2 LRGB file for RTI viewers");
+    app->add_option("--grid", o->grid,
+                    "resample the LUT grid at N x N light directions from the measured ones (default: the bank's; finer "
+                    "follows the measured interpolation more closely, at N^2 x entries x 2 bytes per view)")
+        ->check(CLI::Range(2, 257));
+    app->add_flag("--force", o->force, "write into a folder that is not empty");
     commands.push_back({app, [o] { return runExport(*o); }});
 }
 

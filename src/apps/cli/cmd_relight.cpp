@@ -19,6 +19,7 @@ struct RelightOptions {
     std::string referenceImage;
     int depth = 8;
     bool noDither = false;
+    bool grid = false;
     bool quiet = false;
 };
 
@@ -45,6 +46,15 @@ Status runRelight(const RelightOptions& o) {
     }
     if (bank.reference.samples.empty())
         return Error{o.bank + ": the bank has no reference image inside; give --reference-image"};
+    if (o.grid) {  // what an engine reads from `export -o DIR/`
+        if (bank.makesLuts()) return Error{o.bank + ": --grid: this bank makes its LUTs at run time (no grid of LUTs)"};
+        const std::size_t layer = bank.nearestNode(query->light, query->view).layer;
+        const Image out = applyLuts(bank.reference, bank.colour, bank.gridLookup(query->light, layer), bank.entries,
+                                    o.noDither ? 0.f : bank.targetCode());
+        if (Status s = savePng(out, o.output, o.depth); !s) return s;
+        if (!o.quiet) std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT from the grid)\n";
+        return success();
+    }
     const Relighter relighter(bank);
     const RelightFrame frame = relighter.frame(query->light, query->view);
     Image out = relighter.apply(frame, !o.noDither);
@@ -68,6 +78,9 @@ void addRelightCommand(CLI::App& root, Commands& commands) {
     addLutImageOptions(*app, o->depth, o->noDither);
     app->add_option("--reference-image", o->referenceImage,
                     "reference image, for a bank baked with --no-reference");
+    app->add_flag("--grid", o->grid,
+                  "the LUT as an engine reads it from the exported grid (bilinear between grid nodes, as "
+                  "shaders/btflut.glsl's one filtered fetch), not interpolated over the measured directions");
     app->add_flag("-q,--quiet", o->quiet, "do not say what was written");
     commands.push_back({app, [o] { return runRelight(*o); }});
 }

@@ -1,0 +1,171 @@
+// Into engines and pipelines: `export -o DIR/` with the example program that loads only its
+// files (examples/relight_quad.cpp), `export --ptm` (the RTI .ptm format), `compare`.
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/bank_file.h"
+#include "core/ptm_file.h"
+#include "helpers.h"
+
+using namespace btflut;
+using namespace btflut::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+nlohmann::json readJson(const std::string& path) { return nlohmann::json::parse(readText(path)); }
+
+// The example's output against `relight --grid` (the same grid, on the CPU) and against the
+// exact relight, at one light.
+void checkExample(const TempDir& dir, const std::string& bank, const std::string& folder, const std::string& light) {
+    const std::string example = dir / "example.png", grid = dir / "grid.png", exact = dir / "exact.png";
+    const std::string command = std::string(BTFLUT_EXAMPLE_QUAD) + " " + folder + " --light " + light + " -o " + example +
+                                " > /dev/null";
+    REQUIRE(std::system(command.c_str()) == 0);
+    REQUIRE(runCli({"relight", bank, "--grid", "--light", light, "-o", grid, "-q"}).status == 0);
+    REQUIRE(runCli({"relight", bank, "--light", light, "-o", exact, "-q"}).status == 0);
+    const CliRun same = runCli({"compare", example, grid, "--tolerance", "max=2", "--json"});
+    const nlohmann::json nodes = nlohmann::json::parse(runCli({"compare", example, exact, "--json"}).out);
+    MESSAGE(fs::path(bank).filename().string() << " at " << light << ": example against relight --grid "
+                                               << nlohmann::json::parse(same.out)["max_255"].get<double>()
+                                               << "/255 at most; the grid against the measured directions' interpolation: "
+                                               << nodes["psnr"].get<double>() << " dB, max " << nodes["max_255"].get<double>()
+                                               << "/255");
+    INFO(bank << " at " << light << ": " << same.out << same.err);
+    CHECK(same.status == 0);
+}
+
+}  // namespace
+
+TEST_SUITE("gl") {
+    TEST_CASE("export -o DIR/: an engine program that loads only its files matches relight within 2/255") {
+        TempDir dir;
+        std::vector<std::pair<std::string, std::vector<std::string>>> banks{
+            {"default", {"bake", BTFLUT_DEFAULT_MATERIAL, "-q"}}};
+        if (haveSharedData("psm-rock")) {
+            banks.push_back({"rock-grey", {"bake", sharedDataDir() + "/psm-rock", "-q"}});
+            banks.push_back({"rock-rgb", {"bake", sharedDataDir() + "/psm-rock", "--colour", "rgb", "-q"}});
+        }
+        for (auto& [name, bake] : banks) {
+            const std::string bank = dir / (name + ".btflut"), folder = dir / name;
+            bake.insert(bake.end(), {"-o", bank});
+            REQUIRE(runCli(bake).status == 0);
+            CliRun run = runCli({"export", bank, "-o", folder});
+            REQUIRE_MESSAGE(run.status == 0, run.err);
+            for (const char* file : {"reference.png", "luts.png", "material.json", "btflut.glsl"}) CHECK(fs::exists(folder + "/" + file));
+            const nlohmann::json material = readJson(folder + "/material.json");
+            CHECK(material["format"] == "btflut-material");
+            Result<Image> luts = loadImage(folder + "/luts.png");
+            REQUIRE(luts.ok());
+            CHECK(luts->bitDepth == 16);
+            CHECK(luts->width == material["luts"]["entries"].get<int>());
+            CHECK(luts->height == 17 * 17);
+            Result<LutBank> loaded = loadBank(bank);
+            REQUIRE(loaded.ok());
+            // A measured direction, a grid node, and directions in between (grazing too).
+            const Direction measured = loaded->layers[0].nodes[1].light;
+            char at[64];
+            std::snprintf(at, sizeof at, "%.6f,%.6f", measured.thetaDegrees(), measured.phiDegrees());
+            for (const std::string& light : {std::string(at), std::string("41.40962,90"), std::string("40,250"),
+                                             std::string("63,17"), std::string("80,300")})
+                checkExample(dir, bank, folder, light);
+        }
+    }
+}
+
+TEST_CASE("export: the folder refused when not empty (unless --force), banks it cannot hold refused") {
+    TempDir dir;
+    const std::string bank = dir / "m.btflut";
+    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "-o", bank, "-q"}).status == 0);
+    fs::create_directories(dir / "busy");
+    std::ofstream(dir / "busy/notes.txt") << "mine";
+    requireOneLineError(runCli({"export", bank, "-o", dir / "busy"}), "the folder is not empty");
+    CHECK_FALSE(fs::exists(dir / "busy/luts.png"));
+    CHECK(runCli({"export", bank, "-o", dir / "busy", "--force"}).status == 0);
+    CHECK(readText(dir / "busy/notes.txt") == "mine");
+    requireOneLineError(runCli({"export", bank, "--ptm", dir / "m.ptm"}), "the bank holds no PTM (bake it with --ptm)");
+    requireOneLineError(runCli({"export", bank}), "give -o DIR");
+    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "3", "-o", dir / "k3.btflut", "-q"}).status == 0);
+    requireOneLineError(runCli({"export", dir / "k3.btflut", "-o", dir / "k3"}), "makes its LUTs at run time");
+}
+
+TEST_CASE("export --ptm: a PTM 1.2 LRGB file, rows bottom first, that reads back to the same relighting") {
+    TempDir dir;
+    const std::string bank = dir / "m.btflut", file = dir / "m.ptm";
+    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--ptm", "-o", bank, "-q"}).status == 0);
+    CliRun run = runCli({"export", bank, "--ptm", file});
+    REQUIRE_MESSAGE(run.status == 0, run.err);
+    Result<Bytes> bytes = readFile(file);
+    REQUIRE(bytes.ok());
+    const std::string text(bytes->begin(), bytes->end());
+    CHECK(text.rfind("PTM_1.2\nPTM_FORMAT_LRGB\n256\n256\n", 0) == 0);
+    Result<LutBank> original = loadBank(bank);
+    REQUIRE(original.ok());
+    const Ptm& ptm = original->ptm;
+    // The payload's first record is the bottom row's first texel.
+    const std::size_t payload = bytes->size() - ptm.texels() * 9, bottom = ptm.texels() - static_cast<std::size_t>(ptm.width);
+    Result<Ptm> back = decodePtmFile(*bytes, file);
+    REQUIRE_MESSAGE(back.ok(), back.error());
+    CHECK(std::abs(int{(*bytes)[payload + ptm.texels() * 6]} - int{ptm.albedo[bottom * 3]}) == 0);
+    CHECK(back->albedo == ptm.albedo);
+    for (Direction light : {Direction::fromDegrees(0, 0), Direction::fromDegrees(45, 120), Direction::fromDegrees(70, 300)}) {
+        const Image a = ptm.render(light), b = back->render(light);
+        double worst = 0;
+        for (std::size_t i = 0; i < a.samples.size(); ++i) worst = std::max(worst, std::abs(double{a.samples[i]} - b.samples[i]));
+        INFO("light " << light.thetaDegrees() << "," << light.phiDegrees());
+        CHECK(worst * 255 <= 2.0);  // integer biases: each coefficient byte moved by at most half a code
+    }
+    // Bad files: one line naming the file.
+    Bytes truncated(bytes->begin(), bytes->end() - 5);
+    Result<Ptm> bad = decodePtmFile(truncated, "cut.ptm");
+    REQUIRE_FALSE(bad.ok());
+    CHECK(bad.error().find("cut.ptm") != std::string::npos);
+    std::string rgb = text;
+    rgb.replace(8, 15, "PTM_FORMAT_RGB\n");
+    CHECK_FALSE(decodePtmFile(Bytes(rgb.begin(), rgb.end()), "rgb.ptm").ok());
+}
+
+TEST_CASE("compare: exit 0 within the tolerance, 1 outside, 2 on bad input; the diff; golden updates") {
+    TempDir dir;
+    Image a = randomGreyImage(64, 48, 1), b = a, other(32, 48, 1), colour(64, 48, 3);
+    b.samples[100] = std::min(1.f, b.samples[100] + 3 / 255.f);  // one pixel 3 codes off
+    REQUIRE(savePng(a, dir / "a.png").ok());
+    REQUIRE(savePng(b, dir / "b.png").ok());
+    REQUIRE(savePng(other, dir / "small.png").ok());
+    REQUIRE(savePng(colour, dir / "colour.png").ok());
+    CliRun same = runCli({"compare", dir / "a.png", dir / "a.png"});
+    CHECK(same.status == 0);
+    CHECK(same.out.find("psnr 99.00") != std::string::npos);
+    CliRun off = runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "max=2,psnr=40", "--diff", dir / "d.png"});
+    CHECK(off.status == 1);
+    CHECK(off.out.find("max 3") != std::string::npos);
+    Result<Image> diff = loadImage(dir / "d.png");
+    REQUIRE(diff.ok());
+    CHECK(diff->samples[100 * 3] > 0.2f);  // the pixel that differs is red
+    CHECK(diff->samples[101 * 3] < 0.31f);
+    CHECK(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "max=3"}).status == 0);
+    const nlohmann::json json = nlohmann::json::parse(runCli({"compare", dir / "a.png", dir / "b.png", "--json"}).out);
+    CHECK_FALSE(json["within"].get<bool>());
+    CHECK(json["failed"][0] == "max");
+
+    auto bad = [](const CliRun& run, const std::string& needle) {
+        CHECK(run.status == 2);
+        CHECK(run.err.find(needle) != std::string::npos);
+    };
+    bad(runCli({"compare", dir / "a.png", dir / "small.png"}), "images of different sizes");
+    bad(runCli({"compare", dir / "a.png", dir / "colour.png"}), "images of different channel counts");
+    bad(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "psnr"}), "expected NAME=VALUE");
+    bad(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "psnr=-1"}), "not a non-negative number");
+    bad(runCli({"compare", dir / "a.png", dir / "missing.png"}), "missing.png");
+
+    // Golden files: --update creates a missing one and replaces one outside the tolerance.
+    CHECK(runCli({"compare", dir / "a.png", dir / "golden.png", "--update"}).status == 0);
+    CHECK(readText(dir / "golden.png") == readText(dir / "a.png"));
+    CliRun updated = runCli({"compare", dir / "b.png", dir / "golden.png", "--update"});
+    CHECK(updated.status == 0);
+    CHECK(updated.out.find("updated") != std::string::npos);
+    CHECK(readText(dir / "golden.png") == readText(dir / "b.png"));
+}
