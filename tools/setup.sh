@@ -15,6 +15,7 @@ packages=(
   libeigen3-dev         # least squares (PTM fitting)
   libceres-dev          # non-linear least squares (btflut fit)
   libglm-dev libglfw3-dev libosmesa6-dev libegl-dev libgl-dev libimgui-dev
+  libopengl-dev         # libOpenGL (glvnd): the example engine program links it, not btflut
   python3 python3-numpy python3-skimage python3-pil  # reference checks in tools/
   xvfb xauth
   clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (tools/fuzz.sh)

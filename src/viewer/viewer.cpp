@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -67,9 +68,21 @@ json manifestParameters(const std::string& datasetPath) {
     return doc && doc->is_object() && doc->contains("synth") ? (*doc)["synth"] : json{};
 }
 
+// The bundled material: $BTFLUT_DEFAULT_MATERIAL, else beside the executable (a build tree's
+// assets/default), else where `cmake --install` puts it (PREFIX/share/btflut/default).
+std::string defaultMaterial() {
+    if (const char* set = std::getenv("BTFLUT_DEFAULT_MATERIAL"); set && *set) return set;
+    std::error_code ec;
+    const fs::path bin = fs::read_symlink("/proc/self/exe", ec).parent_path();
+    const fs::path installed = bin.parent_path() / "share" / "btflut" / "default";
+    for (const fs::path& folder : {bin / "assets" / "default", installed})
+        if (fs::exists(folder / "btflut-dataset.json", ec)) return folder.string();
+    return installed.string();  // named in the error
+}
+
 Result<ViewerInput> openInput(const ViewerOptions& o) {
     ViewerInput in;
-    const std::string path = o.input.empty() ? std::string(BTFLUT_DEFAULT_MATERIAL) : o.input;
+    const std::string path = o.input.empty() ? defaultMaterial() : o.input;
     in.title = "btflut view - " + path;
     if (!fs::exists(path)) return Error{path + ": cannot open (no such file or folder)"};
     if (fs::path(path).extension() == ".json" && !fs::is_directory(path)) {
