@@ -196,3 +196,42 @@ TEST_CASE("plot draws histogram CSV files as a figure; bad files refused") {
     requireOneLineError(runCli({"plot", dir / "none.csv", "-o", dir / "x.png"}), "none.csv: cannot open");
     CHECK_FALSE(fs::exists(dir / "x.png"));
 }
+
+TEST_CASE("small things: hist of one image, info --json, match --mask, plot --overlay, commands say what they wrote") {
+    TempDir dir;
+    std::string manifest = writeSyntheticDataset(dir, kShots);
+    CliRun hist = runCli({"hist", dir / "shot1.png", "-o", dir / "one.csv"});
+    REQUIRE_MESSAGE(hist.status == 0, hist.err);
+    CHECK(hist.out.find("wrote " + std::string(dir / "one.csv") + ": 1 histogram(s) of 64 bins") != std::string::npos);
+    Result<std::vector<HistogramRow>> rows = parseHistogramCsv(readText(dir / "one.csv"), "one.csv");
+    REQUIRE(rows.ok());
+    REQUIRE(rows->size() == 1);
+    CHECK(rows->front().name == "shot1");
+    CliRun simulate = runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "8", "-o", dir / "s.csv"});
+    CHECK(simulate.out.find("11 histogram(s) of 64 bins") != std::string::npos);
+
+    REQUIRE(runCli({"bake", manifest, "-o", dir / "m.btflut", "--grid", "5", "-q"}).status == 0);
+    CliRun info = runCli({"info", dir / "m.btflut", "--json"});
+    REQUIRE(info.status == 0);
+    const nlohmann::json json = nlohmann::json::parse(info.out);
+    CHECK(json["entries"] == 256);
+    CHECK(json["layers"][0]["light_nodes"] == 4);
+    CHECK(json["layers"][0]["modelled_nodes"] == 0);
+
+    // match --mask: the statistics of the masked pixels (the left half: codes of x < 20).
+    Image mask(40, 30, 1);
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 20; ++x) mask.at(x, y, 0) = 1;
+    REQUIRE(savePng(mask, dir / "mask.png").ok());
+    CHECK(runCli({"match", dir / "shot0.png", dir / "shot1.png", "--mask", dir / "mask.png", "--target-mask", dir / "mask.png",
+                  "-o", dir / "matched.png"})
+              .status == 0);
+    requireOneLineError(runCli({"match", dir / "shot0.png", dir / "shot1.png", "--mask", dir / "small.png", "-o", dir / "x.png"}),
+                        "small.png");
+
+    CliRun overlay = runCli({"plot", dir / "one.csv", dir / "s.csv", "--overlay", "-o", dir / "o.png"});
+    REQUIRE(overlay.status == 0);
+    Result<Image> figure = loadImage(dir / "o.png");
+    REQUIRE(figure.ok());
+    CHECK(figure->width < 2 * 256);  // one panel per position
+}

@@ -17,13 +17,13 @@ namespace btflut {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-const char* const kManifestName = "btflut-dataset.json";
-
 bool isImageExtension(const std::string& ext) {
     return ext == "png" || ext == "jpg" || ext == "jpeg" || ext == "tga" || ext == "bmp";
 }
+
+namespace {
+
+const char* const kManifestName = "btflut-dataset.json";
 
 std::string stem(const std::string& path) { return fs::path(path).stem().string(); }
 

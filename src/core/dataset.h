@@ -41,6 +41,9 @@ struct Dataset {
     bool fixedView() const;
 };
 
+/// True for the extensions (lower case, no dot) of the image files btflut reads.
+bool isImageExtension(const std::string& ext);
+
 /// Recognises the dataset form at `path` and parses it. Errors name the file (and line)
 /// and the problem: unreadable, malformed, NaN or non-unit light vectors, lights at or
 /// below the horizon, missing images.

@@ -84,40 +84,74 @@ std::string format(const char* pattern, double v) {
 
 }  // namespace
 
-Image plotHistograms(const std::vector<PlotColumn>& columns) {
+Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay) {
     BTFLUT_CHECK(!columns.empty());
     std::size_t rows = 0;
     for (const PlotColumn& c : columns) rows = std::max(rows, c.rows.size());
     BTFLUT_CHECK(rows > 0);
-    const int width = kLeft + static_cast<int>(columns.size()) * (kPanelW + kGapX);
-    const int height = kTop + static_cast<int>(rows) * (kPanelH + kGapY) + kBottom;
+    auto labelOf = [&](std::size_t r) {
+        for (const PlotColumn& c : columns)
+            if (r < c.rows.size()) return positionLabel(c.rows[r].name);
+        return std::string();
+    };
+    int left = kLeft;  // fits the longest row label
+    for (std::size_t r = 0; r < rows; ++r) left = std::max(left, Canvas::textWidth(labelOf(r)) + 16);
+    const int panels = overlay ? 1 : static_cast<int>(columns.size());
+    const int top = overlay ? kTop + 18 * static_cast<int>(columns.size()) : kTop;
+    const int width = left + panels * (kPanelW + kGapX);
+    const int height = top + static_cast<int>(rows) * (kPanelH + kGapY) + kBottom;
     Canvas canvas(width, height);
-
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-        const int x0 = kLeft + static_cast<int>(c) * (kPanelW + kGapX);
-        canvas.text(x0 + (kPanelW - Canvas::textWidth(columns[c].title)) / 2, 10, columns[c].title, kInk);
+    static const Rgb kLines[] = {{0.85f, 0.3f, 0.1f}, {0.1f, 0.6f, 0.3f}, {0.6f, 0.2f, 0.7f}, {0.9f, 0.6f, 0.0f}};
+    auto colourOf = [&](std::size_t c) { return c == 0 ? kBar : kLines[(c - 1) % 4]; };
+    auto fitted = [](std::string title) {  // shortened to the panel's width
+        if (Canvas::textWidth(title) <= kPanelW) return title;
+        while (!title.empty() && Canvas::textWidth(title + "..") > kPanelW) title.pop_back();
+        return title + "..";
+    };
+    if (overlay) {  // the legend
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+            const int y = 8 + 18 * static_cast<int>(c);
+            canvas.fill(left, y + 3, left + 24, y + 11, colourOf(c));
+            canvas.text(left + 32, y, fitted(columns[c].title), kInk);
+        }
+    } else {
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+            const int x0 = left + static_cast<int>(c) * (kPanelW + kGapX);
+            const std::string title = fitted(columns[c].title);
+            canvas.text(x0 + (kPanelW - Canvas::textWidth(title)) / 2, 10, title, kInk);
+        }
     }
     for (std::size_t r = 0; r < rows; ++r) {
-        const int y0 = kTop + static_cast<int>(r) * (kPanelH + kGapY);
-        std::string label;
-        for (const PlotColumn& c : columns)
-            if (r < c.rows.size() && label.empty()) label = positionLabel(c.rows[r].name);
+        const int y0 = top + static_cast<int>(r) * (kPanelH + kGapY);
+        const std::string label = labelOf(r);
         const bool marked = label.size() > 2 && label[label.size() - 2] == ' ';
         canvas.text(8, y0 + 20, label, marked ? kMark : kInk);
+        double overall = 0;  // overlay: one scale for the panel
+        for (const PlotColumn& c : columns)
+            if (r < c.rows.size()) overall = std::max(overall, *std::max_element(c.rows[r].bins.begin(), c.rows[r].bins.end()));
         for (std::size_t c = 0; c < columns.size(); ++c) {
-            const int x0 = kLeft + static_cast<int>(c) * (kPanelW + kGapX);
+            const int x0 = left + (overlay ? 0 : static_cast<int>(c) * (kPanelW + kGapX));
             canvas.fill(x0, y0 + kPanelH, x0 + kPanelW, y0 + kPanelH + 1, kAxis);  // baseline
             canvas.fill(x0, y0, x0 + 1, y0 + kPanelH, kAxis);                      // y axis
             if (r >= columns[c].rows.size()) continue;
             const std::vector<double>& bins = columns[c].rows[r].bins;
-            const double rowMax = *std::max_element(bins.begin(), bins.end());
+            const double rowMax = overlay ? overall : *std::max_element(bins.begin(), bins.end());
             if (rowMax <= 0) continue;
             const auto n = static_cast<int>(bins.size());
+            int previous = -1;
             for (int b = 0; b < n; ++b) {
-                const int bx0 = x0 + 1 + b * (kPanelW - 1) / n, bx1 = x0 + 1 + (b + 1) * (kPanelW - 1) / n;
+                const int bx0 = x0 + 1 + b * (kPanelW - 1) / n, bx1 = std::max(x0 + 1 + (b + 1) * (kPanelW - 1) / n, bx0 + 1);
                 const int barHeight = static_cast<int>(bins[static_cast<std::size_t>(b)] / rowMax * (kPanelH - 4) + 0.5);
-                canvas.fill(bx0, y0 + kPanelH - barHeight, std::max(bx1, bx0 + 1), y0 + kPanelH, kBar);
+                const int y = y0 + kPanelH - barHeight;
+                if (!overlay || c == 0) {
+                    canvas.fill(bx0, y, bx1, y0 + kPanelH, kBar);
+                } else {  // a step outline: the bin's top, and the rise from the previous one
+                    canvas.fill(bx0, y - 1, bx1, y + 1, colourOf(c));
+                    if (previous >= 0) canvas.fill(bx0, std::min(previous, y) - 1, bx0 + 2, std::max(previous, y) + 1, colourOf(c));
+                }
+                previous = y;
             }
+            if (overlay && c > 0) continue;
             // The panel's scale, over the bars on a white backing.
             const std::string scale = format("%.3f", rowMax);
             const int tx = x0 + kPanelW - Canvas::textWidth(scale) - 2;
@@ -126,9 +160,9 @@ Image plotHistograms(const std::vector<PlotColumn>& columns) {
         }
     }
     // Grey-value axis under the last row of each column.
-    const int axisY = kTop + static_cast<int>(rows) * (kPanelH + kGapY) + 2;
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-        const int x0 = kLeft + static_cast<int>(c) * (kPanelW + kGapX);
+    const int axisY = top + static_cast<int>(rows) * (kPanelH + kGapY) + 2;
+    for (int c = 0; c < panels; ++c) {
+        const int x0 = left + c * (kPanelW + kGapX);
         for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
             const int x = x0 + static_cast<int>(t * (kPanelW - 1));
             canvas.fill(x, axisY - 6, x + 1, axisY, kAxis);

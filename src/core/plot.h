@@ -25,8 +25,11 @@ struct PlotColumn {
 };
 
 /// The figure; columns may hold different numbers of rows and bins. At least one column
-/// with one row.
-Image plotHistograms(const std::vector<PlotColumn>& columns);
+/// with one row. With `overlay`, every column is drawn in one panel per position (the first
+/// as bars, the others as coloured outlines, a legend above), each panel scaled to its
+/// largest bin over all. Row labels and titles are never clipped: the left margin fits the
+/// longest label, and a title wider than its panel is shortened with "..".
+Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay = false);
 
 /// A labelled image in a contact sheet.
 struct SheetCell {

@@ -1,4 +1,6 @@
 // btflut hist: the masked, normalised histogram of every image of a dataset.
+#include <filesystem>
+#include <iostream>
 #include <memory>
 
 #include "cli/cli.h"
@@ -18,11 +20,28 @@ struct HistOptions {
     std::string mask;
 };
 
+// One image: its histogram (or three), with no directions (0, 0 for light and view).
+Result<std::vector<HistogramRow>> imageHistograms(const HistOptions& o) {
+    Result<SampleImage> sample = loadSampleImage(o.dataset, o.mask);
+    if (!sample) return Error{sample.error()};
+    const std::string name = std::filesystem::path(o.dataset).stem().string();
+    if (o.channels != "rgb") return std::vector<HistogramRow>{{name, {}, {}, binHistogram(countGreyLevels(sample->image, sample->mask), o.bins)}};
+    if (sample->image.channels != 3) return Error{o.dataset + ": --channels rgb needs a colour image, this one is grey"};
+    std::vector<HistogramRow> rows;
+    for (int c = 0; c < 3; ++c)
+        rows.push_back({name + ":" + "RGB"[c], {}, {}, binHistogram(countChannelLevels(sample->image, sample->mask, c), o.bins)});
+    return rows;
+}
+
 Status runHist(const HistOptions& o) {
     if (Status s = requireExtension(o.output, {"csv", "json"}, "output"); !s) return s;
-    Result<std::vector<HistogramRow>> rows = datasetHistograms(o.dataset, o.mask, o.bins, o.channels == "rgb");
+    Result<std::vector<HistogramRow>> rows = isImageExtension(fileExtension(o.dataset))
+                                                 ? imageHistograms(o)
+                                                 : datasetHistograms(o.dataset, o.mask, o.bins, o.channels == "rgb");
     if (!rows) return Error{rows.error()};
-    return saveHistograms(*rows, o.output);
+    if (Status s = saveHistograms(*rows, o.output); !s) return s;
+    std::cout << "wrote " << o.output << ": " << rows->size() << " histogram(s) of " << o.bins << " bins\n";
+    return success();
 }
 
 }  // namespace
@@ -36,10 +55,10 @@ Result<std::vector<HistogramRow>> datasetHistograms(const std::string& path, con
 void addHistCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<HistOptions>();
     CLI::App* app = root.add_subcommand(
-        "hist", "Masked, normalised grey-level histogram of every image of a dataset");
+        "hist", "Masked, normalised grey-level histogram of every image of a dataset, or of one image");
     app->add_option("DATASET", o->dataset,
                     "folder or file: btflut manifest (.json), RTI (.lp), photometric-stereo "
-                    "folder (lights.txt) or Bonn UBO2003 folder")
+                    "folder (lights.txt) or Bonn UBO2003 folder; or one image (its directions written as 0)")
         ->required();
     app->add_option("-o,--output", o->output,
                     "FILE.csv (name,theta_i,phi_i,theta_r,phi_r,b0..b{N-1}) or FILE.json")

@@ -3,9 +3,11 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
 #include "core/bank_file.h"
+#include "core/json_text.h"
 
 namespace btflut::cli {
 
@@ -13,6 +15,7 @@ namespace {
 
 struct InfoOptions {
     std::string bank;
+    bool json = false;
 };
 
 std::string degrees(Direction d) {
@@ -21,10 +24,76 @@ std::string degrees(Direction d) {
     return buf;
 }
 
+// What a view layer holds: its nodes, and its grid nodes in the hemisphere by provenance.
+struct LayerSummary {
+    std::size_t measured = 0, modelled = 0;
+    double maxTheta = 0;  ///< of the measured lights
+    std::size_t cells[4] = {0, 0, 0, 0};  ///< by Provenance
+};
+
+LayerSummary summarise(const LutBank& b, const ViewLayer& layer) {
+    LayerSummary out;
+    for (int j = 0; j < b.gridSize; ++j)
+        for (int i = 0; i < b.gridSize; ++i) {
+            DiskPoint p = b.gridPoint(i, j);
+            if (p.x * p.x + p.y * p.y > 1) continue;  // beyond the horizon
+            ++out.cells[static_cast<int>(layer.gridProvenance[static_cast<std::size_t>(j) * b.gridSize + i])];
+        }
+    for (const LightNode& n : layer.nodes) {
+        (n.modelled ? out.modelled : out.measured) += 1;
+        if (!n.modelled) out.maxTheta = std::max(out.maxTheta, n.light.thetaDegrees());
+    }
+    return out;
+}
+
+nlohmann::json infoJson(const std::string& path, const LutBank& b) {
+    auto direction = [](Direction d) { return nlohmann::json{{"theta", d.thetaDegrees()}, {"phi", d.phiDegrees()}}; };
+    nlohmann::json out{{"file", path},
+                       {"format_version", bankFormatVersion(b)},
+                       {"bytes", std::filesystem::file_size(path)},
+                       {"entries", b.entries},
+                       {"colour", colourName(b.colour)},
+                       {"grid_size", b.gridSize},
+                       {"domain", domainName(b.domain)},
+                       {"reference", {{"name", b.referenceName},
+                                      {"light", direction(b.referenceLight)},
+                                      {"view", direction(b.referenceView)},
+                                      {"width", b.reference.width},
+                                      {"height", b.reference.height},
+                                      {"channels", b.reference.channels},
+                                      {"bit_depth", b.reference.bitDepth},
+                                      {"embedded", !b.reference.samples.empty()}}},
+                       {"ptm", !b.ptm.empty()},
+                       {"layers", nlohmann::json::array()}};
+    if (b.makesLuts())
+        out["blend"] = {{"predictor", b.blend.predictor == LutBank::Blend::Predictor::Ptm ? "ptm" : "references"},
+                        {"references", b.blend.references.size()},
+                        {"regions", b.blend.regions},
+                        {"quantiles", b.blend.quantiles}};
+    if (!b.modelFill.empty()) out["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
+    for (std::size_t l = 0; l < b.layers.size(); ++l) {
+        const LayerSummary s = summarise(b, b.layers[l]);
+        out["layers"].push_back({{"view", direction(b.layers[l].view)},
+                                 {"light_nodes", s.measured},
+                                 {"modelled_nodes", s.modelled},
+                                 {"max_theta", s.maxTheta},
+                                 {"grid_measured", s.cells[0]},
+                                 {"grid_interpolated", s.cells[1]},
+                                 {"grid_extrapolated", s.cells[2]},
+                                 {"grid_modelled", s.cells[3]},
+                                 {"coverage", b.lightCoverage(l)}});
+    }
+    return out;
+}
+
 Status runInfo(const InfoOptions& o) {
     Result<LutBank> bank = loadBank(o.bank);
     if (!bank) return Error{bank.error()};
     const LutBank& b = *bank;
+    if (o.json) {
+        std::cout << jsonText(infoJson(o.bank, b));
+        return success();
+    }
     std::cout << o.bank << ": btflut bank, format version " << bankFormatVersion(b) << ", "
               << std::filesystem::file_size(o.bank) << " bytes\n"
               << "  LUTs:      " << b.entries << " entries, "
@@ -68,18 +137,10 @@ Status runInfo(const InfoOptions& o) {
                                                  : " (over theta_i, theta_r and phi_i - phi_r: an isotropic material)\n");
     for (std::size_t l = 0; l < b.layers.size(); ++l) {
         const ViewLayer& layer = b.layers[l];
-        std::size_t counts[4] = {0, 0, 0, 0}, modelled = 0;
-        for (int j = 0; j < b.gridSize; ++j)
-            for (int i = 0; i < b.gridSize; ++i) {
-                DiskPoint p = b.gridPoint(i, j);
-                if (p.x * p.x + p.y * p.y > 1) continue;  // beyond the horizon
-                ++counts[static_cast<int>(layer.gridProvenance[static_cast<std::size_t>(j) * b.gridSize + i])];
-            }
-        double maxTheta = 0;
-        for (const LightNode& n : layer.nodes) {
-            modelled += n.modelled;
-            if (!n.modelled) maxTheta = std::max(maxTheta, n.light.thetaDegrees());
-        }
+        const LayerSummary summary = summarise(b, layer);
+        const std::size_t* counts = summary.cells;
+        const std::size_t modelled = summary.modelled;
+        const double maxTheta = summary.maxTheta;
         // The share of light directions (by solid angle) where lookups interpolate; a grid
         // too coarse to have nodes inside the hemisphere (--grid 2) still has a coverage.
         char line[400];
@@ -101,6 +162,7 @@ void addInfoCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<InfoOptions>();
     CLI::App* app = root.add_subcommand("info", "Describe a LUT bank: header, grid, coverage, size");
     app->add_option("BANK", o->bank, "M.btflut")->required();
+    app->add_flag("--json", o->json, "print JSON");
     commands.push_back({app, [o] { return runInfo(*o); }});
 }
 

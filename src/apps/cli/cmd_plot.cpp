@@ -13,6 +13,7 @@ namespace {
 struct PlotOptions {
     std::vector<std::string> inputs;
     std::string output;
+    bool overlay = false;
 };
 
 Status runPlot(const PlotOptions& o) {
@@ -26,7 +27,7 @@ Status runPlot(const PlotOptions& o) {
         if (rows->empty()) return Error{input + ": no histograms to plot"};
         columns.push_back({std::filesystem::path(input).stem().string(), std::move(*rows)});
     }
-    Image figure = plotHistograms(columns);
+    Image figure = plotHistograms(columns, o.overlay);
     if (Status s = savePng(figure, o.output); !s) return s;
     std::cout << "wrote " << o.output << " (" << figure.width << "x" << figure.height << ")\n";
     return success();
@@ -41,6 +42,8 @@ void addPlotCommand(CLI::App& root, Commands& commands) {
                 "position, one column per file");
     app->add_option("CSV", o->inputs, "one or more histogram CSV files")->required();
     app->add_option("-o,--output", o->output, "fig.png")->required();
+    app->add_flag("--overlay", o->overlay,
+                  "all files in one panel per position (the first as bars, the others as outlines, with a legend)");
     commands.push_back({app, [o] { return runPlot(*o); }});
 }
 

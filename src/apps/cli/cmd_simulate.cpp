@@ -1,4 +1,5 @@
 // btflut simulate: model histograms of a Gaussian rough surface, in the CSV `hist` writes.
+#include <iostream>
 #include <memory>
 
 #include "cli/cli.h"
@@ -38,7 +39,10 @@ Status runSimulate(const SimulateOptions& o) {
     std::vector<HistogramRow> rows;
     for (const Geometry& g : *geometry)
         rows.push_back({g.name, g.light, g.view, simulateHistogram(*model, g.light, g.view, options)});
-    return saveHistograms(rows, o.output);
+    if (Status s = saveHistograms(rows, o.output); !s) return s;
+    std::cout << "wrote " << o.output << ": " << rows.size() << " histogram(s) of " << o.bins << " bins ("
+              << simulationMethodName(*method) << ")\n";
+    return success();
 }
 
 }  // namespace
