@@ -12,6 +12,7 @@
 #include "core/file_io.h"
 #include "core/json_text.h"
 #include "core/metrics.h"
+#include "core/parallel.h"
 
 namespace btflut::cli {
 
@@ -105,15 +106,19 @@ Status runCompare(CompareOptions& o) {
     if (!bounds) return Error{bounds.error()};
     if (!o.diff.empty())
         if (Status s = requireExtension(o.diff, {"png"}, "--diff"); !s) return s;
-    Result<Image> a = loadImage(o.actual);
-    if (!a) return Error{a.error()};
     std::error_code ec;
     if (o.update && !std::filesystem::exists(o.expected, ec)) {  // a new golden image
+        if (Result<Image> a = loadImage(o.actual); !a) return Error{a.error()};
         if (Status s = copyFile(o.actual, o.expected); !s) return s;
         std::cout << "created " << o.expected << " from " << o.actual << "\n";
         return success();
     }
-    Result<Image> b = loadImage(o.expected);
+    // Both decoded at once (decoding is most of the time).
+    std::vector<Result<Image>> images(2, Result<Image>(Error{""}));
+    parallelFor(2, 0, [&](std::size_t k) { images[k] = loadImage(k == 0 ? o.actual : o.expected); });
+    Result<Image>& a = images[0];
+    Result<Image>& b = images[1];
+    if (!a) return Error{a.error()};
     if (!b) return Error{b.error()};
     if (a->width != b->width || a->height != b->height)
         return Error{o.actual + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + ", " + o.expected +
