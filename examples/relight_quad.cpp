@@ -37,7 +37,12 @@ std::string readText(const std::string& path) {
 }
 
 // A headless OpenGL 3.3 core context (Mesa's surfaceless platform, or the default display).
-void createContext() {
+struct Context {
+    EGLDisplay display;
+    EGLContext context;
+};
+
+Context createContext() {
     auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
     EGLDisplay display = getPlatformDisplay ? getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
                                             : eglGetDisplay(EGL_DEFAULT_DISPLAY);
@@ -52,6 +57,7 @@ void createContext() {
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
     if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
         fail("EGL: cannot make an OpenGL 3.3 core context current");
+    return {display, context};
 }
 
 GLuint compile(GLenum type, const std::string& source) {
@@ -123,7 +129,7 @@ int main(int argc, char** argv) {
     stbi_us* luts = stbi_load_16((folder + "/luts.png").c_str(), &lw, &lh, &lc, 0);
     if (!luts || lw != entries || lh != grid * grid * layers) fail(folder + "/luts.png: not the texture material.json describes");
 
-    createContext();
+    const Context egl = createContext();
     const GLenum format[] = {0, GL_RED, GL_RG, GL_RGB, GL_RGBA};
     GLuint textures[2];
     glGenTextures(2, textures);
@@ -179,5 +185,16 @@ int main(int argc, char** argv) {
         for (int c = 0; c < channels; ++c) out[i * channels + c] = rgba[i * 4 + c];
     if (!stbi_write_png(output.c_str(), w, h, channels, out.data(), w * channels)) fail(output + ": cannot write");
     std::printf("wrote %s (%dx%d)\n", output.c_str(), w, h);
+
+    glDeleteVertexArrays(1, &vertexArray);
+    glDeleteRenderbuffers(1, &target);
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteProgram(program);
+    glDeleteTextures(2, textures);
+    stbi_image_free(reference);
+    stbi_image_free(luts);
+    eglMakeCurrent(egl.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(egl.display, egl.context);
+    eglTerminate(egl.display);
     return 0;
 }

@@ -22,26 +22,51 @@ std::string glStrings() {
     return str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
 }
 
+// OSMesa brings LLVM with it (tens of megabytes to relocate), so it is loaded when an OSMesa
+// context is wanted, not when btflut starts: commands without OpenGL start in milliseconds.
+struct OsMesaApi {
+    decltype(&OSMesaCreateContextAttribs) createContextAttribs = nullptr;
+    decltype(&OSMesaMakeCurrent) makeCurrent = nullptr;
+    decltype(&OSMesaGetProcAddress) getProcAddress = nullptr;
+    decltype(&OSMesaDestroyContext) destroyContext = nullptr;
+};
+
+const OsMesaApi* osMesa() {
+    static const OsMesaApi api = [] {
+        OsMesaApi a;
+        void* library = ::dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);  // never closed
+        if (!library) return a;
+        a.createContextAttribs = reinterpret_cast<decltype(a.createContextAttribs)>(::dlsym(library, "OSMesaCreateContextAttribs"));
+        a.makeCurrent = reinterpret_cast<decltype(a.makeCurrent)>(::dlsym(library, "OSMesaMakeCurrent"));
+        a.getProcAddress = reinterpret_cast<decltype(a.getProcAddress)>(::dlsym(library, "OSMesaGetProcAddress"));
+        a.destroyContext = reinterpret_cast<decltype(a.destroyContext)>(::dlsym(library, "OSMesaDestroyContext"));
+        if (!a.createContextAttribs || !a.makeCurrent || !a.getProcAddress || !a.destroyContext) a = {};
+        return a;
+    }();
+    return api.createContextAttribs ? &api : nullptr;
+}
+
 class OsMesaContext : public HeadlessContext {
 public:
     static Result<std::unique_ptr<HeadlessContext>> create() {
+        if (!osMesa()) return Error{"OSMesa: cannot load libOSMesa.so.8 (Debian package libosmesa6)"};
         const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_PROFILE,
                                   OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
                                   OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
         std::unique_ptr<OsMesaContext> c(new OsMesaContext());
-        c->m_context = OSMesaCreateContextAttribs(attributes, nullptr);
+        c->m_context = osMesa()->createContextAttribs(attributes, nullptr);
         if (!c->m_context) return Error{"OSMesa: cannot create an OpenGL 3.3 core context"};
         // Drawing goes to framebuffer objects; OSMesa still wants a buffer to be current.
-        if (!OSMesaMakeCurrent(c->m_context, c->m_pixel.data(), GL_UNSIGNED_BYTE, 1, 1))
+        if (!osMesa()->makeCurrent(c->m_context, c->m_pixel.data(), GL_UNSIGNED_BYTE, 1, 1))
             return Error{"OSMesa: cannot make the context current"};
         if (const char* missing = loadGlFunctions([](const char* n) {
-                return reinterpret_cast<void*>(OSMesaGetProcAddress(n));
+                return reinterpret_cast<void*>(osMesa()->getProcAddress(n));
             }))
             return Error{std::string("OSMesa: missing ") + missing};
         return std::unique_ptr<HeadlessContext>(std::move(c));
     }
     ~OsMesaContext() override {
-        if (m_context) OSMesaDestroyContext(m_context);
+        if (m_context) osMesa()->destroyContext(m_context);
     }
     std::string description() const override { return "osmesa (" + glStrings() + ")"; }
 
