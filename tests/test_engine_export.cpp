@@ -22,8 +22,10 @@ nlohmann::json readJson(const std::string& path) { return nlohmann::json::parse(
 // exact relight, at one light.
 void checkExample(const TempDir& dir, const std::string& bank, const std::string& folder, const std::string& light) {
     const std::string example = dir / "example.png", grid = dir / "grid.png", exact = dir / "exact.png";
-    const std::string command = std::string(BTFLUT_EXAMPLE_QUAD) + " " + folder + " --light " + light + " -o " + example +
-                                " > /dev/null";
+    // Under the sanitizers: leaks are not checked in the example, whose only ones are those the
+    // GL driver keeps until exit (btflut's own tests pin the driver so they can be suppressed).
+    const std::string command = "ASAN_OPTIONS=detect_leaks=0 " + std::string(BTFLUT_EXAMPLE_QUAD) + " " + folder +
+                                " --light " + light + " -o " + example + " > /dev/null";
     REQUIRE(std::system(command.c_str()) == 0);
     REQUIRE(runCli({"relight", bank, "--grid", "--light", light, "-o", grid, "-q"}).status == 0);
     REQUIRE(runCli({"relight", bank, "--light", light, "-o", exact, "-q"}).status == 0);
