@@ -97,6 +97,30 @@ def main():
         check(np.abs(thirds[0].mean() - thirds[1].mean()) > 0 and not np.array_equal(thirds[0], thirds[1]),
               "split view: brdf and lut panes differ")
 
+        # Scripted runs: --size, --camera, a --screenshot-dir that does not exist yet, and saved
+        # scene files with paths relative to themselves (the folder moved, render still works).
+        made = os.path.join(tmp, "new", "shots")
+        run(XVFB + [btflut, "view", "--size", "800x600", "--camera", "30,45,5", "--frames", "1", "--screenshot-dir", made])
+        stem = os.path.join(made, "frame-0000")
+        check(load(stem + ".png").shape[:2] == (600, 800), "--size 800x600 gives an 800 x 600 frame")
+        scene = json.load(open(stem + ".scene.json"))
+        eye, target = np.array(scene["camera"]["position"]), np.array(scene["camera"]["target"])
+        a, e = np.radians(30), np.radians(45)
+        expected = target + 5 * np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+        check(np.allclose(eye, expected, atol=1e-6), f"--camera 30,45,5 places the camera ({eye} against {expected})")
+        banks = [m if isinstance(m, str) else m["bank"] for m in scene["materials"].values()]
+        check(all(not os.path.isabs(b) for b in banks), f"saved scene files hold relative paths ({banks})")
+        # Moved to another folder at the same depth: render still finds the material.
+        os.makedirs(os.path.join(tmp, "other"))
+        moved = os.path.join(tmp, "other", "shots")
+        os.rename(made, moved)
+        result = subprocess.run([btflut, "render", os.path.join(moved, "frame-0000.scene.json"), "-o",
+                                 os.path.join(tmp, "moved.png")], capture_output=True, text=True)
+        check(result.returncode == 0, f"a saved scene file still renders after its folder moved ({result.stderr.strip()!r})")
+        for bad, needle in ((["--camera", "30"], "--camera"), (["--size", "10x10"], "--size")):
+            result = subprocess.run(XVFB + [btflut, "view", "--frames", "1"] + bad, capture_output=True, text=True)
+            check(result.returncode != 0 and needle in result.stderr, f"bad {needle} refused ({result.stderr.strip()!r})")
+
     # No display: one line naming `btflut render`, non-zero exit.
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
     result = subprocess.run([btflut, "view"], capture_output=True, text=True, env=env)

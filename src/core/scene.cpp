@@ -187,7 +187,7 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
     return scene;
 }
 
-std::string sceneToJson(const Scene& scene) {
+std::string sceneToJson(const Scene& scene, const std::string& folder) {
     auto vec = [](const Vec3& v) { return json::array({v.x, v.y, v.z}); };
     json doc{{"btflut_scene", 1},
              {"image", {{"width", scene.width}, {"height", scene.height}}},
@@ -198,12 +198,17 @@ std::string sceneToJson(const Scene& scene) {
              {"dither", scene.dither},
              {"materials", json::object()},
              {"quads", json::array()}};
+    // Absolute, or relative to the folder the file will be in (parseScene resolves them there).
+    auto path = [&](const std::string& p) {
+        const std::filesystem::path absolute = std::filesystem::absolute(p).lexically_normal();
+        return folder.empty() ? absolute.string()
+                              : absolute.lexically_relative(std::filesystem::absolute(folder).lexically_normal()).string();
+    };
     for (const auto& [name, m] : scene.materials) {
-        const std::string bank = std::filesystem::absolute(m.bank).lexically_normal().string();
         if (m.images.empty())
-            doc["materials"][name] = bank;
+            doc["materials"][name] = path(m.bank);
         else
-            doc["materials"][name] = {{"bank", bank}, {"images", std::filesystem::absolute(m.images).lexically_normal().string()}};
+            doc["materials"][name] = {{"bank", path(m.bank)}, {"images", path(m.images)}};
     }
     for (const SceneQuad& q : scene.quads)
         doc["quads"].push_back({{"material", q.material}, {"center", vec(q.center)}, {"normal", vec(q.normal)},

@@ -58,8 +58,9 @@ Result<RenderMode> parseRenderMode(const std::string& name);
 Result<Scene> parseScene(const std::string& text, const std::string& file, const std::string& folder);
 Result<Scene> loadScene(const std::string& path);
 
-/// The scene as a scene file (paths made absolute), which parseScene reads back.
-std::string sceneToJson(const Scene& scene);
+/// The scene as a scene file, which parseScene reads back: material paths absolute, or, with
+/// `folder` (where the file will be), relative to it, so the folder can move with them.
+std::string sceneToJson(const Scene& scene, const std::string& folder = {});
 
 /// 4x4 column-major view-projection matrix of the scene's camera (OpenGL clip space).
 std::array<float, 16> viewProjection(const Scene& scene);

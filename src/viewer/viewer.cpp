@@ -192,12 +192,17 @@ private:
     Vec3 lightVector() const { return toVector(m_light); }
     Status screenshot(const std::string& path, int width, int height);
     void resetCamera(int width, int height);
+    /// The panel's width; 0 while Tab hides it.
+    int panelWidth() const { return m_panelVisible ? static_cast<int>(kPanelWidth) : 0; }
+    void keyHelp();
 
     const ViewerOptions& m_options;
     ViewerInput m_input;
     Window& m_window;
     std::unique_ptr<SceneRenderer> m_renderer;
     const LutBank* m_bank = nullptr;  ///< quad 0's material, when visible
+    bool m_panelVisible = true;
+    bool m_helpVisible = false;
     LevelCounts m_referenceGrey;     ///< over the sample mask, when the dataset has one
     std::optional<Mask> m_mask;      ///< the dataset's sample mask (single-quad views)
     std::vector<LightNode> m_nodes;
@@ -264,7 +269,7 @@ Status Viewer::start() {
 }
 
 std::vector<Viewer::Pane> Viewer::panes(int width, int height) const {
-    const int area = std::max(1, width - static_cast<int>(kPanelWidth));
+    const int area = std::max(1, width - panelWidth());
     std::vector<Pane> out;
     for (int p = 0; p < m_split; ++p) {
         const int x0 = area * p / m_split, x1 = area * (p + 1) / m_split;
@@ -375,7 +380,7 @@ bool Viewer::panel(int width, int height) {
                                              std::fmod(std::fmod(static_cast<double>(phi), 360.0) + 360.0, 360.0));
             changed = true;
         }
-        ImGui::TextDisabled("drag the disk or shift-drag the scene; arrows: 1 degree");
+        ImGui::TextDisabled("drag the disk, or shift-drag the scene; F1: keys");
     }
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::TextUnformatted("Panes");
@@ -465,7 +470,7 @@ bool Viewer::panel(int width, int height) {
 bool Viewer::sceneInput(int width, int height) {
     const ImGuiIO& io = ImGui::GetIO();
     bool changed = false;
-    if (!io.WantCaptureMouse && io.MousePos.x < static_cast<float>(width) - kPanelWidth) {
+    if (!io.WantCaptureMouse && io.MousePos.x < static_cast<float>(width - panelWidth())) {
         if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
             const ImVec2 d = io.MouseDelta;
             if (io.KeyShift) {
@@ -494,8 +499,39 @@ bool Viewer::sceneInput(int width, int height) {
             changed = true;
         }
         if (ImGui::IsKeyPressed(GLFW_KEY_S) || ImGui::IsKeyPressed(GLFW_KEY_F12)) m_screenshotRequested = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_TAB)) {
+            m_panelVisible = !m_panelVisible;
+            changed = true;
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_F1) || (ImGui::IsKeyPressed(GLFW_KEY_SLASH) && io.KeyShift)) {
+            m_helpVisible = !m_helpVisible;
+            changed = true;
+        }
     }
     return changed;
+}
+
+// F1 or ?: every key and mouse action, in a window over the scene.
+void Viewer::keyHelp() {
+    if (!m_helpVisible) return;
+    static const char* const kKeys[][2] = {
+        {"drag", "orbit the camera"},
+        {"shift + drag", "move the light"},
+        {"wheel", "zoom"},
+        {"arrows", "light: left/right 1 degree in phi, up/down 1 degree in theta"},
+        {"R", "reset the light and the camera"},
+        {"S, F12", "screenshot (--screenshot, or btflut-screenshot-PID-N.png)"},
+        {"Tab", "hide or show the panel"},
+        {"F1, ?", "this help"},
+    };
+    ImGui::SetNextWindowPos(ImVec2(20, 40), ImGuiCond_Always);
+    ImGui::Begin("Keys", &m_helpVisible, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
+    for (const auto& [key, action] : kKeys) {
+        ImGui::TextUnformatted(key);
+        ImGui::SameLine(120);
+        ImGui::TextUnformatted(action);
+    }
+    ImGui::End();
 }
 
 // The scene's camera; around a single quad, moved back until the quad fits one pane.
@@ -543,14 +579,14 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
             if (material.bank == m_input.temporaryBank) material.bank = kept.string();
     }
     const std::string sceneFile = std::string(stem) + ".scene.json";
-    if (Status s = writeFileAtomically((dir / sceneFile).string(), sceneToJson(scene)); !s) return s;
+    if (Status s = writeFileAtomically((dir / sceneFile).string(), sceneToJson(scene, dir.string())); !s) return s;  // paths relative to it
     const json state{{"frame", frame},
                      {"light", {{"theta", m_light.thetaDegrees()}, {"phi", m_light.phiDegrees()}}},
                      {"mode", renderModeName(pane.mode)},
                      {"scene", sceneFile},
                      // PNG pixels, origin top left: where the scene pane and the panel are
                      {"scene_viewport", {pane.x, height - pane.y - pane.height, pane.width, pane.height}},
-                     {"panel", {width - static_cast<int>(kPanelWidth), 0, static_cast<int>(kPanelWidth), height}}};
+                     {"panel", {width - panelWidth(), 0, panelWidth(), height}}};
     return writeFileAtomically((dir / (std::string(stem) + ".json")).string(), jsonText(state));
 }
 
@@ -560,6 +596,13 @@ Status Viewer::run() {
         int width = 0, height = 0;
         glfwGetFramebufferSize(window, &width, &height);
         resetCamera(width, height);
+        if (!m_options.camera.empty()) {  // validated by runViewer
+            double azimuth = 0, elevation = 0, distance = m_orbit.distance;
+            std::sscanf(m_options.camera.c_str(), "%lf,%lf,%lf", &azimuth, &elevation, &distance);
+            m_orbit.azimuth = azimuth * M_PI / 180;
+            m_orbit.elevation = elevation * M_PI / 180;
+            m_orbit.distance = distance;
+        }
     }
     bool dirty = true;
     int idleFrames = 0;
@@ -593,7 +636,11 @@ Status Viewer::run() {
         } else {
             ++idleFrames;
         }
-        dirty = panel(width, height);
+        dirty = m_panelVisible && panel(width, height);
+        if (!m_panelVisible)
+            ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(width) - 190, 8), IM_COL32(200, 200, 200, 255),
+                                                    "Tab: panel   F1: keys");
+        keyHelp();
         const std::vector<Pane> all = panes(width, height);
         for (const Pane& p : all)  // labels over the panes
             if (all.size() > 1)
@@ -636,8 +683,21 @@ Status runViewer(const ViewerOptions& options) {
     if (options.split < 1 || options.split > 3) return Error{"--split must be 1, 2 or 3"};
     if (!options.screenshotDir.empty() && options.frames <= 0)
         return Error{"--screenshot-dir saves scripted frames: give --frames N"};
-    if (!options.screenshotDir.empty() && !fs::is_directory(options.screenshotDir))
-        return Error{options.screenshotDir + ": not a folder (for --screenshot-dir)"};
+    if (!options.screenshotDir.empty()) {
+        std::error_code ec;
+        fs::create_directories(options.screenshotDir, ec);
+        if (!fs::is_directory(options.screenshotDir, ec))
+            return Error{options.screenshotDir + ": cannot create the folder for --screenshot-dir"};
+    }
+    if (!options.camera.empty()) {
+        double azimuth = 0, elevation = 0, distance = 1;
+        char extra = 0;
+        const int n = std::sscanf(options.camera.c_str(), "%lf,%lf,%lf%c", &azimuth, &elevation, &distance, &extra);
+        if ((n != 2 && n != 3) || !std::isfinite(azimuth) || !std::isfinite(elevation) || elevation < 3 || elevation > 89 ||
+            !std::isfinite(distance) || distance <= 0)
+            return Error{"--camera '" + options.camera + "': expected AZIMUTH,ELEVATION[,DISTANCE] in degrees, elevation "
+                         "3 to 89, distance > 0"};
+    }
     // The window first: without a display there is nothing to do, and nothing to bake.
     Result<std::unique_ptr<Window>> window = Window::create(options.width, options.height, "btflut view", options.vsync);
     if (!window) return Error{window.error()};

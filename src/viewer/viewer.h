@@ -25,7 +25,8 @@ struct ViewerOptions {
     int frames = 0;             ///< 0: interactive
     bool lightSweep = false;    ///< with frames: the light spirals from theta 10 to 80 over the frames
     std::string screenshot;     ///< PNG of the last frame (and the S key's target interactively)
-    std::string screenshotDir;  ///< every scripted frame: frame-NNNN.png, .json (state), .scene.json
+    std::string screenshotDir;  ///< every scripted frame: frame-NNNN.png, .json (state), .scene.json (created)
+    std::string camera;         ///< AZIMUTH,ELEVATION[,DISTANCE] (degrees; scene units) around the target; empty: the scene's
     /// A dataset is baked with these (references, regions, colour, predictor).
     BakeOptions bake;
 };

@@ -1,4 +1,5 @@
 // btflut view: the interactive viewer (src/viewer).
+#include <cstdio>
 #include <memory>
 
 #include "cli/cli.h"
@@ -20,6 +21,11 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--light", o->light, "light THETA,PHI in degrees (world frame); default 45,30");
     app->add_option("--width", o->width, "window width")->check(CLI::Range(640, 8192))->capture_default_str();
     app->add_option("--height", o->height, "window height")->check(CLI::Range(400, 8192))->capture_default_str();
+    auto size = std::make_shared<std::string>();
+    app->add_option("--size", *size, "WxH: the window's width and height at once (640x400 to 8192x8192)");
+    app->add_option("--camera", o->camera,
+                    "AZIMUTH,ELEVATION[,DISTANCE]: the camera around the scene's target (degrees, scene units); "
+                    "default the scene's");
     app->add_flag("!--no-vsync", o->vsync, "draw as fast as possible");
     app->add_option("--frames", o->frames, "scripted: draw N frames, then exit")->check(CLI::Range(1, 100000));
     app->add_flag("--light-sweep", o->lightSweep, "scripted: the light spirals from theta 10 to 80 over the frames");
@@ -35,7 +41,16 @@ void addViewCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::IsMember({"grey", "rgb", "lrgb"}));
     app->add_option("--predictor", *predictor, "with a dataset: references or ptm (bake --predictor)")
         ->check(CLI::IsMember({"references", "ptm"}));
-    commands.push_back({app, [o, colour, predictor] {
+    commands.push_back({app, [o, colour, predictor, size] {
+                            if (!size->empty()) {
+                                int w = 0, h = 0;
+                                char extra = 0;
+                                if (std::sscanf(size->c_str(), "%dx%d%c", &w, &h, &extra) != 2 || w < 640 || w > 8192 ||
+                                    h < 400 || h > 8192)
+                                    return Status{Error{"--size '" + *size + "': expected WxH, 640x400 to 8192x8192"}};
+                                o->width = w;
+                                o->height = h;
+                            }
                             o->bake.colour = *colour == "rgb" ? ColourMode::Rgb : *colour == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
                             o->bake.ptmPredictor = *predictor == "ptm";
                             return runViewer(*o);
