@@ -44,14 +44,6 @@ std::vector<double> MaterialHistograms::at(Direction light, Direction view, int 
     return histogram;
 }
 
-std::vector<Direction> MaterialHistograms::knownLights() const {
-    std::vector<Direction> lights;
-    if (bank)
-        for (const ViewLayer& layer : bank->layers)
-            for (const LightNode& node : layer.nodes) lights.push_back(node.light);
-    return lights;
-}
-
 Result<MaterialHistograms> loadMaterial(const std::string& path) {
     MaterialHistograms material;
     material.path = path;

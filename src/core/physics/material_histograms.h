@@ -28,9 +28,6 @@ struct MaterialHistograms {
     /// integrates with `nodes` quadrature nodes (simulate.h); a bank interpolates its LUTs
     /// (clamped, or modelled, beyond its measurements).
     std::vector<double> at(Direction light, Direction view, int bins, int nodes = 24) const;
-    /// The light directions a query should search: a bank's measured lights (with its
-    /// modelled ones), nothing for a model (any light).
-    std::vector<Direction> knownLights() const;
 };
 
 /// A model parameters file (.json) or a bank (.btflut); errors name the file. Banks must
