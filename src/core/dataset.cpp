@@ -389,13 +389,8 @@ Result<std::vector<HistogramRow>> histogramsOf(const Dataset& dataset, int bins,
             errors[i] = info.path + ": --channels rgb needs colour images, this one is grey";
             return;
         }
-        static const char* const suffix[] = {":R", ":G", ":B"};
-        for (std::size_t c = 0; c < perImage; ++c) {
-            LevelCounts levels = rgb ? countChannelLevels(*image, *mask, static_cast<int>(c))
-                                     : countGreyLevels(*image, *mask);
-            rows[i * perImage + c] = {rgb ? info.name + suffix[c] : info.name, info.light,
-                                      info.view, binHistogram(levels, bins)};
-        }
+        std::vector<HistogramRow> own = imageHistograms(*image, *mask, info.name, info.light, info.view, bins, rgb);
+        std::move(own.begin(), own.end(), rows.begin() + static_cast<std::ptrdiff_t>(i * perImage));
     });
     for (const std::string& e : errors)
         if (!e.empty()) return Error{e};

@@ -83,6 +83,15 @@ std::string number(double v) {
 }
 }  // namespace
 
+std::vector<HistogramRow> imageHistograms(const Image& image, const Mask& mask, const std::string& name,
+                                          Direction light, Direction view, int bins, bool rgb) {
+    if (!rgb) return {{name, light, view, binHistogram(countGreyLevels(image, mask), bins)}};
+    std::vector<HistogramRow> rows;
+    for (int c = 0; c < 3; ++c)
+        rows.push_back({name + ":" + "RGB"[c], light, view, binHistogram(countChannelLevels(image, mask, c), bins)});
+    return rows;
+}
+
 std::string histogramsToCsv(const std::vector<HistogramRow>& rows) {
     std::string out = "name,theta_i,phi_i,theta_r,phi_r";
     std::size_t bins = rows.empty() ? 0 : rows.front().bins.size();

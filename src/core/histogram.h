@@ -47,6 +47,11 @@ struct HistogramRow {
     std::vector<double> bins;
 };
 
+/// One image's rows over a mask: the grey value's histogram named `name`, or (rgb; a colour
+/// image) one per channel named NAME:R, NAME:G, NAME:B; `bins` normalised bins each.
+std::vector<HistogramRow> imageHistograms(const Image& image, const Mask& mask, const std::string& name,
+                                          Direction light, Direction view, int bins, bool rgb);
+
 /// CSV exactly as documented: header name,theta_i,phi_i,theta_r,phi_r,b0,...,b{N-1}, one
 /// row per histogram, angles in degrees, values with 17 significant digits.
 std::string histogramsToCsv(const std::vector<HistogramRow>& rows);

@@ -11,12 +11,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/direction.h"
 #include "core/result.h"
 
 namespace btflut {
 
 /// No btflut file needs more than a few levels.
 constexpr int kMaxJsonDepth = 64;
+
+/// A direction as the JSON files write it: {"theta": degrees, "phi": degrees}.
+inline nlohmann::json directionJson(Direction d) { return {{"theta", d.thetaDegrees()}, {"phi", d.phiDegrees()}}; }
 
 inline Result<nlohmann::json> parseJsonText(const std::string& text, const std::string& file) {
     struct TooDeep {};

@@ -16,10 +16,10 @@ namespace {
 // (each row's sum kept apart and added in order, so the result does not depend on threads).
 double meanSsim(const Image& p, const Image& q, const Mask& mask) {
     constexpr int kRadius = 5;
+    double weights[2 * kRadius + 1], sum = 0;
+    for (int k = -kRadius; k <= kRadius; ++k) sum += weights[k + kRadius] = std::exp(-0.5 * k * k / (1.5 * 1.5));
     float kernel[2 * kRadius + 1];
-    double sum = 0;
-    for (int k = -kRadius; k <= kRadius; ++k) sum += std::exp(-0.5 * k * k / (1.5 * 1.5));
-    for (int k = -kRadius; k <= kRadius; ++k) kernel[k + kRadius] = static_cast<float>(std::exp(-0.5 * k * k / (1.5 * 1.5)) / sum);
+    for (int k = 0; k < 2 * kRadius + 1; ++k) kernel[k] = static_cast<float>(weights[k] / sum);
     const int w = q.width, h = q.height;
     const std::size_t n = q.pixelCount();
     std::vector<float> x(n), y(n);

@@ -42,9 +42,7 @@ Status runModelBake(const BakeCommandOptions& o) {
     if (!o.dataset.empty()) return Error{"give either a DATASET or --model, not both"};
     if (o.reference.empty()) return Error{"--model needs --reference IMAGE (the material's reference image)"};
     if (o.colour != "grey") return Error{"--model makes grey LUTs; --colour rgb needs measured images"};
-    Result<Bytes> text = readFile(o.model);
-    if (!text) return Error{text.error()};
-    Result<ModelBankParams> params = parseModelParams(std::string(text->begin(), text->end()), o.model);
+    Result<ModelBankParams> params = loadModelParams(o.model);
     if (!params) return Error{params.error()};
     Result<Direction> light = parseDirection(o.referenceLight, "--reference-light");
     if (!light) return Error{light.error()};
@@ -72,9 +70,7 @@ Status runModelBake(const BakeCommandOptions& o) {
 Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, LutBank& bank) {
     std::optional<ModelBankParams> params;
     if (!o.params.empty()) {
-        Result<Bytes> text = readFile(o.params);
-        if (!text) return Error{text.error()};
-        Result<ModelBankParams> parsed = parseModelParams(std::string(text->begin(), text->end()), o.params);
+        Result<ModelBankParams> parsed = loadModelParams(o.params);
         if (!parsed) return Error{parsed.error()};
         params = *parsed;
     }

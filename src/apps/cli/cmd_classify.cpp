@@ -63,7 +63,7 @@ Status runClassify(const ClassifyCommandOptions& o) {
         for (std::size_t k = 0; k < shown; ++k) {
             const MaterialHistograms& m = (*library)[ranked[k].material];
             out["matches"].push_back({{"material", m.name}, {"path", m.path}, {"score", ranked[k].score},
-                                      {"light", {{"theta", ranked[k].light.thetaDegrees()}, {"phi", ranked[k].light.phiDegrees()}}}});
+                                      {"light", directionJson(ranked[k].light)}});
         }
         std::cout << jsonText(out);
         return success();

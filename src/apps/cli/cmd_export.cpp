@@ -23,25 +23,34 @@ struct ExportOptions {
     bool force = false;
 };
 
-Status exportAtlas(const ExportOptions& o, const LutBank& b) {
+// The grid's LUTs as a 16-bit image: one row per grid node (layer-major, then j, then i) and
+// region, one column per LUT entry (or quantile sample); RGB banks use the three colour
+// channels. For a bank of LUTs (one region) its rows are, in memory, the 3D texture of width
+// entries, height G and depth G x layers that `export -o DIR/` hands to engines.
+Result<Image> gridImage(const ExportOptions& o, const LutBank& b, const std::string& what) {
     const int cells = b.gridSize * b.gridSize;
     const int channels = b.channels();
     const int width = static_cast<int>(b.segmentLength()), regions = b.makesLuts() ? b.blend.regions : 1;
     const std::uint64_t rows = static_cast<std::uint64_t>(cells) * b.layers.size() * static_cast<std::uint64_t>(regions);
     if (rows > 0x7FFFFFFFu || rows * static_cast<std::uint64_t>(width) > maxImagePixels())
-        return Error{o.bank + ": its atlas would be " + std::to_string(width) + "x" + std::to_string(rows) +
+        return Error{o.bank + ": its " + what + " would be " + std::to_string(width) + "x" + std::to_string(rows) +
                      " pixels, more than a PNG (or --max-pixels) allows; bake it with a smaller --grid"};
-    // One row per grid node (layer-major, then j, then i) and region, one column per LUT
-    // entry (or quantile sample); RGB banks use the three colour channels of the PNG.
-    Image atlas(width, static_cast<int>(rows), channels, 16);
+    Image image(width, static_cast<int>(rows), channels, 16);
     for (std::size_t l = 0; l < b.layers.size(); ++l)
         for (int cell = 0; cell < cells; ++cell)
             for (int r = 0; r < regions; ++r)
                 for (int c = 0; c < channels; ++c)
                     for (int k = 0; k < width; ++k)
-                        atlas.at(k, (static_cast<int>(l) * cells + cell) * regions + r, c) =
+                        image.at(k, (static_cast<int>(l) * cells + cell) * regions + r, c) =
                             b.layers[l].gridLuts[((static_cast<std::size_t>(cell) * regions + r) * channels + c) * width + k] /
                             65535.f;
+    return image;
+}
+
+Status exportAtlas(const ExportOptions& o, const LutBank& b) {
+    Result<Image> grid = gridImage(o, b, "atlas");
+    if (!grid) return Error{grid.error()};
+    const Image& atlas = *grid;
 
     // The textures a bank that blends references relights from, beside the atlas.
     std::vector<std::pair<std::string, Bytes>> textures;
@@ -73,8 +82,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
             blend["predictor"] = "references";
             for (std::size_t k = 0; k < bl.references.size(); ++k)
                 blend["references"].push_back({{"file", texture("reference-" + std::to_string(k), bl.references[k])},
-                                               {"light", {{"theta", bl.lights[k].light.thetaDegrees()},
-                                                          {"phi", bl.lights[k].light.phiDegrees()}}}});
+                                               {"light", directionJson(bl.lights[k].light)}});
         }
         blend["how"] =
             "per light: blend the references of the Delaunay triangle (equal-area disk) around the light with "
@@ -99,13 +107,13 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
         "direction (theta, phi) maps to r = sqrt(2) sin(theta / 2), (x, y) = r (cos phi, sin phi) "
         "(Lambert equal-area; z = surface normal, phi from image right towards image up)";
     side["reference"] = {{"name", b.referenceName},
-                         {"light", {{"theta", b.referenceLight.thetaDegrees()}, {"phi", b.referenceLight.phiDegrees()}}},
-                         {"view", {{"theta", b.referenceView.thetaDegrees()}, {"phi", b.referenceView.phiDegrees()}}}};
+                         {"light", directionJson(b.referenceLight)},
+                         {"view", directionJson(b.referenceView)}};
     side["layers"] = nlohmann::json::array();
     for (const ViewLayer& layer : b.layers) {
         nlohmann::json provenance = nlohmann::json::array();
         for (Provenance p : layer.gridProvenance) provenance.push_back(provenanceName(p));
-        side["layers"].push_back({{"view", {{"theta", layer.view.thetaDegrees()}, {"phi", layer.view.phiDegrees()}}},
+        side["layers"].push_back({{"view", directionJson(layer.view)},
                                   {"node_provenance", provenance}});
     }
     std::filesystem::path sidecar = std::filesystem::path(o.output).replace_extension(".json");
@@ -136,20 +144,9 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
             return Error{o.output + ": the folder is not empty (--force writes over btflut's files in it)"};
     }
     const int g = b.gridSize, layers = static_cast<int>(b.layers.size()), channels = b.channels();
-    const std::uint64_t rows = static_cast<std::uint64_t>(g) * g * layers;
-    if (rows > 0x7FFFFFFFu || rows * static_cast<std::uint64_t>(b.entries) > maxImagePixels())
-        return Error{o.bank + ": its LUT texture would be " + std::to_string(b.entries) + "x" + std::to_string(rows) +
-                     " pixels, more than a PNG (or --max-pixels) allows; bake it with a smaller --grid"};
-    // Row (layer * G + j) * G + i holds node (i, j)'s LUT: in memory, the 3D texture of
-    // width entries, height G, depth G * layers.
-    Image luts(b.entries, static_cast<int>(rows), channels, 16);
-    for (int l = 0; l < layers; ++l)
-        for (std::size_t cell = 0; cell < static_cast<std::size_t>(g) * g; ++cell)
-            for (int c = 0; c < channels; ++c)
-                for (int k = 0; k < b.entries; ++k)
-                    luts.at(k, static_cast<int>(static_cast<std::size_t>(l) * g * g + cell), c) =
-                        b.layers[static_cast<std::size_t>(l)].gridLuts[(cell * channels + c) * b.entries + k] / 65535.f;
-    auto direction = [](Direction d) { return nlohmann::json{{"theta", d.thetaDegrees()}, {"phi", d.phiDegrees()}}; };
+    // Row (layer * G + j) * G + i holds node (i, j)'s LUT (a bank of LUTs has one region).
+    Result<Image> luts = gridImage(o, b, "LUT texture");
+    if (!luts) return Error{luts.error()};
     nlohmann::json side{
         {"format", "btflut-material"},
         {"version", 1},
@@ -161,8 +158,8 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
                        {"channels", b.reference.channels},
                        {"bit_depth", b.reference.bitDepth},
                        {"name", b.referenceName},
-                       {"light", direction(b.referenceLight)},
-                       {"view", direction(b.referenceView)}}},
+                       {"light", directionJson(b.referenceLight)},
+                       {"view", directionJson(b.referenceView)}}},
         {"luts", {{"file", "luts.png"},
                   {"texture", "3D, width entries, height grid_size, depth grid_size x layers; 16-bit unorm, " +
                                   std::string(channels == 3 ? "RGB (one LUT per colour channel)" : "one channel")},
@@ -180,11 +177,11 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
     for (const ViewLayer& layer : b.layers) {
         nlohmann::json provenance = nlohmann::json::array();
         for (Provenance p : layer.gridProvenance) provenance.push_back(provenanceName(p));
-        side["views"].push_back({{"view", direction(layer.view)}, {"node_provenance", provenance}});
+        side["views"].push_back({{"view", directionJson(layer.view)}, {"node_provenance", provenance}});
     }
     if (!b.modelFill.empty()) side["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
 
-    const Bytes reference = encodePng(b.reference, b.reference.bitDepth), lutPng = encodePng(luts, 16);
+    const Bytes reference = encodePng(b.reference, b.reference.bitDepth), lutPng = encodePng(*luts, 16);
     const std::string text = jsonText(side);
     const std::string_view shader = embeddedShader("btflut.glsl");
     fs::create_directories(o.output, ec);

@@ -24,13 +24,9 @@ struct HistOptions {
 Result<std::vector<HistogramRow>> imageHistograms(const HistOptions& o) {
     Result<SampleImage> sample = loadSampleImage(o.dataset, o.mask);
     if (!sample) return Error{sample.error()};
-    const std::string name = std::filesystem::path(o.dataset).stem().string();
-    if (o.channels != "rgb") return std::vector<HistogramRow>{{name, {}, {}, binHistogram(countGreyLevels(sample->image, sample->mask), o.bins)}};
-    if (sample->image.channels != 3) return Error{o.dataset + ": --channels rgb needs a colour image, this one is grey"};
-    std::vector<HistogramRow> rows;
-    for (int c = 0; c < 3; ++c)
-        rows.push_back({name + ":" + "RGB"[c], {}, {}, binHistogram(countChannelLevels(sample->image, sample->mask, c), o.bins)});
-    return rows;
+    const bool rgb = o.channels == "rgb";
+    if (rgb && sample->image.channels != 3) return Error{o.dataset + ": --channels rgb needs a colour image, this one is grey"};
+    return imageHistograms(sample->image, sample->mask, std::filesystem::path(o.dataset).stem().string(), {}, {}, o.bins, rgb);
 }
 
 Status runHist(const HistOptions& o) {

@@ -47,7 +47,6 @@ LayerSummary summarise(const LutBank& b, const ViewLayer& layer) {
 }
 
 nlohmann::json infoJson(const std::string& path, const LutBank& b) {
-    auto direction = [](Direction d) { return nlohmann::json{{"theta", d.thetaDegrees()}, {"phi", d.phiDegrees()}}; };
     nlohmann::json out{{"file", path},
                        {"format_version", bankFormatVersion(b)},
                        {"bytes", std::filesystem::file_size(path)},
@@ -56,8 +55,8 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
                        {"grid_size", b.gridSize},
                        {"domain", domainName(b.domain)},
                        {"reference", {{"name", b.referenceName},
-                                      {"light", direction(b.referenceLight)},
-                                      {"view", direction(b.referenceView)},
+                                      {"light", directionJson(b.referenceLight)},
+                                      {"view", directionJson(b.referenceView)},
                                       {"width", b.reference.width},
                                       {"height", b.reference.height},
                                       {"channels", b.reference.channels},
@@ -73,7 +72,7 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
     if (!b.modelFill.empty()) out["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
     for (std::size_t l = 0; l < b.layers.size(); ++l) {
         const LayerSummary s = summarise(b, b.layers[l]);
-        out["layers"].push_back({{"view", direction(b.layers[l].view)},
+        out["layers"].push_back({{"view", directionJson(b.layers[l].view)},
                                  {"light_nodes", s.measured},
                                  {"modelled_nodes", s.modelled},
                                  {"max_theta", s.maxTheta},

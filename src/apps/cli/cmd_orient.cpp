@@ -42,13 +42,12 @@ Status runOrient(const OrientCommandOptions& o) {
     const char* frame = which == Known::Light ? "camera" : "light";
     if (o.json) {
         nlohmann::json out{{"image", o.image}, {"material", o.material}, {"frame", frame},
-                           {which == Known::Light ? "light" : "view", {{"theta", known->thetaDegrees()}, {"phi", known->phiDegrees()}}},
+                           {which == Known::Light ? "light" : "view", directionJson(*known)},
                            {"tolerance", orientation->tolerance}, {"candidates", nlohmann::json::array()}};
-        auto direction = [](Direction d) { return nlohmann::json{{"theta", d.thetaDegrees()}, {"phi", d.phiDegrees()}}; };
         for (const OrientationCandidate& c : orientation->candidates)
-            out["candidates"].push_back({{"normal", direction(c.normal)},
-                                         {"light", direction(c.light)},
-                                         {"view", direction(c.view)},
+            out["candidates"].push_back({{"normal", directionJson(c.normal)},
+                                         {"light", directionJson(c.light)},
+                                         {"view", directionJson(c.view)},
                                          {"emd", c.distance},
                                          {"uncertainty", c.uncertainty / kDegree},
                                          {"tilt_uncertainty", c.tiltUncertainty / kDegree},

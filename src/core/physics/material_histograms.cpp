@@ -50,9 +50,7 @@ Result<MaterialHistograms> loadMaterial(const std::string& path) {
     material.name = std::filesystem::path(path).stem().string();
     const std::string extension = fileExtension(path);
     if (extension == "json") {
-        Result<Bytes> text = readFile(path);
-        if (!text) return Error{text.error()};
-        Result<ModelBankParams> params = parseModelParams(std::string(text->begin(), text->end()), path);
+        Result<ModelBankParams> params = loadModelParams(path);
         if (!params) return Error{params.error()};
         material.model = std::move(*params);
         return material;

@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/file_io.h"
 #include "core/json_text.h"
 
 #include "core/parallel.h"
@@ -81,6 +82,12 @@ Result<ModelBankParams> parseModelParams(const std::string& text, const std::str
             for (int phi = 0; phi < 360; phi += 30) p.lights.push_back(Direction::fromDegrees(theta, phi));
     }
     return p;
+}
+
+Result<ModelBankParams> loadModelParams(const std::string& path) {
+    Result<Bytes> text = readFile(path);
+    if (!text) return Error{text.error()};
+    return parseModelParams(std::string(text->begin(), text->end()), path);
 }
 
 std::string modelParamsText(const ModelBankParams& params) {

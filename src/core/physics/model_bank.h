@@ -26,6 +26,9 @@ struct ModelBankParams {
 /// Parses a model parameters file (JSON); errors name the file and the field.
 Result<ModelBankParams> parseModelParams(const std::string& text, const std::string& file);
 
+/// The same from a file (bake --model, --fill model --params, a library of materials).
+Result<ModelBankParams> loadModelParams(const std::string& path);
+
 /// The model part of a parameters file (brdf, roughness, kd, ks, sigma, ior, gain, smooth),
 /// as JSON text that parseModelParams reads back.
 std::string modelParamsText(const ModelBankParams& params);
