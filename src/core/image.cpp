@@ -71,24 +71,7 @@ Status checkSize(std::uint64_t width, std::uint64_t height, const Request& r) {
     return success();
 }
 
-// Decoded samples of `bytesPerSample` (1, or 2 in host order), `stride` per pixel, of which
-// the first `channels` are kept, into [0, 1] floats.
-Image toImage(const std::uint8_t* data, int width, int height, int channels, int stride, bool sixteen) {
-    Image image(width, height, channels, sixteen ? 16 : 8);
-    const std::size_t n = image.pixelCount();
-    float* out = image.samples.data();
-    if (sixteen) {
-        const auto* in = reinterpret_cast<const std::uint16_t*>(data);
-        for (std::size_t i = 0; i < n; ++i)
-            for (int c = 0; c < channels; ++c) *out++ = static_cast<float>(in[i * stride + c]) / 65535.f;
-    } else {
-        for (std::size_t i = 0; i < n; ++i)
-            for (int c = 0; c < channels; ++c) *out++ = static_cast<float>(data[i * stride + c]) / 255.f;
-    }
-    return image;
-}
-
-Result<Image> decodePng(const Bytes& b, const Request& r) {
+Result<ImageCodes> decodePng(const Bytes& b, const Request& r) {
     const std::string& name = r.name;
     // libspng checks chunk CRCs, but stops at the end of the image data: a cut in the
     // final IEND chunk is caught here.
@@ -124,13 +107,13 @@ Result<Image> decodePng(const Bytes& b, const Request& r) {
     if (!pixels) return Error{name + ": out of memory for a " + std::to_string(ihdr.width) + "x" +
                               std::to_string(ihdr.height) + " image"};
     if (int e = spng_decode_image(ctx.get(), pixels.get(), size, format, 0)) return fail(e);
-    return toImage(pixels.get(), static_cast<int>(ihdr.width), static_cast<int>(ihdr.height), grey ? 1 : 3,
-                   stride, sixteen);
+    return ImageCodes{static_cast<int>(ihdr.width), static_cast<int>(ihdr.height), grey ? 1 : 3, sixteen ? 16 : 8,
+                      stride, std::move(pixels)};
 }
 
 static_assert(sizeof(unsigned long) >= sizeof(std::size_t), "libjpeg-turbo takes the file length as unsigned long");
 
-Result<Image> decodeJpeg(const Bytes& b, const Request& r) {
+Result<ImageCodes> decodeJpeg(const Bytes& b, const Request& r) {
     const std::string& name = r.name;
     // The end-of-image marker must follow the last start-of-scan marker. Entropy-coded
     // data stuffs 0xFF as FF 00, so FF D9 there is a real marker.
@@ -161,7 +144,7 @@ Result<Image> decodeJpeg(const Bytes& b, const Request& r) {
                       channels == 1 ? TJPF_GRAY : TJPF_RGB,
                       TJFLAG_STOPONWARNING | TJFLAG_LIMITSCANS | TJFLAG_ACCURATEDCT) != 0)
         return fail();
-    return toImage(pixels.get(), width, height, channels, channels, false);
+    return ImageCodes{width, height, channels, 8, channels, std::move(pixels)};
 }
 
 // stb_image fills zeros past the end of TGA and BMP pixel data, so their length is
@@ -209,7 +192,7 @@ Status checkTga(const Bytes& b, const Request& r) {
     return success();
 }
 
-Result<Image> decodeWithStb(const Bytes& bytes, const Request& r, Format format) {
+Result<ImageCodes> decodeWithStb(const Bytes& bytes, const Request& r, Format format) {
     const std::string& name = r.name;
     if (bytes.size() > static_cast<std::size_t>(INT32_MAX)) return Error{name + ": file too large"};
     const auto len = static_cast<int>(bytes.size());
@@ -227,7 +210,12 @@ Result<Image> decodeWithStb(const Bytes& bytes, const Request& r, Format format)
     std::unique_ptr<stbi_uc, void (*)(void*)> data(stbi_load_from_memory(bytes.data(), len, &fw, &fh, &fc, channels),
                                                    stbi_image_free);
     if (!data) return Error{name + ": corrupt image (" + stbi_failure_reason() + ")"};
-    return toImage(data.get(), fw, fh, channels, channels, false);
+    // Copied into a buffer of our own (BMP and TGA only: rare and small).
+    const std::size_t size = static_cast<std::size_t>(fw) * fh * channels;
+    std::unique_ptr<std::uint8_t[]> pixels(new (std::nothrow) std::uint8_t[size]);
+    if (!pixels) return Error{name + ": out of memory for a " + sizeText(fw, fh) + " image"};
+    std::memcpy(pixels.get(), data.get(), size);
+    return ImageCodes{fw, fh, channels, 8, channels, std::move(pixels)};
 }
 
 }  // namespace
@@ -244,7 +232,7 @@ std::size_t Mask::count() const {
                                                   [](std::uint8_t v) { return v != 0; }));
 }
 
-Result<Image> decodeImage(const Bytes& bytes, const std::string& name, int expectedWidth, int expectedHeight) {
+Result<ImageCodes> decodeImageCodes(const Bytes& bytes, const std::string& name, int expectedWidth, int expectedHeight) {
     if (bytes.empty()) return Error{name + ": empty file"};
     const Request request{name, expectedWidth, expectedHeight};
     switch (const Format format = formatOf(bytes)) {
@@ -252,6 +240,51 @@ Result<Image> decodeImage(const Bytes& bytes, const std::string& name, int expec
         case Format::Jpeg: return decodeJpeg(bytes, request);
         default: return decodeWithStb(bytes, request, format);
     }
+}
+
+Result<ImageCodes> loadImageCodes(const std::string& path) {
+    Result<Bytes> bytes = readFile(path);
+    if (!bytes) return Error{bytes.error()};
+    return decodeImageCodes(*bytes, path);
+}
+
+Image toImage(const ImageCodes& codes) {
+    Image image(codes.width, codes.height, codes.channels, codes.bitDepth);
+    const std::size_t n = image.pixelCount();
+    const int channels = codes.channels, stride = codes.stride;
+    float* out = image.samples.data();
+    if (codes.bitDepth == 16) {
+        const std::uint16_t* in = codes.sixteen();
+        for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < channels; ++c) *out++ = static_cast<float>(in[i * stride + c]) / 65535.f;
+    } else {
+        const std::uint8_t* in = codes.eight();
+        for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < channels; ++c) *out++ = static_cast<float>(in[i * stride + c]) / 255.f;
+    }
+    return image;
+}
+
+ImageCodes toCodes(const Image& image, int bitDepth) {
+    BTFLUT_CHECK(bitDepth == 8 || bitDepth == 16);
+    const std::size_t n = image.samples.size();
+    ImageCodes codes{image.width, image.height, image.channels, bitDepth, image.channels,
+                     std::make_unique_for_overwrite<std::uint8_t[]>(n * (bitDepth == 16 ? 2 : 1))};
+    // Each sample to the nearest code; NaN and below 0 to 0, above 1 to the top code.
+    auto code = [](float v, float top) { return static_cast<int>((v >= 0.f ? std::min(v, 1.f) : 0.f) * top + 0.5f); };
+    if (bitDepth == 16) {
+        auto* out = reinterpret_cast<std::uint16_t*>(codes.bytes.get());
+        for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<std::uint16_t>(code(image.samples[i], 65535.f));
+    } else {
+        for (std::size_t i = 0; i < n; ++i) codes.bytes[i] = static_cast<std::uint8_t>(code(image.samples[i], 255.f));
+    }
+    return codes;
+}
+
+Result<Image> decodeImage(const Bytes& bytes, const std::string& name, int expectedWidth, int expectedHeight) {
+    Result<ImageCodes> codes = decodeImageCodes(bytes, name, expectedWidth, expectedHeight);
+    if (!codes) return Error{codes.error()};
+    return toImage(*codes);
 }
 
 Result<Image> loadImage(const std::string& path) {

@@ -9,6 +9,7 @@
 // largest y). Alpha is dropped; grey-alpha loads as grey.
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,22 @@ struct Image {
     int maxCode() const { return bitDepth == 16 ? 65535 : 255; }
 };
 
+/// An image as the integer codes its file holds, before any conversion to floats: what
+/// exact comparisons want (`btflut compare`), at a quarter (8 bits) or half (16) of the memory of an Image.
+struct ImageCodes {
+    int width = 0;
+    int height = 0;
+    int channels = 0;  ///< 1 (grey) or 3 (RGB)
+    int bitDepth = 8;  ///< 8: one byte per sample; 16: two, in host order
+    int stride = 0;    ///< samples from one pixel to the next (more than `channels` where alpha is kept)
+    std::unique_ptr<std::uint8_t[]> bytes;
+
+    std::size_t pixelCount() const { return static_cast<std::size_t>(width) * height; }
+    int maxCode() const { return bitDepth == 16 ? 65535 : 255; }
+    const std::uint8_t* eight() const { return bytes.get(); }
+    const std::uint16_t* sixteen() const { return reinterpret_cast<const std::uint16_t*>(bytes.get()); }
+};
+
 /// Sample mask: one byte per pixel, non-zero = part of the sample.
 struct Mask {
     int width = 0;
@@ -75,6 +92,16 @@ Result<Image> loadImage(const std::string& path);
 /// size, a file declaring another is refused from its header, before decoding.
 Result<Image> decodeImage(const Bytes& bytes, const std::string& name, int expectedWidth = 0,
                           int expectedHeight = 0);
+
+/// Decodes an image file (or bytes) into its codes; the same checks and errors as loadImage.
+Result<ImageCodes> loadImageCodes(const std::string& path);
+Result<ImageCodes> decodeImageCodes(const Bytes& bytes, const std::string& name, int expectedWidth = 0,
+                                    int expectedHeight = 0);
+
+/// Codes as floats (code / max code), and floats as the nearest codes of `bitDepth` (8 or 16)
+/// bits (clamped to [0, 1]; NaN to 0).
+Image toImage(const ImageCodes& codes);
+ImageCodes toCodes(const Image& image, int bitDepth);
 
 /// A mask from an image file (non-zero in any channel = sample). It must be
 /// `width` x `height` and contain at least one sample pixel.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <type_traits>
 
 #include "core/histogram.h"
 #include "core/parallel.h"
@@ -10,69 +12,197 @@ namespace btflut {
 
 namespace {
 
-// Mean SSIM (Wang et al. 2004) of two grey images over a mask: Gaussian windows (sigma 1.5,
-// radius 5, edges clamped) of x, y, xx, yy and xy. One horizontal pass into five float
-// planes, then per output row the vertical sums and the SSIM term at once, rows in parallel
-// (each row's sum kept apart and added in order, so the result does not depend on threads).
-double meanSsim(const Image& p, const Image& q, const Mask& mask) {
-    constexpr int kRadius = 5;
-    double weights[2 * kRadius + 1], sum = 0;
-    for (int k = -kRadius; k <= kRadius; ++k) sum += weights[k + kRadius] = std::exp(-0.5 * k * k / (1.5 * 1.5));
-    float kernel[2 * kRadius + 1];
-    for (int k = 0; k < 2 * kRadius + 1; ++k) kernel[k] = static_cast<float>(weights[k] / sum);
-    const int w = q.width, h = q.height;
-    const std::size_t n = q.pixelCount();
-    std::vector<float> x(n), y(n);
-    for (std::size_t i = 0; i < n; ++i) x[i] = p.grey(i), y[i] = q.grey(i);
-    std::vector<float> planes(5 * n);  // horizontal sums of x, y, xx, yy, xy
-    parallelFor(static_cast<std::size_t>(h), 0, [&](std::size_t row) {
-        const float* xr = &x[row * w];
-        const float* yr = &y[row * w];
-        for (int c = 0; c < w; ++c) {
-            float s[5] = {0, 0, 0, 0, 0};
-            for (int k = -kRadius; k <= kRadius; ++k) {
-                const int at = std::clamp(c + k, 0, w - 1);
-                const float a = xr[at], b = yr[at], g = kernel[k + kRadius];
-                s[0] += g * a, s[1] += g * b, s[2] += g * a * a, s[3] += g * b * b, s[4] += g * a * b;
-            }
-            for (int m = 0; m < 5; ++m) planes[m * n + row * w + c] = s[m];
-        }
-    });
-    constexpr double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;
-    std::vector<double> rowTotal(static_cast<std::size_t>(h), 0.0);
-    parallelFor(static_cast<std::size_t>(h), 0, [&](std::size_t row) {
-        std::vector<float> s(5 * static_cast<std::size_t>(w), 0.f);
-        for (int k = -kRadius; k <= kRadius; ++k) {
-            const std::size_t from = static_cast<std::size_t>(std::clamp(static_cast<int>(row) + k, 0, h - 1)) * w;
-            const float g = kernel[k + kRadius];
-            for (int m = 0; m < 5; ++m)
-                for (int c = 0; c < w; ++c) s[m * w + c] += g * planes[m * n + from + c];
-        }
-        double total = 0;
-        for (int c = 0; c < w; ++c) {
-            if (!mask.inside[row * w + c]) continue;
-            const double mx = s[c], my = s[w + c];
-            const double vx = s[2 * w + c] - mx * mx, vy = s[3 * w + c] - my * my, cxy = s[4 * w + c] - mx * my;
-            total += (2 * mx * my + c1) * (2 * cxy + c2) / ((mx * mx + my * my + c1) * (vx + vy + c2));
-        }
-        rowTotal[row] = total;
-    });
-    double total = 0;
-    for (double t : rowTotal) total += t;
-    const std::size_t inside = mask.count();
-    return inside ? total / static_cast<double>(inside) : 1.0;
+constexpr int kRadius = 5;  // SSIM's Gaussian window: sigma 1.5, 11 taps
+constexpr int kTaps = 2 * kRadius + 1;
+
+struct SsimKernel {
+    float weights[kTaps];
+    SsimKernel() {
+        double raw[kTaps], sum = 0;
+        for (int k = -kRadius; k <= kRadius; ++k) sum += raw[k + kRadius] = std::exp(-0.5 * k * k / (1.5 * 1.5));
+        for (int k = 0; k < kTaps; ++k) weights[k] = static_cast<float>(raw[k] / sum);
+    }
+};
+
+// The horizontal Gaussian sums of x, y, xx, yy and xy along one row (edges clamped), into
+// `out` (5 planes of w). `padded` is scratch of 5 * (w + 2 * kRadius) floats. Written as
+// plain loops over the columns so that the compiler vectorises them (with AVX2 where the
+// processor has it: the same arithmetic, element by element, so the same result).
+[[gnu::target_clones("avx2", "default")]] void horizontalSums(const float* x, const float* y, int w, const float* g, float* padded, float* out) {
+    const int pw = w + 2 * kRadius;
+    float* px = padded;
+    float* py = padded + pw;
+    for (int c = 0; c < pw; ++c) {
+        const int at = std::clamp(c - kRadius, 0, w - 1);
+        px[c] = x[at], py[c] = y[at];
+    }
+    float* pxx = padded + 2 * pw;
+    float* pyy = padded + 3 * pw;
+    float* pxy = padded + 4 * pw;
+    for (int c = 0; c < pw; ++c) pxx[c] = px[c] * px[c], pyy[c] = py[c] * py[c], pxy[c] = px[c] * py[c];
+    for (int m = 0; m < 5; ++m) {
+        const float* in = padded + m * pw;
+        float* o = out + m * w;
+        for (int c = 0; c < w; ++c) o[c] = g[0] * in[c];
+        for (int k = 1; k < kTaps; ++k)
+            for (int c = 0; c < w; ++c) o[c] += g[k] * in[c + k];
+    }
 }
 
-// True when every sample is a code of `bitDepth` bits already (as decoded from a file). A
-// branch-free pass the compiler vectorises.
-bool isQuantised(const Image& image, int bitDepth) {
-    const float scale = bitDepth == 16 ? 65535.f : 255.f;
-    float worst = 0.f;
-    for (float v : image.samples) {
-        const float code = std::clamp(v, 0.f, 1.f) * scale;
-        worst = std::max(worst, std::abs(code - static_cast<float>(static_cast<int>(code + 0.5f))) + std::abs(v - std::clamp(v, 0.f, 1.f)));
+// The sum of SSIM over one row's mask pixels, from the ring of the horizontal sums of 11
+// rows (the first of the window at slot `oldest`), with `s` scratch of 6 * w floats.
+[[gnu::target_clones("avx2", "default")]] double ssimRow(const float* ring, int oldest, std::size_t w, const float* g,
+                                                         const std::uint8_t* inside, float* s) {
+    std::fill(s, s + 5 * w, 0.f);
+    for (int k = 0; k < kTaps; ++k) {
+        const float* in = ring + static_cast<std::size_t>((oldest + k) % kTaps) * 5 * w;
+        for (std::size_t i = 0; i < 5 * w; ++i) s[i] += g[k] * in[i];
     }
-    return worst <= 1e-3f;  // NaN samples make `worst` NaN: not quantised
+    // The SSIM term of every column (vectorised), then its sum over the mask in four
+    // independent partial sums (a fixed order: the same result every time).
+    constexpr float c1 = 0.01f * 0.01f, c2 = 0.03f * 0.03f;
+    float* term = s + 5 * w;
+    for (std::size_t c = 0; c < w; ++c) {
+        const float mx = s[c], my = s[w + c];
+        const float vx = s[2 * w + c] - mx * mx, vy = s[3 * w + c] - my * my, cxy = s[4 * w + c] - mx * my;
+        const float value = (2 * mx * my + c1) * (2 * cxy + c2) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+        term[c] = inside[c] ? value : 0.f;
+    }
+    double partial[4] = {0, 0, 0, 0};
+    std::size_t c = 0;
+    for (; c + 4 <= w; c += 4)
+        for (int k = 0; k < 4; ++k) partial[k] += term[c + k];
+    for (; c < w; ++c) partial[0] += term[c];
+    return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+}
+
+// One image's codes of one type (8 or 16 bits) as the pass below reads them.
+template <typename T>
+struct CodeView {
+    const T* samples;
+    int channels, stride;
+    float greyScale;                   // grey value of a sum of channel codes
+    std::vector<std::uint8_t> binOf;  // histogram bin (of 64) of each sum of channel codes
+
+    const T* pixel(std::size_t i) const { return samples + i * stride; }
+    // The sums of the channels' codes of `w` pixels from pixel `at` (the common layouts
+    // spelled out so that the compiler vectorises each).
+    void greyRow(std::size_t at, std::size_t w, std::uint32_t* out) const {
+        const T* s = pixel(at);
+        auto sum = [&](auto step, auto count) {
+            for (std::size_t i = 0; i < w; ++i)
+                out[i] = count == 1 ? s[i * step] : std::uint32_t{s[i * step]} + s[i * step + 1] + s[i * step + 2];
+        };
+        if (channels == 3 && stride == 3) return sum(std::integral_constant<int, 3>{}, std::integral_constant<int, 3>{});
+        if (channels == 3) return sum(std::integral_constant<int, 4>{}, std::integral_constant<int, 3>{});
+        if (stride == 1) return sum(std::integral_constant<int, 1>{}, std::integral_constant<int, 1>{});
+        return sum(std::integral_constant<int, 2>{}, std::integral_constant<int, 1>{});
+    }
+};
+
+template <typename T>
+CodeView<T> viewOf(const ImageCodes& c, const T* samples) {
+    BTFLUT_CHECK((c.channels == 3 && (c.stride == 3 || c.stride == 4)) || (c.channels == 1 && (c.stride == 1 || c.stride == 2)));
+    const auto last = static_cast<std::uint64_t>(c.channels) * static_cast<std::uint64_t>(c.maxCode());
+    std::vector<std::uint8_t> bins(last + 1);
+    for (std::uint64_t k = 0; k <= last; ++k) bins[k] = static_cast<std::uint8_t>(std::min<std::uint64_t>(k * 64 / last, 63));  // as binHistogram
+    return {samples, c.channels, c.stride, static_cast<float>(1.0 / static_cast<double>(last)), std::move(bins)};
+}
+
+// What one band of rows adds to the figures; bands are added in order, so the result does
+// not depend on the threads.
+struct BandSums {
+    double squared = 0, absolute = 0, worst = 0;  // in codes
+    std::uint64_t pixels = 0;                     // pixels compared
+    std::uint64_t binsP[64] = {}, binsQ[64] = {};  // grey histograms, 64 bins
+    double ssim = 0;
+};
+
+// Every figure in one pass over bands of rows, in parallel: the differences and histograms
+// of the band's rows, and SSIM (Wang et al. 2004: Gaussian windows of x, y, xx, yy and xy,
+// sigma 1.5, radius 5, edges clamped, of the grey images). Within a band the horizontal sums
+// of the last 11 rows stay in a ring that fits the cache and each output row is their
+// vertical sum: no image-sized buffer is made.
+template <typename T>
+ImageErrors compareViews(const CodeView<T>& p, const CodeView<T>& q, int w, int h, double maxCode, const Mask& mask) {
+    static const SsimKernel kernel;
+    const float* g = kernel.weights;
+    constexpr int kBand = 64;
+    const auto plane = static_cast<std::size_t>(w);
+    const int bands = (h + kBand - 1) / kBand;
+    std::vector<BandSums> sums(static_cast<std::size_t>(bands));
+    parallelFor(sums.size(), 0, [&](std::size_t band) {
+        BandSums& out = sums[band];
+        const int first = static_cast<int>(band) * kBand, last = std::min(h, first + kBand);
+        std::vector<float> ring(kTaps * 5 * plane), padded(5 * (plane + 2 * kRadius)), s(6 * plane);
+        std::vector<float> x(plane), y(plane);
+        std::vector<std::uint32_t> greyP(plane), greyQ(plane);
+        auto slot = [&](int row) { return &ring[static_cast<std::size_t>((row - first + kTaps) % kTaps) * 5 * plane]; };
+        for (int row = first - kRadius; row < last + kRadius; ++row) {
+            const std::size_t at = static_cast<std::size_t>(std::clamp(row, 0, h - 1)) * plane;
+            p.greyRow(at, plane, greyP.data());
+            q.greyRow(at, plane, greyQ.data());
+            for (std::size_t c = 0; c < plane; ++c)
+                x[c] = static_cast<float>(greyP[c]) * p.greyScale, y[c] = static_cast<float>(greyQ[c]) * q.greyScale;
+            horizontalSums(x.data(), y.data(), w, g, padded.data(), slot(row));
+            if (row >= first && row < last) {  // the band's own rows: differences and histograms
+                const std::uint8_t* inside = &mask.inside[at];
+                std::int64_t squared = 0, absolute = 0, worst = 0;
+                for (std::size_t c = 0; c < plane; ++c) {
+                    if (!inside[c]) continue;
+                    const T* a = p.pixel(at + c);
+                    const T* b = q.pixel(at + c);
+                    if (p.channels == q.channels) {
+                        for (int k = 0; k < q.channels; ++k) {
+                            const std::int64_t d = static_cast<std::int64_t>(a[k]) - b[k], m = d < 0 ? -d : d;
+                            squared += d * d, absolute += m, worst = std::max(worst, m);
+                        }
+                    } else {  // a grey prediction of a colour photo or the reverse: its grey against each channel
+                        const double grey = greyP[c] / static_cast<double>(p.channels);
+                        for (int k = 0; k < q.channels; ++k) {
+                            const double d = grey - b[k];
+                            out.squared += d * d, out.absolute += std::abs(d), out.worst = std::max(out.worst, std::abs(d));
+                        }
+                    }
+                    ++out.pixels;
+                    ++out.binsP[p.binOf[greyP[c]]];
+                    ++out.binsQ[q.binOf[greyQ[c]]];
+                }
+                out.squared += static_cast<double>(squared), out.absolute += static_cast<double>(absolute);
+                out.worst = std::max(out.worst, static_cast<double>(worst));
+            }
+            const int done = row - kRadius;  // the row whose window is now complete
+            if (done < first) continue;
+            const std::uint8_t* inside = &mask.inside[static_cast<std::size_t>(done) * plane];
+            out.ssim += ssimRow(ring.data(), (done - first + kTaps - kRadius) % kTaps, plane, g, inside, s.data());
+        }
+    });
+    ImageErrors e;
+    BandSums all;
+    double ssim = 0;
+    for (const BandSums& b : sums) {
+        all.squared += b.squared, all.absolute += b.absolute, all.worst = std::max(all.worst, b.worst);
+        all.pixels += b.pixels, ssim += b.ssim;
+        for (int k = 0; k < 64; ++k) all.binsP[k] += b.binsP[k], all.binsQ[k] += b.binsQ[k];
+    }
+    const auto pixels = static_cast<double>(all.pixels);
+    std::vector<double> hp(64, 0.0), hq(64, 0.0);
+    if (all.pixels > 0)
+        for (int k = 0; k < 64; ++k)
+            hp[k] = static_cast<double>(all.binsP[k]) / pixels, hq[k] = static_cast<double>(all.binsQ[k]) / pixels;
+    for (int k = 0; k < 64; ++k) e.l1 += std::abs(hp[k] - hq[k]);
+    e.emd = earthMoversDistance(hp, hq);
+    const double samples = pixels * q.channels, squared = all.squared / (maxCode * maxCode);
+    e.maxDifference = all.worst / maxCode;
+    e.meanDifference = all.pixels > 0 ? all.absolute / maxCode / samples : 0.0;
+    e.psnr = all.pixels == 0 || squared == 0 ? 99.0 : std::min(99.0, 10 * std::log10(samples / squared));
+    e.ssim = all.pixels > 0 ? ssim / pixels : 1.0;
+    return e;
+}
+
+// Codes at another bit depth (8 <-> 16), rounded.
+ImageCodes recoded(const ImageCodes& c, int bitDepth) {
+    return toCodes(toImage(c), bitDepth);
 }
 
 }  // namespace
@@ -85,56 +215,18 @@ Image quantised(const Image& image, int bitDepth) {
     return out;
 }
 
-ImageErrors compareImages(const Image& predicted, const Image& photo, const Mask& mask) {
+ImageErrors compareCodes(const ImageCodes& predicted, const ImageCodes& photo, const Mask& mask) {
     BTFLUT_CHECK(predicted.width == photo.width && predicted.height == photo.height);
     BTFLUT_CHECK(mask.inside.size() == photo.pixelCount());
-    // Quantised to the photo's codes; images decoded from files already are (no copies).
-    Image pCopy, qCopy;
-    const Image& p = isQuantised(predicted, photo.bitDepth) ? predicted : (pCopy = quantised(predicted, photo.bitDepth));
-    const Image& q = isQuantised(photo, photo.bitDepth) ? photo : (qCopy = quantised(photo, photo.bitDepth));
-    ImageErrors e;
-    // Histograms of exact codes: grey of the prediction's own channels.
-    const std::vector<double> hp = binHistogram(countGreyLevels(p, mask), 64), hq = binHistogram(countGreyLevels(q, mask), 64);
-    for (std::size_t b = 0; b < hp.size(); ++b) e.l1 += std::abs(hp[b] - hq[b]);
-    e.emd = earthMoversDistance(hp, hq);
+    ImageCodes converted;
+    const ImageCodes& p = predicted.bitDepth == photo.bitDepth ? predicted : (converted = recoded(predicted, photo.bitDepth));
+    if (photo.bitDepth == 16)
+        return compareViews(viewOf(p, p.sixteen()), viewOf(photo, photo.sixteen()), photo.width, photo.height, 65535.0, mask);
+    return compareViews(viewOf(p, p.eight()), viewOf(photo, photo.eight()), photo.width, photo.height, 255.0, mask);
+}
 
-    // Per row in parallel (each row's sums kept apart and added in order: the same result
-    // whatever the threads).
-    struct Row {
-        double squared = 0, absolute = 0, worst = 0;
-        std::size_t count = 0;
-    };
-    std::vector<Row> perRow(static_cast<std::size_t>(q.height));
-    const auto w = static_cast<std::size_t>(q.width);
-    const bool same = p.channels == q.channels;
-    parallelFor(perRow.size(), 0, [&](std::size_t y) {
-        Row r;
-        for (std::size_t i = y * w; i < (y + 1) * w; ++i) {
-            if (!mask.inside[i]) continue;
-            const float grey = same ? 0.f : p.grey(i);
-            for (int c = 0; c < q.channels; ++c) {
-                const float d = (same ? p.samples[i * q.channels + c] : grey) - q.samples[i * q.channels + c];
-                r.squared += static_cast<double>(d) * d;
-                r.absolute += std::abs(d);
-                r.worst = std::max(r.worst, static_cast<double>(std::abs(d)));
-            }
-            r.count += static_cast<std::size_t>(q.channels);
-        }
-        perRow[y] = r;
-    });
-    double squared = 0;
-    std::size_t count = 0;
-    for (const Row& r : perRow) {
-        squared += r.squared;
-        e.meanDifference += r.absolute;
-        e.maxDifference = std::max(e.maxDifference, r.worst);
-        count += r.count;
-    }
-    if (count > 0) e.meanDifference /= static_cast<double>(count);
-    e.psnr = count == 0 || squared == 0 ? 99.0 : std::min(99.0, 10 * std::log10(static_cast<double>(count) / squared));
-
-    e.ssim = meanSsim(p, q, mask);
-    return e;
+ImageErrors compareImages(const Image& predicted, const Image& photo, const Mask& mask) {
+    return compareCodes(toCodes(predicted, photo.bitDepth), toCodes(photo, photo.bitDepth), mask);
 }
 
 }  // namespace btflut

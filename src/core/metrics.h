@@ -24,6 +24,9 @@ struct ImageErrors {
 /// The errors of `predicted` against `photo` (same size; mask of that size).
 ImageErrors compareImages(const Image& predicted, const Image& photo, const Mask& mask);
 
+/// The same from the images' codes (`predicted` brought to the photo's bit depth first).
+ImageErrors compareCodes(const ImageCodes& predicted, const ImageCodes& photo, const Mask& mask);
+
 /// The image quantised to integer codes of `bitDepth` bits (values as code / max code).
 Image quantised(const Image& image, int bitDepth);
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -113,11 +114,11 @@ Status runCompare(CompareOptions& o) {
         std::cout << "created " << o.expected << " from " << o.actual << "\n";
         return success();
     }
-    // Both decoded at once (decoding is most of the time).
-    std::vector<Result<Image>> images(2, Result<Image>(Error{""}));
-    parallelFor(2, 0, [&](std::size_t k) { images[k] = loadImage(k == 0 ? o.actual : o.expected); });
-    Result<Image>& a = images[0];
-    Result<Image>& b = images[1];
+    // Both decoded at once, to their codes (decoding is most of the time).
+    std::optional<Result<ImageCodes>> images[2];
+    parallelFor(2, 0, [&](std::size_t k) { images[k] = loadImageCodes(k == 0 ? o.actual : o.expected); });
+    Result<ImageCodes>& a = *images[0];
+    Result<ImageCodes>& b = *images[1];
     if (!a) return Error{a.error()};
     if (!b) return Error{b.error()};
     if (a->width != b->width || a->height != b->height)
@@ -133,13 +134,13 @@ Status runCompare(CompareOptions& o) {
         mask = std::move(*loaded);
         if (mask.count() == 0) return Error{o.mask + ": the mask has no pixels to compare"};
     }
-    const ImageErrors e = compareImages(*a, *b, mask);
+    const ImageErrors e = compareCodes(*a, *b, mask);
     std::vector<std::string> failed;
     for (const Bound& bound : *bounds)
         if (!within(e, bound)) failed.push_back(bound.name);
     o.outside = !failed.empty();
     if (!o.diff.empty()) {
-        const Bytes png = encodePng(differenceImage(quantised(*a, b->bitDepth), quantised(*b, b->bitDepth), mask), 8);
+        const Bytes png = encodePng(differenceImage(quantised(toImage(*a), b->bitDepth), toImage(*b), mask), 8);
         if (Status s = writeFileAtomically(o.diff, png); !s) return s;
     }
     if (o.json) {

@@ -1,0 +1,155 @@
+// The image metrics (core/metrics.h) against a plain reference written from their
+// definitions: double precision, a 2D Gaussian window per pixel, histograms of exact codes.
+// The fast pass works in bands of 64 rows with a ring of row sums, so the images here are
+// taller than one band and not a multiple of it.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/histogram.h"
+#include "core/metrics.h"
+#include "core/random.h"
+
+using namespace btflut;
+
+namespace {
+
+Image randomImage(int w, int h, int channels, int bitDepth, std::uint64_t seed) {
+    Image image(w, h, channels, bitDepth);
+    Random random(seed);
+    const double top = bitDepth == 16 ? 65535 : 255;
+    // A smooth pattern plus noise, as codes (so SSIM sees structure, not only noise).
+    for (int row = 0; row < h; ++row)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < channels; ++c) {
+                const double v = 0.5 + 0.3 * std::sin(0.21 * x + 0.13 * row + c) + 0.15 * (random.uniform() - 0.5);
+                image.at(x, row, c) = static_cast<float>(std::round(std::clamp(v, 0.0, 1.0) * top) / top);
+            }
+    return image;
+}
+
+// A copy with some samples moved by a few codes.
+Image disturbed(const Image& image, std::uint64_t seed) {
+    Image out = image;
+    Random random(seed);
+    const double top = image.maxCode();
+    for (float& v : out.samples)
+        if (random.uniform() < 0.3) v = static_cast<float>(std::clamp(std::round(v * top + (random.uniform() - 0.5) * 40), 0.0, top) / top);
+    return out;
+}
+
+Mask randomMask(int w, int h, std::uint64_t seed) {
+    Mask mask = fullMask(w, h);
+    Random random(seed);
+    for (std::uint8_t& m : mask.inside) m = random.uniform() < 0.8 ? 1 : 0;
+    return mask;
+}
+
+// Every figure from its definition, with both images already codes of the photo's depth.
+ImageErrors reference(const Image& p, const Image& q, const Mask& mask) {
+    ImageErrors e;
+    const auto hp = binHistogram(countGreyLevels(p, mask), 64), hq = binHistogram(countGreyLevels(q, mask), 64);
+    for (std::size_t b = 0; b < hp.size(); ++b) e.l1 += std::abs(hp[b] - hq[b]);
+    e.emd = earthMoversDistance(hp, hq);
+    const double top = q.maxCode();
+    auto value = [&](const Image& image, std::size_t i, int c) { return std::round(image.samples[i * image.channels + c] * top) / top; };
+    auto grey = [&](const Image& image, std::size_t i) {
+        double sum = 0;
+        for (int c = 0; c < image.channels; ++c) sum += value(image, i, c);
+        return sum / image.channels;
+    };
+    double squared = 0, absolute = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < q.pixelCount(); ++i) {
+        if (!mask.inside[i]) continue;
+        for (int c = 0; c < q.channels; ++c) {
+            const double d = (p.channels == q.channels ? value(p, i, c) : grey(p, i)) - value(q, i, c);
+            squared += d * d, absolute += std::abs(d), e.maxDifference = std::max(e.maxDifference, std::abs(d));
+            ++count;
+        }
+    }
+    e.meanDifference = absolute / static_cast<double>(count);
+    e.psnr = squared == 0 ? 99.0 : std::min(99.0, 10 * std::log10(static_cast<double>(count) / squared));
+    // SSIM: an 11 x 11 Gaussian window (sigma 1.5, normalised), edges clamped.
+    double weights[11], sum = 0;
+    for (int k = -5; k <= 5; ++k) sum += weights[k + 5] = std::exp(-0.5 * k * k / 2.25);
+    for (double& wgt : weights) wgt /= sum;
+    const int w = q.width, h = q.height;
+    double total = 0;
+    std::size_t inside = 0;
+    for (int row = 0; row < h; ++row)
+        for (int x = 0; x < w; ++x) {
+            if (!mask.inside[static_cast<std::size_t>(row) * w + x]) continue;
+            double mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
+            for (int j = -5; j <= 5; ++j)
+                for (int i = -5; i <= 5; ++i) {
+                    const std::size_t at = static_cast<std::size_t>(std::clamp(row + j, 0, h - 1)) * w + std::clamp(x + i, 0, w - 1);
+                    const double g = weights[j + 5] * weights[i + 5], a = grey(p, at), b = grey(q, at);
+                    mx += g * a, my += g * b, xx += g * a * a, yy += g * b * b, xy += g * a * b;
+                }
+            const double c1 = 1e-4, c2 = 9e-4, vx = xx - mx * mx, vy = yy - my * my, cxy = xy - mx * my;
+            total += (2 * mx * my + c1) * (2 * cxy + c2) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+            ++inside;
+        }
+    e.ssim = total / static_cast<double>(inside);
+    return e;
+}
+
+void checkClose(const ImageErrors& got, const ImageErrors& want) {
+    CHECK(got.l1 == doctest::Approx(want.l1).epsilon(1e-12));
+    CHECK(got.emd == doctest::Approx(want.emd).epsilon(1e-12));
+    CHECK(got.psnr == doctest::Approx(want.psnr).epsilon(1e-9));
+    CHECK(got.maxDifference == doctest::Approx(want.maxDifference).epsilon(1e-6));
+    CHECK(got.meanDifference == doctest::Approx(want.meanDifference).epsilon(1e-6));
+    CHECK(got.ssim == doctest::Approx(want.ssim).epsilon(1e-5));  // float sums in the fast pass
+}
+
+}  // namespace
+
+TEST_CASE("metrics: every figure equals its definition (8 and 16 bits, grey and colour, masks)") {
+    const int w = 53, h = 150;  // three bands, the last one short
+    for (int depth : {8, 16})
+        for (int channels : {1, 3}) {
+            INFO("depth " << depth << ", channels " << channels);
+            const Image photo = randomImage(w, h, channels, depth, 7);
+            const Image predicted = disturbed(photo, 11);
+            const Mask mask = randomMask(w, h, 3);
+            checkClose(compareImages(predicted, photo, mask), reference(predicted, photo, mask));
+            checkClose(compareImages(predicted, photo, fullMask(w, h)), reference(predicted, photo, fullMask(w, h)));
+            // From codes, as `compare` reads files: the same figures.
+            checkClose(compareCodes(toCodes(predicted, depth), toCodes(photo, depth), mask), reference(predicted, photo, mask));
+        }
+}
+
+TEST_CASE("metrics: a grey prediction of a colour photo, depths that differ, samples off the codes") {
+    const int w = 40, h = 70;
+    const Image photo = randomImage(w, h, 3, 8, 5);
+    const Mask mask = randomMask(w, h, 9);
+    Image grey(w, h, 1, 8);
+    for (std::size_t i = 0; i < photo.pixelCount(); ++i) grey.samples[i] = std::round(photo.grey(i) * 255) / 255;
+    checkClose(compareImages(grey, photo, mask), reference(grey, photo, mask));
+    // A 16-bit prediction against an 8-bit photo: quantised to the photo's codes first.
+    Image fine = disturbed(photo, 4);
+    fine.bitDepth = 16;
+    for (float& v : fine.samples) v = std::clamp(v + 0.0007f, 0.f, 1.f);  // between 8-bit codes
+    checkClose(compareImages(fine, photo, mask), reference(quantised(fine, 8), photo, mask));
+    checkClose(compareCodes(toCodes(fine, 16), toCodes(photo, 8), mask), reference(quantised(fine, 8), photo, mask));
+    // NaN, below 0 and above 1 in a float prediction: as 0, 0 and 1.
+    Image odd = photo;
+    odd.samples[0] = std::nanf(""), odd.samples[1] = -0.5f, odd.samples[2] = 1.5f;
+    Image clamped = photo;
+    clamped.samples[0] = 0.f, clamped.samples[1] = 0.f, clamped.samples[2] = 1.f;
+    checkClose(compareImages(odd, photo, fullMask(w, h)), reference(clamped, photo, fullMask(w, h)));
+}
+
+TEST_CASE("metrics: identical images") {
+    const Image image = randomImage(31, 66, 3, 8, 2);
+    const ImageErrors e = compareImages(image, image, fullMask(31, 66));
+    CHECK(e.psnr == 99.0);
+    CHECK(e.ssim == doctest::Approx(1.0).epsilon(1e-6));
+    CHECK(e.maxDifference == 0.0);
+    CHECK(e.meanDifference == 0.0);
+    CHECK(e.l1 == 0.0);
+    CHECK(e.emd == 0.0);
+}
