@@ -88,6 +88,9 @@ TEST_CASE("bad scenes are refused naming the file and the field") {
         {R"({"camera": {"position": [0,0,1], "target": [0,0,1]}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
              "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
          "position and target coincide"},
+        {R"({"camera": {"orthographic_height": -2}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "camera.orthographic_height must be a positive number"},
     };
     for (const Case& c : cases) {
         INFO(c.text);
@@ -96,6 +99,31 @@ TEST_CASE("bad scenes are refused naming the file and the field") {
         CHECK(r.error().rfind("s.json", 0) == 0);
         CHECK(r.error().find(c.needle) != std::string::npos);
     }
+}
+
+TEST_CASE("an orthographic camera: the same view direction everywhere, written and read back") {
+    Scene s;
+    s.width = 40;
+    s.height = 20;
+    s.eye = {0, 0, 5};
+    s.up = {0, 1, 0};
+    s.orthographicHeight = 2;  // the image spans 2 units high, 4 wide
+    SceneQuad q{"a", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 4, 2, 1, RenderMode::Lut};
+    s.quads = {q};
+    s.materials["a"] = {"a.btflut", ""};
+    // Each pixel sees the quad point straight below its centre: texel (x + 1/2) / 40.
+    for (int x : {0, 13, 39})
+        for (int row : {0, 7, 19}) {
+            auto uv = quadTextureAt(s, q, x, row);
+            REQUIRE(uv.has_value());
+            CHECK((*uv)[0] == doctest::Approx((x + 0.5) / 40));
+            CHECK((*uv)[1] == doctest::Approx((row + 0.5) / 20));
+        }
+    auto back = parseScene(sceneToJson(s), "s.json", ".");
+    REQUIRE(back.ok());
+    CHECK(back->orthographicHeight == 2);
+    s.orthographicHeight = 0;
+    CHECK(parseScene(sceneToJson(s), "s.json", ".")->orthographicHeight == 0);  // perspective: not written
 }
 
 TEST_CASE("a pixel's ray finds the texture coordinates of the quad point it shows") {

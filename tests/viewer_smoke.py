@@ -34,6 +34,68 @@ def run(cmd, **kwargs):
     return result
 
 
+def image_area(folder):
+    """The first scripted frame's screenshot inside the image (2D mode), and its state."""
+    state = json.load(open(os.path.join(folder, "frame-0000.json")))
+    x, y, w, h = [int(round(v)) for v in state["image_rect"]]
+    return load(os.path.join(folder, "frame-0000.png"))[y:y + h, x:x + w], state
+
+
+def check_2d(btflut, tmp, check):
+    """2D mode: a frontal 1:1 frame is `relight` of the same light; the wipe; exposure."""
+    light = "50,120"
+    one = os.path.join(tmp, "2d")
+    run(XVFB + [btflut, "view", "--frames", "1", "--zoom", "1", "--light", light, "--screenshot-dir", one])
+    shot, state = image_area(one)
+    check(state["projection"] == "2d", "a dataset of one frontal view opens in 2D")
+    relit = os.path.join(tmp, "relit.png")
+    run([btflut, "relight", os.path.join(one, "material.btflut"), "--light", light, "-o", relit, "-q"])
+    expected = load(relit)
+    same_shape = shot.shape == expected.shape
+    check(same_shape, f"2D at zoom 1: the image is {expected.shape[1]} x {expected.shape[0]} pixels on screen ({shot.shape})")
+    if same_shape:
+        diff = np.abs(shot - expected) * 255
+        # The GPU's relight pass and the CPU's agree to the code but for float rounding.
+        check(diff.max() <= 1.0 and (diff == 0).mean() > 0.999,
+              f"2D at zoom 1 equals relight pixel for pixel (max {diff.max():.0f}/255, {(diff == 0).mean():.5f} exact)")
+    # The frame the saved scene describes (orthographic camera) renders the same.
+    run([btflut, "render", os.path.join(one, state["scene"]), "-o", os.path.join(tmp, "2d-render.png")])
+    x, y, w, h = state["scene_viewport"]
+    pane = load(os.path.join(one, "frame-0000.png"))[y:y + h, x:x + w]
+    check(np.abs(load(os.path.join(tmp, "2d-render.png")) - pane).max() <= 1.0 / 255,
+          "2D: the saved scene file (orthographic camera) renders the same frame")
+
+    # Wipe: lut left of the line, brdf right of it.
+    wipe = os.path.join(tmp, "wipe")
+    run(XVFB + [btflut, "view", "--frames", "1", "--zoom", "1", "--light", light, "--compare", "wipe",
+                "--compare-mode", "brdf", "--screenshot-dir", wipe])
+    shot, state = image_area(wipe)
+    brdf = os.path.join(tmp, "brdf")
+    run(XVFB + [btflut, "view", "--frames", "1", "--zoom", "1", "--light", light, "--mode", "brdf",
+                "--screenshot-dir", brdf])
+    brdf_shot, _ = image_area(brdf)
+    split = int(round(state["compare"]["wipe_x"] - state["image_rect"][0]))
+    if same_shape and 0 < split < shot.shape[1]:
+        left = np.abs(shot[:, :split - 3] - expected[:, :split - 3]).max() * 255
+        right = np.abs(shot[:, split + 3:] - brdf_shot[:, split + 3:]).max() * 255
+        differs = np.abs(brdf_shot - expected).mean() * 255
+        check(left <= 1 and right <= 1 and differs > 2,
+              f"wipe: lut left of the line (max {left:.0f}/255), brdf right of it (max {right:.0f}/255)")
+    else:
+        check(False, f"wipe: the line at {split} crosses the image")
+
+    # Exposure +1 stop: brighter (in linear light twice, where not clipped).
+    bright = os.path.join(tmp, "bright")
+    run(XVFB + [btflut, "view", "--frames", "1", "--zoom", "1", "--light", light, "--exposure", "1",
+                "--screenshot-dir", bright])
+    shot, _ = image_area(bright)
+    if same_shape:
+        to_linear = lambda c: np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+        dark = expected < 0.3
+        ratio = to_linear(shot)[dark].mean() / to_linear(expected)[dark].mean()
+        check(abs(ratio - 2) < 0.05, f"exposure +1 stop doubles linear light (ratio {ratio:.3f})")
+
+
 def main():
     btflut = os.path.abspath(sys.argv[1])
     failures = []
@@ -117,7 +179,11 @@ def main():
         result = subprocess.run([btflut, "render", os.path.join(moved, "frame-0000.scene.json"), "-o",
                                  os.path.join(tmp, "moved.png")], capture_output=True, text=True)
         check(result.returncode == 0, f"a saved scene file still renders after its folder moved ({result.stderr.strip()!r})")
-        for bad, needle in ((["--camera", "30"], "--camera"), (["--size", "10x10"], "--size")):
+        check_2d(btflut, tmp, check)
+        for bad, needle in ((["--camera", "30"], "--camera"), (["--size", "10x10"], "--size"), (["--zoom", "0"], "--zoom"),
+                            (["--projection", "4d"], "--projection"), (["--compare", "blink"], "--compare"),
+                            (["--compare", "wipe", "--compare-mode", "nearest", os.path.join(tmp, "blend", "material.btflut")],
+                             "nearest")):
             result = subprocess.run(XVFB + [btflut, "view", "--frames", "1"] + bad, capture_output=True, text=True)
             check(result.returncode != 0 and needle in result.stderr, f"bad {needle} refused ({result.stderr.strip()!r})")
 

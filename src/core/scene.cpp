@@ -98,6 +98,13 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
         Result<double> fov = readNumber(c, "fov_degrees", 45, at + "camera");
         if (!fov) return Error{fov.error()};
         scene.fovDegrees = *fov;
+        if (c.contains("orthographic_height")) {
+            Result<double> height = readNumber(c, "orthographic_height", 0, at + "camera");
+            if (!height) return Error{height.error()};
+            if (!(*height > 0 && std::isfinite(*height)))
+                return Error{at + "camera.orthographic_height must be a positive number (the height the image spans)"};
+            scene.orthographicHeight = *height;
+        }
     }
     const glm::dvec3 forward = g(scene.target) - g(scene.eye);
     if (glm::length(forward) < 1e-12) return Error{at + "camera: position and target coincide"};
@@ -198,6 +205,7 @@ std::string sceneToJson(const Scene& scene, const std::string& folder) {
              {"dither", scene.dither},
              {"materials", json::object()},
              {"quads", json::array()}};
+    if (scene.orthographicHeight > 0) doc["camera"]["orthographic_height"] = scene.orthographicHeight;
     // Absolute, or relative to the folder the file will be in (parseScene resolves them there).
     auto path = [&](const std::string& p) {
         const std::filesystem::path absolute = std::filesystem::absolute(p).lexically_normal();
@@ -227,8 +235,10 @@ Result<Scene> loadScene(const std::string& path) {
 std::array<float, 16> viewProjection(const Scene& s) {
     const glm::dmat4 view = glm::lookAt(g(s.eye), g(s.target), g(s.up));
     const double distance = glm::length(g(s.target) - g(s.eye));
-    const glm::dmat4 projection = glm::perspective(glm::radians(s.fovDegrees),
-                                                   static_cast<double>(s.width) / s.height, distance * 1e-3, distance * 1e3);
+    const double aspect = static_cast<double>(s.width) / s.height, half = s.orthographicHeight / 2;
+    const glm::dmat4 projection =
+        s.orthographicHeight > 0 ? glm::ortho(-half * aspect, half * aspect, -half, half, distance * 1e-3, distance * 1e3)
+                                 : glm::perspective(glm::radians(s.fovDegrees), aspect, distance * 1e-3, distance * 1e3);
     const glm::mat4 m(projection * view);
     std::array<float, 16> out;
     std::copy(glm::value_ptr(m), glm::value_ptr(m) + 16, out.begin());

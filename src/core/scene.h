@@ -43,6 +43,9 @@ struct Scene {
     int width = 1024, height = 1024;
     Vec3 eye{0, -3, 2}, target{0, 0, 0}, up{0, 0, 1};
     double fovDegrees = 45;
+    /// > 0: an orthographic camera whose image spans this height (world units) and `fovDegrees`
+    /// is unused; the view direction is then the same everywhere (the viewer's 2D mode).
+    double orthographicHeight = 0;
     Vec3 light{0, 0, 1};  ///< unit vector towards the light, world frame
     std::map<std::string, SceneMaterial> materials;
     bool interpolateLuts = true;  ///< false: the LUT of the nearest measured direction (for comparison)

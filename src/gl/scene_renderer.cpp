@@ -93,11 +93,12 @@ std::vector<std::uint8_t> SceneRenderer::coverage() const {
     return covered;
 }
 
-void SceneRenderer::setCamera(const Vec3& eye, const Vec3& target, const Vec3& up) {
+void SceneRenderer::setCamera(const Vec3& eye, const Vec3& target, const Vec3& up, double orthographicHeight) {
     BTFLUT_CHECK(!m_fixedCamera);  // created with SceneRendererOptions::fixedCamera false
     m_scene.eye = eye;
     m_scene.target = target;
     m_scene.up = up;
+    m_scene.orthographicHeight = orthographicHeight;
 }
 
 void SceneRenderer::setInterpolation(bool interpolate) {
@@ -158,7 +159,9 @@ Vec3 SceneRenderer::viewAt(const SceneQuad& quad, double x, double y) const {
     const double u = x * quad.width / 2, v = y * quad.height / 2;
     const Vec3 point{quad.center.x + u * quad.tangent.x + v * b.x, quad.center.y + u * quad.tangent.y + v * b.y,
                      quad.center.z + u * quad.tangent.z + v * b.z};
-    Vec3 view = toQuadFrame(quad, {m_scene.eye.x - point.x, m_scene.eye.y - point.y, m_scene.eye.z - point.z});
+    // An orthographic camera looks the same way from everywhere: towards it from the target.
+    const Vec3 from = m_scene.orthographicHeight > 0 ? m_scene.target : point;
+    Vec3 view = toQuadFrame(quad, {m_scene.eye.x - from.x, m_scene.eye.y - from.y, m_scene.eye.z - from.z});
     view.z = std::max(view.z, 1e-6 * std::hypot(view.x, view.y, view.z));
     return view;
 }

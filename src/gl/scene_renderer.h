@@ -80,8 +80,9 @@ public:
     /// Per pixel of the last frame (top row first): 1 where a quad was drawn.
     std::vector<std::uint8_t> coverage() const;
     /// Moves the camera (the set of visible quads is fixed at creation); only for a renderer
-    /// created with SceneRendererOptions::fixedCamera false.
-    void setCamera(const Vec3& eye, const Vec3& target, const Vec3& up);
+    /// created with SceneRendererOptions::fixedCamera false. `orthographicHeight` > 0: an
+    /// orthographic camera (Scene::orthographicHeight).
+    void setCamera(const Vec3& eye, const Vec3& target, const Vec3& up, double orthographicHeight = 0);
     /// Nearest-node LUTs instead of interpolated ones.
     void setInterpolation(bool interpolate);
     /// Waits for the GPU (for timing).

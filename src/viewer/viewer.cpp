@@ -24,6 +24,8 @@
 #include "gl/gl_api.h"
 #include "gl/scene_renderer.h"
 #include "gl/textures.h"
+#include "viewer/camera.h"
+#include "viewer/present.h"
 #include "viewer/widgets.h"
 #include "viewer/window.h"
 
@@ -128,26 +130,6 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
     return in;
 }
 
-// Camera on a sphere around its target.
-struct Orbit {
-    Vec3 target;
-    double azimuth = -M_PI / 2, elevation = 1.15, distance = 3.6;
-
-    Vec3 eye() const {
-        return {target.x + distance * std::cos(elevation) * std::cos(azimuth),
-                target.y + distance * std::cos(elevation) * std::sin(azimuth), target.z + distance * std::sin(elevation)};
-    }
-    static Orbit of(const Scene& s) {
-        Orbit o;
-        o.target = s.target;
-        const Vec3 d{s.eye.x - s.target.x, s.eye.y - s.target.y, s.eye.z - s.target.z};
-        o.distance = std::hypot(d.x, d.y, d.z);
-        o.elevation = std::asin(std::clamp(d.z / o.distance, -1.0, 1.0));
-        o.azimuth = std::atan2(d.y, d.x);
-        return o;
-    }
-};
-
 // Which covered pixels of a frame show a point of `quad` inside the material's sample mask.
 std::vector<std::uint8_t> maskedPixels(const Scene& scene, const SceneQuad& quad, const Mask& mask,
                                        const std::vector<std::uint8_t>& covered) {
@@ -185,6 +167,13 @@ private:
         return {RenderMode::Brdf, RenderMode::Lut, m_haveImages ? RenderMode::Nearest : RenderMode::Flat};
     }
     Status renderPanes(int width, int height);
+    /// The camera a pane shows: the orbit (3D) or the frontal orthographic view (2D).
+    void paneCamera(const Pane& pane, Scene& scene) const;
+    /// The composite images, allocated at the window's size.
+    void allocateComposites(int width, int height);
+    /// 2D mode is offered for a single quad (a bank or dataset), not for scene files.
+    bool flatOffered() const { return m_input.singleQuad && m_bank; }
+    void fitFlat(int width, int height);
     void updatePlots();
     bool panel(int width, int height);
     bool sceneInput(int width, int height);
@@ -195,6 +184,8 @@ private:
     /// The panel's width; 0 while Tab hides it.
     int panelWidth() const { return m_panelVisible ? static_cast<int>(kPanelWidth) : 0; }
     void keyHelp();
+    /// The wipe line or the lens's rim, and which mode is on each side.
+    void compareOverlay(int height) const;
 
     const ViewerOptions& m_options;
     ViewerInput m_input;
@@ -214,8 +205,15 @@ private:
     bool m_interpolate = true;
     bool m_havePtm = false, m_haveImages = false;
 
-    GlTexture m_compositeColour;
-    GlFramebuffer m_composite;
+    bool m_flat = false;  ///< 2D mode: frontal, orthographic, 1:1 at zoom 1
+    FlatView m_flatView;
+    RenderMode m_compareMode = RenderMode::Brdf;  ///< image B of the wipe or lens
+    PresentSettings m_present;
+    std::optional<PresentPass> m_presentPass;
+    bool m_draggingWipe = false;
+
+    GlTexture m_compositeColour, m_compositeColourB;  ///< A: the panes; B: the compare mode's
+    GlFramebuffer m_composite, m_compositeB;
     int m_compositeWidth = 0, m_compositeHeight = 0;
     std::vector<float> m_renderedHistogram, m_targetHistogram, m_lutCurve;
     std::string m_provenance;
@@ -259,12 +257,32 @@ Status Viewer::start() {
         m_paneModes = splitModes();
     else
         m_paneModes[0] = *mode;
-    for (int p = 0; p < m_split; ++p) {
-        if (m_paneModes[static_cast<std::size_t>(p)] == RenderMode::Ptm && !m_havePtm)
-            return Error{m_input.scene.file + ": mode ptm needs a bank baked with --ptm"};
-        if (m_paneModes[static_cast<std::size_t>(p)] == RenderMode::Nearest && !m_haveImages)
+    auto offered = [&](RenderMode m) -> Status {
+        if (m == RenderMode::Ptm && !m_havePtm) return Error{m_input.scene.file + ": mode ptm needs a bank baked with --ptm"};
+        if (m == RenderMode::Nearest && !m_haveImages)
             return Error{m_input.scene.file + ": mode nearest needs the measured images (--images DATASET)"};
+        return success();
+    };
+    for (int p = 0; p < m_split; ++p)
+        if (Status s = offered(m_paneModes[static_cast<std::size_t>(p)]); !s) return s;
+    // 2D by default where the input is one material seen from the front (a bank or dataset of
+    // one frontal view); 3D for scene files and banks with several views.
+    if (m_options.projection == "2d" && !flatOffered())
+        return Error{m_input.scene.file + ": 2D mode shows one material (a bank or dataset), not a scene file"};
+    m_flat = m_options.projection.empty() ? m_options.camera.empty() && flatOffered() && m_bank->layers.size() == 1 && m_bank->layers[0].view.theta < M_PI / 180
+                                          : m_options.projection == "2d";
+    if (!m_options.compare.empty()) {
+        Result<RenderMode> b = parseRenderMode(m_options.compareMode);
+        if (!b) return Error{"--compare-" + b.error()};
+        if (Status s = offered(*b); !s) return s;
+        m_compareMode = *b;
+        m_present.compare = m_options.compare == "wipe" ? PresentSettings::Compare::Wipe : PresentSettings::Compare::Lens;
     }
+    m_present.exposure = static_cast<float>(m_options.exposure);
+    m_present.gamma = static_cast<float>(m_options.gamma);
+    Result<PresentPass> present = PresentPass::create();
+    if (!present) return Error{present.error()};
+    m_presentPass = std::move(*present);
     return success();
 }
 
@@ -278,22 +296,43 @@ std::vector<Viewer::Pane> Viewer::panes(int width, int height) const {
     return out;
 }
 
-// Draws every pane into the composite image (kept between frames, so a frame where nothing
-// changed only copies it to the window).
-Status Viewer::renderPanes(int width, int height) {
-    if (width != m_compositeWidth || height != m_compositeHeight) {
-        m_compositeColour = allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
-        m_composite = makeFramebuffer();
-        gl.BindFramebuffer(GL_FRAMEBUFFER, m_composite.id());
-        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_compositeColour.id(), 0);
-        m_compositeWidth = width;
-        m_compositeHeight = height;
+void Viewer::allocateComposites(int width, int height) {
+    for (auto [colour, framebuffer] : {std::pair{&m_compositeColour, &m_composite}, {&m_compositeColourB, &m_compositeB}}) {
+        *colour = allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // no mipmaps: complete for texelFetch
+        gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        *framebuffer = makeFramebuffer();
+        gl.BindFramebuffer(GL_FRAMEBUFFER, framebuffer->id());
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colour->id(), 0);
     }
-    gl.BindFramebuffer(GL_FRAMEBUFFER, m_composite.id());
-    gl.ClearColor(0.08f, 0.08f, 0.1f, 1);
-    gl.Clear(GL_COLOR_BUFFER_BIT);
+    m_compositeWidth = width;
+    m_compositeHeight = height;
+}
+
+void Viewer::paneCamera(const Pane& pane, Scene& scene) const {
+    if (m_flat) {
+        m_flatView.apply(scene, scene.quads[0], pane.width, pane.height, m_bank->reference.width, m_bank->reference.height);
+        return;
+    }
+    scene.eye = m_orbit.eye();
+    scene.target = m_orbit.target;
+    scene.up = {0, 0, 1};
+    scene.orthographicHeight = 0;
+}
+
+// Draws every pane into the composite image, and while comparing the same panes in the
+// compare mode into the second (both kept between frames, so a frame where nothing changed
+// only presents them).
+Status Viewer::renderPanes(int width, int height) {
+    if (width != m_compositeWidth || height != m_compositeHeight) allocateComposites(width, height);
+    const bool comparing = m_present.compare != PresentSettings::Compare::Off;
+    for (GLuint fb : {m_composite.id(), m_compositeB.id()}) {
+        if (fb == m_compositeB.id() && !comparing) break;
+        gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
+        gl.ClearColor(0.08f, 0.08f, 0.1f, 1);
+        gl.Clear(GL_COLOR_BUFFER_BIT);
+    }
     const auto start = std::chrono::steady_clock::now();
-    m_renderer->setCamera(m_orbit.eye(), m_orbit.target, {0, 0, 1});
     m_renderer->setInterpolation(m_interpolate);
     const std::vector<Pane> all = panes(width, height);
     // The plots follow the LUT pane, or the first.
@@ -302,13 +341,18 @@ Status Viewer::renderPanes(int width, int height) {
         if (all[p].mode == RenderMode::Lut) plottedPane = p;
     for (std::size_t p = 0; p < all.size(); ++p) {
         const Pane& pane = all[p];
+        Scene camera = m_input.scene;
+        paneCamera(pane, camera);
+        m_renderer->setCamera(camera.eye, camera.target, camera.up, camera.orthographicHeight);
         if (Status s = m_renderer->resize(pane.width, pane.height); !s) return s;
-        if (Status s = m_renderer->draw(lightVector(), pane.mode); !s) return s;
-        if (p == plottedPane) updatePlots();
-        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_renderer->framebuffer());
-        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m_composite.id());
-        gl.BlitFramebuffer(0, 0, pane.width, pane.height, pane.x, pane.y, pane.x + pane.width, pane.y + pane.height,
-                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        for (int image = 0; image < (comparing ? 2 : 1); ++image) {
+            if (Status s = m_renderer->draw(lightVector(), image == 0 ? pane.mode : m_compareMode); !s) return s;
+            if (p == plottedPane && image == 0) updatePlots();
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_renderer->framebuffer());
+            gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, image == 0 ? m_composite.id() : m_compositeB.id());
+            gl.BlitFramebuffer(0, 0, pane.width, pane.height, pane.x, pane.y, pane.x + pane.width, pane.y + pane.height,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        }
     }
     m_renderer->finish();
     m_sceneMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -408,6 +452,46 @@ bool Viewer::panel(int width, int height) {
                 ImGui::EndCombo();
             }
         }
+        if (flatOffered()) {
+            ImGui::TextUnformatted("Projection");
+            ImGui::SameLine();
+            if (ImGui::RadioButton("2D (V)", m_flat) && !m_flat) m_flat = true, resetCamera(width, height), changed = true;
+            ImGui::SameLine();
+            if (ImGui::RadioButton("3D", !m_flat) && m_flat) m_flat = false, resetCamera(width, height), changed = true;
+            if (m_flat) {
+                ImGui::SameLine();
+                if (ImGui::SmallButton("fit (F)")) fitFlat(width, height), changed = true;
+                ImGui::SameLine();
+                if (ImGui::SmallButton("1:1 (1)")) m_flatView.zoom = 1, changed = true;
+                ImGui::SameLine();
+                ImGui::Text("%.0f%%", 100 * m_flatView.zoom);
+            }
+        }
+        int compare = static_cast<int>(m_present.compare);
+        ImGui::TextUnformatted("Compare (C)");
+        for (const auto& [value, name] : {std::pair{0, "off"}, {1, "wipe"}, {2, "lens"}}) {
+            ImGui::SameLine();
+            if (ImGui::RadioButton((std::string(name) + "##compare").c_str(), compare == value)) {
+                m_present.compare = static_cast<PresentSettings::Compare>(value);
+                if (m_present.wipeX <= 0) m_present.wipeX = static_cast<float>(width - panelWidth()) / 2;
+                changed = true;
+            }
+        }
+        if (m_present.compare != PresentSettings::Compare::Off) {
+            if (m_split > 1) ImGui::TextDisabled("compares in every pane: each pane's mode against B");
+            if (ImGui::BeginCombo("B##compareMode", renderModeName(m_compareMode))) {
+                for (RenderMode m : kModes) {
+                    const bool offered = (m != RenderMode::Ptm || m_havePtm) && (m != RenderMode::Nearest || m_haveImages);
+                    if (ImGui::Selectable(renderModeName(m), m == m_compareMode, offered ? 0 : ImGuiSelectableFlags_Disabled))
+                        m_compareMode = m, changed = true;
+                }
+                ImGui::EndCombo();
+            }
+        }
+        changed |= ImGui::SliderFloat("exposure", &m_present.exposure, -4, 4, "%+.1f stops");
+        changed |= ImGui::SliderFloat("gamma", &m_present.gamma, 0.5f, 3, "%.2f");
+        ImGui::SameLine();
+        if (ImGui::SmallButton("reset##tone")) m_present.exposure = 0, m_present.gamma = 1, changed = true;
         changed |= ImGui::Checkbox("interpolate LUTs between measured directions", &m_interpolate);
         if (ImGui::Button("Reset light and camera (R)")) {
             m_light = Direction::fromDegrees(45, 30);
@@ -470,19 +554,43 @@ bool Viewer::panel(int width, int height) {
 bool Viewer::sceneInput(int width, int height) {
     const ImGuiIO& io = ImGui::GetIO();
     bool changed = false;
-    if (!io.WantCaptureMouse && io.MousePos.x < static_cast<float>(width - panelWidth())) {
+    const bool overScene = !io.WantCaptureMouse && io.MousePos.x < static_cast<float>(width - panelWidth());
+    const float mouseX = io.MousePos.x, mouseY = static_cast<float>(height) - io.MousePos.y;  // GL: origin bottom left
+    if (m_present.compare == PresentSettings::Compare::Lens && overScene && (mouseX != m_present.lensX || mouseY != m_present.lensY)) {
+        m_present.lensX = mouseX, m_present.lensY = mouseY;  // the lens follows the cursor
+        changed = true;
+    }
+    if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) m_draggingWipe = false;
+    if (overScene && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && m_present.compare == PresentSettings::Compare::Wipe &&
+        std::abs(mouseX - m_present.wipeX) < 8)
+        m_draggingWipe = true;  // grabbed the wipe line
+    if (m_draggingWipe) {
+        m_present.wipeX = std::clamp(mouseX, 0.f, static_cast<float>(width - panelWidth()));
+        changed = true;
+    } else if (overScene) {
         if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
             const ImVec2 d = io.MouseDelta;
             if (io.KeyShift) {
                 m_light.phi = std::fmod(m_light.phi - d.x * 0.01 + 2 * M_PI, 2 * M_PI);
                 m_light.theta = std::clamp(m_light.theta + d.y * 0.01, 0.0, 89.0 * M_PI / 180);
+            } else if (m_flat) {  // pan: the image follows the cursor
+                m_flatView.panX -= d.x / m_flatView.zoom;
+                m_flatView.panY += d.y / m_flatView.zoom;
             } else {
                 m_orbit.azimuth -= d.x * 0.01;
                 m_orbit.elevation = std::clamp(m_orbit.elevation + d.y * 0.01, 0.05, 1.55);
             }
             changed |= d.x != 0 || d.y != 0;
         }
-        if (io.MouseWheel != 0) {
+        if (io.MouseWheel != 0 && io.KeyCtrl && m_present.compare == PresentSettings::Compare::Lens) {
+            m_present.lensRadius = std::clamp(m_present.lensRadius * static_cast<float>(std::pow(1.1, io.MouseWheel)), 8.f, 2000.f);
+            changed = true;
+        } else if (io.MouseWheel != 0 && m_flat) {  // zoom about the cursor, in the pane under it
+            for (const Pane& p : panes(width, height))
+                if (mouseX >= static_cast<float>(p.x) && mouseX < static_cast<float>(p.x + p.width))
+                    m_flatView.zoomAbout(std::pow(1.25, io.MouseWheel), mouseX - p.x, mouseY - p.y, p.width, p.height);
+            changed = true;
+        } else if (io.MouseWheel != 0) {
             m_orbit.distance = std::clamp(m_orbit.distance * std::pow(0.9, io.MouseWheel), 0.2, 100.0);
             changed = true;
         }
@@ -499,6 +607,18 @@ bool Viewer::sceneInput(int width, int height) {
             changed = true;
         }
         if (ImGui::IsKeyPressed(GLFW_KEY_S) || ImGui::IsKeyPressed(GLFW_KEY_F12)) m_screenshotRequested = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_V) && flatOffered()) {
+            m_flat = !m_flat;
+            resetCamera(width, height);
+            changed = true;
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_F) && m_flat) fitFlat(width, height), changed = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_1) && m_flat) m_flatView.zoom = 1, changed = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_C)) {
+            m_present.compare = static_cast<PresentSettings::Compare>((static_cast<int>(m_present.compare) + 1) % 3);
+            if (m_present.wipeX <= 0) m_present.wipeX = static_cast<float>(width - panelWidth()) / 2;
+            changed = true;
+        }
         if (ImGui::IsKeyPressed(GLFW_KEY_TAB)) {
             m_panelVisible = !m_panelVisible;
             changed = true;
@@ -515,9 +635,12 @@ bool Viewer::sceneInput(int width, int height) {
 void Viewer::keyHelp() {
     if (!m_helpVisible) return;
     static const char* const kKeys[][2] = {
-        {"drag", "orbit the camera"},
+        {"drag", "3D: orbit the camera; 2D: pan"},
         {"shift + drag", "move the light"},
-        {"wheel", "zoom"},
+        {"wheel", "zoom (2D: about the cursor)"},
+        {"V", "2D (frontal, orthographic) or 3D"},
+        {"F, 1", "2D: fit the image to the pane; one texel per pixel"},
+        {"C", "compare: off, wipe (drag the line), lens (follows the cursor; ctrl + wheel: size)"},
         {"arrows", "light: left/right 1 degree in phi, up/down 1 degree in theta"},
         {"R", "reset the light and the camera"},
         {"S, F12", "screenshot (--screenshot, or btflut-screenshot-PID-N.png)"},
@@ -534,8 +657,31 @@ void Viewer::keyHelp() {
     ImGui::End();
 }
 
-// The scene's camera; around a single quad, moved back until the quad fits one pane.
+void Viewer::fitFlat(int width, int height) {
+    const Pane pane = panes(width, height)[0];
+    m_flatView.fit(pane.width, pane.height, m_bank->reference.width, m_bank->reference.height);
+}
+
+void Viewer::compareOverlay(int height) const {
+    ImDrawList* draw = ImGui::GetForegroundDrawList();
+    const auto h = static_cast<float>(height);
+    const ImU32 white = IM_COL32(255, 255, 255, 220);
+    const std::string a = std::string("A: ") + renderModeName(m_paneModes[0]), b = std::string("B: ") + renderModeName(m_compareMode);
+    if (m_present.compare == PresentSettings::Compare::Wipe) {
+        draw->AddLine(ImVec2(m_present.wipeX, 0), ImVec2(m_present.wipeX, h), white, 2);
+        draw->AddText(ImVec2(m_present.wipeX - 8 - ImGui::CalcTextSize(a.c_str()).x, h - 24), white, a.c_str());
+        draw->AddText(ImVec2(m_present.wipeX + 8, h - 24), white, b.c_str());
+    } else if (m_present.compare == PresentSettings::Compare::Lens) {
+        draw->AddCircle(ImVec2(m_present.lensX, h - m_present.lensY), m_present.lensRadius, white, 64, 2);
+        draw->AddText(ImVec2(m_present.lensX - m_present.lensRadius, h - m_present.lensY + m_present.lensRadius + 4), white,
+                      (b + " in the lens, " + a + " outside").c_str());
+    }
+}
+
+// The scene's camera; around a single quad, moved back until the quad fits one pane. In 2D
+// the image fits the pane.
 void Viewer::resetCamera(int width, int height) {
+    if (m_flat && width > 0 && height > 0) fitFlat(width, height);
     m_orbit = Orbit::of(m_input.scene);
     if (!m_input.singleQuad || width <= 0 || height <= 0) return;
     const Pane pane = panes(width, height)[0];
@@ -562,9 +708,7 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
     Scene scene = m_input.scene;
     scene.width = pane.width;
     scene.height = pane.height;
-    scene.eye = m_orbit.eye();
-    scene.target = m_orbit.target;
-    scene.up = {0, 0, 1};
+    paneCamera(pane, scene);
     scene.light = lightVector();
     scene.interpolateLuts = m_interpolate;
     for (SceneQuad& q : scene.quads) q.mode = pane.mode;
@@ -580,13 +724,31 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
     }
     const std::string sceneFile = std::string(stem) + ".scene.json";
     if (Status s = writeFileAtomically((dir / sceneFile).string(), sceneToJson(scene, dir.string())); !s) return s;  // paths relative to it
-    const json state{{"frame", frame},
+    json state{{"frame", frame},
                      {"light", {{"theta", m_light.thetaDegrees()}, {"phi", m_light.phiDegrees()}}},
                      {"mode", renderModeName(pane.mode)},
+                     {"projection", m_flat ? "2d" : "3d"},
+                     {"zoom", m_flat ? json(m_flatView.zoom) : json()},
+                     {"compare", m_present.compare == PresentSettings::Compare::Off
+                                     ? json()
+                                     : json{{"kind", m_present.compare == PresentSettings::Compare::Wipe ? "wipe" : "lens"},
+                                            {"mode", renderModeName(m_compareMode)},
+                                            {"wipe_x", m_present.wipeX}}},
                      {"scene", sceneFile},
                      // PNG pixels, origin top left: where the scene pane and the panel are
                      {"scene_viewport", {pane.x, height - pane.y - pane.height, pane.width, pane.height}},
                      {"panel", {width - panelWidth(), 0, panelWidth(), height}}};
+    if (m_flat) {  // where the image lies in the PNG (2D mode, the first pane)
+        Scene camera = m_input.scene;
+        paneCamera(pane, camera);
+        const double texelsPerWorld = m_bank->reference.height / scene.quads[0].height;
+        const double left = pane.width / 2.0 - (camera.target.x - scene.quads[0].center.x) * texelsPerWorld * m_flatView.zoom -
+                            m_bank->reference.width * m_flatView.zoom / 2;
+        const double top = pane.height / 2.0 + (camera.target.y - scene.quads[0].center.y) * texelsPerWorld * m_flatView.zoom -
+                           m_bank->reference.height * m_flatView.zoom / 2;
+        state["image_rect"] = {pane.x + left, height - pane.y - pane.height + top, m_bank->reference.width * m_flatView.zoom,
+                               m_bank->reference.height * m_flatView.zoom};
+    }
     return writeFileAtomically((dir / (std::string(stem) + ".json")).string(), jsonText(state));
 }
 
@@ -596,6 +758,8 @@ Status Viewer::run() {
         int width = 0, height = 0;
         glfwGetFramebufferSize(window, &width, &height);
         resetCamera(width, height);
+        if (m_flat && !m_options.zoom.empty() && m_options.zoom != "fit") m_flatView.zoom = std::stod(m_options.zoom);  // validated
+        m_present.wipeX = static_cast<float>(width - panelWidth()) / 2;
         if (!m_options.camera.empty()) {  // validated by runViewer
             double azimuth = 0, elevation = 0, distance = m_orbit.distance;
             std::sscanf(m_options.camera.c_str(), "%lf,%lf,%lf", &azimuth, &elevation, &distance);
@@ -641,17 +805,16 @@ Status Viewer::run() {
             ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(width) - 190, 8), IM_COL32(200, 200, 200, 255),
                                                     "Tab: panel   F1: keys");
         keyHelp();
+        compareOverlay(height);
         const std::vector<Pane> all = panes(width, height);
         for (const Pane& p : all)  // labels over the panes
             if (all.size() > 1)
                 ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(p.x) + 8, 8), IM_COL32(255, 255, 255, 255),
                                                         paneLabel(p.mode));
         ImGui::Render();
-        gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_composite.id());
-        gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-        gl.BlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
         gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
         gl.Viewport(0, 0, width, height);
+        m_presentPass->draw(m_compositeColour.id(), m_compositeColourB.id(), m_present);
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if (scripted && !m_options.screenshotDir.empty())
             if (Status s = saveScriptedFrame(frame, width, height); !s) return s;
@@ -689,6 +852,19 @@ Status runViewer(const ViewerOptions& options) {
         if (!fs::is_directory(options.screenshotDir, ec))
             return Error{options.screenshotDir + ": cannot create the folder for --screenshot-dir"};
     }
+    if (!options.projection.empty() && options.projection != "2d" && options.projection != "3d")
+        return Error{"--projection '" + options.projection + "': expected 2d or 3d"};
+    if (!options.zoom.empty() && options.zoom != "fit") {
+        char* end = nullptr;
+        const double zoom = std::strtod(options.zoom.c_str(), &end);
+        if (*end != '\0' || !(zoom >= 1.0 / 64 && zoom <= 64))
+            return Error{"--zoom '" + options.zoom + "': expected fit, or pixels per texel from 1/64 to 64 (1: one texel per pixel)"};
+    }
+    if (!options.compare.empty() && options.compare != "wipe" && options.compare != "lens")
+        return Error{"--compare '" + options.compare + "': expected wipe or lens"};
+    if (!std::isfinite(options.exposure) || std::abs(options.exposure) > 10)
+        return Error{"--exposure must be a number of stops from -10 to 10"};
+    if (!(options.gamma >= 0.1 && options.gamma <= 10)) return Error{"--gamma must be from 0.1 to 10"};
     if (!options.camera.empty()) {
         double azimuth = 0, elevation = 0, distance = 1;
         char extra = 0;

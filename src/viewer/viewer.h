@@ -27,6 +27,12 @@ struct ViewerOptions {
     std::string screenshot;     ///< PNG of the last frame (and the S key's target interactively)
     std::string screenshotDir;  ///< every scripted frame: frame-NNNN.png, .json (state), .scene.json (created)
     std::string camera;         ///< AZIMUTH,ELEVATION[,DISTANCE] (degrees; scene units) around the target; empty: the scene's
+    std::string projection;   ///< "2d" (frontal, orthographic), "3d"; empty: 2d for a material of one frontal view
+    std::string zoom;         ///< 2D: pixels per texel ("1": one texel per pixel), or "fit" (the default)
+    std::string compare;      ///< "wipe" or "lens" between the pane's mode and `compareMode`; empty: off
+    std::string compareMode = "brdf";
+    double exposure = 0;      ///< stops
+    double gamma = 1;         ///< display gamma on top of sRGB
     /// A dataset is baked with these (references, regions, colour, predictor).
     BakeOptions bake;
 };

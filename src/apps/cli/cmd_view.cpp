@@ -26,6 +26,13 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--camera", o->camera,
                     "AZIMUTH,ELEVATION[,DISTANCE]: the camera around the scene's target (degrees, scene units); "
                     "default the scene's");
+    app->add_option("--projection", o->projection,
+                    "2d: frontal and orthographic, pan and zoom (default for a material of one frontal view); 3d: orbit");
+    app->add_option("--zoom", o->zoom, "2D: pixels per texel (1: one texel per pixel) or fit (default)");
+    app->add_option("--compare", o->compare, "wipe or lens: the pane's mode against --compare-mode (key C)");
+    app->add_option("--compare-mode", o->compareMode, "the mode in the wipe's right side or in the lens")->capture_default_str();
+    app->add_option("--exposure", o->exposure, "stops (in linear light)")->capture_default_str();
+    app->add_option("--gamma", o->gamma, "display gamma on top of sRGB (1: none)")->capture_default_str();
     app->add_flag("!--no-vsync", o->vsync, "draw as fast as possible");
     app->add_option("--frames", o->frames, "scripted: draw N frames, then exit")->check(CLI::Range(1, 100000));
     app->add_flag("--light-sweep", o->lightSweep, "scripted: the light spirals from theta 10 to 80 over the frames");
