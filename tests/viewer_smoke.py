@@ -96,8 +96,38 @@ def check_2d(btflut, tmp, check):
         check(abs(ratio - 2) < 0.05, f"exposure +1 stop doubles linear light (ratio {ratio:.3f})")
 
 
+def check_drop(btflut, tmp, check):
+    """Drag and drop (injected through GLFW's drop callback): a bank opens; a file that is no
+    bank, dataset or scene, and a missing one, leave a line in the panel and the viewer runs on."""
+    bank = os.path.join(tmp, "2d", "material.btflut")
+    for name, path, opens, needle in (("a bank", bank, True, ""),
+                                      ("a text file", os.path.join(tmp, "notes.txt"), False, "not a bank"),
+                                      ("a missing file", os.path.join(tmp, "gone.btflut"), False, "no such file")):
+        if name == "a text file":
+            open(path, "w").write("not a material\n")
+        shots = os.path.join(tmp, "drop-" + name.replace(" ", "-"))
+        result = subprocess.run(XVFB + [btflut, "view", "--frames", "3", "--inject-drop", path, "--screenshot-dir", shots],
+                                capture_output=True, text=True)
+        states = [json.load(open(os.path.join(shots, f"frame-{k:04d}.json"))) for k in range(3)
+                  if os.path.exists(os.path.join(shots, f"frame-{k:04d}.json"))]
+        last = states[-1] if states else {}
+        if opens:
+            ok = result.returncode == 0 and len(states) == 3 and last.get("input") == path and not last.get("message")
+        else:
+            ok = result.returncode == 0 and len(states) == 3 and needle in last.get("message", "") and \
+                last.get("input") != path
+        check(ok, f"drop {name}: {'opened' if opens else 'a line in the panel, the viewer runs on'} "
+                  f"(exit {result.returncode}, {len(states)} frames, input {last.get('input')!r}, "
+                  f"message {last.get('message')!r})")
+    recent = os.path.join(os.environ["XDG_CONFIG_HOME"], "btflut", "recent.txt")
+    listed = open(recent).read().split("\n") if os.path.exists(recent) else []
+    check(os.path.abspath(bank) in listed, f"the dropped bank is in the recent files ({recent})")
+
+
 def main():
     btflut = os.path.abspath(sys.argv[1])
+    config = tempfile.TemporaryDirectory()  # the recent files list goes here, not in ~/.config
+    os.environ["XDG_CONFIG_HOME"] = config.name
     failures = []
 
     def check(ok, what):
@@ -180,6 +210,7 @@ def main():
                                  os.path.join(tmp, "moved.png")], capture_output=True, text=True)
         check(result.returncode == 0, f"a saved scene file still renders after its folder moved ({result.stderr.strip()!r})")
         check_2d(btflut, tmp, check)
+        check_drop(btflut, tmp, check)
         for bad, needle in ((["--camera", "30"], "--camera"), (["--size", "10x10"], "--size"), (["--zoom", "0"], "--zoom"),
                             (["--projection", "4d"], "--projection"), (["--compare", "blink"], "--compare"),
                             (["--compare", "wipe", "--compare-mode", "nearest", os.path.join(tmp, "blend", "material.btflut")],

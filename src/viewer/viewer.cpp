@@ -26,6 +26,7 @@
 #include "gl/textures.h"
 #include "viewer/camera.h"
 #include "viewer/present.h"
+#include "viewer/recent_files.h"
 #include "viewer/widgets.h"
 #include "viewer/window.h"
 
@@ -87,6 +88,9 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
     const std::string path = o.input.empty() ? defaultMaterial() : o.input;
     in.title = "btflut view - " + path;
     if (!fs::exists(path)) return Error{path + ": cannot open (no such file or folder)"};
+    const std::string extension = fs::path(path).extension().string();
+    if (!fs::is_directory(path) && extension != ".btflut" && extension != ".json" && extension != ".lp")
+        return Error{path + ": not a bank (.btflut), a dataset (folder, .json manifest, .lp) or a scene file (.json)"};
     if (fs::path(path).extension() == ".json" && !fs::is_directory(path)) {
         Result<Bytes> bytes = readFile(path);
         if (!bytes) return Error{bytes.error()};
@@ -111,7 +115,9 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
             baked = bakeBank(*dataset, bake);
         }
         if (!baked) return Error{baked.error()};
-        in.temporaryBank = (fs::temp_directory_path() / ("btflut-view-" + std::to_string(::getpid()) + ".btflut")).string();
+        static int opened = 0;  // a session may open several datasets
+        in.temporaryBank = (fs::temp_directory_path() / ("btflut-view-" + std::to_string(::getpid()) + "-" +
+                                                         std::to_string(opened++) + ".btflut")).string();
         if (Status s = saveBank(*baked, in.temporaryBank); !s) return Error{s.error()};
         bank = in.temporaryBank;
         images = path;
@@ -150,11 +156,20 @@ std::vector<std::uint8_t> maskedPixels(const Scene& scene, const SceneQuad& quad
 
 class Viewer {
 public:
-    Viewer(const ViewerOptions& options, ViewerInput input, Window& window)
-        : m_options(options), m_input(std::move(input)), m_window(window), m_orbit(Orbit::of(m_input.scene)) {}
+    Viewer(ViewerOptions options, ViewerInput input, Window& window)
+        : m_options(std::move(options)), m_input(std::move(input)), m_window(window), m_orbit(Orbit::of(m_input.scene)) {}
 
     Status start();
-    Status run();
+    /// Runs until the window closes, the scripted frames are done, or a file is to be opened
+    /// (openRequest()); `frame` counts on across viewers.
+    Status run(int& frame);
+    /// A file to open, from the panel, the recent files or a drop; empty if none.
+    const std::string& openRequest() const { return m_openRequest; }
+    void requestOpen(const std::string& path) { m_openRequest = path; }
+    /// A line for the panel (an input that could not be opened); the viewer keeps running.
+    void showMessage(const std::string& message) { m_message = message, m_openRequest.clear(); }
+    const ViewerInput& input() const { return m_input; }
+    Direction light() const { return m_light; }
 
 private:
     struct Pane {
@@ -187,8 +202,12 @@ private:
     /// The wipe line or the lens's rim, and which mode is on each side.
     void compareOverlay(int height) const;
 
-    const ViewerOptions& m_options;
+    ViewerOptions m_options;
     ViewerInput m_input;
+    bool m_started = false;  ///< run() has set the camera up
+    std::string m_openRequest, m_message;
+    std::array<char, 1024> m_pathField{};
+    std::vector<std::string> m_recent = loadRecentFiles();
     Window& m_window;
     std::unique_ptr<SceneRenderer> m_renderer;
     const LutBank* m_bank = nullptr;  ///< quad 0's material, when visible
@@ -414,6 +433,27 @@ bool Viewer::panel(int width, int height) {
     ImGui::Text("%.1f fps (%.2f ms/frame), scene %.2f ms", static_cast<double>(ImGui::GetIO().Framerate),
                 1000.0 / static_cast<double>(std::max(ImGui::GetIO().Framerate, 1e-3f)), m_sceneMs);
 
+    if (!m_message.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 120, 100, 255));
+        ImGui::TextWrapped("%s", m_message.c_str());
+        ImGui::PopStyleColor();
+        if (ImGui::SmallButton("dismiss")) m_message.clear();
+    }
+    if (ImGui::CollapsingHeader("File")) {
+        ImGui::TextWrapped("%s", m_input.scene.file.c_str());
+        ImGui::SetNextItemWidth(kPanelWidth - 80);
+        const bool entered = ImGui::InputTextWithHint("##path", "bank, dataset or scene; or drop a file", m_pathField.data(),
+                                                      m_pathField.size(), ImGuiInputTextFlags_EnterReturnsTrue);
+        ImGui::SameLine();
+        if ((ImGui::Button("Open") || entered) && m_pathField[0] != '\0') requestOpen(m_pathField.data());
+        for (const std::string& recent : m_recent) {
+            std::error_code ec;
+            const bool present = fs::exists(recent, ec);
+            const std::string label = present ? recent : recent + " (missing)";
+            if (ImGui::Selectable(label.c_str(), recent == m_input.scene.file))
+                present ? requestOpen(recent) : showMessage(recent + ": cannot open (no such file or folder any more)");
+        }
+    }
     if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
         changed |= hemisphereWidget("##hemisphere", m_light, m_input.singleQuad ? m_nodes : std::vector<LightNode>{}, 200);
         float theta = static_cast<float>(m_light.thetaDegrees()), phi = static_cast<float>(m_light.phiDegrees());
@@ -728,6 +768,8 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
                      {"light", {{"theta", m_light.thetaDegrees()}, {"phi", m_light.phiDegrees()}}},
                      {"mode", renderModeName(pane.mode)},
                      {"projection", m_flat ? "2d" : "3d"},
+                     {"input", m_input.scene.file},
+                     {"message", m_message},
                      {"zoom", m_flat ? json(m_flatView.zoom) : json()},
                      {"compare", m_present.compare == PresentSettings::Compare::Off
                                      ? json()
@@ -752,9 +794,19 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
     return writeFileAtomically((dir / (std::string(stem) + ".json")).string(), jsonText(state));
 }
 
-Status Viewer::run() {
+// The viewer that GLFW's drop callback hands paths to (one window, one viewer at a time).
+Viewer* g_dropTarget = nullptr;
+
+void onDrop(GLFWwindow*, int count, const char** paths) {
+    if (g_dropTarget && count > 0) g_dropTarget->requestOpen(paths[0]);  // the first of several
+}
+
+Status Viewer::run(int& frame) {
     GLFWwindow* window = m_window.handle();
-    {
+    g_dropTarget = this;
+    glfwSetDropCallback(window, onDrop);
+    if (!m_started) {
+        m_started = true;
         int width = 0, height = 0;
         glfwGetFramebufferSize(window, &width, &height);
         resetCamera(width, height);
@@ -771,8 +823,15 @@ Status Viewer::run() {
     bool dirty = true;
     int idleFrames = 0;
     const bool scripted = m_options.frames > 0;
-    for (int frame = 0; !glfwWindowShouldClose(window); ++frame) {
+    for (; !glfwWindowShouldClose(window) && m_openRequest.empty(); ++frame) {
         if (scripted && frame >= m_options.frames) break;
+        if (scripted && frame == 1 && !m_options.injectDrop.empty()) {
+            // A drop as the window system delivers it: through the callback GLFW holds.
+            const GLFWdropfun registered = glfwSetDropCallback(window, nullptr);
+            glfwSetDropCallback(window, registered);
+            const char* paths[] = {m_options.injectDrop.c_str()};
+            registered(window, 1, paths);
+        }
         if (scripted || dirty || idleFrames < 3)
             glfwPollEvents();
         else
@@ -835,6 +894,9 @@ Status Viewer::run() {
 // Removes the session's temporary bank whatever way the viewer ends.
 struct TemporaryFile {
     std::string path;
+    TemporaryFile() = default;
+    TemporaryFile(const TemporaryFile&) = delete;
+    TemporaryFile& operator=(const TemporaryFile&) = delete;
     ~TemporaryFile() {
         if (!path.empty()) fs::remove(path);
     }
@@ -879,8 +941,10 @@ Status runViewer(const ViewerOptions& options) {
     if (!window) return Error{window.error()};
     Result<ViewerInput> input = openInput(options);
     if (!input) return Error{input.error()};
-    TemporaryFile temporary{input->temporaryBank};
+    auto temporary = std::make_unique<TemporaryFile>();
+    temporary->path = input->temporaryBank;
     glfwSetWindowTitle((*window)->handle(), input->title.c_str());
+    rememberRecentFile(input->scene.file.empty() ? options.input : input->scene.file);
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -890,9 +954,37 @@ Status runViewer(const ViewerOptions& options) {
     ImGui_ImplOpenGL3_Init("#version 330");
     Status result = success();
     {
-        Viewer viewer(options, std::move(*input), **window);
-        result = viewer.start();
-        if (result) result = viewer.run();
+        auto viewer = std::make_unique<Viewer>(options, std::move(*input), **window);
+        result = viewer->start();
+        for (int frame = 0; result;) {
+            result = viewer->run(frame);
+            if (!result || viewer->openRequest().empty()) break;
+            // Another file: a new viewer for it, or a line in the current one's panel.
+            ViewerOptions next = options;
+            next.input = viewer->openRequest();
+            next.images.clear();
+            next.projection.clear();
+            next.camera.clear();
+            next.light = std::to_string(viewer->light().thetaDegrees()) + "," + std::to_string(viewer->light().phiDegrees());
+            Result<ViewerInput> opened = openInput(next);
+            if (!opened) {
+                viewer->showMessage(opened.error());
+                continue;
+            }
+            auto nextTemporary = std::make_unique<TemporaryFile>();
+            nextTemporary->path = opened->temporaryBank;
+            const std::string title = opened->title;
+            auto fresh = std::make_unique<Viewer>(next, std::move(*opened), **window);
+            if (Status s = fresh->start(); !s) {
+                viewer->showMessage(s.error());
+                continue;
+            }
+            viewer = std::move(fresh);
+            temporary = std::move(nextTemporary);
+            glfwSetWindowTitle((*window)->handle(), title.c_str());
+            rememberRecentFile(next.input);
+        }
+        g_dropTarget = nullptr;
     }
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();

@@ -33,6 +33,7 @@ struct ViewerOptions {
     std::string compareMode = "brdf";
     double exposure = 0;      ///< stops
     double gamma = 1;         ///< display gamma on top of sRGB
+    std::string injectDrop;   ///< scripted: at frame 1 this path is dropped on the window (through GLFW's callback)
     /// A dataset is baked with these (references, regions, colour, predictor).
     BakeOptions bake;
 };

@@ -33,6 +33,8 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--compare-mode", o->compareMode, "the mode in the wipe's right side or in the lens")->capture_default_str();
     app->add_option("--exposure", o->exposure, "stops (in linear light)")->capture_default_str();
     app->add_option("--gamma", o->gamma, "display gamma on top of sRGB (1: none)")->capture_default_str();
+    app->add_option("--inject-drop", o->injectDrop,
+                    "scripted (tests): at frame 1, PATH is dropped on the window through GLFW's drop callback");
     app->add_flag("!--no-vsync", o->vsync, "draw as fast as possible");
     app->add_option("--frames", o->frames, "scripted: draw N frames, then exit")->check(CLI::Range(1, 100000));
     app->add_flag("--light-sweep", o->lightSweep, "scripted: the light spirals from theta 10 to 80 over the frames");
