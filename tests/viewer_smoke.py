@@ -124,6 +124,22 @@ def check_drop(btflut, tmp, check):
     check(os.path.abspath(bank) in listed, f"the dropped bank is in the recent files ({recent})")
 
 
+def check_shapes(btflut, tmp, check):
+    """The sphere, lit from +x and seen from -y: its right half (+x) is brighter than its left;
+    the default material has no LUTs for grazing light, and the panel says they are clamped."""
+    for light_kind, extra in (("directional", []), ("point", ["--point-light", "4"])):
+        shots = os.path.join(tmp, "sphere-" + light_kind)
+        run(XVFB + [btflut, "view", "--frames", "1", "--geometry", "sphere", "--light", "60,0", "--camera", "-90,5",
+                    "--screenshot-dir", shots] + extra)
+        state = json.load(open(os.path.join(shots, "frame-0000.json")))
+        x, y, w, h = state["scene_viewport"]
+        grey = load(os.path.join(shots, "frame-0000.png"))[y:y + h, x:x + w].mean(axis=2)
+        left, right = grey[:, : w // 2].mean(), grey[:, w // 2:].mean()
+        check(right > 2 * left + 0.02 and state["geometry"] == "sphere",
+              f"sphere, {light_kind} light from +x: the lit side is brighter (right {right:.3f}, left {left:.3f})")
+        check("clamped" in state["grid_note"], f"sphere: the panel says grazing LUTs are clamped ({state['grid_note']!r})")
+
+
 def main():
     btflut = os.path.abspath(sys.argv[1])
     config = tempfile.TemporaryDirectory()  # the recent files list goes here, not in ~/.config
@@ -211,10 +227,12 @@ def main():
         check(result.returncode == 0, f"a saved scene file still renders after its folder moved ({result.stderr.strip()!r})")
         check_2d(btflut, tmp, check)
         check_drop(btflut, tmp, check)
+        check_shapes(btflut, tmp, check)
         for bad, needle in ((["--camera", "30"], "--camera"), (["--size", "10x10"], "--size"), (["--zoom", "0"], "--zoom"),
                             (["--projection", "4d"], "--projection"), (["--compare", "blink"], "--compare"),
                             (["--compare", "wipe", "--compare-mode", "nearest", os.path.join(tmp, "blend", "material.btflut")],
-                             "nearest")):
+                             "nearest"),
+                            (["--geometry", "sphere", os.path.join(tmp, "blend", "material.btflut")], "grid of LUTs")):
             result = subprocess.run(XVFB + [btflut, "view", "--frames", "1"] + bad, capture_output=True, text=True)
             check(result.returncode != 0 and needle in result.stderr, f"bad {needle} refused ({result.stderr.strip()!r})")
 

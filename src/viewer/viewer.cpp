@@ -23,6 +23,7 @@
 #include "core/json_text.h"
 #include "gl/gl_api.h"
 #include "gl/scene_renderer.h"
+#include "gl/shape_renderer.h"
 #include "gl/textures.h"
 #include "viewer/camera.h"
 #include "viewer/present.h"
@@ -172,6 +173,7 @@ public:
     Direction light() const { return m_light; }
 
 private:
+    enum class Geometry { Quad, Sphere, Cylinder };
     struct Pane {
         int x, y, width, height;  ///< window pixels, origin bottom left (GL)
         RenderMode mode;
@@ -189,6 +191,10 @@ private:
     /// 2D mode is offered for a single quad (a bank or dataset), not for scene files.
     bool flatOffered() const { return m_input.singleQuad && m_bank; }
     void fitFlat(int width, int height);
+    /// Shows a geometry (the sphere's or cylinder's renderer made on first use); on failure a
+    /// line in the panel and the quad stays.
+    bool setGeometry(Geometry geometry, int width, int height);
+    bool curved() const { return m_geometry != Geometry::Quad; }
     void updatePlots();
     bool panel(int width, int height);
     bool sceneInput(int width, int height);
@@ -224,6 +230,9 @@ private:
     bool m_interpolate = true;
     bool m_havePtm = false, m_haveImages = false;
 
+    Geometry m_geometry = Geometry::Quad;
+    std::unique_ptr<ShapeRenderer> m_shapes;  ///< made when a sphere or cylinder is first shown
+    double m_pointLight = 0;  ///< > 0: a point light this far from the origin, in the light's direction
     bool m_flat = false;  ///< 2D mode: frontal, orthographic, 1:1 at zoom 1
     FlatView m_flatView;
     RenderMode m_compareMode = RenderMode::Brdf;  ///< image B of the wipe or lens
@@ -344,7 +353,7 @@ void Viewer::paneCamera(const Pane& pane, Scene& scene) const {
 // only presents them).
 Status Viewer::renderPanes(int width, int height) {
     if (width != m_compositeWidth || height != m_compositeHeight) allocateComposites(width, height);
-    const bool comparing = m_present.compare != PresentSettings::Compare::Off;
+    const bool comparing = m_present.compare != PresentSettings::Compare::Off && !curved();
     for (GLuint fb : {m_composite.id(), m_compositeB.id()}) {
         if (fb == m_compositeB.id() && !comparing) break;
         gl.BindFramebuffer(GL_FRAMEBUFFER, fb);
@@ -360,6 +369,18 @@ Status Viewer::renderPanes(int width, int height) {
         if (all[p].mode == RenderMode::Lut) plottedPane = p;
     for (std::size_t p = 0; p < all.size(); ++p) {
         const Pane& pane = all[p];
+        if (curved()) {  // the sphere or cylinder: mode lut, per fragment
+            ShapeFrame frame{m_geometry == Geometry::Sphere ? Shape::Sphere : Shape::Cylinder, m_orbit.eye(), m_orbit.target,
+                             {0, 0, 1}, m_input.scene.fovDegrees, {}};
+            const Vec3 l = lightVector();
+            frame.light = {m_pointLight > 0, l, {l.x * m_pointLight, l.y * m_pointLight, l.z * m_pointLight}};
+            if (Status s = m_shapes->draw(frame, pane.width, pane.height); !s) return s;
+            gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_shapes->framebuffer());
+            gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m_composite.id());
+            gl.BlitFramebuffer(0, 0, pane.width, pane.height, pane.x, pane.y, pane.x + pane.width, pane.y + pane.height,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+            continue;
+        }
         Scene camera = m_input.scene;
         paneCamera(pane, camera);
         m_renderer->setCamera(camera.eye, camera.target, camera.up, camera.orthographicHeight);
@@ -532,6 +553,29 @@ bool Viewer::panel(int width, int height) {
         changed |= ImGui::SliderFloat("gamma", &m_present.gamma, 0.5f, 3, "%.2f");
         ImGui::SameLine();
         if (ImGui::SmallButton("reset##tone")) m_present.exposure = 0, m_present.gamma = 1, changed = true;
+        if (m_input.singleQuad) {
+            ImGui::TextUnformatted("Geometry (G)");
+            for (const auto& [value, name] : {std::pair{Geometry::Quad, "quad"}, {Geometry::Sphere, "sphere"}, {Geometry::Cylinder, "cylinder"}}) {
+                ImGui::SameLine();
+                if (ImGui::RadioButton(name, m_geometry == value) && m_geometry != value) changed |= setGeometry(value, width, height);
+            }
+            if (curved()) {
+                bool point = m_pointLight > 0;
+                if (ImGui::Checkbox("point light (P)", &point)) m_pointLight = point ? 3 : 0, changed = true;
+                if (point) {
+                    float distance = static_cast<float>(m_pointLight);
+                    ImGui::SameLine();
+                    ImGui::SetNextItemWidth(140);
+                    if (ImGui::SliderFloat("distance", &distance, 1.2f, 10, "%.1f")) m_pointLight = distance, changed = true;
+                }
+                ImGui::TextDisabled("mode lut, per fragment: each point's own light and view");
+                if (!m_shapes->gridNote().empty()) {
+                    ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 200, 90, 255));
+                    ImGui::TextWrapped("%s", m_shapes->gridNote().c_str());
+                    ImGui::PopStyleColor();
+                }
+            }
+        }
         changed |= ImGui::Checkbox("interpolate LUTs between measured directions", &m_interpolate);
         if (ImGui::Button("Reset light and camera (R)")) {
             m_light = Direction::fromDegrees(45, 30);
@@ -545,7 +589,7 @@ bool Viewer::panel(int width, int height) {
         }
         if (!m_status.empty()) ImGui::TextWrapped("%s", m_status.c_str());
     }
-    if (m_bank && ImGui::CollapsingHeader("Histogram and LUT", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (m_bank && !curved() && ImGui::CollapsingHeader("Histogram and LUT", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::TextDisabled("bars: rendered material; line: the bank's target");
         histogramPlot("##histogram", m_renderedHistogram, m_targetHistogram, kPanelWidth - 20, 90);
         ImGui::PlotLines("##lut", m_lutCurve.data(), static_cast<int>(m_lutCurve.size()), 0, "LUT at the quad centre", 0, 1,
@@ -653,6 +697,9 @@ bool Viewer::sceneInput(int width, int height) {
             changed = true;
         }
         if (ImGui::IsKeyPressed(GLFW_KEY_F) && m_flat) fitFlat(width, height), changed = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_G) && m_input.singleQuad)
+            changed |= setGeometry(static_cast<Geometry>((static_cast<int>(m_geometry) + 1) % 3), width, height);
+        if (ImGui::IsKeyPressed(GLFW_KEY_P) && curved()) m_pointLight = m_pointLight > 0 ? 0 : 3, changed = true;
         if (ImGui::IsKeyPressed(GLFW_KEY_1) && m_flat) m_flatView.zoom = 1, changed = true;
         if (ImGui::IsKeyPressed(GLFW_KEY_C)) {
             m_present.compare = static_cast<PresentSettings::Compare>((static_cast<int>(m_present.compare) + 1) % 3);
@@ -680,6 +727,8 @@ void Viewer::keyHelp() {
         {"wheel", "zoom (2D: about the cursor)"},
         {"V", "2D (frontal, orthographic) or 3D"},
         {"F, 1", "2D: fit the image to the pane; one texel per pixel"},
+        {"G", "geometry: quad, sphere, cylinder"},
+        {"P", "sphere and cylinder: point light or directional"},
         {"C", "compare: off, wipe (drag the line), lens (follows the cursor; ctrl + wheel: size)"},
         {"arrows", "light: left/right 1 degree in phi, up/down 1 degree in theta"},
         {"R", "reset the light and the camera"},
@@ -720,13 +769,36 @@ void Viewer::compareOverlay(int height) const {
 
 // The scene's camera; around a single quad, moved back until the quad fits one pane. In 2D
 // the image fits the pane.
+bool Viewer::setGeometry(Geometry geometry, int width, int height) {
+    if (geometry != Geometry::Quad && !m_shapes) {
+        Result<std::unique_ptr<ShapeRenderer>> shapes =
+            m_bank ? ShapeRenderer::create(m_input.scene.materials.at(m_input.scene.quads[0].material).bank)
+                   : Result<std::unique_ptr<ShapeRenderer>>(Error{"a scene file has no one material"});
+        if (!shapes) {
+            m_message = "sphere and cylinder: " + shapes.error();
+            return false;
+        }
+        m_shapes = std::move(*shapes);
+    }
+    m_geometry = geometry;
+    if (curved()) m_flat = false;
+    resetCamera(width, height);
+    return true;
+}
+
 void Viewer::resetCamera(int width, int height) {
     if (m_flat && width > 0 && height > 0) fitFlat(width, height);
     m_orbit = Orbit::of(m_input.scene);
     if (!m_input.singleQuad || width <= 0 || height <= 0) return;
     const Pane pane = panes(width, height)[0];
     const double paneAspect = static_cast<double>(pane.width) / pane.height;
-    const double halfWidth = m_input.scene.quads[0].width / 2, halfHeight = m_input.scene.quads[0].height / 2;
+    double halfWidth = m_input.scene.quads[0].width / 2, halfHeight = m_input.scene.quads[0].height / 2;
+    if (curved()) {  // the shape at the origin, seen a little from above
+        m_orbit.target = {0, 0, 0};
+        m_orbit.elevation = 0.35;
+        m_orbit.distance = 0;
+        halfWidth = halfHeight = m_geometry == Geometry::Sphere ? 1.2 : 1.6;
+    }
     const double tanHalfFov = std::tan(m_input.scene.fovDegrees / 2 * M_PI / 180);
     m_orbit.distance = std::max(m_orbit.distance, 1.15 * std::max(halfHeight, halfWidth / paneAspect) / tanHalfFov);
 }
@@ -769,6 +841,9 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
                      {"mode", renderModeName(pane.mode)},
                      {"projection", m_flat ? "2d" : "3d"},
                      {"input", m_input.scene.file},
+                     {"geometry", m_geometry == Geometry::Quad ? "quad" : m_geometry == Geometry::Sphere ? "sphere" : "cylinder"},
+                     {"point_light", m_pointLight},
+                     {"grid_note", m_shapes ? m_shapes->gridNote() : ""},
                      {"message", m_message},
                      {"zoom", m_flat ? json(m_flatView.zoom) : json()},
                      {"compare", m_present.compare == PresentSettings::Compare::Off
@@ -812,6 +887,10 @@ Status Viewer::run(int& frame) {
         resetCamera(width, height);
         if (m_flat && !m_options.zoom.empty() && m_options.zoom != "fit") m_flatView.zoom = std::stod(m_options.zoom);  // validated
         m_present.wipeX = static_cast<float>(width - panelWidth()) / 2;
+        m_pointLight = m_options.pointLight;
+        if (m_options.geometry != "quad" &&
+            !setGeometry(m_options.geometry == "sphere" ? Geometry::Sphere : Geometry::Cylinder, width, height))
+            return Error{m_input.scene.file + ": " + m_message};
         if (!m_options.camera.empty()) {  // validated by runViewer
             double azimuth = 0, elevation = 0, distance = m_orbit.distance;
             std::sscanf(m_options.camera.c_str(), "%lf,%lf,%lf", &azimuth, &elevation, &distance);

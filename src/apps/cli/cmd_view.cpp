@@ -33,6 +33,11 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--compare-mode", o->compareMode, "the mode in the wipe's right side or in the lens")->capture_default_str();
     app->add_option("--exposure", o->exposure, "stops (in linear light)")->capture_default_str();
     app->add_option("--gamma", o->gamma, "display gamma on top of sRGB (1: none)")->capture_default_str();
+    app->add_option("--geometry", o->geometry, "quad; sphere or cylinder (a bank of LUTs, per fragment; key G)")
+        ->check(CLI::IsMember({"quad", "sphere", "cylinder"}))
+        ->capture_default_str();
+    app->add_option("--point-light", o->pointLight, "sphere and cylinder: a point light this far from the centre (0: directional)")
+        ->check(CLI::Range(0.0, 100.0));
     app->add_option("--inject-drop", o->injectDrop,
                     "scripted (tests): at frame 1, PATH is dropped on the window through GLFW's drop callback");
     app->add_flag("!--no-vsync", o->vsync, "draw as fast as possible");

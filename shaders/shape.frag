@@ -1,0 +1,48 @@
+// A material on a curved surface: the light (and the view) in the surface's own frame at each
+// fragment, and the LUT for that direction from the bank's grid (btflut.glsl's one filtered
+// fetch), so highlights and shadows move across the object as they would on the material.
+uniform sampler2D reference;
+uniform sampler3D luts;
+uniform bool pointLight;
+uniform vec3 lightDirection;  // directional: towards the light, world frame
+uniform vec3 lightPosition;   // point light: its position
+uniform vec3 eye;
+uniform int layers;
+uniform vec3 layerViews[16];  // each view layer's direction in the tangent frame
+uniform bool rgbLuts;
+uniform bool greyReference;
+uniform float inputCode;
+uniform float outputCode;
+
+in vec3 worldPosition;
+in vec3 worldNormal;
+in vec3 worldTangent;
+in vec2 uv;
+out vec4 colour;
+
+void main() {
+    vec3 n = normalize(worldNormal);
+    vec3 t = normalize(worldTangent - n * dot(n, worldTangent));
+    vec3 b = cross(n, t);  // image up
+    vec3 l = pointLight ? normalize(lightPosition - worldPosition) : normalize(lightDirection);
+    vec3 lightTangent = vec3(dot(l, t), dot(l, b), dot(l, n));
+    if (lightTangent.z <= 0.0) {  // the light is behind this surface point
+        colour = vec4(0.0, 0.0, 0.0, 1.0);
+        return;
+    }
+    // The view layer nearest the view direction (banks of one layer: layer 0).
+    vec3 v = normalize(eye - worldPosition);
+    vec3 viewTangent = vec3(dot(v, t), dot(v, b), dot(v, n));
+    int layer = 0;
+    float best = -2.0;
+    for (int k = 0; k < layers; ++k) {
+        float c = dot(viewTangent, layerViews[k]);
+        if (c > best) {
+            best = c;
+            layer = k;
+        }
+    }
+    BtflutMaterial m = BtflutMaterial(layer, rgbLuts, greyReference, inputCode, outputCode, true);
+    vec3 texel = texture(reference, uv).rgb;
+    colour = vec4(btflutRelight(luts, m, texel, lightTangent, uvec2(gl_FragCoord.xy)), 1.0);
+}

@@ -1,0 +1,158 @@
+#include "gl/shape_renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/bank_file.h"
+#include "gl/gl_api.h"
+#include "gl/shader.h"
+#include "gl/textures.h"
+
+namespace btflut {
+
+namespace {
+
+constexpr int kAround = 128, kAlong = 64;  // cells: smooth silhouettes at viewer sizes
+constexpr int kMaxLayers = 16;             // shape.frag's layerViews[]
+
+// The grid of every view layer as one 3D texture: x the LUT entry, y grid column i, z layer *
+// G + grid row j (docs/engines.md), 16-bit, one texture channel per LUT channel.
+GlTexture uploadGrid(const LutBank& bank) {
+    const auto g = static_cast<std::size_t>(bank.gridSize), entries = static_cast<std::size_t>(bank.entries);
+    const auto channels = static_cast<std::size_t>(bank.channels());
+    std::vector<std::uint16_t> texels(entries * g * g * bank.layers.size() * channels);
+    for (std::size_t l = 0; l < bank.layers.size(); ++l)
+        for (std::size_t cell = 0; cell < g * g; ++cell)
+            for (std::size_t c = 0; c < channels; ++c)
+                for (std::size_t k = 0; k < entries; ++k)
+                    texels[((l * g * g + cell) * entries + k) * channels + c] =
+                        bank.layers[l].gridLuts[(cell * channels + c) * entries + k];
+    GlTexture texture = makeTexture();
+    gl.BindTexture(GL_TEXTURE_3D, texture.id());
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    gl.TexImage3D(GL_TEXTURE_3D, 0, channels == 3 ? GL_RGB16 : GL_R16, static_cast<GLsizei>(entries),
+                  static_cast<GLsizei>(g), static_cast<GLsizei>(g * bank.layers.size()), 0, channels == 3 ? GL_RGB : GL_RED,
+                  GL_UNSIGNED_SHORT, texels.data());
+    gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        gl.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    return texture;
+}
+
+std::string gridNoteOf(const LutBank& bank) {
+    std::size_t clamped = 0, modelled = 0;
+    for (Provenance p : bank.layers[0].gridProvenance) {
+        clamped += p == Provenance::Extrapolated;
+        modelled += p == Provenance::Modelled;
+    }
+    double measured = 0;
+    for (const LightNode& n : bank.layers[0].nodes)
+        if (!n.modelled) measured = std::max(measured, n.light.thetaDegrees());
+    char line[200];
+    if (clamped > 0)
+        std::snprintf(line, sizeof line,
+                      "lights beyond theta %.0f were not measured: there the LUTs are clamped to the nearest "
+                      "measured ones (the rim of a curved object; bake --fill model to model them)",
+                      measured);
+    else if (modelled > 0)
+        std::snprintf(line, sizeof line, "lights beyond theta %.0f come from the fitted model (bake --fill model)", measured);
+    else
+        return {};
+    return line;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<ShapeRenderer>> ShapeRenderer::create(const std::string& bankPath) {
+    Result<LutBank> loaded = loadBank(bankPath, {.ptm = false});
+    if (!loaded) return Error{loaded.error()};
+    const LutBank& bank = *loaded;
+    if (bank.makesLuts())
+        return Error{"this bank blends references at run time and has no grid of LUTs; the sphere and the cylinder "
+                     "need a bank of LUTs (bake without --references/--regions/--predictor ptm)"};
+    if (bank.layers.size() > kMaxLayers)
+        return Error{"the sphere and the cylinder draw banks of up to " + std::to_string(kMaxLayers) + " view layers"};
+    Result<GlProgram> program = buildProgram({"shape.vert"}, {"btflut.glsl", "shape.frag"}, {});
+    if (!program) return Error{program.error()};
+    std::unique_ptr<ShapeRenderer> r(new ShapeRenderer);
+    r->m_program = std::move(*program);
+    r->m_vertexArray = makeVertexArray();
+    std::size_t bytes = 0;
+    r->m_reference = uploadMipmapped(bank.reference, bytes);  // repeats
+    r->m_luts = uploadGrid(bank);
+    r->m_gridNote = gridNoteOf(bank);
+    r->m_bank = std::move(*loaded);
+    return r;
+}
+
+Status ShapeRenderer::draw(const ShapeFrame& frame, int width, int height) {
+    if (width != m_width || height != m_height) {
+        m_colour = allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
+        m_depth = allocateTexture2D(width, height, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_FLOAT);
+        m_framebuffer = makeFramebuffer();
+        gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_colour.id(), 0);
+        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m_depth.id(), 0);
+        if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+            return Error{"the GL driver cannot render to an RGBA8 image with depth"};
+        m_width = width, m_height = height;
+    }
+    Scene camera;
+    camera.width = width, camera.height = height;
+    camera.eye = frame.eye, camera.target = frame.target, camera.up = frame.up;
+    camera.fovDegrees = frame.fovDegrees;
+    const std::array<float, 16> m = viewProjection(camera);
+
+    gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
+    gl.Viewport(0, 0, width, height);
+    gl.ClearColor(0, 0, 0, 1);
+    gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    gl.Enable(GL_DEPTH_TEST);
+    const GLuint p = m_program.id();
+    gl.UseProgram(p);
+    auto location = [&](const char* name) { return gl.GetUniformLocation(p, name); };
+    gl.UniformMatrix4fv(location("viewProjection"), 1, GL_FALSE, m.data());
+    gl.Uniform1i(location("shape"), frame.shape == Shape::Sphere ? 0 : 1);
+    gl.Uniform1i(location("around"), kAround);
+    gl.Uniform1i(location("along"), kAlong);
+    // Texels about square: the sphere's equator is 2 pi round and pi from pole to pole; the
+    // cylinder 2 pi round and 2 high.
+    const double aspect = static_cast<double>(m_bank.reference.width) / m_bank.reference.height;
+    const float around = static_cast<float>(std::max(1.0, std::round((frame.shape == Shape::Sphere ? 2.0 : M_PI) / aspect)));
+    gl.Uniform2f(location("uvRepeats"), around, 1.f);
+    gl.Uniform1i(location("pointLight"), frame.light.point ? 1 : 0);
+    gl.Uniform3f(location("lightDirection"), static_cast<float>(frame.light.direction.x),
+                 static_cast<float>(frame.light.direction.y), static_cast<float>(frame.light.direction.z));
+    gl.Uniform3f(location("lightPosition"), static_cast<float>(frame.light.position.x),
+                 static_cast<float>(frame.light.position.y), static_cast<float>(frame.light.position.z));
+    gl.Uniform3f(location("eye"), static_cast<float>(frame.eye.x), static_cast<float>(frame.eye.y),
+                 static_cast<float>(frame.eye.z));
+    gl.Uniform1i(location("layers"), static_cast<int>(m_bank.layers.size()));
+    std::vector<float> views;
+    for (const ViewLayer& l : m_bank.layers) {
+        const Vec3 v = toVector(l.view);
+        views.insert(views.end(), {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)});
+    }
+    gl.Uniform3fv(location("layerViews"), static_cast<GLsizei>(m_bank.layers.size()), views.data());
+    gl.Uniform1i(location("rgbLuts"), m_bank.colour == ColourMode::Rgb ? 1 : 0);
+    gl.Uniform1i(location("greyReference"), m_bank.reference.channels == 1 ? 1 : 0);
+    gl.Uniform1f(location("inputCode"), inputCode(m_bank.reference, m_bank.colour));
+    gl.Uniform1f(location("outputCode"), m_bank.targetCode());
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D, m_reference.id());
+    gl.Uniform1i(location("reference"), 0);
+    gl.ActiveTexture(GL_TEXTURE1);
+    gl.BindTexture(GL_TEXTURE_3D, m_luts.id());
+    gl.Uniform1i(location("luts"), 1);
+    gl.BindVertexArray(m_vertexArray.id());
+    gl.DrawArrays(GL_TRIANGLES, 0, 6 * kAround * kAlong);
+    gl.BindVertexArray(0);
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.Disable(GL_DEPTH_TEST);
+    return success();
+}
+
+}  // namespace btflut

@@ -1,0 +1,60 @@
+#pragma once
+// A material on a sphere or a cylinder (shaders/shape.vert, shape.frag): each fragment takes
+// the light and view directions in its own tangent frame and the LUT for them from the bank's
+// grid (one trilinear fetch, as shaders/btflut.glsl does in an engine), so light and view vary
+// across the surface. A directional or a point light. Banks of LUTs only: a bank that blends
+// references at run time has no grid of LUTs.
+//
+//   Result<std::unique_ptr<ShapeRenderer>> r = ShapeRenderer::create("rock.btflut");
+//   (*r)->draw({Shape::Sphere, eye, target, up, 40, light}, 800, 600);   // then read framebuffer()
+
+#include <memory>
+
+#include "core/lut_bank.h"
+#include "core/result.h"
+#include "core/scene.h"
+#include "gl/objects.h"
+
+namespace btflut {
+
+enum class Shape { Sphere, Cylinder };
+
+struct ShapeLight {
+    bool point = false;
+    Vec3 direction{0, 0, 1};  ///< directional: towards the light (world frame)
+    Vec3 position{0, 0, 3};   ///< point light
+};
+
+/// What to draw: the shape at the origin (radius 1, z up; the cylinder 2 high, open), seen
+/// from a perspective camera.
+struct ShapeFrame {
+    Shape shape = Shape::Sphere;
+    Vec3 eye{0, -4, 2}, target{0, 0, 0}, up{0, 0, 1};
+    double fovDegrees = 40;
+    ShapeLight light;
+};
+
+class ShapeRenderer {
+public:
+    /// Reads the bank (its grids, not its PTM) and uploads the reference and the grid.
+    static Result<std::unique_ptr<ShapeRenderer>> create(const std::string& bankPath);
+    /// One frame into the renderer's own framebuffer (`width` x `height`, colour and depth).
+    Status draw(const ShapeFrame& frame, int width, int height);
+    GLuint framebuffer() const { return m_framebuffer.id(); }
+    /// Where the bank's grid holds no measured LUT (light directions beyond what was measured,
+    /// which a curved surface meets at its rim), how it is filled: an empty string when every
+    /// node is measured or interpolated, else a line for the viewer's panel.
+    const std::string& gridNote() const { return m_gridNote; }
+
+private:
+    ShapeRenderer() = default;
+    LutBank m_bank;
+    GlProgram m_program;
+    GlVertexArray m_vertexArray;
+    GlTexture m_reference, m_luts, m_colour, m_depth;
+    GlFramebuffer m_framebuffer;
+    int m_width = 0, m_height = 0;
+    std::string m_gridNote;
+};
+
+}  // namespace btflut
