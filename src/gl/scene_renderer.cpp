@@ -69,14 +69,11 @@ Status SceneRenderer::resize(int width, int height) {
     if (m_target.id() && width == m_scene.width && height == m_scene.height) return success();
     m_scene.width = width;
     m_scene.height = height;
-    m_target = allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
-    m_depth = allocateTexture2D(width, height, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_FLOAT);
-    m_framebuffer = makeFramebuffer();
-    gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_target.id(), 0);
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m_depth.id(), 0);
-    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return Error{"the GL driver cannot render to an RGBA8 image with depth"};
+    Result<ColourDepthTarget> target = allocateColourDepthTarget(width, height);
+    if (!target) return Error{target.error()};
+    m_target = std::move(target->colour);
+    m_depth = std::move(target->depth);
+    m_framebuffer = std::move(target->framebuffer);
     return success();
 }
 

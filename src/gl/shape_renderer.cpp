@@ -90,14 +90,9 @@ Result<std::unique_ptr<ShapeRenderer>> ShapeRenderer::create(const std::string& 
 
 Status ShapeRenderer::draw(const ShapeFrame& frame, int width, int height) {
     if (width != m_width || height != m_height) {
-        m_colour = allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
-        m_depth = allocateTexture2D(width, height, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_FLOAT);
-        m_framebuffer = makeFramebuffer();
-        gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
-        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, m_colour.id(), 0);
-        gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, m_depth.id(), 0);
-        if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            return Error{"the GL driver cannot render to an RGBA8 image with depth"};
+        Result<ColourDepthTarget> target = allocateColourDepthTarget(width, height);
+        if (!target) return Error{target.error()};
+        m_target = std::move(*target);
         m_width = width, m_height = height;
     }
     Scene camera;
@@ -106,7 +101,7 @@ Status ShapeRenderer::draw(const ShapeFrame& frame, int width, int height) {
     camera.fovDegrees = frame.fovDegrees;
     const std::array<float, 16> m = viewProjection(camera);
 
-    gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
+    gl.BindFramebuffer(GL_FRAMEBUFFER, m_target.framebuffer.id());
     gl.Viewport(0, 0, width, height);
     gl.ClearColor(0, 0, 0, 1);
     gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

@@ -14,6 +14,7 @@
 #include "core/result.h"
 #include "core/scene.h"
 #include "gl/objects.h"
+#include "gl/textures.h"
 
 namespace btflut {
 
@@ -40,7 +41,7 @@ public:
     static Result<std::unique_ptr<ShapeRenderer>> create(const std::string& bankPath);
     /// One frame into the renderer's own framebuffer (`width` x `height`, colour and depth).
     Status draw(const ShapeFrame& frame, int width, int height);
-    GLuint framebuffer() const { return m_framebuffer.id(); }
+    GLuint framebuffer() const { return m_target.framebuffer.id(); }
     /// Where the bank's grid holds no measured LUT (light directions beyond what was measured,
     /// which a curved surface meets at its rim), how it is filled: an empty string when every
     /// node is measured or interpolated, else a line for the viewer's panel.
@@ -51,8 +52,8 @@ private:
     LutBank m_bank;
     GlProgram m_program;
     GlVertexArray m_vertexArray;
-    GlTexture m_reference, m_luts, m_colour, m_depth;
-    GlFramebuffer m_framebuffer;
+    GlTexture m_reference, m_luts;
+    ColourDepthTarget m_target;
     int m_width = 0, m_height = 0;
     std::string m_gridNote;
 };

@@ -97,6 +97,17 @@ GlTexture allocateTexture2D(int width, int height, GLenum internalFormat, GLenum
     return texture;
 }
 
+Result<ColourDepthTarget> allocateColourDepthTarget(int width, int height) {
+    ColourDepthTarget t{allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE),
+                        allocateTexture2D(width, height, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_FLOAT), makeFramebuffer()};
+    gl.BindFramebuffer(GL_FRAMEBUFFER, t.framebuffer.id());
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.colour.id(), 0);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t.depth.id(), 0);
+    if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return Error{"the GL driver cannot render to an RGBA8 image with depth"};
+    return t;
+}
+
 Image readFramebufferRgb(GLuint framebuffer, int width, int height) {
     std::vector<unsigned char> rgba(static_cast<std::size_t>(width) * height * 4);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);

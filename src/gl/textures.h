@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/image.h"
+#include "core/result.h"
 #include "gl/objects.h"
 
 namespace btflut {
@@ -38,6 +39,13 @@ GlTexture uploadLabels(int width, int height, const std::uint8_t* data, std::siz
 
 /// An empty 2D texture (a render target): `format`/`type` describe no data, only the kind.
 GlTexture allocateTexture2D(int width, int height, GLenum internalFormat, GLenum format, GLenum type);
+
+/// A render target: RGBA8 colour and a 24-bit depth buffer, attached to a framebuffer.
+struct ColourDepthTarget {
+    GlTexture colour, depth;
+    GlFramebuffer framebuffer;
+};
+Result<ColourDepthTarget> allocateColourDepthTarget(int width, int height);
 
 /// The RGBA8 colour of a framebuffer (0: the window's) as an 8-bit RGB image, top row first.
 Image readFramebufferRgb(GLuint framebuffer, int width, int height);
