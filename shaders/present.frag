@@ -1,14 +1,14 @@
 // The viewer's last step, per window pixel: image A, or B where the compare shows it (right of
-// the wipe line, or inside the lens), then exposure and gamma. With exposure 0 and gamma 1
-// the pixel is A's (or B's) unchanged, so screenshots equal the renders.
+// the wipe line, or inside the lens), then exposure and gamma. Built in variants (#define
+// WIPE or LENS, TONE) so that each does only its own work; without any of them the viewer
+// copies A with a blit instead.
 uniform sampler2D imageA;
 uniform sampler2D imageB;
-uniform int compareMode;  // 0: A only, 1: wipe (B right of wipeX), 2: lens (B within lensRadius of lensCentre)
-uniform float wipeX;      // window pixels
-uniform vec2 lensCentre;  // window pixels, origin bottom left
+uniform float wipeX;      // WIPE: window pixels
+uniform vec2 lensCentre;  // LENS: window pixels, origin bottom left
 uniform float lensRadius;
-uniform float exposure;   // stops, applied in linear light
-uniform float gamma;      // display gamma on top of sRGB: 1 = none
+uniform float exposure;   // TONE: stops, applied in linear light
+uniform float gamma;      // TONE: display gamma on top of sRGB (1 = none)
 
 out vec4 colour;
 
@@ -21,10 +21,15 @@ vec3 linearToSrgb(vec3 c) {
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    bool showB = compareMode == 1 ? gl_FragCoord.x >= wipeX
-               : compareMode == 2 ? distance(gl_FragCoord.xy, lensCentre) <= lensRadius : false;
-    vec3 c = showB ? texelFetch(imageB, p, 0).rgb : texelFetch(imageA, p, 0).rgb;
-    if (exposure != 0.0) c = linearToSrgb(clamp(srgbToLinear(c) * exp2(exposure), 0.0, 1.0));
-    if (gamma != 1.0) c = pow(c, vec3(1.0 / gamma));
+#if defined(WIPE)
+    vec3 c = gl_FragCoord.x >= wipeX ? texelFetch(imageB, p, 0).rgb : texelFetch(imageA, p, 0).rgb;
+#elif defined(LENS)
+    vec3 c = distance(gl_FragCoord.xy, lensCentre) <= lensRadius ? texelFetch(imageB, p, 0).rgb : texelFetch(imageA, p, 0).rgb;
+#else
+    vec3 c = texelFetch(imageA, p, 0).rgb;
+#endif
+#ifdef TONE
+    c = pow(linearToSrgb(clamp(srgbToLinear(c) * exp2(exposure), 0.0, 1.0)), vec3(1.0 / gamma));
+#endif
     colour = vec4(c, 1.0);
 }

@@ -269,8 +269,17 @@ std::vector<std::size_t> visibleQuads(const Scene& s) {
 }
 
 std::optional<std::array<double, 2>> quadTextureAt(const Scene& scene, const SceneQuad& quad, int x, int row) {
+    return PixelRays(scene).quadTextureAt(quad, x, row);
+}
+
+PixelRays::PixelRays(const Scene& scene) : m_width(scene.width), m_height(scene.height) {
     const glm::dmat4 inverse = glm::inverse(glm::dmat4(glm::make_mat4(viewProjection(scene).data())));
-    const double nx = (x + 0.5) / scene.width * 2 - 1, ny = 1 - (row + 0.5) / scene.height * 2;
+    std::copy(glm::value_ptr(inverse), glm::value_ptr(inverse) + 16, m_inverse.begin());
+}
+
+std::optional<std::array<double, 2>> PixelRays::quadTextureAt(const SceneQuad& quad, int x, int row) const {
+    const glm::dmat4 inverse = glm::make_mat4(m_inverse.data());
+    const double nx = (x + 0.5) / m_width * 2 - 1, ny = 1 - (row + 0.5) / m_height * 2;
     const glm::dvec4 near = inverse * glm::dvec4(nx, ny, -1, 1), far = inverse * glm::dvec4(nx, ny, 1, 1);
     const glm::dvec3 origin = glm::dvec3(near) / near.w, direction = glm::dvec3(far) / far.w - origin;
     const glm::dvec3 n = g(quad.normal), t = g(quad.tangent), b = glm::cross(n, t), c = g(quad.center);

@@ -77,6 +77,17 @@ std::vector<std::size_t> visibleQuads(const Scene& scene);
 /// parallel to the plane.
 std::optional<std::array<double, 2>> quadTextureAt(const Scene& scene, const SceneQuad& quad, int x, int row);
 
+/// The same for many pixels of one camera: the inverse of its projection computed once.
+class PixelRays {
+public:
+    explicit PixelRays(const Scene& scene);
+    std::optional<std::array<double, 2>> quadTextureAt(const SceneQuad& quad, int x, int row) const;
+
+private:
+    std::array<double, 16> m_inverse;
+    int m_width, m_height;
+};
+
 /// normal x tangent: the quad's texture y runs along it (up the image).
 Vec3 bitangentOf(const SceneQuad& quad);
 

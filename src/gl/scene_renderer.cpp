@@ -434,6 +434,40 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
 
 void SceneRenderer::finish() const { gl.Finish(); }
 
+FrameSamples SceneRenderer::sampleFrame(int stride) {
+    FrameSamples s;
+    s.stride = stride | 1;
+    s.width = std::max(1, m_scene.width / s.stride), s.height = std::max(1, m_scene.height / s.stride);
+    s.frameHeight = m_scene.height;
+    if (!m_samples.colour.id() || m_samplesWidth != s.width || m_samplesHeight != s.height) {
+        Result<ColourDepthTarget> target = allocateColourDepthTarget(s.width, s.height);
+        if (!target) return {};
+        m_samples = std::move(*target);
+        m_samplesWidth = s.width, m_samplesHeight = s.height;
+    }
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, m_framebuffer.id());
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, m_samples.framebuffer.id());
+    gl.BlitFramebuffer(0, 0, s.width * s.stride, s.height * s.stride, 0, 0, s.width, s.height,
+                       GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    const auto n = static_cast<std::size_t>(s.width) * s.height;
+    std::vector<std::uint8_t> rgba(n * 4);
+    std::vector<float> depth(n);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, m_samples.framebuffer.id());
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, s.width, s.height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    gl.ReadPixels(0, 0, s.width, s.height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    s.rgb.resize(n * 3);
+    s.covered.resize(n);
+    for (int j = 0; j < s.height; ++j)  // GL's rows run bottom up
+        for (int i = 0; i < s.width; ++i) {
+            const std::size_t from = static_cast<std::size_t>(s.height - 1 - j) * s.width + i;
+            const std::size_t to = static_cast<std::size_t>(j) * s.width + i;
+            std::copy_n(&rgba[from * 4], 3, &s.rgb[to * 3]);
+            s.covered[to] = depth[from] < 1.f;
+        }
+    return s;
+}
+
 Image SceneRenderer::readBack() const { return readFramebufferRgb(m_framebuffer.id(), m_scene.width, m_scene.height); }
 
 Result<Image> renderScene(const Scene& scene, RenderStats& stats) {

@@ -36,6 +36,7 @@
 #include "gl/blend_textures.h"
 #include "gl/relight_pass.h"
 #include "gl/objects.h"
+#include "gl/textures.h"
 
 namespace btflut {
 
@@ -67,6 +68,18 @@ struct RenderStats {
     TextureBytes textureBytes;
 };
 
+/// Every `stride`-th pixel of a frame across and down (stride odd, so each sample is one
+/// pixel's own value), for plots of large frames.
+struct FrameSamples {
+    int width = 0, height = 0, stride = 1;  ///< samples across and down
+    int frameHeight = 0;
+    std::vector<std::uint8_t> rgb;      ///< 3 bytes per sample, top row first
+    std::vector<std::uint8_t> covered;  ///< 1 where a quad was drawn
+    /// The frame pixel (row 0 at the top) of sample (i, j).
+    int pixelX(int i) const { return i * stride + stride / 2; }
+    int pixelRow(int j) const { return frameHeight - 1 - ((height - 1 - j) * stride + stride / 2); }
+};
+
 class SceneRenderer {
 public:
     static constexpr int kViewGrid = 5;
@@ -88,6 +101,8 @@ public:
     /// Waits for the GPU (for timing).
     void finish() const;
     Image readBack() const;
+    /// The last frame's samples (a nearest blit into a small target, then one small read).
+    FrameSamples sampleFrame(int stride);
     GLuint framebuffer() const { return m_framebuffer.id(); }
     const Scene& scene() const { return m_scene; }
     const RenderStats& stats() const { return m_stats; }
@@ -152,6 +167,8 @@ private:
     std::vector<QuadState> m_quads;
     std::map<std::vector<std::string>, GlProgram> m_programs;  ///< by defines
     GlTexture m_target, m_depth;
+    ColourDepthTarget m_samples;  ///< sampleFrame's, at its last size
+    int m_samplesWidth = 0, m_samplesHeight = 0;
     GlFramebuffer m_framebuffer;
     GlVertexArray m_vertexArray;
     RenderStats m_stats;

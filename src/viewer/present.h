@@ -1,6 +1,10 @@
 #pragma once
 // The viewer's last pass: the composite image (or two, compared with a wipe or a lens) to
-// the window, with exposure and gamma (shaders/present.frag).
+// the window, with exposure and gamma (shaders/present.frag). Plain settings are a blit.
+
+#include <map>
+#include <string>
+#include <vector>
 
 #include "core/result.h"
 #include "gl/objects.h"
@@ -14,16 +18,22 @@ struct PresentSettings {
     float lensRadius = 120;
     float exposure = 0;  ///< stops
     float gamma = 1;     ///< 1: none
+
+    bool toned() const { return exposure != 0 || gamma != 1; }
+};
+
+/// One composite: its framebuffer (for the blit) and its colour texture (for the shader).
+struct CompositeImage {
+    GLuint framebuffer = 0, texture = 0;
 };
 
 class PresentPass {
 public:
-    static Result<PresentPass> create();
-    /// Draws into the bound framebuffer's viewport; `b` is read only while comparing.
-    void draw(GLuint a, GLuint b, const PresentSettings& settings) const;
+    /// Draws into the default framebuffer, `width` x `height`; `b` is read only while comparing.
+    Status draw(CompositeImage a, CompositeImage b, const PresentSettings& settings, int width, int height);
 
 private:
-    GlProgram m_program;
+    std::map<std::vector<std::string>, GlProgram> m_programs;  ///< by defines, made when first needed
     GlVertexArray m_vertexArray;
 };
 

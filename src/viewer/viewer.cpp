@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -137,22 +138,23 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
     return in;
 }
 
-// Which covered pixels of a frame show a point of `quad` inside the material's sample mask.
-std::vector<std::uint8_t> maskedPixels(const Scene& scene, const SceneQuad& quad, const Mask& mask,
-                                       const std::vector<std::uint8_t>& covered) {
-    std::vector<std::uint8_t> inside(covered.size(), 0);
-    for (int row = 0; row < scene.height; ++row)
-        for (int x = 0; x < scene.width; ++x) {
-            const std::size_t i = static_cast<std::size_t>(row) * scene.width + x;
-            if (!covered[i]) continue;
-            const std::optional<std::array<double, 2>> uv = quadTextureAt(scene, quad, x, row);
-            if (!uv) continue;
+// Which covered samples of a frame show a point of `quad` inside the material's sample mask.
+void keepMasked(FrameSamples& samples, const Scene& scene, const SceneQuad& quad, const Mask& mask) {
+    const PixelRays rays(scene);
+    for (int j = 0; j < samples.height; ++j)
+        for (int i = 0; i < samples.width; ++i) {
+            std::uint8_t& covered = samples.covered[static_cast<std::size_t>(j) * samples.width + i];
+            if (!covered) continue;
+            const std::optional<std::array<double, 2>> uv = rays.quadTextureAt(quad, samples.pixelX(i), samples.pixelRow(j));
+            if (!uv) {
+                covered = 0;
+                continue;
+            }
             const double u = (*uv)[0] - std::floor((*uv)[0]), v = (*uv)[1] - std::floor((*uv)[1]);  // repeats
             const int tx = std::clamp(static_cast<int>(u * mask.width), 0, mask.width - 1);
             const int ty = std::clamp(static_cast<int>(v * mask.height), 0, mask.height - 1);
-            inside[i] = mask.inside[static_cast<std::size_t>(ty) * mask.width + tx] != 0;
+            covered = mask.inside[static_cast<std::size_t>(ty) * mask.width + tx] != 0;
         }
-    return inside;
 }
 
 class Viewer {
@@ -205,6 +207,9 @@ private:
     /// The panel's width; 0 while Tab hides it.
     int panelWidth() const { return m_panelVisible ? static_cast<int>(kPanelWidth) : 0; }
     void keyHelp();
+    /// --timing: waits for the GPU so that a frame's time is the whole of its work.
+    static void glFinishForTiming() { gl.Finish(); }
+    void reportTiming() const;
     /// The wipe line or the lens's rim, and which mode is on each side.
     void compareOverlay(int height) const;
 
@@ -212,6 +217,7 @@ private:
     ViewerInput m_input;
     bool m_started = false;  ///< run() has set the camera up
     std::string m_openRequest, m_message;
+    std::vector<double> m_frameMs;  ///< --timing: each frame's time, swap included
     std::array<char, 1024> m_pathField{};
     std::vector<std::string> m_recent = loadRecentFiles();
     Window& m_window;
@@ -237,7 +243,7 @@ private:
     FlatView m_flatView;
     RenderMode m_compareMode = RenderMode::Brdf;  ///< image B of the wipe or lens
     PresentSettings m_present;
-    std::optional<PresentPass> m_presentPass;
+    PresentPass m_presentPass;
     bool m_draggingWipe = false;
 
     GlTexture m_compositeColour, m_compositeColourB;  ///< A: the panes; B: the compare mode's
@@ -308,9 +314,6 @@ Status Viewer::start() {
     }
     m_present.exposure = static_cast<float>(m_options.exposure);
     m_present.gamma = static_cast<float>(m_options.gamma);
-    Result<PresentPass> present = PresentPass::create();
-    if (!present) return Error{present.error()};
-    m_presentPass = std::move(*present);
     return success();
 }
 
@@ -403,14 +406,18 @@ Status Viewer::renderPanes(int width, int height) {
 // centre), and the LUT there.
 void Viewer::updatePlots() {
     if (!m_bank) return;
-    const Image frame = m_renderer->readBack();
-    std::vector<std::uint8_t> covered = m_renderer->coverage();
-    if (m_mask) covered = maskedPixels(m_renderer->scene(), m_renderer->scene().quads[0], *m_mask, covered);
+    // About 2^16 pixels of the frame, every stride-th across and down: plenty for 64 bins,
+    // and a large window's frame is not read back whole each time the light moves.
+    const Scene& scene = m_renderer->scene();
+    const int stride = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(scene.width) * scene.height / 65536.0)));
+    FrameSamples frame = m_renderer->sampleFrame(stride);
+    if (m_mask) keepMasked(frame, scene, scene.quads[0], *m_mask);
     m_renderedHistogram.assign(kHistogramBins, 0.f);
     double total = 0;
-    for (std::size_t i = 0; i < frame.pixelCount(); ++i) {
-        if (!covered[i]) continue;
-        const int bin = std::min(kHistogramBins - 1, static_cast<int>(frame.grey(i) * kHistogramBins));
+    for (std::size_t i = 0; i < frame.covered.size(); ++i) {
+        if (!frame.covered[i]) continue;
+        const int grey = frame.rgb[3 * i] + frame.rgb[3 * i + 1] + frame.rgb[3 * i + 2];
+        const int bin = std::min(kHistogramBins - 1, grey * kHistogramBins / 765);
         m_renderedHistogram[static_cast<std::size_t>(bin)] += 1;
         total += 1;
     }
@@ -751,6 +758,19 @@ void Viewer::fitFlat(int width, int height) {
     m_flatView.fit(pane.width, pane.height, m_bank->reference.width, m_bank->reference.height);
 }
 
+// The frames' times after the first (which compiles shaders and uploads textures).
+void Viewer::reportTiming() const {
+    if (m_frameMs.size() < 2) return;
+    std::vector<double> ms(m_frameMs.begin() + 1, m_frameMs.end());
+    std::sort(ms.begin(), ms.end());
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(m_window.handle(), &width, &height);
+    std::printf("view timing: %zu frames at %dx%d (%s, %s%s): median %.2f ms, 90th percentile %.2f ms, slowest %.2f ms\n",
+                ms.size(), width, height, m_flat ? "2D" : "3D", renderModeName(m_paneModes[0]),
+                m_options.lightSweep ? ", the light moving every frame" : "", ms[ms.size() / 2], ms[ms.size() * 9 / 10],
+                ms.back());
+}
+
 void Viewer::compareOverlay(int height) const {
     ImDrawList* draw = ImGui::GetForegroundDrawList();
     const auto h = static_cast<float>(height);
@@ -904,6 +924,7 @@ Status Viewer::run(int& frame) {
     const bool scripted = m_options.frames > 0;
     for (; !glfwWindowShouldClose(window) && m_openRequest.empty(); ++frame) {
         if (scripted && frame >= m_options.frames) break;
+        const auto frameStart = std::chrono::steady_clock::now();
         if (scripted && frame == 1 && !m_options.injectDrop.empty()) {
             // A drop as the window system delivers it: through the callback GLFW holds.
             const GLFWdropfun registered = glfwSetDropCallback(window, nullptr);
@@ -950,9 +971,12 @@ Status Viewer::run(int& frame) {
                 ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(p.x) + 8, 8), IM_COL32(255, 255, 255, 255),
                                                         paneLabel(p.mode));
         ImGui::Render();
-        gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-        gl.Viewport(0, 0, width, height);
-        m_presentPass->draw(m_compositeColour.id(), m_compositeColourB.id(), m_present);
+        PresentSettings present = m_present;
+        if (curved()) present.compare = PresentSettings::Compare::Off;  // the shapes draw mode lut only
+        if (Status s = m_presentPass.draw({m_composite.id(), m_compositeColour.id()}, {m_compositeB.id(), m_compositeColourB.id()},
+                                          present, width, height);
+            !s)
+            return s;
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         if (scripted && !m_options.screenshotDir.empty())
             if (Status s = saveScriptedFrame(frame, width, height); !s) return s;
@@ -966,7 +990,12 @@ Status Viewer::run(int& frame) {
             idleFrames = 0;  // show the status line
         }
         glfwSwapBuffers(window);
+        if (m_options.timing) {
+            glFinishForTiming();
+            m_frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count());
+        }
     }
+    if (m_options.timing && m_openRequest.empty()) reportTiming();
     return success();
 }
 

@@ -35,6 +35,7 @@ struct ViewerOptions {
     double gamma = 1;         ///< display gamma on top of sRGB
     std::string geometry = "quad";  ///< quad, sphere or cylinder (the last two: mode lut per fragment)
     double pointLight = 0;    ///< > 0: sphere and cylinder lit by a point light this far away, in the light's direction
+    bool timing = false;      ///< scripted: print the frames' median and 90th percentile times at exit
     std::string injectDrop;   ///< scripted: at frame 1 this path is dropped on the window (through GLFW's callback)
     /// A dataset is baked with these (references, regions, colour, predictor).
     BakeOptions bake;

@@ -38,6 +38,7 @@ void addViewCommand(CLI::App& root, Commands& commands) {
         ->capture_default_str();
     app->add_option("--point-light", o->pointLight, "sphere and cylinder: a point light this far from the centre (0: directional)")
         ->check(CLI::Range(0.0, 100.0));
+    app->add_flag("--timing", o->timing, "scripted: print the median frame time at exit (the first frame left out)");
     app->add_option("--inject-drop", o->injectDrop,
                     "scripted (tests): at frame 1, PATH is dropped on the window through GLFW's drop callback");
     app->add_flag("!--no-vsync", o->vsync, "draw as fast as possible");
