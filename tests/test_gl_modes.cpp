@@ -172,3 +172,39 @@ TEST_SUITE("gl") {
         CHECK(few.samples == all.samples);
     }
 }
+
+TEST_SUITE("gl") {
+    TEST_CASE("a frame's samples (for the viewer's plots) are its own pixels, with its coverage") {
+        TempDir dir;
+        auto ds = openDataset(writeSyntheticDataset(dir, variedShots(), 40, 30));
+        REQUIRE(ds.ok());
+        auto bank = bakeBank(*ds, {});
+        REQUIRE(bank.ok());
+        REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        Scene scene = frontalScene(dir / "m.btflut", "", 40, 30);
+        scene.width = 61, scene.height = 47;  // the quad covers part of the frame: coverage varies
+        scene.quads[0].width *= 0.6;
+        auto renderer = SceneRenderer::create(scene);
+        REQUIRE(renderer.ok());
+        const Image frame = draw(**renderer, Direction::fromDegrees(30, 40), RenderMode::Lut);
+        for (int stride : {1, 3, 5}) {
+            const FrameSamples s = (*renderer)->sampleFrame(stride);
+            CHECK(s.width == 61 / stride);
+            CHECK(s.height == 47 / stride);
+            int covered = 0, mismatches = 0;
+            for (int j = 0; j < s.height; ++j)
+                for (int i = 0; i < s.width; ++i) {
+                    const std::size_t at = static_cast<std::size_t>(j) * s.width + i;
+                    for (int c = 0; c < 3; ++c)
+                        mismatches += std::lround(frame.at(s.pixelX(i), s.pixelRow(j), c) * 255) != s.rgb[at * 3 + c];
+                    covered += s.covered[at];
+                }
+            INFO("stride " << stride);
+            CHECK(mismatches == 0);
+            CHECK(covered > 0);
+            CHECK(covered < s.width * s.height);
+        }
+    }
+}

@@ -77,19 +77,6 @@ Status SceneRenderer::resize(int width, int height) {
     return success();
 }
 
-std::vector<std::uint8_t> SceneRenderer::coverage() const {
-    std::vector<float> depth(static_cast<std::size_t>(m_scene.width) * m_scene.height);
-    gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
-    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.ReadPixels(0, 0, m_scene.width, m_scene.height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-    std::vector<std::uint8_t> covered(depth.size());
-    for (int row = 0; row < m_scene.height; ++row)  // top row first, like readBack
-        for (int x = 0; x < m_scene.width; ++x)
-            covered[static_cast<std::size_t>(row) * m_scene.width + x] =
-                depth[static_cast<std::size_t>(m_scene.height - 1 - row) * m_scene.width + x] < 1.f;
-    return covered;
-}
-
 void SceneRenderer::setCamera(const Vec3& eye, const Vec3& target, const Vec3& up, double orthographicHeight) {
     BTFLUT_CHECK(!m_fixedCamera);  // created with SceneRendererOptions::fixedCamera false
     m_scene.eye = eye;

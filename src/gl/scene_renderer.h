@@ -90,8 +90,6 @@ public:
     Status draw(const Vec3& light, std::optional<RenderMode> mode = {});
     /// A new image size (keeps everything loaded).
     Status resize(int width, int height);
-    /// Per pixel of the last frame (top row first): 1 where a quad was drawn.
-    std::vector<std::uint8_t> coverage() const;
     /// Moves the camera (the set of visible quads is fixed at creation); only for a renderer
     /// created with SceneRendererOptions::fixedCamera false. `orthographicHeight` > 0: an
     /// orthographic camera (Scene::orthographicHeight).
