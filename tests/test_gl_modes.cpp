@@ -48,6 +48,15 @@ std::vector<SyntheticShot> variedShots(double viewTheta = 0, double viewPhi = 0)
             {60, 225, viewTheta, viewPhi, 90, 1}, {20, 300, viewTheta, viewPhi, 20, 1}};
 }
 
+// A dataset of `shots` baked and saved as DIR/m.btflut.
+void bakeShots(const TempDir& dir, const std::vector<SyntheticShot>& shots, int width, int height) {
+    auto ds = openDataset(writeSyntheticDataset(dir, shots, width, height));
+    REQUIRE(ds.ok());
+    auto bank = bakeBank(*ds, {});
+    REQUIRE(bank.ok());
+    REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+}
+
 }  // namespace
 
 TEST_SUITE("gl") {
@@ -150,11 +159,7 @@ TEST_SUITE("gl") {
         for (auto [theta, phi] : {std::pair{0.0, 0.0}, {20.0, 0.0}, {20.0, 120.0}, {20.0, 240.0}, {75.0, 60.0},
                                   {75.0, 180.0}, {75.0, 300.0}})
             for (SyntheticShot s : variedShots(theta, phi)) shots.push_back(s);
-        auto ds = openDataset(writeSyntheticDataset(dir, shots, 32, 32));
-        REQUIRE(ds.ok());
-        auto bank = bakeBank(*ds, {});
-        REQUIRE(bank.ok());
-        REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+        bakeShots(dir, shots, 32, 32);
         auto context = createHeadlessContext(GlBackend::Auto);
         REQUIRE(context.ok());
         Scene scene = frontalScene(dir / "m.btflut", "", 32, 32);
@@ -176,11 +181,7 @@ TEST_SUITE("gl") {
 TEST_SUITE("gl") {
     TEST_CASE("a frame's samples (for the viewer's plots) are its own pixels, with its coverage") {
         TempDir dir;
-        auto ds = openDataset(writeSyntheticDataset(dir, variedShots(), 40, 30));
-        REQUIRE(ds.ok());
-        auto bank = bakeBank(*ds, {});
-        REQUIRE(bank.ok());
-        REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+        bakeShots(dir, variedShots(), 40, 30);
         auto context = createHeadlessContext(GlBackend::Auto);
         REQUIRE(context.ok());
         Scene scene = frontalScene(dir / "m.btflut", "", 40, 30);
