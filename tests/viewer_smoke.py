@@ -140,6 +140,25 @@ def check_shapes(btflut, tmp, check):
         check("clamped" in state["grid_note"], f"sphere: the panel says grazing LUTs are clamped ({state['grid_note']!r})")
 
 
+def check_scene_hover(btflut, tmp, check):
+    """Scene mode: the light disk shows the measured directions of the material under the cursor."""
+    scene = os.path.join(tmp, "two.json")
+    json.dump({"btflut_scene": 1, "camera": {"position": [0, -4, 3], "target": [0, 0, 0], "up": [0, 0, 1]},
+               "light": {"direction": [0, 0, 1]},
+               "materials": {"left": os.path.join(tmp, "2d", "material.btflut"),
+                             "right": os.path.join(tmp, "blend", "material.btflut")},
+               "quads": [{"material": "left", "center": [-1.1, 0, 0], "normal": [0, 0, 1], "tangent": [1, 0, 0],
+                          "size": [2, 2]},
+                         {"material": "right", "center": [1.1, 0, 0], "normal": [0, 0, 1], "tangent": [1, 0, 0],
+                          "size": [2, 2]}]}, open(scene, "w"))
+    for x, expected in ((238, "left"), (662, "right"), (450, "")):
+        shots = os.path.join(tmp, f"hover-{x}")
+        run(XVFB + [btflut, "view", scene, "--frames", "2", "--inject-cursor", f"{x},400", "--screenshot-dir", shots])
+        state = json.load(open(os.path.join(shots, "frame-0001.json")))
+        check(state["hovered_material"] == expected,
+              f"scene mode: at x {x} the cursor is over {expected or 'no quad'!r} ({state['hovered_material']!r})")
+
+
 def main():
     btflut = os.path.abspath(sys.argv[1])
     config = tempfile.TemporaryDirectory()  # the recent files list goes here, not in ~/.config
@@ -228,6 +247,7 @@ def main():
         check_2d(btflut, tmp, check)
         check_drop(btflut, tmp, check)
         check_shapes(btflut, tmp, check)
+        check_scene_hover(btflut, tmp, check)
         for bad, needle in ((["--camera", "30"], "--camera"), (["--size", "10x10"], "--size"), (["--zoom", "0"], "--zoom"),
                             (["--projection", "4d"], "--projection"), (["--compare", "blink"], "--compare"),
                             (["--compare", "wipe", "--compare-mode", "nearest", os.path.join(tmp, "blend", "material.btflut")],

@@ -197,6 +197,14 @@ private:
     /// line in the panel and the quad stays.
     bool setGeometry(Geometry geometry, int width, int height);
     bool curved() const { return m_geometry != Geometry::Quad; }
+    /// Scene files: the material of the quad at window pixel (x, row), or empty.
+    std::string materialAt(int x, int row, int width, int height) const;
+    /// The bank the disk and the Material section describe: the hovered material's in a
+    /// scene, else quad 0's.
+    const LutBank* shownBank() const {
+        const LutBank* hovered = m_hovered.empty() ? nullptr : m_renderer->bank(m_hovered);
+        return hovered ? hovered : m_bank;
+    }
     void updatePlots();
     bool panel(int width, int height);
     bool sceneInput(int width, int height);
@@ -227,7 +235,7 @@ private:
     bool m_helpVisible = false;
     LevelCounts m_referenceGrey;     ///< over the sample mask, when the dataset has one
     std::optional<Mask> m_mask;      ///< the dataset's sample mask (single-quad views)
-    std::vector<LightNode> m_nodes;
+    std::string m_hovered;  ///< scene files: the material of the quad under the cursor
 
     Direction m_light = Direction::fromDegrees(45, 30);
     Orbit m_orbit;
@@ -272,7 +280,6 @@ Status Viewer::start() {
             if (!dataset->maskPath.empty()) m_mask = std::move(*mask);
         }
         m_referenceGrey = countGreyLevels(m_bank->reference, m_mask ? *m_mask : fullMask(m_bank->reference.width, m_bank->reference.height));
-        m_nodes = m_bank->layers[0].nodes;
         m_coverage = m_bank->lightCoverage(0);
         m_haveImages = !paths.images.empty();
         m_havePtm = m_bank->ptmInFile;
@@ -483,7 +490,11 @@ bool Viewer::panel(int width, int height) {
         }
     }
     if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
-        changed |= hemisphereWidget("##hemisphere", m_light, m_input.singleQuad ? m_nodes : std::vector<LightNode>{}, 200);
+        const LutBank* shown = shownBank();
+        changed |= hemisphereWidget("##hemisphere", m_light, shown ? shown->layers[0].nodes : std::vector<LightNode>{}, 200);
+        if (!m_input.singleQuad)
+            ImGui::TextDisabled("%s", m_hovered.empty() ? "dots: quad 0's material; hover a quad for its own"
+                                                        : ("dots: '" + m_hovered + "', under the cursor").c_str());
         float theta = static_cast<float>(m_light.thetaDegrees()), phi = static_cast<float>(m_light.phiDegrees());
         bool edited = ImGui::InputFloat("theta", &theta, 1, 5, "%.1f");
         edited |= ImGui::InputFloat("phi", &phi, 1, 15, "%.1f");
@@ -602,7 +613,15 @@ bool Viewer::panel(int width, int height) {
         ImGui::PlotLines("##lut", m_lutCurve.data(), static_cast<int>(m_lutCurve.size()), 0, "LUT at the quad centre", 0, 1,
                          ImVec2(kPanelWidth - 20, 90));
     }
-    if (m_bank && ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (const LutBank* bank = shownBank(); bank && bank != m_bank && ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) {
+        // A scene's material under the cursor: what it is made of.
+        ImGui::Text("'%s': %s", m_hovered.c_str(), m_input.scene.materials.at(m_hovered).bank.c_str());
+        ImGui::Text("%d x %d reference, %s LUTs of %d entries", bank->reference.width, bank->reference.height,
+                    colourName(bank->colour), bank->entries);
+        std::size_t lights = 0;
+        for (const ViewLayer& l : bank->layers) lights += l.nodes.size();
+        ImGui::Text("%zu view layer(s), %zu light nodes", bank->layers.size(), lights);
+    } else if (m_bank && ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) {
         std::size_t nodes = 0, modelled = 0;
         double maxTheta = 0;
         for (const ViewLayer& l : m_bank->layers)
@@ -652,6 +671,8 @@ bool Viewer::sceneInput(int width, int height) {
         changed = true;
     }
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) m_draggingWipe = false;
+    if (!m_input.singleQuad && overScene && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || m_hovered.empty()))
+        m_hovered = materialAt(static_cast<int>(io.MousePos.x), static_cast<int>(io.MousePos.y), width, height);
     if (overScene && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && m_present.compare == PresentSettings::Compare::Wipe &&
         std::abs(mouseX - m_present.wipeX) < 8)
         m_draggingWipe = true;  // grabbed the wipe line
@@ -789,6 +810,27 @@ void Viewer::compareOverlay(int height) const {
 
 // The scene's camera; around a single quad, moved back until the quad fits one pane. In 2D
 // the image fits the pane.
+std::string Viewer::materialAt(int x, int row, int width, int height) const {
+    for (const Pane& pane : panes(width, height)) {
+        if (x < pane.x || x >= pane.x + pane.width) continue;
+        Scene scene = m_input.scene;
+        paneCamera(pane, scene);
+        scene.width = pane.width, scene.height = pane.height;
+        const PixelRays rays(scene);
+        // Of the quads this pixel's ray crosses, the one whose centre is nearest the eye.
+        std::string found;
+        double nearest = INFINITY;
+        for (const SceneQuad& quad : scene.quads) {
+            const std::optional<std::array<double, 2>> uv = rays.quadTextureAt(quad, x - pane.x, row);
+            if (!uv || (*uv)[0] < 0 || (*uv)[0] > quad.uvScale || (*uv)[1] < 0 || (*uv)[1] > quad.uvScale) continue;
+            const double d = std::hypot(quad.center.x - scene.eye.x, quad.center.y - scene.eye.y, quad.center.z - scene.eye.z);
+            if (d < nearest) nearest = d, found = quad.material;
+        }
+        return found;
+    }
+    return {};
+}
+
 bool Viewer::setGeometry(Geometry geometry, int width, int height) {
     if (geometry != Geometry::Quad && !m_shapes) {
         Result<std::unique_ptr<ShapeRenderer>> shapes =
@@ -864,6 +906,7 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
                      {"geometry", m_geometry == Geometry::Quad ? "quad" : m_geometry == Geometry::Sphere ? "sphere" : "cylinder"},
                      {"point_light", m_pointLight},
                      {"grid_note", m_shapes ? m_shapes->gridNote() : ""},
+                     {"hovered_material", m_hovered},
                      {"message", m_message},
                      {"zoom", m_flat ? json(m_flatView.zoom) : json()},
                      {"compare", m_present.compare == PresentSettings::Compare::Off
@@ -948,6 +991,10 @@ Status Viewer::run(int& frame) {
         if (width <= 0 || height <= 0) continue;  // minimised
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
+        if (scripted && !m_options.injectCursor.empty()) {  // as the backend would set it from the window system
+            float x = 0, y = 0;
+            if (std::sscanf(m_options.injectCursor.c_str(), "%f,%f", &x, &y) == 2) ImGui::GetIO().MousePos = ImVec2(x, y);
+        }
         ImGui::NewFrame();
         dirty |= width != m_compositeWidth || height != m_compositeHeight;
         dirty |= sceneInput(width, height);

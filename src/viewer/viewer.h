@@ -36,7 +36,8 @@ struct ViewerOptions {
     std::string geometry = "quad";  ///< quad, sphere or cylinder (the last two: mode lut per fragment)
     double pointLight = 0;    ///< > 0: sphere and cylinder lit by a point light this far away, in the light's direction
     bool timing = false;      ///< scripted: print the frames' median and 90th percentile times at exit
-    std::string injectDrop;   ///< scripted: at frame 1 this path is dropped on the window (through GLFW's callback)
+    std::string injectDrop;
+    std::string injectCursor;  ///< scripted: X,Y (window pixels from the top left): where the mouse is   ///< scripted: at frame 1 this path is dropped on the window (through GLFW's callback)
     /// A dataset is baked with these (references, regions, colour, predictor).
     BakeOptions bake;
 };

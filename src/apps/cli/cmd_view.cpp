@@ -41,6 +41,7 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_flag("--timing", o->timing, "scripted: print the median frame time at exit (the first frame left out)");
     app->add_option("--inject-drop", o->injectDrop,
                     "scripted (tests): at frame 1, PATH is dropped on the window through GLFW's drop callback");
+    app->add_option("--inject-cursor", o->injectCursor, "scripted (tests): X,Y, the mouse's place in the window");
     app->add_flag("!--no-vsync", o->vsync, "draw as fast as possible");
     app->add_option("--frames", o->frames, "scripted: draw N frames, then exit")->check(CLI::Range(1, 100000));
     app->add_flag("--light-sweep", o->lightSweep, "scripted: the light spirals from theta 10 to 80 over the frames");
