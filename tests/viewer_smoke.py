@@ -248,6 +248,14 @@ def main():
         check_drop(btflut, tmp, check)
         check_shapes(btflut, tmp, check)
         check_scene_hover(btflut, tmp, check)
+        for key, field, expected in (("tab", "panel", 0), ("f1", "help_visible", True)):
+            shots = os.path.join(tmp, "key-" + key)
+            run(XVFB + [btflut, "view", "--frames", "3", "--inject-key", key, "--screenshot-dir", shots])
+            before = json.load(open(os.path.join(shots, "frame-0000.json")))
+            after = json.load(open(os.path.join(shots, "frame-0002.json")))
+            got = after[field][2] if field == "panel" else after[field]
+            was = before[field][2] if field == "panel" else before[field]
+            check(got == expected and was != expected, f"{key}: {field} {was!r} -> {got!r}")
         for bad, needle in ((["--camera", "30"], "--camera"), (["--size", "10x10"], "--size"), (["--zoom", "0"], "--zoom"),
                             (["--projection", "4d"], "--projection"), (["--compare", "blink"], "--compare"),
                             (["--compare", "wipe", "--compare-mode", "nearest", os.path.join(tmp, "blend", "material.btflut")],

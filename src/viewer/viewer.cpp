@@ -907,6 +907,7 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
                      {"point_light", m_pointLight},
                      {"grid_note", m_shapes ? m_shapes->gridNote() : ""},
                      {"hovered_material", m_hovered},
+                     {"help_visible", m_helpVisible},
                      {"message", m_message},
                      {"zoom", m_flat ? json(m_flatView.zoom) : json()},
                      {"compare", m_present.compare == PresentSettings::Compare::Off
@@ -994,6 +995,12 @@ Status Viewer::run(int& frame) {
         if (scripted && !m_options.injectCursor.empty()) {  // as the backend would set it from the window system
             float x = 0, y = 0;
             if (std::sscanf(m_options.injectCursor.c_str(), "%f,%f", &x, &y) == 2) ImGui::GetIO().MousePos = ImVec2(x, y);
+        }
+        if (scripted && !m_options.injectKeys.empty()) {  // pressed at frame 1, released at frame 2
+            for (const std::string& name : m_options.injectKeys) {
+                const int key = name == "tab" ? GLFW_KEY_TAB : name == "f1" ? GLFW_KEY_F1 : GLFW_KEY_UNKNOWN;
+                if (key != GLFW_KEY_UNKNOWN) ImGui::GetIO().KeysDown[key] = frame == 1;
+            }
         }
         ImGui::NewFrame();
         dirty |= width != m_compositeWidth || height != m_compositeHeight;

@@ -6,6 +6,7 @@
 //   Status s = runViewer(o);   // returns when the window closes (or after o.frames)
 
 #include <string>
+#include <vector>
 
 #include "core/lut_bank.h"
 
@@ -37,6 +38,7 @@ struct ViewerOptions {
     double pointLight = 0;    ///< > 0: sphere and cylinder lit by a point light this far away, in the light's direction
     bool timing = false;      ///< scripted: print the frames' median and 90th percentile times at exit
     std::string injectDrop;
+    std::vector<std::string> injectKeys;  ///< scripted: keys pressed at frame 1 (tab, f1)
     std::string injectCursor;  ///< scripted: X,Y (window pixels from the top left): where the mouse is   ///< scripted: at frame 1 this path is dropped on the window (through GLFW's callback)
     /// A dataset is baked with these (references, regions, colour, predictor).
     BakeOptions bake;

@@ -41,6 +41,8 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_flag("--timing", o->timing, "scripted: print the median frame time at exit (the first frame left out)");
     app->add_option("--inject-drop", o->injectDrop,
                     "scripted (tests): at frame 1, PATH is dropped on the window through GLFW's drop callback");
+    app->add_option("--inject-key", o->injectKeys, "scripted (tests): tab or f1, pressed at frame 1")
+        ->check(CLI::IsMember({"tab", "f1"}));
     app->add_option("--inject-cursor", o->injectCursor, "scripted (tests): X,Y, the mouse's place in the window");
     app->add_flag("!--no-vsync", o->vsync, "draw as fast as possible");
     app->add_option("--frames", o->frames, "scripted: draw N frames, then exit")->check(CLI::Range(1, 100000));
