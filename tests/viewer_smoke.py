@@ -84,6 +84,21 @@ def check_2d(btflut, tmp, check):
     else:
         check(False, f"wipe: the line at {split} crosses the image")
 
+    # Lens at the image's centre: brdf inside the circle, lut outside.
+    lens = os.path.join(tmp, "lens")
+    rect = state["image_rect"]
+    cx, cy = rect[0] + rect[2] / 2, rect[1] + rect[3] / 2
+    run(XVFB + [btflut, "view", "--frames", "2", "--zoom", "1", "--light", light, "--compare", "lens",
+                "--compare-mode", "brdf", "--inject-cursor", f"{cx:.0f},{cy:.0f}", "--screenshot-dir", lens])
+    shot = load(os.path.join(lens, "frame-0001.png"))
+    x0, y0 = int(round(rect[0])), int(round(rect[1]))
+    inside = shot[y0 + 118:y0 + 138, x0 + 118:x0 + 138]  # within the lens (radius 120 px) around the centre
+    outside = shot[y0:y0 + 20, x0:x0 + 20]                 # a corner, 180 px from the centre
+    if same_shape:
+        check(np.abs(inside - brdf_shot[118:138, 118:138]).max() <= 1 / 255 and
+              np.abs(outside - expected[:20, :20]).max() <= 1 / 255,
+              "lens: brdf inside the circle around the cursor, lut outside it")
+
     # Exposure +1 stop: brighter (in linear light twice, where not clipped).
     bright = os.path.join(tmp, "bright")
     run(XVFB + [btflut, "view", "--frames", "1", "--zoom", "1", "--light", light, "--exposure", "1",
