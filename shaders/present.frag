@@ -7,17 +7,9 @@ uniform sampler2D imageB;
 uniform float wipeX;      // WIPE: window pixels
 uniform vec2 lensCentre;  // LENS: window pixels, origin bottom left
 uniform float lensRadius;
-uniform float exposure;   // TONE: stops, applied in linear light
-uniform float gamma;      // TONE: display gamma on top of sRGB (1 = none)
+uniform sampler1D tone;   // TONE: 256 entries, code k / 255 -> its toned value (present.cpp)
 
 out vec4 colour;
-
-vec3 srgbToLinear(vec3 c) {
-    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), step(vec3(0.04045), c));
-}
-vec3 linearToSrgb(vec3 c) {
-    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -29,7 +21,8 @@ void main() {
     vec3 c = texelFetch(imageA, p, 0).rgb;
 #endif
 #ifdef TONE
-    c = pow(linearToSrgb(clamp(srgbToLinear(c) * exp2(exposure), 0.0, 1.0)), vec3(1.0 / gamma));
+    ivec3 code = ivec3(c * 255.0 + 0.5);  // the composite is 8-bit: a table of 256 is exact
+    c = vec3(texelFetch(tone, code.r, 0).r, texelFetch(tone, code.g, 0).r, texelFetch(tone, code.b, 0).r);
 #endif
     colour = vec4(c, 1.0);
 }

@@ -1,9 +1,31 @@
 #include "viewer/present.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "gl/gl_api.h"
 #include "gl/shader.h"
+#include "gl/textures.h"
 
 namespace btflut {
+
+namespace {
+
+// Each 8-bit code's value after `exposure` stops in linear light (sRGB decoded and encoded
+// again) and a display `gamma` on top.
+std::vector<float> toneTable(float exposure, float gamma) {
+    std::vector<float> table(256);
+    for (int k = 0; k < 256; ++k) {
+        const double c = k / 255.0;
+        const double linear = c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+        const double exposed = std::min(1.0, linear * std::exp2(exposure));
+        const double encoded = exposed <= 0.0031308 ? exposed * 12.92 : 1.055 * std::pow(exposed, 1 / 2.4) - 0.055;
+        table[static_cast<std::size_t>(k)] = static_cast<float>(std::pow(encoded, 1.0 / gamma));
+    }
+    return table;
+}
+
+}  // namespace
 
 Status PresentPass::draw(CompositeImage a, CompositeImage b, const PresentSettings& s, int width, int height) {
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -36,8 +58,16 @@ Status PresentPass::draw(CompositeImage a, CompositeImage b, const PresentSettin
     gl.Uniform1f(gl.GetUniformLocation(p, "wipeX"), s.wipeX);
     gl.Uniform2f(gl.GetUniformLocation(p, "lensCentre"), s.lensX, s.lensY);
     gl.Uniform1f(gl.GetUniformLocation(p, "lensRadius"), s.lensRadius);
-    gl.Uniform1f(gl.GetUniformLocation(p, "exposure"), s.exposure);
-    gl.Uniform1f(gl.GetUniformLocation(p, "gamma"), s.gamma);
+    if (s.toned()) {
+        if (!m_tone.id() || s.exposure != m_toneExposure || s.gamma != m_toneGamma) {
+            const std::vector<float> table = toneTable(s.exposure, s.gamma);
+            m_tone = uploadLut(table.data(), static_cast<int>(table.size()));
+            m_toneExposure = s.exposure, m_toneGamma = s.gamma;
+        }
+        gl.ActiveTexture(GL_TEXTURE2);
+        gl.BindTexture(GL_TEXTURE_1D, m_tone.id());
+        gl.Uniform1i(gl.GetUniformLocation(p, "tone"), 2);
+    }
     gl.BindVertexArray(m_vertexArray.id());
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
     gl.BindVertexArray(0);

@@ -1,6 +1,7 @@
 #pragma once
 // The viewer's last pass: the composite image (or two, compared with a wipe or a lens) to
-// the window, with exposure and gamma (shaders/present.frag). Plain settings are a blit.
+// the window, with exposure and gamma (shaders/present.frag). Plain settings are a blit;
+// exposure and gamma are a table of the 256 codes, made on the CPU when they change.
 
 #include <map>
 #include <string>
@@ -35,6 +36,8 @@ public:
 private:
     std::map<std::vector<std::string>, GlProgram> m_programs;  ///< by defines, made when first needed
     GlVertexArray m_vertexArray;
+    GlTexture m_tone;  ///< the tone table, for the exposure and gamma below
+    float m_toneExposure = 0, m_toneGamma = 1;
 };
 
 }  // namespace btflut
