@@ -567,10 +567,10 @@ bool Viewer::panel(int width, int height) {
                 ImGui::EndCombo();
             }
         }
-        changed |= ImGui::SliderFloat("exposure", &m_present.exposure, -4, 4, "%+.1f stops");
-        changed |= ImGui::SliderFloat("gamma", &m_present.gamma, 0.5f, 3, "%.2f");
+        ImGui::SliderFloat("exposure", &m_present.exposure, -4, 4, "%+.1f stops");  // the present pass only
+        ImGui::SliderFloat("gamma", &m_present.gamma, 0.5f, 3, "%.2f");
         ImGui::SameLine();
-        if (ImGui::SmallButton("reset##tone")) m_present.exposure = 0, m_present.gamma = 1, changed = true;
+        if (ImGui::SmallButton("reset##tone")) m_present.exposure = 0, m_present.gamma = 1;
         if (m_input.singleQuad) {
             ImGui::TextUnformatted("Geometry (G)");
             for (const auto& [value, name] : {std::pair{Geometry::Quad, "quad"}, {Geometry::Sphere, "sphere"}, {Geometry::Cylinder, "cylinder"}}) {
@@ -666,10 +666,10 @@ bool Viewer::sceneInput(int width, int height) {
     bool changed = false;
     const bool overScene = !io.WantCaptureMouse && io.MousePos.x < static_cast<float>(width - panelWidth());
     const float mouseX = io.MousePos.x, mouseY = static_cast<float>(height) - io.MousePos.y;  // GL: origin bottom left
-    if (m_present.compare == PresentSettings::Compare::Lens && overScene && (mouseX != m_present.lensX || mouseY != m_present.lensY)) {
+    // The lens, the wipe line, exposure and gamma change only the present pass, which runs
+    // every frame: moving them draws no pane again.
+    if (m_present.compare == PresentSettings::Compare::Lens && overScene)
         m_present.lensX = mouseX, m_present.lensY = mouseY;  // the lens follows the cursor
-        changed = true;
-    }
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) m_draggingWipe = false;
     if (!m_input.singleQuad && overScene && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || m_hovered.empty()))
         m_hovered = materialAt(static_cast<int>(io.MousePos.x), static_cast<int>(io.MousePos.y), width, height);
@@ -678,7 +678,6 @@ bool Viewer::sceneInput(int width, int height) {
         m_draggingWipe = true;  // grabbed the wipe line
     if (m_draggingWipe) {
         m_present.wipeX = std::clamp(mouseX, 0.f, static_cast<float>(width - panelWidth()));
-        changed = true;
     } else if (overScene) {
         if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
             const ImVec2 d = io.MouseDelta;
@@ -696,7 +695,6 @@ bool Viewer::sceneInput(int width, int height) {
         }
         if (io.MouseWheel != 0 && io.KeyCtrl && m_present.compare == PresentSettings::Compare::Lens) {
             m_present.lensRadius = std::clamp(m_present.lensRadius * static_cast<float>(std::pow(1.1, io.MouseWheel)), 8.f, 2000.f);
-            changed = true;
         } else if (io.MouseWheel != 0 && m_flat) {  // zoom about the cursor, in the pane under it
             for (const Pane& p : panes(width, height))
                 if (mouseX >= static_cast<float>(p.x) && mouseX < static_cast<float>(p.x + p.width))
