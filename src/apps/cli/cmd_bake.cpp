@@ -1,7 +1,10 @@
 // btflut bake: a LUT bank from a dataset.
 #include <filesystem>
 #include <iostream>
+#include <functional>
 #include <memory>
+#include <mutex>
+#include <optional>
 
 #include "cli/cli.h"
 #include "core/bank_file.h"
@@ -65,9 +68,44 @@ Status runModelBake(const BakeCommandOptions& o) {
     return success();
 }
 
+// Decodes a dataset's images for the bake and keeps each one's 64-bin masked grey histogram
+// (what --fill model fits when no parameters are given): every image decoded once.
+struct HistogramsWhileBaking {
+    const Dataset& dataset;
+    std::vector<std::vector<HistogramRow>> rows = std::vector<std::vector<HistogramRow>>(dataset.images.size());
+    std::mutex maskLock;
+    std::optional<Result<Mask>> mask;  ///< the dataset's, at the first image's size
+
+    Result<const Image*> operator()(std::size_t i, Image& storage) {
+        Result<Image> image = loadImage(dataset.images[i].path);
+        if (!image) return Error{image.error()};
+        storage = std::move(*image);
+        const Mask* sample = nullptr;
+        {
+            std::lock_guard<std::mutex> lock(maskLock);
+            if (!mask) mask = loadDatasetMask(dataset, storage.width, storage.height);
+            if (*mask && (*mask)->width == storage.width && (*mask)->height == storage.height) sample = &**mask;
+        }
+        if (sample)  // else the bake refuses the image's size itself
+            rows[i] = imageHistograms(storage, *sample, dataset.images[i].name, dataset.images[i].light,
+                                      dataset.images[i].view, kFillHistogramBins, false);
+        return &storage;
+    }
+    /// Every image's row, or nothing if some image was not seen.
+    std::optional<std::vector<HistogramRow>> all() const {
+        std::vector<HistogramRow> out;
+        for (const std::vector<HistogramRow>& r : rows) {
+            if (r.size() != 1) return std::nullopt;
+            out.push_back(r.front());
+        }
+        return out;
+    }
+};
+
 // --fill model: the fitted model's LUTs where the measured lights do not reach; fits the
 // dataset's histograms first when no parameters file is given.
-Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, LutBank& bank) {
+Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, LutBank& bank,
+                           const std::vector<HistogramRow>* histograms) {
     std::optional<ModelBankParams> params;
     if (!o.params.empty()) {
         Result<ModelBankParams> parsed = loadModelParams(o.params);
@@ -76,7 +114,7 @@ Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, 
     }
     Result<FitBrdf> brdf = parseFitBrdf(o.fitBrdf);
     if (!brdf) return Error{"--fit-" + brdf.error()};
-    Result<ModelFillReport> report = fillFromDataset(bank, dataset, params ? &*params : nullptr, *brdf);
+    Result<ModelFillReport> report = fillFromDataset(bank, dataset, params ? &*params : nullptr, *brdf, histograms);
     if (!report) return Error{report.error()};
     if (o.quiet) return success();
     if (report->fit)
@@ -122,10 +160,14 @@ Status runBake(const BakeCommandOptions& o) {
                           options.ptmPredictor))
         return Error{"--no-reference: a bank that blends references or matches regions keeps its references"};
     if (!o.quiet) options.progress = terminalProgress("baking");
-    Result<LutBank> bank = bakeBank(*dataset, options);
+    HistogramsWhileBaking collector{*dataset};
+    const bool fitting = o.fill == "model" && o.params.empty();
+    Result<LutBank> bank = fitting ? bakeBank(*dataset, options, std::ref(collector)) : bakeBank(*dataset, options);
     if (!bank) return Error{bank.error()};
-    if (o.fill == "model")
-        if (Status s = fillFromFittedModel(o, *dataset, *bank); !s) return s;
+    if (o.fill == "model") {
+        const std::optional<std::vector<HistogramRow>> histograms = collector.all();
+        if (Status s = fillFromFittedModel(o, *dataset, *bank, histograms ? &*histograms : nullptr); !s) return s;
+    }
     if (Status s = saveBank(*bank, o.output, {.embedReference = !o.noReference}); !s) return s;
     if (!o.quiet) {
         std::size_t nodes = 0;

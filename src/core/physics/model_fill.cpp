@@ -109,12 +109,13 @@ Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& para
 }
 
 Result<ModelFillReport> fillFromDataset(LutBank& bank, const Dataset& dataset, const ModelBankParams* params,
-                                        FitBrdf brdf) {
+                                        FitBrdf brdf, const std::vector<HistogramRow>* histograms) {
     std::optional<SurfaceFit> fit;
     ModelBankParams fitted;
     if (!params) {
-        constexpr int kBins = 64;  // the paper's
-        Result<std::vector<HistogramRow>> rows = histogramsOf(dataset, kBins, false);
+        constexpr int kBins = kFillHistogramBins;
+        Result<std::vector<HistogramRow>> rows = histograms ? Result<std::vector<HistogramRow>>(*histograms)
+                                                            : histogramsOf(dataset, kBins, false);
         if (!rows) return Error{rows.error()};
         Result<SurfaceFit> result = fitSurfaceModel(*rows, brdf);
         if (!result) return Error{dataset.source + ": fitting the model to fill from: " + result.error()};

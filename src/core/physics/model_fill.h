@@ -36,8 +36,12 @@ struct ModelFillReport {
 Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& params, const std::string& description);
 
 /// fillFromModel for a bank baked from `dataset`: with `params` null, the model is first
-/// fitted (`brdf`) to the dataset's 64-bin histograms.
+/// fitted (`brdf`) to the dataset's 64-bin masked grey histograms (kFillHistogramBins): those
+/// given in `histograms` (one row per image, as a bake collected them while decoding), or,
+/// without, decoded again from the files.
+constexpr int kFillHistogramBins = 64;  // the paper's
 Result<ModelFillReport> fillFromDataset(LutBank& bank, const Dataset& dataset, const ModelBankParams* params,
-                                        FitBrdf brdf = FitBrdf::Lambert);
+                                        FitBrdf brdf = FitBrdf::Lambert,
+                                        const std::vector<HistogramRow>* histograms = nullptr);
 
 }  // namespace btflut
