@@ -27,6 +27,7 @@
 #include "gl/shape_renderer.h"
 #include "gl/textures.h"
 #include "viewer/camera.h"
+#include "viewer/input.h"
 #include "viewer/present.h"
 #include "viewer/recent_files.h"
 #include "viewer/widgets.h"
@@ -52,90 +53,6 @@ const char* paneLabel(RenderMode mode) {
         case RenderMode::Nearest: return "nearest measured image";
     }
     return "";
-}
-
-// What the viewer shows: a scene, built around one quad unless the input was a scene file.
-struct ViewerInput {
-    Scene scene;
-    bool singleQuad = false;
-    std::string title;
-    json modelParameters;       ///< a synthetic dataset's parameters, when known
-    std::string temporaryBank;  ///< baked from a dataset for this session; removed at exit
-};
-
-// The parameters `btflut synth` recorded in a dataset's manifest, if any.
-json manifestParameters(const std::string& datasetPath) {
-    fs::path manifest = fs::is_directory(datasetPath) ? fs::path(datasetPath) / "btflut-dataset.json" : fs::path(datasetPath);
-    if (manifest.extension() != ".json" || !fs::exists(manifest)) return {};
-    Result<Bytes> bytes = readFile(manifest.string());
-    if (!bytes) return {};
-    Result<json> doc = parseJsonText(std::string(bytes->begin(), bytes->end()), manifest.string());
-    return doc && doc->is_object() && doc->contains("synth") ? (*doc)["synth"] : json{};
-}
-
-// The bundled material: $BTFLUT_DEFAULT_MATERIAL, else beside the executable (a build tree's
-// assets/default), else where `cmake --install` puts it (PREFIX/share/btflut/default).
-std::string defaultMaterial() {
-    if (const char* set = std::getenv("BTFLUT_DEFAULT_MATERIAL"); set && *set) return set;
-    std::error_code ec;
-    const fs::path bin = fs::read_symlink("/proc/self/exe", ec).parent_path();
-    const fs::path installed = bin.parent_path() / "share" / "btflut" / "default";
-    for (const fs::path& folder : {bin / "assets" / "default", installed})
-        if (fs::exists(folder / "btflut-dataset.json", ec)) return folder.string();
-    return installed.string();  // named in the error
-}
-
-Result<ViewerInput> openInput(const ViewerOptions& o) {
-    ViewerInput in;
-    const std::string path = o.input.empty() ? defaultMaterial() : o.input;
-    in.title = "btflut view - " + path;
-    if (!fs::exists(path)) return Error{path + ": cannot open (no such file or folder)"};
-    const std::string extension = fs::path(path).extension().string();
-    if (!fs::is_directory(path) && extension != ".btflut" && extension != ".json" && extension != ".lp")
-        return Error{path + ": not a bank (.btflut), a dataset (folder, .json manifest, .lp) or a scene file (.json)"};
-    if (fs::path(path).extension() == ".json" && !fs::is_directory(path)) {
-        Result<Bytes> bytes = readFile(path);
-        if (!bytes) return Error{bytes.error()};
-        Result<json> doc = parseJsonText(std::string(bytes->begin(), bytes->end()), path);
-        if (!doc) return Error{doc.error()};
-        if (doc->is_object() && doc->contains("quads")) {
-            Result<Scene> scene = loadScene(path);
-            if (!scene) return Error{scene.error()};
-            in.scene = std::move(*scene);
-            return in;
-        }
-    }
-    std::string bank = path, images = o.images;
-    if (fs::path(path).extension() != ".btflut") {  // a dataset: bake it for this session
-        Result<Dataset> dataset = openDataset(path);
-        if (!dataset) return Error{dataset.error()};
-        BakeOptions bake = o.bake;
-        bake.ptm = true;
-        Result<LutBank> baked = bakeBank(*dataset, bake);
-        if (!baked && baked.error().find("a PTM needs") != std::string::npos && !bake.ptmPredictor) {
-            bake.ptm = false;  // too few lights for a PTM: mode ptm stays off
-            baked = bakeBank(*dataset, bake);
-        }
-        if (!baked) return Error{baked.error()};
-        static int opened = 0;  // a session may open several datasets
-        in.temporaryBank = (fs::temp_directory_path() / ("btflut-view-" + std::to_string(::getpid()) + "-" +
-                                                         std::to_string(opened++) + ".btflut")).string();
-        if (Status s = saveBank(*baked, in.temporaryBank); !s) return Error{s.error()};
-        bank = in.temporaryBank;
-        images = path;
-        in.modelParameters = manifestParameters(path);
-    }
-    Result<LutBank> header = loadBank(bank, {.ptm = false});
-    if (!header) return Error{header.error()};
-    const double aspect = static_cast<double>(header->reference.width) / header->reference.height;
-    in.singleQuad = true;
-    in.scene.file = path;
-    in.scene.fovDegrees = 40;
-    in.scene.materials["material"] = {bank, images};
-    in.scene.quads = {{"material", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2 * aspect, 2, 1, RenderMode::Lut}};
-    in.scene.eye = {0, -1.5, 2.6};  // from 60 degrees above the quad
-    in.scene.target = {0, 0, 0};
-    return in;
 }
 
 // Which covered samples of a frame show a point of `quad` inside the material's sample mask.
@@ -552,7 +469,6 @@ bool Viewer::panel(int width, int height) {
             ImGui::SameLine();
             if (ImGui::RadioButton((std::string(name) + "##compare").c_str(), compare == value)) {
                 m_present.compare = static_cast<PresentSettings::Compare>(value);
-                if (m_present.wipeX <= 0) m_present.wipeX = static_cast<float>(width - panelWidth()) / 2;
                 changed = true;
             }
         }
@@ -729,7 +645,6 @@ bool Viewer::sceneInput(int width, int height) {
         if (ImGui::IsKeyPressed(GLFW_KEY_1) && m_flat) m_flatView.zoom = 1, changed = true;
         if (ImGui::IsKeyPressed(GLFW_KEY_C)) {
             m_present.compare = static_cast<PresentSettings::Compare>((static_cast<int>(m_present.compare) + 1) % 3);
-            if (m_present.wipeX <= 0) m_present.wipeX = static_cast<float>(width - panelWidth()) / 2;
             changed = true;
         }
         if (ImGui::IsKeyPressed(GLFW_KEY_TAB)) {
@@ -1050,17 +965,6 @@ Status Viewer::run(int& frame) {
     if (m_options.timing && m_openRequest.empty()) reportTiming();
     return success();
 }
-
-// Removes the session's temporary bank whatever way the viewer ends.
-struct TemporaryFile {
-    std::string path;
-    TemporaryFile() = default;
-    TemporaryFile(const TemporaryFile&) = delete;
-    TemporaryFile& operator=(const TemporaryFile&) = delete;
-    ~TemporaryFile() {
-        if (!path.empty()) fs::remove(path);
-    }
-};
 
 }  // namespace
 
