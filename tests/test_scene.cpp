@@ -119,9 +119,18 @@ TEST_CASE("an orthographic camera: the same view direction everywhere, written a
             CHECK((*uv)[0] == doctest::Approx((x + 0.5) / 40));
             CHECK((*uv)[1] == doctest::Approx((row + 0.5) / 20));
         }
-    auto back = parseScene(sceneToJson(s), "s.json", ".");
-    REQUIRE(back.ok());
-    CHECK(back->orthographicHeight == 2);
+    // Distances along the ray: a quad nearer the camera is hit first; one behind it, never.
+    const PixelRays rays(s);
+    SceneQuad raised = q, behind = q;
+    raised.center.z = 1, behind.center.z = 6;
+    const auto low = rays.hit(q, 20, 10), high = rays.hit(raised, 20, 10), back = rays.hit(behind, 20, 10);
+    REQUIRE((low && high && back));
+    CHECK(high->distance < low->distance);
+    CHECK(low->distance - high->distance == doctest::Approx(1));
+    CHECK(back->distance < 0);
+    auto written = parseScene(sceneToJson(s), "s.json", ".");
+    REQUIRE(written.ok());
+    CHECK(written->orthographicHeight == 2);
     s.orthographicHeight = 0;
     CHECK(parseScene(sceneToJson(s), "s.json", ".")->orthographicHeight == 0);  // perspective: not written
 }

@@ -278,6 +278,12 @@ PixelRays::PixelRays(const Scene& scene) : m_width(scene.width), m_height(scene.
 }
 
 std::optional<std::array<double, 2>> PixelRays::quadTextureAt(const SceneQuad& quad, int x, int row) const {
+    const std::optional<QuadHit> h = hit(quad, x, row);
+    if (!h) return std::nullopt;
+    return h->uv;
+}
+
+std::optional<PixelRays::QuadHit> PixelRays::hit(const SceneQuad& quad, int x, int row) const {
     const glm::dmat4 inverse = glm::make_mat4(m_inverse.data());
     const double nx = (x + 0.5) / m_width * 2 - 1, ny = 1 - (row + 0.5) / m_height * 2;
     const glm::dvec4 near = inverse * glm::dvec4(nx, ny, -1, 1), far = inverse * glm::dvec4(nx, ny, 1, 1);
@@ -285,9 +291,11 @@ std::optional<std::array<double, 2>> PixelRays::quadTextureAt(const SceneQuad& q
     const glm::dvec3 n = g(quad.normal), t = g(quad.tangent), b = glm::cross(n, t), c = g(quad.center);
     const double along = glm::dot(n, direction);
     if (std::abs(along) < 1e-12 * glm::length(direction)) return std::nullopt;
-    const glm::dvec3 point = origin + direction * (glm::dot(n, c - origin) / along);
-    return std::array<double, 2>{(0.5 + glm::dot(point - c, t) / quad.width) * quad.uvScale,
-                                 (0.5 - glm::dot(point - c, b) / quad.height) * quad.uvScale};
+    const double at = glm::dot(n, c - origin) / along;  // from the near plane, in units of `direction`
+    const glm::dvec3 point = origin + direction * at;
+    return QuadHit{{(0.5 + glm::dot(point - c, t) / quad.width) * quad.uvScale,
+                    (0.5 - glm::dot(point - c, b) / quad.height) * quad.uvScale},
+                   at * glm::length(direction)};
 }
 
 Vec3 bitangentOf(const SceneQuad& quad) { return v3(glm::cross(g(quad.normal), g(quad.tangent))); }

@@ -82,6 +82,13 @@ class PixelRays {
 public:
     explicit PixelRays(const Scene& scene);
     std::optional<std::array<double, 2>> quadTextureAt(const SceneQuad& quad, int x, int row) const;
+    /// Where the pixel's ray meets the quad's plane: its texture coordinates (as above) and
+    /// its distance from the near plane along the ray (negative: behind it).
+    struct QuadHit {
+        std::array<double, 2> uv;
+        double distance;
+    };
+    std::optional<QuadHit> hit(const SceneQuad& quad, int x, int row) const;
 
 private:
     std::array<double, 16> m_inverse;

@@ -730,14 +730,15 @@ std::string Viewer::materialAt(int x, int row, int width, int height) const {
         paneCamera(pane, scene);
         scene.width = pane.width, scene.height = pane.height;
         const PixelRays rays(scene);
-        // Of the quads this pixel's ray crosses, the one whose centre is nearest the eye.
+        // Of the quads this pixel's ray crosses in front of the camera, the nearest.
         std::string found;
         double nearest = INFINITY;
         for (const SceneQuad& quad : scene.quads) {
-            const std::optional<std::array<double, 2>> uv = rays.quadTextureAt(quad, x - pane.x, row);
-            if (!uv || (*uv)[0] < 0 || (*uv)[0] > quad.uvScale || (*uv)[1] < 0 || (*uv)[1] > quad.uvScale) continue;
-            const double d = std::hypot(quad.center.x - scene.eye.x, quad.center.y - scene.eye.y, quad.center.z - scene.eye.z);
-            if (d < nearest) nearest = d, found = quad.material;
+            const std::optional<PixelRays::QuadHit> hit = rays.hit(quad, x - pane.x, row);
+            if (!hit || hit->distance < 0 || hit->distance >= nearest) continue;
+            const auto [u, v] = hit->uv;
+            if (u < 0 || u > quad.uvScale || v < 0 || v > quad.uvScale) continue;
+            nearest = hit->distance, found = quad.material;
         }
         return found;
     }
