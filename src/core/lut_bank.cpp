@@ -216,6 +216,20 @@ LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
     return ref;
 }
 
+std::vector<std::uint16_t> LutBank::gridTexels() const {
+    const auto cells = static_cast<std::size_t>(gridSize) * gridSize, width = segmentLength();
+    const auto regions = static_cast<std::size_t>(makesLuts() ? blend.regions : 1), ch = static_cast<std::size_t>(channels());
+    std::vector<std::uint16_t> texels(layers.size() * cells * regions * width * ch);
+    std::size_t at = 0;
+    for (const ViewLayer& layer : layers)
+        for (std::size_t cell = 0; cell < cells; ++cell)
+            for (std::size_t r = 0; r < regions; ++r)
+                for (std::size_t k = 0; k < width; ++k)
+                    for (std::size_t c = 0; c < ch; ++c)
+                        texels[at++] = layer.gridLuts[((cell * regions + r) * ch + c) * width + k];
+    return texels;
+}
+
 std::vector<float> LutBank::gridLookup(Direction light, std::size_t layer) const {
     const ViewLayer& l = layers.at(layer);
     BTFLUT_CHECK(!l.gridLuts.empty());

@@ -161,6 +161,12 @@ struct LutBank {
     /// lookup() at grid nodes; between them it differs most near the measured triangles' edges.
     std::vector<float> gridLookup(Direction light, std::size_t layer = 0) const;
 
+    /// Every view layer's grid as one block of unorm16 texels, channels interleaved, ordered
+    /// [layer][grid node j * gridSize + i][region][segment entry][channel]: for a bank of LUTs
+    /// (one region), the memory of the 3D texture that `export -o DIR/` writes and
+    /// shaders/btflut.glsl samples (x the LUT entry, y grid column i, z layer * G + row j).
+    std::vector<std::uint16_t> gridTexels() const;
+
     /// The measured node nearest to a light direction in the layer nearest to a view
     /// direction (nearest by angle); in the isotropic domain, the node nearest in it.
     NodeRef nearestNode(Direction light, Direction view = {}) const;

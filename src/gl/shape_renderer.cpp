@@ -21,13 +21,7 @@ constexpr int kMaxLayers = 16;             // shape.frag's layerViews[]
 GlTexture uploadGrid(const LutBank& bank) {
     const auto g = static_cast<std::size_t>(bank.gridSize), entries = static_cast<std::size_t>(bank.entries);
     const auto channels = static_cast<std::size_t>(bank.channels());
-    std::vector<std::uint16_t> texels(entries * g * g * bank.layers.size() * channels);
-    for (std::size_t l = 0; l < bank.layers.size(); ++l)
-        for (std::size_t cell = 0; cell < g * g; ++cell)
-            for (std::size_t c = 0; c < channels; ++c)
-                for (std::size_t k = 0; k < entries; ++k)
-                    texels[((l * g * g + cell) * entries + k) * channels + c] =
-                        bank.layers[l].gridLuts[(cell * channels + c) * entries + k];
+    const std::vector<std::uint16_t> texels = bank.gridTexels();
     GlTexture texture = makeTexture();
     gl.BindTexture(GL_TEXTURE_3D, texture.id());
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 2);

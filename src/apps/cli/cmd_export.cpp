@@ -1,5 +1,6 @@
 // btflut export: a bank for engines (a folder: reference, 3D LUT texture, sidecar, shader
 // include; docs/engines.md), as the older 16-bit PNG atlas, or its PTM as an RTI .ptm file.
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -36,14 +37,8 @@ Result<Image> gridImage(const ExportOptions& o, const LutBank& b, const std::str
         return Error{o.bank + ": its " + what + " would be " + std::to_string(width) + "x" + std::to_string(rows) +
                      " pixels, more than a PNG (or --max-pixels) allows; bake it with a smaller --grid"};
     Image image(width, static_cast<int>(rows), channels, 16);
-    for (std::size_t l = 0; l < b.layers.size(); ++l)
-        for (int cell = 0; cell < cells; ++cell)
-            for (int r = 0; r < regions; ++r)
-                for (int c = 0; c < channels; ++c)
-                    for (int k = 0; k < width; ++k)
-                        image.at(k, (static_cast<int>(l) * cells + cell) * regions + r, c) =
-                            b.layers[l].gridLuts[((static_cast<std::size_t>(cell) * regions + r) * channels + c) * width + k] /
-                            65535.f;
+    const std::vector<std::uint16_t> texels = b.gridTexels();  // the same order as the image's samples
+    std::transform(texels.begin(), texels.end(), image.samples.begin(), [](std::uint16_t t) { return t / 65535.f; });
     return image;
 }
 

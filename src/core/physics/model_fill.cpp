@@ -114,10 +114,12 @@ Result<ModelFillReport> fillFromDataset(LutBank& bank, const Dataset& dataset, c
     ModelBankParams fitted;
     if (!params) {
         constexpr int kBins = kFillHistogramBins;
-        Result<std::vector<HistogramRow>> rows = histograms ? Result<std::vector<HistogramRow>>(*histograms)
-                                                            : histogramsOf(dataset, kBins, false);
-        if (!rows) return Error{rows.error()};
-        Result<SurfaceFit> result = fitSurfaceModel(*rows, brdf);
+        Result<std::vector<HistogramRow>> decoded = std::vector<HistogramRow>{};
+        if (!histograms) {  // not collected while baking: decoded again
+            decoded = histogramsOf(dataset, kBins, false);
+            if (!decoded) return Error{decoded.error()};
+        }
+        Result<SurfaceFit> result = fitSurfaceModel(histograms ? *histograms : *decoded, brdf);
         if (!result) return Error{dataset.source + ": fitting the model to fill from: " + result.error()};
         fit = std::move(*result);
         fitted = fittedModelParams(*fit, kBins);
