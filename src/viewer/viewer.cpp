@@ -132,8 +132,10 @@ private:
     /// The panel's width; 0 while Tab hides it.
     int panelWidth() const { return m_panelVisible ? static_cast<int>(kPanelWidth) : 0; }
     void keyHelp();
-    /// --timing: waits for the GPU so that a frame's time is the whole of its work.
-    static void glFinishForTiming() { gl.Finish(); }
+    /// Whether the material has what a mode draws (a PTM, the measured images), and if not why.
+    Status modeOffered(RenderMode m) const;
+    /// A combo of the modes, those not offered greyed out; returns true when `mode` changed.
+    bool modeCombo(const char* label, RenderMode& mode) const;
     void reportTiming() const;
     /// The wipe line or the lens's rim, and which mode is on each side.
     void compareOverlay(int height) const;
@@ -215,14 +217,8 @@ Status Viewer::start() {
         m_paneModes = splitModes();
     else
         m_paneModes[0] = *mode;
-    auto offered = [&](RenderMode m) -> Status {
-        if (m == RenderMode::Ptm && !m_havePtm) return Error{m_input.scene.file + ": mode ptm needs a bank baked with --ptm"};
-        if (m == RenderMode::Nearest && !m_haveImages)
-            return Error{m_input.scene.file + ": mode nearest needs the measured images (--images DATASET)"};
-        return success();
-    };
     for (int p = 0; p < m_split; ++p)
-        if (Status s = offered(m_paneModes[static_cast<std::size_t>(p)]); !s) return s;
+        if (Status s = modeOffered(m_paneModes[static_cast<std::size_t>(p)]); !s) return s;
     // 2D by default where the input is one material seen from the front (a bank or dataset of
     // one frontal view); 3D for scene files and banks with several views.
     if (m_options.projection == "2d" && !flatOffered())
@@ -232,7 +228,7 @@ Status Viewer::start() {
     if (!m_options.compare.empty()) {
         Result<RenderMode> b = parseRenderMode(m_options.compareMode);
         if (!b) return Error{"--compare-" + b.error()};
-        if (Status s = offered(*b); !s) return s;
+        if (Status s = modeOffered(*b); !s) return s;
         m_compareMode = *b;
         m_present.compare = m_options.compare == "wipe" ? PresentSettings::Compare::Wipe : PresentSettings::Compare::Lens;
     }
@@ -376,6 +372,26 @@ void Viewer::updatePlots() {
     for (float& v : m_targetHistogram) v = total > 0 ? static_cast<float>(v / total) : 0.f;
 }
 
+Status Viewer::modeOffered(RenderMode m) const {
+    if (m == RenderMode::Ptm && !m_havePtm) return Error{m_input.scene.file + ": mode ptm needs a bank baked with --ptm"};
+    if (m == RenderMode::Nearest && !m_haveImages)
+        return Error{m_input.scene.file + ": mode nearest needs the measured images (--images DATASET)"};
+    return success();
+}
+
+bool Viewer::modeCombo(const char* label, RenderMode& mode) const {
+    bool changed = false;
+    if (ImGui::BeginCombo(label, renderModeName(mode))) {
+        for (RenderMode m : kModes)
+            if (ImGui::Selectable(renderModeName(m), m == mode, modeOffered(m) ? 0 : ImGuiSelectableFlags_Disabled)) {
+                changed = m != mode;
+                mode = m;
+            }
+        ImGui::EndCombo();
+    }
+    return changed;
+}
+
 // The ImGui panel; returns true when the scene must be drawn again.
 bool Viewer::panel(int width, int height) {
     bool changed = false;
@@ -434,20 +450,8 @@ bool Viewer::panel(int width, int height) {
                 changed = true;
             }
         }
-        for (int p = 0; p < m_split; ++p) {
-            RenderMode& mode = m_paneModes[static_cast<std::size_t>(p)];
-            const std::string label = "mode##pane" + std::to_string(p);
-            if (ImGui::BeginCombo(label.c_str(), renderModeName(mode))) {
-                for (RenderMode m : kModes) {
-                    const bool offered = (m != RenderMode::Ptm || m_havePtm) && (m != RenderMode::Nearest || m_haveImages);
-                    if (ImGui::Selectable(renderModeName(m), m == mode, offered ? 0 : ImGuiSelectableFlags_Disabled)) {
-                        mode = m;
-                        changed = true;
-                    }
-                }
-                ImGui::EndCombo();
-            }
-        }
+        for (int p = 0; p < m_split; ++p)
+            changed |= modeCombo(("mode##pane" + std::to_string(p)).c_str(), m_paneModes[static_cast<std::size_t>(p)]);
         if (flatOffered()) {
             ImGui::TextUnformatted("Projection");
             ImGui::SameLine();
@@ -474,14 +478,7 @@ bool Viewer::panel(int width, int height) {
         }
         if (m_present.compare != PresentSettings::Compare::Off) {
             if (m_split > 1) ImGui::TextDisabled("compares in every pane: each pane's mode against B");
-            if (ImGui::BeginCombo("B##compareMode", renderModeName(m_compareMode))) {
-                for (RenderMode m : kModes) {
-                    const bool offered = (m != RenderMode::Ptm || m_havePtm) && (m != RenderMode::Nearest || m_haveImages);
-                    if (ImGui::Selectable(renderModeName(m), m == m_compareMode, offered ? 0 : ImGuiSelectableFlags_Disabled))
-                        m_compareMode = m, changed = true;
-                }
-                ImGui::EndCombo();
-            }
+            changed |= modeCombo("B##compareMode", m_compareMode);
         }
         ImGui::SliderFloat("exposure", &m_present.exposure, -4, 4, "%+.1f stops");  // the present pass only
         ImGui::SliderFloat("gamma", &m_present.gamma, 0.5f, 3, "%.2f");
@@ -959,7 +956,7 @@ Status Viewer::run(int& frame) {
         }
         glfwSwapBuffers(window);
         if (m_options.timing) {
-            glFinishForTiming();
+            gl.Finish();  // the frame's time is the whole of its work, the GPU's included
             m_frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count());
         }
     }
