@@ -1,6 +1,6 @@
 // LUT application shared by btflut's fragment shaders (after btflut.glsl, whose dither hash
-// and grey step they use): the GLSL twin of src/core/lut.h (lutInput, lutOutput) and of
-// applyLuts in src/core/lut_bank.cpp, bit for bit, so CPU relighting and GPU rendering agree.
+// and grey step they use): the GLSL twin of src/core/histogram/lut.h (lutInput, lutOutput) and of
+// applyLuts in src/core/bank/lut_bank.cpp, bit for bit, so CPU relighting and GPU rendering agree.
 // (Compiled and tested against `btflut relight` by the renderer, issue 5.)
 
 // The LUT (a 1D texture of `entries` texels, linear filtering) at v in [0, 1]. textureLod: a
@@ -19,7 +19,7 @@ float btflutApplyLutDithered(sampler1D lut, int entries, float v, uvec2 pixel, u
     return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
 }
 
-// Banks that blend references (src/core/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
+// Banks that blend references (src/core/predict/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
 // BLEND_PTM for the PTM predictor, REGIONS). The blend is exact integer arithmetic in float
 // (8-bit codes times weights in 1/4096, sums below 2^24), so its code is the CPU's; the LUT
 // of the texel's region is applied to it.

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "cli/cli.h"
-#include "core/image.h"
+#include "core/image/image.h"
 
 namespace btflut::test {
 
@@ -107,9 +107,9 @@ inline Image randomGreyImage(int w, int h, unsigned seed) {
 
 #include <nlohmann/json.hpp>
 
-#include "core/scene.h"
+#include "core/data/scene.h"
 
-#include "core/direction.h"
+#include "core/direction/direction.h"
 
 namespace btflut::test {
 

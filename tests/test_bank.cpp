@@ -1,7 +1,7 @@
 #include <doctest/doctest.h>
 
-#include "core/bank_file.h"
-#include "core/lut_bank.h"
+#include "core/bank/bank_file.h"
+#include "core/bank/lut_bank.h"
 #include "helpers.h"
 
 using namespace btflut;

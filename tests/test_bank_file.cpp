@@ -1,6 +1,6 @@
 #include <doctest/doctest.h>
 
-#include "core/bank_file.h"
+#include "core/bank/bank_file.h"
 #include "helpers.h"
 
 using namespace btflut;

@@ -2,7 +2,7 @@
 // naming the file, a non-zero exit and no (or an untouched) output file.
 #include <doctest/doctest.h>
 
-#include "core/bank_file.h"
+#include "core/bank/bank_file.h"
 #include "helpers.h"
 
 using namespace btflut;

@@ -1,6 +1,6 @@
 #include <doctest/doctest.h>
 
-#include "core/dataset.h"
+#include "core/data/dataset.h"
 #include "helpers.h"
 
 using namespace btflut;

@@ -1,6 +1,6 @@
 #include <doctest/doctest.h>
 
-#include "core/direction.h"
+#include "core/direction/direction.h"
 
 using namespace btflut;
 

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/bank_file.h"
-#include "core/ptm_file.h"
+#include "core/bank/bank_file.h"
+#include "core/predict/ptm_file.h"
 #include "helpers.h"
 
 using namespace btflut;

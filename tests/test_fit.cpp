@@ -1,4 +1,4 @@
-// Fitting the rough-surface model (core/physics/fit.h, btflut fit) to noise-free simulated
+// Fitting the rough-surface model (core/inverse/fit.h, btflut fit) to noise-free simulated
 // histograms (the quadrature at 64 nodes; the fit simulates at 32).
 #include <doctest/doctest.h>
 
@@ -7,8 +7,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/file_io.h"
-#include "core/physics/fit.h"
+#include "core/inverse/fit.h"
+#include "core/io/file_io.h"
 #include "core/physics/geometry.h"
 #include "helpers.h"
 

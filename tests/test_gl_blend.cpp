@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/bank_file.h"
-#include "core/relighter.h"
+#include "core/bank/bank_file.h"
+#include "core/predict/relighter.h"
 #include "gl/context.h"
 #include "gl/native_renderer.h"
 #include "gl/scene_renderer.h"

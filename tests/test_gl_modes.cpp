@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/bank_file.h"
+#include "core/bank/bank_file.h"
 #include "gl/context.h"
 #include "gl/scene_renderer.h"
 #include "helpers.h"

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "core/bank_file.h"
-#include "core/relighter.h"
+#include "core/bank/bank_file.h"
+#include "core/predict/relighter.h"
 #include "gl/context.h"
 #include "gl/scene_renderer.h"
 #include "helpers.h"

@@ -4,8 +4,8 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
-#include "core/bank_file.h"
-#include "core/histogram.h"
+#include "core/bank/bank_file.h"
+#include "core/histogram/histogram.h"
 #include "helpers.h"
 
 using namespace btflut;

@@ -1,6 +1,6 @@
 #include <doctest/doctest.h>
 
-#include "core/histogram.h"
+#include "core/histogram/histogram.h"
 
 using namespace btflut;
 

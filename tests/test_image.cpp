@@ -1,6 +1,6 @@
 #include <doctest/doctest.h>
 
-#include "core/image.h"
+#include "core/image/image.h"
 #include "helpers.h"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION

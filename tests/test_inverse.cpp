@@ -6,8 +6,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/physics/classify.h"
-#include "core/physics/orient.h"
+#include "core/inverse/classify.h"
+#include "core/inverse/orient.h"
 #include "helpers.h"
 
 using namespace btflut;

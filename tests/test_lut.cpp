@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "core/lut.h"
+#include "core/histogram/lut.h"
 
 using namespace btflut;
 

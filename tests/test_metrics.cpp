@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/histogram.h"
-#include "core/metrics.h"
+#include "core/eval/metrics.h"
+#include "core/histogram/histogram.h"
 #include "core/random.h"
 
 using namespace btflut;

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "core/lut.h"
-#include "core/mip_luts.h"
+#include "core/bank/mip_luts.h"
+#include "core/histogram/lut.h"
 
 using namespace btflut;
 

@@ -1,12 +1,12 @@
-// Directions without measurements filled from the fitted model (core/physics/model_fill.h,
+// Directions without measurements filled from the fitted model (core/inverse/model_fill.h,
 // bake --fill model, eval --fill) against today's clamping.
 #include <doctest/doctest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/bank_file.h"
-#include "core/physics/model_fill.h"
+#include "core/bank/bank_file.h"
+#include "core/inverse/model_fill.h"
 #include "helpers.h"
 
 using namespace btflut;

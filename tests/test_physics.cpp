@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/histogram.h"
+#include "core/histogram/histogram.h"
 #include "core/physics/geometry.h"
 #include "core/physics/simulate.h"
 

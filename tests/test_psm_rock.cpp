@@ -1,7 +1,7 @@
 // Acceptance numbers on real measured data (../shared/data/psm-rock).
 #include <doctest/doctest.h>
 
-#include "core/bank_file.h"
+#include "core/bank/bank_file.h"
 #include "helpers.h"
 
 using namespace btflut;

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/bank_file.h"
-#include "core/ptm.h"
+#include "core/bank/bank_file.h"
+#include "core/predict/ptm.h"
 #include "helpers.h"
 
 using namespace btflut;

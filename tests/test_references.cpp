@@ -5,12 +5,12 @@
 
 #include <random>
 
-#include "core/bank_file.h"
-#include "core/evaluation.h"
-#include "core/histogram.h"
-#include "core/metrics.h"
-#include "core/references.h"
-#include "core/relighter.h"
+#include "core/bank/bank_file.h"
+#include "core/eval/holdout.h"
+#include "core/eval/metrics.h"
+#include "core/histogram/histogram.h"
+#include "core/predict/references.h"
+#include "core/predict/relighter.h"
 #include "helpers.h"
 
 using namespace btflut;

@@ -1,6 +1,6 @@
 #include <doctest/doctest.h>
 
-#include "core/scene.h"
+#include "core/data/scene.h"
 
 using namespace btflut;
 

@@ -1,7 +1,7 @@
 // Ground truth: synthetic Gaussian height fields, rendered, against the histogram model.
 #include <doctest/doctest.h>
 
-#include "core/histogram.h"
+#include "core/histogram/histogram.h"
 #include "core/physics/geometry.h"
 #include "core/physics/simulate.h"
 #include "core/synth/render.h"
@@ -85,7 +85,7 @@ TEST_CASE("a frontal light casts no shadow; a grazing one does, and only where t
     CHECK(dark < grazing.samples.size());
 }
 
-#include "core/dataset.h"
+#include "core/data/dataset.h"
 #include "helpers.h"
 
 using namespace btflut::test;

@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "core/triangulation.h"
+#include "core/direction/triangulation.h"
 
 using namespace btflut;
 

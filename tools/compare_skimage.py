@@ -2,7 +2,7 @@
 """Agreement of `btflut match` with scikit-image's exposure.match_histograms on 8-bit images.
 
 Both map each source grey level through c_target^-1(c_source(level)); btflut treats each
-level as a cell of width one (the middle of its quantile range, see src/core/lut.h) where
+level as a cell of width one (the middle of its quantile range, see src/core/histogram/lut.h) where
 scikit-image takes the top of its step, and keeps empty stretches of the target empty where
 scikit-image interpolates across them. The gate: mean absolute difference <= 0.5 grey levels
 for every pair. btflut runs undithered (--no-dither) and writes 16 bits, so the comparison

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/relighter.h"
+#include "core/predict/relighter.h"
 #include "gl/objects.h"
 
 namespace btflut {

@@ -7,7 +7,7 @@
 //
 //   Result<Image> img = renderNative(bank, light, view, /*dither=*/true);
 
-#include "core/lut_bank.h"
+#include "core/bank/lut_bank.h"
 
 namespace btflut {
 

@@ -18,7 +18,7 @@
 #include <map>
 #include <vector>
 
-#include "core/relighter.h"
+#include "core/predict/relighter.h"
 #include "gl/blend_textures.h"
 #include "gl/objects.h"
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "core/bank_file.h"
+#include "core/bank/bank_file.h"
 #include "core/check.h"
 #include "gl/shader.h"
 #include "gl/textures.h"

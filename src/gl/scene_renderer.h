@@ -27,15 +27,15 @@
 #include <string>
 #include <vector>
 
-#include "core/dataset.h"
-#include "core/image.h"
-#include "core/lut_bank.h"
-#include "core/mip_luts.h"
-#include "core/relighter.h"
-#include "core/scene.h"
+#include "core/bank/lut_bank.h"
+#include "core/bank/mip_luts.h"
+#include "core/data/dataset.h"
+#include "core/data/scene.h"
+#include "core/image/image.h"
+#include "core/predict/relighter.h"
 #include "gl/blend_textures.h"
-#include "gl/relight_pass.h"
 #include "gl/objects.h"
+#include "gl/relight_pass.h"
 #include "gl/textures.h"
 
 namespace btflut {

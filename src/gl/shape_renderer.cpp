@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/bank_file.h"
+#include "core/bank/bank_file.h"
 #include "gl/gl_api.h"
 #include "gl/shader.h"
 #include "gl/textures.h"

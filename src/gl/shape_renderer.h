@@ -10,9 +10,9 @@
 
 #include <memory>
 
-#include "core/lut_bank.h"
+#include "core/bank/lut_bank.h"
+#include "core/data/scene.h"
 #include "core/result.h"
-#include "core/scene.h"
 #include "gl/objects.h"
 #include "gl/textures.h"
 

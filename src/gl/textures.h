@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "core/image.h"
+#include "core/image/image.h"
 #include "core/result.h"
 #include "gl/objects.h"
 

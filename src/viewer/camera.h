@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/scene.h"
+#include "core/data/scene.h"
 
 namespace btflut {
 

@@ -5,9 +5,9 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/bank_file.h"
-#include "core/dataset.h"
-#include "core/json_text.h"
+#include "core/bank/bank_file.h"
+#include "core/data/dataset.h"
+#include "core/io/json_text.h"
 
 namespace btflut {
 

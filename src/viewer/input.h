@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/data/scene.h"
 #include "core/result.h"
-#include "core/scene.h"
 #include "viewer/viewer.h"
 
 namespace btflut {

@@ -18,10 +18,10 @@
 #include <fstream>
 #include <optional>
 
-#include "core/bank_file.h"
-#include "core/dataset.h"
-#include "core/histogram.h"
-#include "core/json_text.h"
+#include "core/bank/bank_file.h"
+#include "core/data/dataset.h"
+#include "core/histogram/histogram.h"
+#include "core/io/json_text.h"
 #include "gl/gl_api.h"
 #include "gl/scene_renderer.h"
 #include "gl/shape_renderer.h"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/lut_bank.h"
+#include "core/bank/lut_bank.h"
 
 namespace btflut {
 

@@ -9,13 +9,13 @@
 #include <string>
 #include <string_view>
 
-#include "core/bank_file.h"
-#include "core/dataset.h"
-#include "core/histogram.h"
-#include "core/image.h"
+#include "core/bank/bank_file.h"
+#include "core/data/dataset.h"
+#include "core/data/scene.h"
+#include "core/histogram/histogram.h"
+#include "core/image/image.h"
 #include "core/physics/model_bank.h"
-#include "core/relighter.h"
-#include "core/scene.h"
+#include "core/predict/relighter.h"
 
 namespace btflut::fuzz {
 

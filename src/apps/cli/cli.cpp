@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <iostream>
 
-#include "core/bank_file.h"
-#include "core/file_io.h"
-#include "core/image.h"
+#include "core/bank/bank_file.h"
+#include "core/image/image.h"
+#include "core/io/file_io.h"
 
 namespace btflut::cli {
 

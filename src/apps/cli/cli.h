@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/histogram.h"
-#include "core/lut_bank.h"
-#include "core/scene.h"
+#include "core/bank/lut_bank.h"
+#include "core/data/scene.h"
+#include "core/histogram/histogram.h"
 #include "core/result.h"
 
 namespace btflut::cli {

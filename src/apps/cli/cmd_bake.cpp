@@ -7,9 +7,9 @@
 #include <optional>
 
 #include "cli/cli.h"
-#include "core/bank_file.h"
-#include "core/physics/fit.h"
-#include "core/physics/model_fill.h"
+#include "core/bank/bank_file.h"
+#include "core/inverse/fit.h"
+#include "core/inverse/model_fill.h"
 
 namespace btflut::cli {
 

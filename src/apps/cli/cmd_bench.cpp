@@ -10,17 +10,17 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
-#include "core/check.h"
 #include "cli/model_options.h"
-#include "core/histogram.h"
-#include "core/lut_bank.h"
+#include "core/bank/lut_bank.h"
+#include "core/check.h"
+#include "core/histogram/histogram.h"
+#include "core/io/json_text.h"
 #include "core/physics/geometry.h"
 #include "core/physics/simulate.h"
 #include "core/synth/render.h"
 #include "gl/context.h"
 #include "gl/objects.h"
 #include "gl/scene_renderer.h"
-#include "core/json_text.h"
 
 namespace btflut::cli {
 

@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
-#include "core/json_text.h"
-#include "core/physics/classify.h"
+#include "core/inverse/classify.h"
+#include "core/io/json_text.h"
 
 namespace btflut::cli {
 

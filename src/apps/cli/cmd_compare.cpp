@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "cli/cli.h"
-#include "core/file_io.h"
-#include "core/json_text.h"
-#include "core/metrics.h"
+#include "core/eval/metrics.h"
+#include "core/io/file_io.h"
+#include "core/io/json_text.h"
 #include "core/parallel.h"
 
 namespace btflut::cli {

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
-#include "core/bank_file.h"
-#include "core/json_text.h"
-#include "core/ptm_file.h"
+#include "core/bank/bank_file.h"
+#include "core/io/json_text.h"
+#include "core/predict/ptm_file.h"
 #include "gl/shader.h"
 
 namespace btflut::cli {
@@ -83,7 +83,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
             "per light: blend the references of the Delaunay triangle (equal-area disk) around the light with "
             "barycentric weights (or relight the PTM), round the blend to its codes, and per region map its "
             "distribution over the mask's texels onto the quantile function blended from the atlas's nodes "
-            "(see src/core/relighter.h)";
+            "(see src/core/predict/relighter.h)";
     }
     nlohmann::json side;
     side["format"] = "btflut-atlas";

@@ -6,11 +6,11 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
-#include "core/file_io.h"
-#include "core/json_text.h"
-#include "core/physics/fit.h"
+#include "core/histogram/plot.h"
+#include "core/inverse/fit.h"
+#include "core/io/file_io.h"
+#include "core/io/json_text.h"
 #include "core/physics/model_bank.h"
-#include "core/plot.h"
 
 namespace btflut::cli {
 

@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "cli/cli.h"
-#include "core/dataset.h"
-#include "core/histogram.h"
+#include "core/data/dataset.h"
+#include "core/histogram/histogram.h"
 #include "core/parallel.h"
 
 namespace btflut::cli {

@@ -6,8 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
-#include "core/bank_file.h"
-#include "core/json_text.h"
+#include "core/bank/bank_file.h"
+#include "core/io/json_text.h"
 
 namespace btflut::cli {
 

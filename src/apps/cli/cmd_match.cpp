@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "cli/cli.h"
-#include "core/lut_bank.h"
+#include "core/bank/lut_bank.h"
 
 namespace btflut::cli {
 

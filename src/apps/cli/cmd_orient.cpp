@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
-#include "core/json_text.h"
-#include "core/physics/orient.h"
+#include "core/inverse/orient.h"
+#include "core/io/json_text.h"
 
 namespace btflut::cli {
 

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "cli/cli.h"
-#include "core/plot.h"
+#include "core/histogram/plot.h"
 
 namespace btflut::cli {
 

@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "cli/cli.h"
-#include "core/bank_file.h"
-#include "core/relighter.h"
+#include "core/bank/bank_file.h"
+#include "core/predict/relighter.h"
 
 namespace btflut::cli {
 

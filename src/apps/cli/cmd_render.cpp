@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "cli/cli.h"
-#include "core/bank_file.h"
+#include "core/bank/bank_file.h"
 #include "gl/context.h"
 #include "gl/native_renderer.h"
 #include "gl/scene_renderer.h"

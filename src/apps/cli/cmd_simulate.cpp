@@ -4,7 +4,7 @@
 
 #include "cli/cli.h"
 #include "cli/model_options.h"
-#include "core/histogram.h"
+#include "core/histogram/histogram.h"
 #include "core/physics/geometry.h"
 #include "core/physics/simulate.h"
 

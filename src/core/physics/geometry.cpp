@@ -5,7 +5,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "core/dataset.h"
+#include "core/data/dataset.h"
 
 namespace btflut {
 

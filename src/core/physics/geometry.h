@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/direction.h"
+#include "core/direction/direction.h"
 #include "core/result.h"
 
 namespace btflut {

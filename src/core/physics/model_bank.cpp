@@ -2,8 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/file_io.h"
-#include "core/json_text.h"
+#include "core/io/file_io.h"
+#include "core/io/json_text.h"
 
 #include "core/parallel.h"
 

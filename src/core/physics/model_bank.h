@@ -11,7 +11,7 @@
 
 #include <vector>
 
-#include "core/lut_bank.h"
+#include "core/bank/lut_bank.h"
 #include "core/physics/simulate.h"
 
 namespace btflut {

@@ -14,7 +14,7 @@
 #include <optional>
 #include <string>
 
-#include "core/direction.h"
+#include "core/direction/direction.h"
 #include "core/result.h"
 
 namespace btflut {

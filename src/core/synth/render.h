@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/image.h"
+#include "core/image/image.h"
 #include "core/physics/surface.h"
 #include "core/synth/height_field.h"
 

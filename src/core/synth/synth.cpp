@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "core/file_io.h"
-#include "core/image.h"
+#include "core/image/image.h"
+#include "core/io/file_io.h"
+#include "core/io/json_text.h"
 #include "core/synth/render.h"
-#include "core/json_text.h"
 
 namespace btflut {
 

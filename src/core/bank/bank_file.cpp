@@ -1,0 +1,646 @@
+#include "core/bank/bank_file.h"
+
+#include <zlib.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "core/check.h"
+
+namespace btflut {
+
+static_assert(std::endian::native == std::endian::little,
+              "the .btflut reader/writer copies little-endian words directly");
+
+namespace {
+
+constexpr std::uint8_t kSignature[8] = {0x89, 'B', 'T', 'F', 'L', 'U', 'T', 0x0A};
+constexpr std::uint32_t kMaxEntries = 65536;
+constexpr std::uint32_t kMaxGrid = 257;
+constexpr std::uint64_t kMaxChunk = 0xFFFFFFFFu;  // a chunk's length is a u32
+
+std::uint32_t tagOf(const char (&t)[5]) {
+    return static_cast<std::uint32_t>(t[0]) | static_cast<std::uint32_t>(t[1]) << 8 |
+           static_cast<std::uint32_t>(t[2]) << 16 | static_cast<std::uint32_t>(t[3]) << 24;
+}
+const std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
+                    kEnd = tagOf("END "), kReferences = tagOf("REFS"), kMask = tagOf("MASK"), kLabels = tagOf("LABL"),
+                    kAlbedo = tagOf("ALBD"), kFill = tagOf("FILL");
+
+std::string tagName(std::uint32_t tag) {
+    std::string s;
+    for (int i = 0; i < 4; ++i) {
+        char c = static_cast<char>((tag >> (8 * i)) & 0xFF);
+        s += (c >= 32 && c < 127) ? c : '?';
+    }
+    return s;
+}
+
+class Writer {
+public:
+    template <typename T>
+    void put(T v) {
+        auto p = reinterpret_cast<const std::uint8_t*>(&v);
+        m_bytes.insert(m_bytes.end(), p, p + sizeof(T));
+    }
+    void putBytes(const void* data, std::size_t n) {
+        if (n == 0) return;
+        auto p = static_cast<const std::uint8_t*>(data);
+        m_bytes.insert(m_bytes.end(), p, p + n);
+    }
+    void putString(const std::string& s) {
+        put(static_cast<std::uint32_t>(s.size()));
+        putBytes(s.data(), s.size());
+    }
+    Bytes& bytes() { return m_bytes; }
+
+private:
+    Bytes m_bytes;
+};
+
+// Bounds-checked reads over one chunk payload; the first failure sticks.
+class Reader {
+public:
+    Reader(const std::uint8_t* data, std::size_t size) : m_data(data), m_size(size) {}
+    template <typename T>
+    T get() {
+        T v{};
+        if (need(sizeof(T))) std::memcpy(&v, m_data + m_pos, sizeof(T));
+        m_pos += m_ok ? sizeof(T) : 0;
+        return v;
+    }
+    const std::uint8_t* getBytes(std::size_t n) {
+        if (!need(n)) return nullptr;
+        const std::uint8_t* p = m_data + m_pos;
+        m_pos += n;
+        return p;
+    }
+    std::string getString() {
+        auto n = get<std::uint32_t>();
+        const std::uint8_t* p = getBytes(n);
+        return p ? std::string(reinterpret_cast<const char*>(p), n) : std::string();
+    }
+    bool ok() const { return m_ok; }
+    std::size_t remaining() const { return m_size - m_pos; }
+
+private:
+    bool need(std::size_t n) {
+        if (m_ok && n > m_size - m_pos) m_ok = false;
+        return m_ok;
+    }
+    const std::uint8_t* m_data;
+    std::size_t m_size;
+    std::size_t m_pos = 0;
+    bool m_ok = true;
+};
+
+// CRC-32 of a chunk's tag and payload. (zlib's crc32 treats a null buffer as "return the
+// initial value", so an empty payload must not be passed through.)
+std::uint32_t chunkCrc(std::uint32_t tag, const std::uint8_t* payload, std::size_t length) {
+    uLong crc = crc32(0L, reinterpret_cast<const Bytef*>(&tag), 4);
+    if (length > 0) crc = crc32_z(crc, payload, length);
+    return static_cast<std::uint32_t>(crc);
+}
+
+void putChunk(Writer& file, std::uint32_t tag, const Bytes& payload) {
+    file.put(tag);
+    file.put(static_cast<std::uint32_t>(payload.size()));
+    file.putBytes(payload.data(), payload.size());
+    file.put(chunkCrc(tag, payload.data(), payload.size()));
+}
+
+void putDirection(Writer& w, Direction d) {
+    w.put(d.thetaDegrees());
+    w.put(d.phiDegrees());
+}
+
+Result<Direction> getDirection(Reader& in, const std::string& name, const std::string& what) {
+    const double theta = in.get<double>(), phi = in.get<double>();
+    if (!std::isfinite(theta) || !std::isfinite(phi) || theta < 0 || theta > 90)
+        return Error{name + ": invalid " + what + " direction"};
+    return Direction::fromDegrees(theta, phi);
+}
+
+// The chunks of a .btflut file, each checked against its CRC; HEAD first, END last.
+struct Chunk {
+    std::uint32_t tag;
+    const std::uint8_t* payload;
+    std::uint32_t length;
+};
+
+struct Chunks {
+    std::uint32_t version = 0;
+    std::vector<Chunk> list;
+};
+
+Result<Chunks> splitChunks(const Bytes& bytes, const std::string& name) {
+    auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
+    if (bytes.size() < sizeof kSignature + 4 || std::memcmp(bytes.data(), kSignature, 8) != 0)
+        return fail("not a .btflut file (bad signature)");
+    Reader file(bytes.data() + 8, bytes.size() - 8);
+    Chunks chunks;
+    chunks.version = file.get<std::uint32_t>();
+    if (chunks.version < 1 || chunks.version > kBankFormatVersion)
+        return fail("unsupported .btflut version " + std::to_string(chunks.version) + " (this btflut reads 1 to " +
+                    std::to_string(kBankFormatVersion) + ")");
+    for (;;) {
+        if (file.remaining() == 0) return fail("truncated (no END chunk)");
+        auto tag = file.get<std::uint32_t>();
+        auto length = file.get<std::uint32_t>();
+        if (!file.ok()) return fail("truncated (incomplete chunk header)");
+        const std::uint8_t* payload = file.getBytes(length);
+        auto storedCrc = file.get<std::uint32_t>();
+        if (!file.ok())
+            return fail("truncated (chunk " + tagName(tag) + " declares " + std::to_string(length) +
+                        " bytes)");
+        if (chunkCrc(tag, payload, length) != storedCrc && !kFuzzingBuild)
+            return fail("checksum mismatch in chunk " + tagName(tag) + " (file is corrupted)");
+        if (chunks.list.empty() && tag != kHead) return fail("first chunk is not HEAD");
+        if (tag == kEnd) {
+            if (length != 0) return fail("END chunk is not empty");
+            if (file.remaining() != 0) return fail("unexpected bytes after the END chunk");
+            return chunks;
+        }
+        chunks.list.push_back({tag, payload, length});
+    }
+}
+
+// HEAD, read and checked before any other chunk, so every size below is known to be sane.
+struct Head {
+    std::uint32_t layerCount = 0, refWidth = 0, refHeight = 0, refChannels = 0, refDepth = 0;
+    std::uint32_t references = 0;  // version 3, banks that make their LUTs at run time
+    bool embedded = false;
+};
+
+Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::string& name, LutBank& bank) {
+    auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
+    Reader in(chunk.payload, chunk.length);
+    Head head;
+    bank.entries = static_cast<int>(in.get<std::uint32_t>());
+    const auto colour = in.get<std::uint32_t>();
+    bank.gridSize = static_cast<int>(in.get<std::uint32_t>());
+    head.layerCount = in.get<std::uint32_t>();
+    head.embedded = in.get<std::uint32_t>() == 1;
+    head.refWidth = in.get<std::uint32_t>();
+    head.refHeight = in.get<std::uint32_t>();
+    head.refChannels = in.get<std::uint32_t>();
+    head.refDepth = in.get<std::uint32_t>();
+    Result<Direction> rl = getDirection(in, name, "reference light");
+    Result<Direction> rv = getDirection(in, name, "reference view");
+    bank.referenceName = in.getString();
+    const auto domain = version >= 2 ? in.get<std::uint32_t>() : 0u;
+    if (version >= 3) {
+        head.references = in.get<std::uint32_t>();
+        const auto regions = in.get<std::uint32_t>(), quantiles = in.get<std::uint32_t>();
+        if (in.ok() && quantiles > 0) {
+            // references 0: the PTM is the predictor (a PTMC chunk must follow)
+            if (head.references > 255 || regions < 1 || regions > 255 || quantiles < 2 || quantiles > 65536)
+                return fail("references, regions or quantiles out of range");
+            bank.blend.regions = static_cast<int>(regions);
+            bank.blend.quantiles = static_cast<int>(quantiles);
+            if (head.references == 0) bank.blend.predictor = LutBank::Blend::Predictor::Ptm;
+        } else if (in.ok() && (head.references != 0 || regions != 0)) {
+            return fail("references and regions without quantiles");
+        }
+    }
+    if (!in.ok() || in.remaining() != 0) return fail("HEAD chunk has the wrong size");
+    if (!rl) return Error{rl.error()};
+    if (!rv) return Error{rv.error()};
+    bank.referenceLight = *rl;
+    bank.referenceView = *rv;
+    if (bank.entries < 2 || static_cast<std::uint32_t>(bank.entries) > kMaxEntries)
+        return fail("LUT entry count " + std::to_string(bank.entries) + " is invalid");
+    if (colour != 1 && colour != 3 && !(colour == 4 && bank.makesLuts()))
+        return fail("colour mode " + std::to_string(colour) + " is invalid");
+    bank.colour = static_cast<ColourMode>(colour);
+    if (bank.gridSize < 2 || static_cast<std::uint32_t>(bank.gridSize) > kMaxGrid)
+        return fail("grid size " + std::to_string(bank.gridSize) + " is invalid");
+    if (head.layerCount == 0) return fail("bank has no view layers");
+    if (head.layerCount > kMaxBankNodes) return fail("bank declares " + std::to_string(head.layerCount) + " view layers, over the format's limit of " + std::to_string(kMaxBankNodes));
+    if ((head.refChannels != 1 && head.refChannels != 3) || (head.refDepth != 8 && head.refDepth != 16))
+        return fail("reference image description is invalid");
+    if (Status s = checkImageSize(head.refWidth, head.refHeight, name + ": reference image"); !s) return Error{s.error()};
+    if (domain > 1) return fail("interpolation domain " + std::to_string(domain) + " is invalid");
+    bank.domain = static_cast<BankDomain>(domain);
+    return head;
+}
+
+// PTMC payload: width, height (u32), scale[6], bias[6] (f32), then three PNGs, each
+// preceded by its byte length (u32): coefficients 0-2, coefficients 3-5, albedo (RGB8).
+Bytes encodePtm(const Ptm& ptm) {
+    Writer w;
+    w.put(static_cast<std::uint32_t>(ptm.width));
+    w.put(static_cast<std::uint32_t>(ptm.height));
+    for (float v : ptm.scale) w.put(v);
+    for (float v : ptm.bias) w.put(v);
+    for (int p = 0; p < 3; ++p) {
+        const std::vector<std::uint8_t> bytes = ptm.plane(p);
+        Image image(ptm.width, ptm.height, 3);
+        std::transform(bytes.begin(), bytes.end(), image.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
+        const Bytes png = encodePng(image, 8);
+        w.put(static_cast<std::uint32_t>(png.size()));
+        w.putBytes(png.data(), png.size());
+    }
+    return std::move(w.bytes());
+}
+
+// The PTM of a bank whose reference image is width x height (from HEAD, already checked
+// against the pixel limit): its own size must match before anything is allocated.
+Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t width, std::uint32_t height) {
+    auto fail = [&](const std::string& what) { return Error{name + ": PTM chunk: " + what}; };
+    Reader in(chunk.payload, chunk.length);
+    const auto w = in.get<std::uint32_t>(), h = in.get<std::uint32_t>();
+    Ptm ptm;
+    for (float& v : ptm.scale) v = in.get<float>();
+    for (float& v : ptm.bias) v = in.get<float>();
+    if (!in.ok()) return fail("invalid header");
+    if (w != width || h != height)
+        return Error{name + ": the PTM (" + std::to_string(w) + "x" + std::to_string(h) +
+                     ") does not match the reference image's size"};
+    ptm.width = static_cast<int>(w);
+    ptm.height = static_cast<int>(h);
+    for (int k = 0; k < Ptm::kTerms; ++k)
+        if (!std::isfinite(ptm.scale[k]) || !std::isfinite(ptm.bias[k]) || ptm.scale[k] <= 0)
+            return fail("invalid scale or bias");
+    ptm.coefficients.resize(ptm.texels() * Ptm::kTerms);
+    ptm.albedo.resize(ptm.texels() * 3);
+    auto plane = [&](std::uint8_t* bytes, int stride, const char* what) -> Status {
+        auto length = in.get<std::uint32_t>();
+        const std::uint8_t* png = in.getBytes(length);
+        if (!in.ok()) return Error{name + ": PTM chunk: truncated " + what};
+        Result<Image> image = decodeImage(Bytes(png, png + length), name + " (PTM " + what + ")", ptm.width, ptm.height);
+        if (!image) return Error{image.error()};
+        if (image->width != ptm.width || image->height != ptm.height || image->channels != 3)
+            return Error{name + ": PTM chunk: " + what + " has the wrong size"};
+        for (std::size_t i = 0; i < ptm.texels(); ++i)
+            for (int c = 0; c < 3; ++c)
+                bytes[i * stride + c] = static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
+        return success();
+    };
+    if (Status s = plane(ptm.coefficients.data(), Ptm::kTerms, "coefficients 0-2"); !s) return Error{s.error()};
+    if (Status s = plane(ptm.coefficients.data() + 3, Ptm::kTerms, "coefficients 3-5"); !s) return Error{s.error()};
+    if (Status s = plane(ptm.albedo.data(), 3, "albedo"); !s) return Error{s.error()};
+    if (in.remaining() != 0) return fail("has the wrong size");
+    return ptm;
+}
+
+}  // namespace
+
+std::uint32_t bankFormatVersion(const LutBank& bank) {
+    // The oldest version that holds everything: readers of version 1 keep reading the banks
+    // they always could.
+    if (!bank.modelFill.empty()) return 4;
+    if (bank.makesLuts()) return 3;
+    return bank.domain == BankDomain::Layers ? 1u : 2u;
+}
+
+Status checkBankSize(const LutBank& bank) {
+    const std::uint64_t length = bank.nodeLength(), cells = static_cast<std::uint64_t>(bank.gridSize) * bank.gridSize;
+    for (const ViewLayer& layer : bank.layers) {
+        std::uint64_t bytes = 20 + layer.nodes.size() * (20 + length * 4) + cells * (1 + length * 2);
+        for (const LightNode& node : layer.nodes) bytes += node.name.size();
+        if (bytes > kMaxChunk)
+            return Error{"a view layer of " + std::to_string(layer.nodes.size()) + " lights with a " +
+                         std::to_string(bank.gridSize) + "x" + std::to_string(bank.gridSize) + " grid of " +
+                         std::to_string(bank.entries) + "-entry LUTs takes " + std::to_string(bytes) +
+                         " bytes, over the .btflut format's 4 GiB chunk limit (use a smaller --grid or --entries)"};
+    }
+    std::size_t nodes = 0;
+    for (const ViewLayer& layer : bank.layers) nodes += layer.nodes.size();
+    if (nodes > kMaxBankNodes)
+        return Error{"the bank would hold " + std::to_string(nodes) + " measured directions, over the format's limit of " +
+                     std::to_string(kMaxBankNodes)};
+    return success();
+}
+
+Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
+    BTFLUT_CHECK(checkBankSize(bank).ok());
+    const std::uint32_t version = bankFormatVersion(bank);
+    Writer file;
+    file.putBytes(kSignature, sizeof kSignature);
+    file.put(version);
+
+    const bool embed = options.embedReference && !bank.reference.samples.empty();
+    Writer head;
+    head.put(static_cast<std::uint32_t>(bank.entries));
+    head.put(static_cast<std::uint32_t>(bank.colour));
+    head.put(static_cast<std::uint32_t>(bank.gridSize));
+    head.put(static_cast<std::uint32_t>(bank.layers.size()));
+    head.put(static_cast<std::uint32_t>(embed ? 1 : 0));
+    head.put(static_cast<std::uint32_t>(bank.reference.width));
+    head.put(static_cast<std::uint32_t>(bank.reference.height));
+    head.put(static_cast<std::uint32_t>(bank.reference.channels));
+    head.put(static_cast<std::uint32_t>(bank.reference.bitDepth));
+    putDirection(head, bank.referenceLight);
+    putDirection(head, bank.referenceView);
+    head.putString(bank.referenceName);
+    if (version >= 2) head.put(static_cast<std::uint32_t>(bank.domain));
+    if (version >= 3) {
+        // All zero for a bank of LUTs (a version 4 bank need not make its LUTs at run time).
+        head.put(static_cast<std::uint32_t>(bank.blend.references.size()));
+        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.regions : 0));
+        head.put(static_cast<std::uint32_t>(bank.blend.quantiles));
+    }
+    putChunk(file, kHead, head.bytes());
+
+    for (const ViewLayer& layer : bank.layers) {
+        BTFLUT_CHECK(layer.lutsLoaded && !layer.gridLuts.empty());  // read whole (BankReadOptions defaults)
+        Writer w;
+        putDirection(w, layer.view);
+        w.put(static_cast<std::uint32_t>(layer.nodes.size()));
+        for (const LightNode& node : layer.nodes) {
+            putDirection(w, node.light);
+            w.putString(node.name);
+        }
+        w.putBytes(layer.nodeLuts.data(), layer.nodeLuts.size() * sizeof(float));
+        for (Provenance p : layer.gridProvenance) w.put(static_cast<std::uint8_t>(p));
+        w.putBytes(layer.gridLuts.data(), layer.gridLuts.size() * sizeof(std::uint16_t));
+        putChunk(file, kLayer, w.bytes());
+    }
+    if (!bank.modelFill.empty()) {  // version 4: which nodes the model filled, and the model
+        Writer w;
+        w.putString(bank.modelFill);
+        for (const ViewLayer& layer : bank.layers)
+            for (const LightNode& node : layer.nodes) w.put(static_cast<std::uint8_t>(node.modelled ? 1 : 0));
+        putChunk(file, kFill, w.bytes());
+    }
+    if (embed) putChunk(file, kReference, encodePng(bank.reference, bank.reference.bitDepth));
+    if (bank.makesLuts()) {
+        const LutBank::Blend& blend = bank.blend;
+        Writer refs;
+        for (std::size_t k = 0; k < blend.references.size(); ++k) {
+            putDirection(refs, blend.lights[k].light);
+            refs.putString(blend.lights[k].name);
+            const Bytes png = encodePng(blend.references[k], blend.references[k].bitDepth);
+            refs.put(static_cast<std::uint32_t>(png.size()));
+            refs.putBytes(png.data(), png.size());
+        }
+        if (!blend.references.empty()) putChunk(file, kReferences, refs.bytes());
+        putChunk(file, kMask, encodePng(byteImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
+        if (!blend.labels.empty()) putChunk(file, kLabels, encodePng(byteImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
+        if (!blend.albedo.samples.empty()) putChunk(file, kAlbedo, encodePng(blend.albedo, 8));
+    }
+    if (!bank.ptm.empty()) putChunk(file, kPtm, encodePtm(bank.ptm));
+    putChunk(file, kEnd, {});
+    return std::move(file.bytes());
+}
+
+namespace {
+
+// The chunks of version 3 banks that make their LUTs at run time (LutBank::Blend); sizes
+// are checked against HEAD before anything is decoded, and each chunk may come once.
+Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, const Head& head, LutBank& bank) {
+    auto fail = [&](const std::string& what) { return Error{name + ": " + tagName(tag) + " chunk: " + what}; };
+    LutBank::Blend& blend = bank.blend;
+    const int w = static_cast<int>(head.refWidth), h = static_cast<int>(head.refHeight);
+    auto png = [&](const std::string& what) -> Result<Image> {
+        const auto length = in.get<std::uint32_t>();
+        const std::uint8_t* bytes = in.getBytes(length);
+        if (!in.ok()) return fail("truncated " + what);
+        return decodeImage(Bytes(bytes, bytes + length), name + " (" + what + ")", w, h);
+    };
+    auto whole = [&](const std::string& what) -> Result<Image> {  // a chunk that is one PNG
+        const std::size_t length = in.remaining();
+        const std::uint8_t* bytes = in.getBytes(length);
+        return decodeImage(Bytes(bytes, bytes + length), name + " (" + what + ")", w, h);
+    };
+    if (tag == kReferences) {
+        if (!blend.references.empty()) return fail("twice");
+        for (std::uint32_t k = 0; k < head.references; ++k) {
+            Result<Direction> light = getDirection(in, name, "reference light");
+            if (!light) return Error{light.error()};
+            std::string referenceName = in.getString();
+            Result<Image> image = png("reference " + std::to_string(k));
+            if (!image) return Error{image.error()};
+            const int channels = bank.colour == ColourMode::Lrgb ? 1 : static_cast<int>(head.refChannels);
+            if (image->channels != channels) return fail("reference " + std::to_string(k) + " has the wrong channels");
+            blend.lights.push_back({referenceName, *light});
+            blend.references.push_back(std::move(*image));
+        }
+        if (in.remaining() != 0) return fail("has the wrong size");
+        std::vector<DiskPoint> points;
+        for (const LightNode& node : blend.lights) points.push_back(toDisk(node.light));
+        if (hasNearDuplicates(points, 1e-9)) return fail("two references share one light direction");
+        return success();
+    }
+    if (tag == kMask || tag == kLabels) {
+        if (!(tag == kMask ? blend.mask.inside : blend.labels).empty()) return fail("twice");
+        Result<Image> image = whole(tag == kMask ? "mask" : "labels");
+        if (!image) return Error{image.error()};
+        if (image->channels != 1 || image->bitDepth != 8) return fail("not an 8-bit grey image");
+        std::vector<std::uint8_t> bytes(image->pixelCount());
+        for (std::size_t i = 0; i < bytes.size(); ++i)
+            bytes[i] = static_cast<std::uint8_t>(std::lround(image->samples[i] * 255) / (tag == kMask ? 255 : 1));
+        if (tag == kLabels) {
+            blend.labels = std::move(bytes);
+            return success();
+        }
+        blend.mask = {w, h, std::move(bytes)};
+        if (blend.mask.count() == 0) return fail("has no sample pixels");
+        return success();
+    }
+    if (!blend.albedo.samples.empty()) return fail("twice");
+    Result<Image> image = whole("albedo");
+    if (!image) return Error{image.error()};
+    if (image->channels != 3) return fail("not an RGB image");
+    blend.albedo = std::move(*image);
+    return success();
+}
+
+}  // namespace
+
+Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const BankReadOptions& options) {
+    auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
+    Result<Chunks> chunks = splitChunks(bytes, name);
+    if (!chunks) return Error{chunks.error()};
+    LutBank bank;
+    Result<Head> head = readHead(chunks->list.front(), chunks->version, name, bank);
+    if (!head) return Error{head.error()};
+
+    // Which layers' LUTs to decode: from the layers' view directions alone (their first 16
+    // bytes). In the isotropic domain every layer takes part in every lookup.
+    std::vector<bool> wanted;
+    if (!options.views.empty() && bank.domain == BankDomain::Layers) {
+        LutBank views;
+        for (const Chunk& chunk : chunks->list) {
+            if (chunk.tag != kLayer) continue;
+            Reader in(chunk.payload, chunk.length);
+            Result<Direction> view = getDirection(in, name, "layer view");
+            if (!view || views.layers.size() == head->layerCount) {
+                views.layers.clear();  // malformed: decode everything, and let the checks below say what is wrong
+                break;
+            }
+            views.layers.push_back({*view, {}, {}, {}, {}, {}});
+        }
+        if (!views.layers.empty()) {
+            std::vector<DiskPoint> points;
+            for (const ViewLayer& layer : views.layers) points.push_back(toDisk(layer.view));
+            if (!hasNearDuplicates(points, 1e-9)) {
+                views.views = Triangulation(std::move(points));
+                wanted.assign(views.layers.size(), false);
+                for (Direction v : options.views)
+                    for (std::size_t l : views.layersFor(v)) wanted[l] = true;
+            }
+        }
+    }
+
+    bool haveReference = false, havePtm = false;
+    std::size_t totalNodes = 0;
+    const Chunk* fill = nullptr;
+    for (std::size_t c = 1; c < chunks->list.size(); ++c) {
+        const auto& [tag, payload, length] = chunks->list[c];
+        Reader in(payload, length);
+        if (tag == kHead) {
+            return fail("two HEAD chunks");
+        } else if (tag == kLayer) {
+            if (bank.layers.size() == head->layerCount)
+                return fail("more LAYR chunks than the " + std::to_string(head->layerCount) + " declared");
+            const std::string which = "layer " + std::to_string(bank.layers.size());
+            const std::size_t length1 = bank.nodeLength();
+            const auto cells = static_cast<std::size_t>(bank.gridSize) * bank.gridSize;
+            ViewLayer layer;
+            Result<Direction> view = getDirection(in, name, "layer view");
+            if (!view) return Error{view.error()};
+            layer.view = *view;
+            auto nodes = in.get<std::uint32_t>();
+            if (!in.ok() || nodes == 0 || nodes > in.remaining() / 20)
+                return fail(which + " has an invalid node count");
+            totalNodes += nodes;
+            if (totalNodes > kMaxBankNodes)
+                return fail("more than " + std::to_string(kMaxBankNodes) + " measured directions (the format's limit)");
+            for (std::uint32_t n = 0; n < nodes; ++n) {
+                Result<Direction> light = getDirection(in, name, "node light");
+                if (!light) return Error{light.error()};
+                std::string nodeName = in.getString();
+                layer.nodes.push_back({nodeName, *light});
+            }
+            const std::uint8_t* luts = in.getBytes(nodes * length1 * sizeof(float));
+            const std::uint8_t* kinds = in.getBytes(cells);
+            const std::uint8_t* grid = in.getBytes(cells * length1 * sizeof(std::uint16_t));
+            if (!in.ok() || in.remaining() != 0) return fail("LAYR chunk " + std::to_string(bank.layers.size()) + " has the wrong size");
+            std::vector<DiskPoint> lights;
+            for (const LightNode& node : layer.nodes) lights.push_back(toDisk(node.light));
+            if (hasNearDuplicates(lights, 1e-9)) return fail("two nodes share one light direction");
+            if (!wanted.empty() && !wanted[bank.layers.size()]) {
+                layer.lutsLoaded = false;
+                bank.layers.push_back(std::move(layer));
+                continue;
+            }
+            layer.nodeLuts.resize(nodes * length1);
+            std::memcpy(layer.nodeLuts.data(), luts, layer.nodeLuts.size() * sizeof(float));
+            for (std::size_t k = 0; k < layer.nodeLuts.size(); k += bank.segmentLength())
+                if (!isValidLut(&layer.nodeLuts[k], bank.segmentLength()))
+                    return fail(std::string(bank.makesLuts() ? "a quantile function" : "a LUT") +
+                                " is not monotonic in [0, 1] (file is corrupted)");
+            for (std::size_t g = 0; g < cells; ++g) {
+                if (kinds[g] > (chunks->version >= 4 ? 3 : 2)) return fail("invalid grid node provenance");
+                if (options.grids) layer.gridProvenance.push_back(static_cast<Provenance>(kinds[g]));
+            }
+            if (options.grids) {
+                layer.gridLuts.resize(cells * length1);
+                std::memcpy(layer.gridLuts.data(), grid, layer.gridLuts.size() * sizeof(std::uint16_t));
+            }
+            bank.layers.push_back(std::move(layer));
+        } else if (tag == kFill) {
+            if (chunks->version < 4 || fill) return fail("unexpected FILL chunk");
+            fill = &chunks->list[c];
+        } else if (tag == kReference) {
+            if (!head->embedded || haveReference) return fail("unexpected REFI chunk");
+            haveReference = true;
+            Result<Image> image = decodeImage(Bytes(payload, payload + length), name + " (reference image)",
+                                              static_cast<int>(head->refWidth), static_cast<int>(head->refHeight));
+            if (!image) return Error{image.error()};
+            if (static_cast<std::uint32_t>(image->channels) != head->refChannels)
+                return fail("reference image does not match the header");
+            bank.reference = std::move(*image);
+        } else if (tag == kReferences || tag == kMask || tag == kLabels || tag == kAlbedo) {
+            if (!bank.makesLuts()) return fail("unexpected chunk " + tagName(tag));
+            if (Status st = readBlendChunk(tag, in, name, *head, bank); !st) return Error{st.error()};
+        } else if (tag == kPtm) {
+            if (havePtm) return fail("two PTMC chunks");
+            havePtm = true;
+            bank.ptmInFile = true;
+            if (!options.ptm && bank.blend.predictor != LutBank::Blend::Predictor::Ptm) continue;  // the predictor's is needed
+            Result<Ptm> ptm = decodePtm({tag, payload, length}, name, head->refWidth, head->refHeight);
+            if (!ptm) return Error{ptm.error()};
+            bank.ptm = std::move(*ptm);
+        } else {
+            return fail("unknown chunk " + tagName(tag));
+        }
+    }
+    if (bank.layers.size() != head->layerCount)
+        return fail("declares " + std::to_string(head->layerCount) + " layers but holds " +
+                    std::to_string(bank.layers.size()));
+    if (head->embedded && !haveReference) return fail("reference image chunk is missing");
+    if (fill) {
+        Reader in(fill->payload, fill->length);
+        bank.modelFill = in.getString();
+        for (ViewLayer& layer : bank.layers) {
+            bool seen = false;  // a modelled node: every later one must be too
+            for (LightNode& node : layer.nodes) {
+                const auto modelled = in.get<std::uint8_t>();
+                if (modelled > 1 || (seen && modelled == 0))
+                    return fail("FILL chunk: invalid node flags (modelled nodes follow the measured ones)");
+                node.modelled = modelled == 1;
+                seen = node.modelled;
+            }
+            if (!layer.nodes.empty() && layer.nodes.front().modelled)
+                return fail("FILL chunk: a view layer without measured nodes");
+        }
+        if (!in.ok() || in.remaining() != 0 || bank.modelFill.empty()) return fail("FILL chunk has the wrong size");
+    }
+    if (!head->embedded) {  // keep the description, without pixels
+        bank.reference.width = static_cast<int>(head->refWidth);
+        bank.reference.height = static_cast<int>(head->refHeight);
+        bank.reference.channels = static_cast<int>(head->refChannels);
+        bank.reference.bitDepth = static_cast<int>(head->refDepth);
+    }
+    if (bank.colour != ColourMode::Grey && head->refChannels != 3)
+        return fail(std::string(colourName(bank.colour)) + " bank with a grey reference image");
+    if (bank.makesLuts()) {
+        const LutBank::Blend& blend = bank.blend;
+        const bool ptmPredictor = blend.predictor == LutBank::Blend::Predictor::Ptm;
+        if (ptmPredictor && (!havePtm || bank.colour != ColourMode::Grey)) return fail("a PTM-predicted bank without its PTM");
+        if (!head->embedded || blend.references.size() != head->references || blend.mask.inside.empty() ||
+            (blend.regions > 1) != !blend.labels.empty() || (bank.colour == ColourMode::Lrgb) != !blend.albedo.samples.empty() ||
+            bank.layers.size() != 1)
+            return fail("the references, mask, labels or albedo of a bank that blends references are missing or do not fit");
+        for (std::uint8_t label : blend.labels)
+            if (label >= blend.regions) return fail("a region label is beyond the bank's regions");
+    }
+    std::vector<DiskPoint> views;
+    for (const ViewLayer& l : bank.layers) views.push_back(toDisk(l.view));
+    if (hasNearDuplicates(views, 1e-9)) return fail("two layers share one view direction");
+    bank.buildTriangulations();
+    if (!bank.followsLight()) return fail("the bank's directions cannot follow the light (one light per view, and no "
+                                          "interpolation over the view)");
+    return bank;
+}
+
+Status saveBank(const LutBank& bank, const std::string& path, const BankWriteOptions& options) {
+    if (Status s = checkBankSize(bank); !s) return Error{path + ": " + s.error()};
+    return writeFileAtomically(path, encodeBank(bank, options));
+}
+
+Result<LutBank> loadBank(const std::string& path, const BankReadOptions& options) {
+    Result<Bytes> bytes = readFile(path);
+    if (!bytes) return Error{bytes.error()};
+    return decodeBank(*bytes, path, options);
+}
+
+Result<Ptm> loadBankPtm(const std::string& path) {
+    Result<Bytes> bytes = readFile(path);
+    if (!bytes) return Error{bytes.error()};
+    Result<Chunks> chunks = splitChunks(*bytes, path);
+    if (!chunks) return Error{chunks.error()};
+    LutBank description;
+    Result<Head> head = readHead(chunks->list.front(), chunks->version, path, description);
+    if (!head) return Error{head.error()};
+    for (const Chunk& chunk : chunks->list)
+        if (chunk.tag == kPtm) return decodePtm(chunk, path, head->refWidth, head->refHeight);
+    return Error{path + ": the bank holds no PTM (bake it with --ptm)"};
+}
+
+}  // namespace btflut

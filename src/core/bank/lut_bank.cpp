@@ -1,0 +1,711 @@
+#include "core/bank/lut_bank.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <optional>
+
+#include "core/parallel.h"
+#include "core/predict/references.h"
+
+namespace btflut {
+
+namespace {
+
+constexpr double kSameDirection = 1e-6;  // radians: closer directions are one node
+
+int rank(Provenance p) {
+    switch (p) {
+        case Provenance::Measured: return 0;
+        case Provenance::Interpolated: return 1;
+        case Provenance::Modelled: return 2;
+        case Provenance::Extrapolated: return 3;
+    }
+    return 3;
+}
+
+Provenance combine(Provenance a, Provenance b) { return rank(a) >= rank(b) ? a : b; }
+
+Provenance provenanceOf(const Weights& w) {
+    if (!w.inside) return Provenance::Extrapolated;
+    double top = *std::max_element(w.weight.begin(), w.weight.begin() + w.count);
+    return top > 1 - 1e-9 ? Provenance::Measured : Provenance::Interpolated;
+}
+
+// Per-image result of the streaming pass.
+struct ImageLuts {
+    std::vector<float> values;  // channels x entries
+    std::string error;
+};
+
+std::vector<LevelCounts> countLevels(const Image& image, const Mask& mask, ColourMode colour) {
+    if (colour == ColourMode::Grey) return {countGreyLevels(image, mask)};
+    return {countChannelLevels(image, mask, 0), countChannelLevels(image, mask, 1),
+            countChannelLevels(image, mask, 2)};
+}
+
+std::size_t chooseReference(const Dataset& dataset) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < dataset.images.size(); ++i) {
+        const DatasetImage& a = dataset.images[i];
+        const DatasetImage& b = dataset.images[best];
+        // Nearest to a frontal camera first, then nearest to frontal light.
+        if (a.view.theta < b.view.theta - 1e-12 ||
+            (std::abs(a.view.theta - b.view.theta) <= 1e-12 && a.light.theta < b.light.theta - 1e-12))
+            best = i;
+    }
+    return best;
+}
+
+}  // namespace
+
+const char* colourName(ColourMode c) {
+    switch (c) {
+        case ColourMode::Grey: return "grey";
+        case ColourMode::Rgb: return "rgb";
+        case ColourMode::Lrgb: return "lrgb";
+    }
+    return "?";
+}
+
+const char* domainName(BankDomain d) { return d == BankDomain::Isotropic ? "isotropic" : "layers"; }
+
+Result<BankDomain> parseDomain(const std::string& name) {
+    if (name == "layers") return BankDomain::Layers;
+    if (name == "isotropic") return BankDomain::Isotropic;
+    return Error{"domain '" + name + "' is not layers or isotropic"};
+}
+
+Point3 isotropicPoint(Direction light, Direction view) {
+    const double turn = view.theta > 0 ? view.phi : 0.0;
+    const DiskPoint l = toDisk({light.theta, light.phi - turn});
+    return {l.x, std::abs(l.y), std::numbers::sqrt2 * std::sin(0.5 * view.theta)};
+}
+
+const char* provenanceName(Provenance p) {
+    switch (p) {
+        case Provenance::Measured: return "measured";
+        case Provenance::Interpolated: return "interpolated";
+        case Provenance::Extrapolated: return "extrapolated";
+        case Provenance::Modelled: return "modelled";
+    }
+    return "?";
+}
+
+DiskPoint LutBank::gridPoint(int i, int j) const {
+    const double step = 2.0 / (gridSize - 1);
+    return {-1 + step * i, -1 + step * j};
+}
+
+void LutBank::buildTriangulations() {
+    std::vector<DiskPoint> viewPoints;
+    for (ViewLayer& layer : layers) {
+        std::vector<DiskPoint> points, modelled;
+        for (const LightNode& node : layer.nodes) {
+            BTFLUT_CHECK(node.modelled || modelled.empty());  // the measured nodes come first
+            (node.modelled ? modelled : points).push_back(toDisk(node.light));
+        }
+        layer.measuredNodes = points.size();
+        layer.lights = Triangulation(std::move(points));
+        layer.modelLights = modelled.empty() ? Triangulation() : Triangulation(std::move(modelled));
+        viewPoints.push_back(toDisk(layer.view));
+    }
+    views = Triangulation(std::move(viewPoints));
+    if (!blend.lights.empty()) {
+        std::vector<DiskPoint> points;
+        for (const LightNode& node : blend.lights) points.push_back(toDisk(node.light));
+        blend.triangulation = Triangulation(std::move(points));
+    }
+    pairs = {};
+    pairNodes.clear();
+    if (domain != BankDomain::Isotropic) return;
+    // Points that the symmetry maps onto one another become one point of the domain.
+    std::vector<Point3> points;
+    std::map<std::array<long long, 3>, std::size_t> seen;
+    for (std::size_t l = 0; l < layers.size(); ++l)
+        for (std::size_t n = 0; n < layers[l].nodes.size(); ++n) {
+            const Point3 p = isotropicPoint(layers[l].nodes[n].light, layers[l].view);
+            const auto key = std::array{std::llround(p.x * 1e9), std::llround(p.y * 1e9), std::llround(p.z * 1e9)};
+            auto [it, added] = seen.emplace(key, points.size());
+            if (added) {
+                points.push_back(p);
+                pairNodes.emplace_back();
+            }
+            pairNodes[it->second].push_back({l, n});
+        }
+    pairs = Triangulation3(std::move(points));
+}
+
+void LutBank::fillGrids() {
+    const std::size_t length = nodeLength();
+    for (ViewLayer& layer : layers) {
+        const auto cells = static_cast<std::size_t>(gridSize) * gridSize;
+        layer.gridLuts.assign(cells * length, 0);
+        layer.gridProvenance.assign(cells, Provenance::Extrapolated);
+        for (int j = 0; j < gridSize; ++j)
+            for (int i = 0; i < gridSize; ++i) {
+                // Beyond the horizon: the horizon's LUT (fromDisk pulls the point onto it).
+                const BankLookup lut = lookup(fromDisk(gridPoint(i, j)), layer.view);
+                const auto cell = static_cast<std::size_t>(j) * gridSize + i;
+                layer.gridProvenance[cell] = lut.lightProvenance;
+                for (std::size_t k = 0; k < length; ++k)
+                    layer.gridLuts[cell * length + k] = static_cast<std::uint16_t>(std::lround(lut.values[k] * 65535.0));
+            }
+    }
+}
+
+double LutBank::lightCoverage(std::size_t layer) const {
+    // Equal-area disk: the share of sample points of the unit disk inside the hull is the
+    // share of solid angle.
+    constexpr int n = 128;
+    int inside = 0, total = 0;
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const DiskPoint p{-1 + (i + 0.5) * 2.0 / n, -1 + (j + 0.5) * 2.0 / n};
+            if (p.x * p.x + p.y * p.y > 1) continue;
+            ++total;
+            inside += domain == BankDomain::Isotropic ? pairs.weightsAt(isotropicPoint(fromDisk(p), layers[layer].view)).inside
+                                                      : layers[layer].lights.weightsAt(p).inside;
+        }
+    return static_cast<double>(inside) / total;
+}
+
+std::vector<std::size_t> LutBank::layersFor(Direction view) const {
+    std::vector<std::size_t> used;
+    if (domain == BankDomain::Isotropic) {
+        for (std::size_t l = 0; l < layers.size(); ++l) used.push_back(l);
+        return used;
+    }
+    const Weights w = views.weightsAt(toDisk(view));
+    for (int v = 0; v < w.count; ++v)
+        if (w.weight[v] != 0) used.push_back(static_cast<std::size_t>(w.index[v]));
+    std::size_t nearest = 0;
+    for (std::size_t l = 1; l < layers.size(); ++l)
+        if (angleBetween(layers[l].view, view) < angleBetween(layers[nearest].view, view)) nearest = l;
+    used.push_back(nearest);
+    return used;
+}
+
+bool LutBank::followsLight() const {
+    if (domain == BankDomain::Isotropic) {
+        for (const Point3& p : pairs.points())
+            if (std::hypot(p.x - pairs.points()[0].x, p.y - pairs.points()[0].y) > 1e-9) return true;
+        return false;
+    }
+    return std::any_of(layers.begin(), layers.end(), [](const ViewLayer& l) { return l.nodes.size() > 1; });
+}
+
+LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
+    auto nearest = [](const auto& items, auto angleTo) {
+        std::size_t best = 0;
+        for (std::size_t i = 1; i < items.size(); ++i)
+            if (angleTo(items[i]) < angleTo(items[best])) best = i;
+        return best;
+    };
+    if (domain == BankDomain::Isotropic) {
+        const Point3 q = isotropicPoint(light, view);
+        const std::size_t point = nearest(pairs.points(), [&](const Point3& p) {
+            return std::hypot(p.x - q.x, p.y - q.y, p.z - q.z);
+        });
+        return pairNodes[point].front();
+    }
+    NodeRef ref;
+    ref.layer = nearest(layers, [&](const ViewLayer& l) { return angleBetween(l.view, view); });
+    ref.node = nearest(layers[ref.layer].nodes, [&](const LightNode& n) { return angleBetween(n.light, light); });
+    return ref;
+}
+
+std::vector<std::uint16_t> LutBank::gridTexels() const {
+    const auto cells = static_cast<std::size_t>(gridSize) * gridSize, width = segmentLength();
+    const auto regions = static_cast<std::size_t>(makesLuts() ? blend.regions : 1), ch = static_cast<std::size_t>(channels());
+    std::vector<std::uint16_t> texels(layers.size() * cells * regions * width * ch);
+    std::size_t at = 0;
+    for (const ViewLayer& layer : layers)
+        for (std::size_t cell = 0; cell < cells; ++cell)
+            for (std::size_t r = 0; r < regions; ++r)
+                for (std::size_t k = 0; k < width; ++k)
+                    for (std::size_t c = 0; c < ch; ++c)
+                        texels[at++] = layer.gridLuts[((cell * regions + r) * ch + c) * width + k];
+    return texels;
+}
+
+std::vector<float> LutBank::gridLookup(Direction light, std::size_t layer) const {
+    const ViewLayer& l = layers.at(layer);
+    BTFLUT_CHECK(!l.gridLuts.empty());
+    const std::size_t length = nodeLength();
+    const DiskPoint p = toDisk(light);
+    const double last = gridSize - 1;
+    const double gx = std::clamp((p.x + 1) / 2 * last, 0.0, last), gy = std::clamp((p.y + 1) / 2 * last, 0.0, last);
+    const int i = std::min(static_cast<int>(gx), gridSize - 2), j = std::min(static_cast<int>(gy), gridSize - 2);
+    const double fx = gx - i, fy = gy - j;
+    std::vector<float> out(length);
+    auto node = [&](int a, int b) { return &l.gridLuts[(static_cast<std::size_t>(b) * gridSize + a) * length]; };
+    const std::uint16_t *n00 = node(i, j), *n10 = node(i + 1, j), *n01 = node(i, j + 1), *n11 = node(i + 1, j + 1);
+    for (std::size_t k = 0; k < length; ++k)
+        out[k] = static_cast<float>(((1 - fx) * (1 - fy) * n00[k] + fx * (1 - fy) * n10[k] + (1 - fx) * fy * n01[k] +
+                                     fx * fy * n11[k]) / 65535.0);
+    return out;
+}
+
+BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) const {
+    const std::size_t length = nodeLength();
+    BankLookup out;
+    if (!interpolate) {
+        const NodeRef n = nearestNode(light, view);
+        const ViewLayer& layer = layers[n.layer];
+        BTFLUT_CHECK(layer.lutsLoaded);
+        const float* lut = &layer.nodeLuts[n.node * length];
+        out.values.assign(lut, lut + length);
+        const bool exact = angleBetween(layer.view, view) < kSameDirection &&
+                           angleBetween(layer.nodes[n.node].light, light) < kSameDirection;
+        out.provenance = exact ? Provenance::Measured : Provenance::Interpolated;
+        out.lightProvenance = out.viewProvenance = out.provenance;
+        return out;
+    }
+    out.values.assign(length, 0.f);
+    std::vector<double> accumulated(length, 0.0);
+    auto add = [&](NodeRef n, double w) {
+        const ViewLayer& layer = layers[n.layer];
+        BTFLUT_CHECK(layer.lutsLoaded);
+        const float* lut = &layer.nodeLuts[n.node * length];
+        for (std::size_t k = 0; k < length; ++k) accumulated[k] += w * lut[k];
+    };
+    auto finish = [&] {
+        for (std::size_t k = 0; k < length; ++k) out.values[k] = static_cast<float>(accumulated[k]);
+        out.provenance = combine(out.lightProvenance, out.viewProvenance);
+        return out;
+    };
+    if (domain == BankDomain::Isotropic) {
+        const Weights w = pairs.weightsAt(isotropicPoint(light, view));
+        for (int p = 0; p < w.count; ++p) {
+            const std::vector<NodeRef>& nodes = pairNodes[static_cast<std::size_t>(w.index[p])];
+            for (NodeRef n : nodes) add(n, w.weight[p] / static_cast<double>(nodes.size()));
+        }
+        // One domain point carries both: measured only where light and view are.
+        out.lightProvenance = out.viewProvenance = provenanceOf(w);
+        return finish();
+    }
+    Weights vw = views.weightsAt(toDisk(view));
+    out.viewProvenance = provenanceOf(vw);
+    const DiskPoint lightPoint = toDisk(light);
+    for (int v = 0; v < vw.count; ++v) {
+        if (vw.weight[v] == 0) continue;
+        const auto layer = static_cast<std::size_t>(vw.index[v]);
+        const ViewLayer& lights = layers[layer];
+        Weights lw = lights.lights.weightsAt(lightPoint);
+        double measured = 1;  // the measured nodes' share; the rest is the model's
+        if (!lw.inside && lights.measuredNodes < lights.nodes.size()) {
+            // Beyond the measured hull: from the measurements clamped to it to the model,
+            // over one grid step, so a LUT never jumps at the hull (model_fill.h).
+            DiskPoint onHull{0, 0};
+            for (int l = 0; l < lw.count; ++l) {
+                const DiskPoint q = lights.lights.points()[static_cast<std::size_t>(lw.index[l])];
+                onHull = {onHull.x + lw.weight[l] * q.x, onHull.y + lw.weight[l] * q.y};
+            }
+            const double distance = std::hypot(lightPoint.x - onHull.x, lightPoint.y - onHull.y);
+            measured = std::max(0.0, 1 - distance * (gridSize - 1) / 2.0);
+            const Weights mw = lights.modelLights.weightsAt(lightPoint);
+            for (int m = 0; m < mw.count; ++m)
+                add({layer, lights.measuredNodes + static_cast<std::size_t>(mw.index[m])},
+                    vw.weight[v] * mw.weight[m] * (1 - measured));
+            out.lightProvenance = combine(out.lightProvenance, Provenance::Modelled);
+        } else {
+            out.lightProvenance = combine(out.lightProvenance, provenanceOf(lw));
+        }
+        for (int l = 0; l < lw.count; ++l)
+            add({layer, static_cast<std::size_t>(lw.index[l])}, vw.weight[v] * lw.weight[l] * measured);
+    }
+    return finish();
+}
+
+Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,
+                const std::string& source) {
+    const std::size_t length = bank.nodeLength();
+    bank.layers.clear();
+    // Group by view into layers, and merge repeated light directions within a layer by
+    // averaging their LUTs (the barycentre of the repeated measurements).
+    std::vector<std::vector<int>> mergedCount;
+    for (const DirectionalLut& lut : luts) {
+        BTFLUT_CHECK(lut.values.size() == length);
+        auto layer = std::find_if(bank.layers.begin(), bank.layers.end(), [&](const ViewLayer& l) {
+            return angleBetween(l.view, lut.view) < kSameDirection;
+        });
+        if (layer == bank.layers.end()) {
+            bank.layers.push_back(ViewLayer{lut.view, {}, {}, {}, {}, {}});
+            mergedCount.emplace_back();
+            layer = std::prev(bank.layers.end());
+        }
+        auto& counts = mergedCount[static_cast<std::size_t>(layer - bank.layers.begin())];
+        auto node = std::find_if(layer->nodes.begin(), layer->nodes.end(), [&](const LightNode& n) {
+            return angleBetween(n.light, lut.light) < kSameDirection;
+        });
+        if (node == layer->nodes.end()) {
+            layer->nodes.push_back({lut.name, lut.light});
+            layer->nodeLuts.insert(layer->nodeLuts.end(), lut.values.begin(), lut.values.end());
+            counts.push_back(1);
+        } else {
+            auto n = static_cast<std::size_t>(node - layer->nodes.begin());
+            float* sum = &layer->nodeLuts[n * length];
+            for (std::size_t k = 0; k < length; ++k) sum[k] += lut.values[k];
+            ++counts[n];
+        }
+    }
+    for (std::size_t l = 0; l < bank.layers.size(); ++l)
+        for (std::size_t n = 0; n < mergedCount[l].size(); ++n)
+            if (mergedCount[l][n] > 1)
+                for (std::size_t k = 0; k < length; ++k)
+                    bank.layers[l].nodeLuts[n * length + k] /= static_cast<float>(mergedCount[l][n]);
+    bank.buildTriangulations();  // the layers' own, for the choice below
+    const bool layersSpanTheDisk = std::all_of(bank.layers.begin(), bank.layers.end(),
+                                               [](const ViewLayer& l) { return !l.lights.triangles().empty(); });
+    bank.domain = domain ? *domain
+                         : (bank.layers.size() == 1 || layersSpanTheDisk ? BankDomain::Layers : BankDomain::Isotropic);
+    bank.buildTriangulations();
+    if (!bank.followsLight()) {
+        if (bank.domain == BankDomain::Layers && bank.layers.size() > 1)
+            return Error{source + ": each view direction has one light direction, so a bank over view layers cannot "
+                                  "follow the light; bake it with --domain isotropic (for isotropic materials)"};
+        return Error{source + ": the light directions do not vary" +
+                     (bank.domain == BankDomain::Isotropic ? std::string(" relative to the view") : std::string()) +
+                     ", so no bank baked from them can follow the light"};
+    }
+    bank.fillGrids();
+    return success();
+}
+
+namespace {
+
+// What a bank that makes its LUTs at run time is baked with besides the classic reference:
+// the other references, the regions (as one mask each) and, for lrgb, the albedo.
+struct BlendSetup {
+    std::vector<std::size_t> references;  // dataset indices, the classic reference first
+    std::vector<Mask> regionMasks;         // the sample mask split by region
+    Regions regions;
+};
+
+Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex, const Image& ref,
+                              const Mask& mask, const ImageProvider& images) {
+    BlendSetup setup;
+    if (!dataset.fixedView())
+        return Error{dataset.source + ": --references, --regions and --colour lrgb need one view (a fixed camera); "
+                                      "this dataset has several"};
+    std::vector<Direction> lights;
+    for (const DatasetImage& im : dataset.images) lights.push_back(im.light);
+    std::vector<DiskPoint> points;
+    for (Direction l : lights) points.push_back(toDisk(l));
+    std::size_t distinct = 0;  // distinct light directions
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        bool seen = false;
+        for (std::size_t j = 0; j < i && !seen; ++j) seen = angleBetween(lights[i], lights[j]) < kSameDirection;
+        distinct += !seen;
+    }
+    if (options.references < 1 || static_cast<std::size_t>(options.references) > distinct)
+        return Error{"--references " + std::to_string(options.references) + " must be within 1.." + std::to_string(distinct) +
+                     " (the distinct light directions of " + dataset.source + ")"};
+    if (options.ptmPredictor) {
+        // no references: the PTM is fitted from every image
+    } else if (options.colour == ColourMode::Lrgb && options.references > 16)
+        return Error{"--colour lrgb packs at most 16 references (four per texture layer); --references " +
+                     std::to_string(options.references) + " is more"};
+    else
+        setup.references = pickReferences(lights, refIndex, static_cast<std::size_t>(options.references));
+
+    if (!options.labelsPath.empty()) {
+        Result<Image> labels = loadImage(options.labelsPath);
+        if (!labels) return Error{labels.error()};
+        Result<Regions> r = regionsFromLabels(*labels, mask, ref.width, ref.height, options.labelsPath);
+        if (!r) return Error{r.error()};
+        setup.regions = std::move(*r);
+    } else if (options.regions > 1) {
+        // Responses under at most 32 lights spread over the measured ones.
+        const std::vector<std::size_t> spread = spreadLights(lights, 32);
+        Responses responses{ref.width, ref.height, static_cast<int>(spread.size()),
+                            std::vector<std::uint8_t>(ref.pixelCount() * spread.size())};
+        for (std::size_t k = 0; k < spread.size(); ++k) {
+            Image storage;
+            Result<const Image*> image = spread[k] == refIndex ? Result<const Image*>(&ref) : images(spread[k], storage);
+            if (!image) return Error{image.error()};
+            if (Status size = requireSameSize(**image, dataset.images[spread[k]].path, ref.width, ref.height,
+                                              dataset.images[refIndex].path + " (the reference)");
+                !size)
+                return Error{size.error()};
+            for (std::size_t i = 0; i < ref.pixelCount(); ++i)
+                responses.values[i * spread.size() + k] = static_cast<std::uint8_t>(std::lround((*image)->grey(i) * 255.f));
+        }
+        Result<Regions> r = segmentRegions(responses, mask, options.regions, dataset.source);
+        if (!r) return Error{r.error()};
+        setup.regions = std::move(*r);
+    } else {
+        setup.regions = {1, std::vector<std::uint8_t>(ref.pixelCount(), 0)};
+    }
+    for (int r = 0; r < setup.regions.count; ++r) {
+        Mask m = mask;
+        for (std::size_t i = 0; i < m.inside.size(); ++i) m.inside[i] = m.inside[i] && setup.regions.labels[i] == r;
+        setup.regionMasks.push_back(std::move(m));
+    }
+    return setup;
+}
+
+// A reference as the blend stores it: 8-bit (blends are integer sums of 8-bit codes,
+// relighter.h), its grey value alone for lrgb.
+Image blendForm(const Image& image, ColourMode colour) {
+    const bool grey = colour == ColourMode::Lrgb && image.channels == 3;
+    Image out(image.width, image.height, grey ? 1 : image.channels, 8);
+    for (std::size_t i = 0; i < out.pixelCount(); ++i)
+        for (int c = 0; c < out.channels; ++c) {
+            const float v = grey ? image.grey(i) : image.samples[i * static_cast<std::size_t>(image.channels) + static_cast<std::size_t>(c)];
+            out.samples[i * static_cast<std::size_t>(out.channels) + static_cast<std::size_t>(c)] = std::round(v * 255.f) / 255.f;
+        }
+    return out;
+}
+
+}  // namespace
+
+Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
+                         const ImageProvider& provider) {
+    const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {
+        Result<Image> image = loadImage(dataset.images[i].path);
+        if (!image) return Error{image.error()};
+        storage = std::move(*image);
+        return &storage;
+    };
+    const ImageProvider& images = provider ? provider : decode;
+    if (dataset.images.empty()) return Error{dataset.source + ": dataset has no images"};
+    if (options.gridSize < 2 || options.gridSize > 257)
+        return Error{"--grid " + std::to_string(options.gridSize) + " is outside [2, 257]"};
+    if (options.entries != 0 && (options.entries < 2 || options.entries > 65536))
+        return Error{"--entries " + std::to_string(options.entries) + " is outside [2, 65536]"};
+    if (options.regions < 1 || options.regions > 255) return Error{"--regions " + std::to_string(options.regions) + " is outside [1, 255]"};
+    if (options.quantiles < 2 || options.quantiles > 65536)
+        return Error{"--quantiles " + std::to_string(options.quantiles) + " is outside [2, 65536]"};
+
+    std::size_t refIndex = chooseReference(dataset);
+    if (!options.referenceName.empty()) {
+        auto it = std::find_if(dataset.images.begin(), dataset.images.end(),
+                               [&](const DatasetImage& im) {
+                                   return im.name == options.referenceName ||
+                                          im.path == options.referenceName;
+                               });
+        if (it == dataset.images.end())
+            return Error{dataset.source + ": no image named '" + options.referenceName +
+                         "' for --reference"};
+        refIndex = static_cast<std::size_t>(it - dataset.images.begin());
+    }
+    const DatasetImage& refInfo = dataset.images[refIndex];
+    Image referenceStorage;
+    Result<const Image*> reference = images(refIndex, referenceStorage);
+    if (!reference) return Error{reference.error()};
+    const Image& ref = **reference;
+    if (options.colour != ColourMode::Grey && ref.channels != 3)
+        return Error{refInfo.path + ": --colour " + colourName(options.colour) + " needs colour images, this one is grey"};
+    Result<Mask> loadedMask = loadDatasetMask(dataset, ref.width, ref.height);
+    if (!loadedMask) return Error{loadedMask.error()};
+    const Mask& mask = *loadedMask;
+
+    LutBank bank;
+    bank.colour = options.colour;
+    bank.gridSize = options.gridSize;
+    bank.entries = options.entries ? options.entries : (ref.bitDepth == 16 ? 1024 : 256);
+    bank.referenceName = refInfo.name;
+    bank.referenceLight = refInfo.light;
+    bank.referenceView = refInfo.view;
+
+    // Banks that make their LUTs at run time keep each image's target per region as a
+    // quantile function; classic banks keep each image's LUT from the reference.
+    const bool makesLuts = options.references > 1 || options.regions > 1 || !options.labelsPath.empty() ||
+                           options.colour == ColourMode::Lrgb || options.ptmPredictor;
+    if (options.ptmPredictor && (options.references > 1 || options.colour != ColourMode::Grey))
+        return Error{"--predictor ptm relights with the PTM: it takes no --references, and its colour is the PTM's (grey)"};
+    BlendSetup blend;
+    std::vector<LevelCounts> refLevels;
+    if (makesLuts) {
+        Result<BlendSetup> setup = setUpBlend(dataset, options, refIndex, ref, mask, images);
+        if (!setup) return Error{setup.error()};
+        blend = std::move(*setup);
+        bank.blend.regions = blend.regions.count;
+        bank.blend.quantiles = options.quantiles;
+    } else {
+        refLevels = countLevels(ref, mask, options.colour);
+        for (const LevelCounts& levels : refLevels)
+            if (levels.presentCodes() < 2)
+                return Error{refInfo.path + ": reference image is constant over the sample, so no "
+                                            "LUT can give it another histogram; choose another "
+                                            "with --reference"};
+    }
+    const std::size_t length = bank.nodeLength();
+
+    // Stream through the images: decode, count, match (or keep the quantiles), forget.
+    std::vector<ImageLuts> results(dataset.images.size());
+    std::mutex progressMutex;
+    std::size_t done = 0;
+    std::optional<PtmFitter> ptm;
+    if (options.ptm || options.ptmPredictor) ptm.emplace(ref.width, ref.height);
+    std::optional<AlbedoAccumulator> albedo;
+    if (options.colour == ColourMode::Lrgb) albedo.emplace(ref.width, ref.height);
+    // The references as the blend keeps them, in pick order.
+    std::vector<Image> blendReferences(blend.references.size());
+    parallelFor(dataset.images.size(), options.threads, [&](std::size_t i) {
+        const DatasetImage& info = dataset.images[i];
+        ImageLuts& out = results[i];
+        Image storage;
+        Result<const Image*> image =
+            i == refIndex ? Result<const Image*>(&ref) : images(i, storage);
+        if (!image) {
+            out.error = image.error();
+        } else if (Status size = requireSameSize(**image, info.path, ref.width, ref.height,
+                                                 refInfo.path + " (the reference)");
+                   !size) {
+            out.error = size.error();
+        } else if (options.colour != ColourMode::Grey && (*image)->channels != 3) {
+            out.error = info.path + ": --colour " + std::string(colourName(options.colour)) + " needs colour images, this one is grey";
+        } else {
+            if (ptm && angleBetween(info.view, refInfo.view) < 1e-9) ptm->add(**image, info.light);
+            if (albedo) albedo->add(**image);
+            out.values.reserve(length);
+            if (makesLuts) {
+                const ColourMode counted = options.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey;
+                for (const Mask& region : blend.regionMasks)
+                    for (const LevelCounts& levels : countLevels(**image, region, counted)) {
+                        const std::vector<float> q = quantileFunction(levels, options.quantiles);
+                        out.values.insert(out.values.end(), q.begin(), q.end());
+                    }
+                for (std::size_t k = 0; k < blend.references.size(); ++k)
+                    if (blend.references[k] == i) blendReferences[k] = blendForm(**image, options.colour);
+            } else {
+                std::vector<LevelCounts> levels = countLevels(**image, mask, options.colour);
+                for (std::size_t c = 0; c < levels.size(); ++c) {
+                    Lut lut = matchLut(refLevels[c], levels[c], bank.entries);
+                    out.values.insert(out.values.end(), lut.values.begin(), lut.values.end());
+                }
+            }
+        }
+        if (options.progress) {
+            std::lock_guard lock(progressMutex);
+            options.progress(++done, dataset.images.size());
+        }
+    });
+    for (const ImageLuts& r : results)
+        if (!r.error.empty()) return Error{r.error};
+
+    std::vector<DirectionalLut> luts;
+    for (std::size_t i = 0; i < dataset.images.size(); ++i) {
+        const DatasetImage& info = dataset.images[i];
+        luts.push_back({info.name, info.light, info.view, std::move(results[i].values)});
+    }
+    // The decoded reference is ours to keep; a provider's image is copied.
+    if (&ref == &referenceStorage)
+        bank.reference = std::move(referenceStorage);
+    else
+        bank.reference = ref;
+    if (makesLuts && options.ptmPredictor) {
+        bank.blend.predictor = LutBank::Blend::Predictor::Ptm;
+        bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
+        bank.blend.mask = mask;
+    } else if (makesLuts) {
+        bank.blend.references = std::move(blendReferences);
+        for (std::size_t k : blend.references) bank.blend.lights.push_back({dataset.images[k].name, dataset.images[k].light});
+        bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
+        if (albedo) bank.blend.albedo = albedo->finish();
+        bank.blend.mask = mask;
+        for (const Image& r : bank.blend.references) {
+            const std::vector<LevelCounts> levels = countLevels(r, mask, bank.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey);
+            for (const LevelCounts& l : levels)
+                if (l.presentCodes() < 2) return Error{dataset.source + ": a reference image is constant over the sample"};
+        }
+    }
+    if (Status s = setNodes(bank, luts, options.domain, dataset.source); !s) return Error{s.error()};
+    if (ptm) {
+        Result<Ptm> fitted = ptm->finish(dataset.source);
+        if (!fitted) return Error{fitted.error()};
+        bank.ptm = std::move(*fitted);
+    }
+    return bank;
+}
+
+float inputCode(const Image& image, ColourMode colour) {
+    const int codes = colour == ColourMode::Rgb ? image.maxCode() : image.channels * image.maxCode();
+    return 1.f / static_cast<float>(codes);
+}
+
+Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
+                int entries, float targetCode) {
+    Image out = image;
+    const auto width = static_cast<std::uint32_t>(image.width);
+    const std::size_t n = image.pixelCount();
+    const bool dither = targetCode > 0;
+    const float code = inputCode(image, colour);
+    auto map = [&](const float* lut, float v, std::size_t i, std::uint32_t c) {
+        if (!dither) return Lut::applyLut(lut, entries, v);
+        const auto index = static_cast<std::uint32_t>(i);
+        const float in = lutInput(v, index % width, index / width, code, c);
+        return lutOutput(Lut::applyLut(lut, entries, in), targetCode);
+    };
+    if (colour == ColourMode::Rgb) {
+        BTFLUT_CHECK(image.channels == 3);
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::uint32_t c = 0; c < 3; ++c)
+                out.samples[i * 3 + c] =
+                    map(&values[c * static_cast<std::size_t>(entries)], image.samples[i * 3 + c], i, c);
+        return out;
+    }
+    if (image.channels == 1) {
+        for (std::size_t i = 0; i < n; ++i) out.samples[i] = map(values.data(), image.samples[i], i, 0);
+        return out;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        const float grey = image.grey(i);
+        setGrey(&out.samples[i * 3], grey, map(values.data(), grey, i, 0));
+    }
+    return out;
+}
+
+float brdfScale(const LutBank& bank, const LevelCounts& referenceGrey, const BankLookup& lookup) {
+    double reference = 0, total = 0, target = 0;
+    for (std::size_t k = 0; k < referenceGrey.counts.size(); ++k) {
+        if (!referenceGrey.counts[k]) continue;
+        const double v = referenceGrey.valueOf(k), n = static_cast<double>(referenceGrey.counts[k]);
+        reference += n * v;
+        total += n;
+        if (!bank.makesLuts()) target += n * Lut::applyLut(lookup.values.data(), bank.entries, static_cast<float>(v));
+    }
+    if (bank.makesLuts()) {
+        // The target's mean grey: each region's quantile function's mean (trapezoids over
+        // [0, 1]), weighted by its sample texels; rgb banks: the mean over their channels.
+        const LutBank::Blend& blend = bank.blend;
+        const auto samples = static_cast<std::size_t>(blend.quantiles), channels = static_cast<std::size_t>(bank.channels());
+        std::vector<double> texels(static_cast<std::size_t>(blend.regions), 0);
+        for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
+            texels[blend.labels.empty() ? 0 : blend.labels[i]] += blend.mask.inside[i];
+        double mean = 0;
+        for (std::size_t r = 0; r < texels.size(); ++r)
+            for (std::size_t c = 0; c < channels; ++c) {
+                const float* q = &lookup.values[(r * channels + c) * samples];
+                double integral = 0;
+                for (std::size_t m = 0; m + 1 < samples; ++m) integral += 0.5 * (q[m] + q[m + 1]);
+                mean += texels[r] / static_cast<double>(blend.mask.count()) * integral / static_cast<double>(samples - 1) /
+                        static_cast<double>(channels);
+            }
+        target = mean * total;
+    }
+    return reference > 0 ? static_cast<float>(target / reference) : 1.f;
+}
+
+void setGrey(float* rgb, float grey, float target) {
+    if (grey <= 0.f) {
+        rgb[0] = rgb[1] = rgb[2] = target;
+        return;
+    }
+    const float scale = target / grey;
+    float top = 0.f;
+    for (int c = 0; c < 3; ++c) top = std::max(top, rgb[c] *= scale);
+    if (top > 1.f) {
+        // Pull the colour towards its grey until the brightest channel is 1: the mean (the
+        // grey value) stays at target.
+        const float k = (1.f - target) / (top - target);
+        for (int c = 0; c < 3; ++c) rgb[c] = target + (rgb[c] - target) * k;
+    }
+}
+
+
+}  // namespace btflut

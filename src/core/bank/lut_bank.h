@@ -1,0 +1,268 @@
+#pragma once
+// A LUT bank: everything a renderer needs to give one reference image the histogram of the
+// material under any light (and view) direction.
+//
+//   Result<LutBank> bank = bakeBank(dataset, BakeOptions{});
+//   BankLookup lut = bank->lookup(light, view);    // blended LUT + how it was obtained
+//   Image relit = relight(*bank, light, view);     // the CPU reference of the shader
+//
+// Layout. Images are grouped by view direction into layers (one layer for a fixed camera).
+// Each layer holds
+//   - nodes: one LUT per measured light direction (float, exact), and
+//   - grid: the LUTs resampled on a gridSize x gridSize regular grid over the equal-area
+//     disk (direction.h) — what an engine uploads as a texture array and reads with
+//     hardware bilinear filtering; nodes outside the unit disk hold the horizon's LUT.
+// Queries use the nodes: Delaunay interpolation over the measured directions, so a measured
+// direction reproduces its measurement exactly, and directions outside the measured hull
+// are clamped to its boundary, or, in banks filled from the model (model_fill.h), move from
+// the clamped LUT to the model's within one grid step. Blending LUTs blends quantile
+// functions (lut.h). Two domains:
+//   - layers: within a layer over the light disk, then across the layers' view directions.
+//     Any material, when each layer's lights span the disk (a fixed camera, Bonn BTFs).
+//   - isotropic: over (theta_i, theta_r, phi_i - phi_r) in 3-D (isotropicPoint), for
+//     isotropic materials measured with light and view moving together (CUReT: 205
+//     light/view pairs; synth's curet-c2), where a layer holds one light or a few.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/data/dataset.h"
+#include "core/direction/triangulation.h"
+#include "core/histogram/lut.h"
+#include "core/image/image.h"
+#include "core/predict/ptm.h"
+
+namespace btflut {
+
+enum class ColourMode : std::uint32_t {
+    Grey = 1,  ///< one LUT on the grey value; pixel colour ratios kept
+    Rgb = 3,   ///< one LUT per channel
+    Lrgb = 4,  ///< grey references and one RGB albedo: a LUT on the grey value, the albedo's chroma
+};
+
+const char* colourName(ColourMode c);
+
+/// How a LUT was obtained: from a measurement at that direction, by interpolating
+/// measurements around it, by clamping to the nearest measured boundary, or (wholly or in
+/// part) from the fitted rough-surface model that fills directions without measurements
+/// (model_fill.h). From best to worst: measured, interpolated, modelled, extrapolated.
+enum class Provenance : std::uint8_t { Measured = 0, Interpolated = 1, Extrapolated = 2, Modelled = 3 };
+
+const char* provenanceName(Provenance p);
+
+/// How lookups interpolate between the measured directions (see the top of this file).
+enum class BankDomain : std::uint32_t { Layers = 0, Isotropic = 1 };
+
+const char* domainName(BankDomain d);
+Result<BankDomain> parseDomain(const std::string& name);
+
+/// A light/view pair as a point of the isotropic domain: the light's equal-area disk point
+/// in the frame turned so that the view's azimuth is 0, mirrored to y >= 0 (isotropic
+/// surfaces look the same mirrored), and the view's equal-area radius as z. A frontal view
+/// keeps the sample frame.
+Point3 isotropicPoint(Direction light, Direction view);
+
+struct LightNode {
+    std::string name;  ///< image it came from (merged duplicates: the first)
+    Direction light;
+    bool modelled = false;  ///< filled from the fitted model (model_fill.h), not measured
+};
+
+struct ViewLayer {
+    Direction view;
+    std::vector<LightNode> nodes;
+    /// nodes x nodeLength(): each node's LUTs (channels x entries), or, in banks that make
+    /// their LUTs at run time, its targets' quantile functions (regions x channels x quantiles)
+    std::vector<float> nodeLuts;
+    std::vector<std::uint16_t> gridLuts;  ///< gridSize^2 x nodeLength(), unorm16
+    std::vector<Provenance> gridProvenance;  ///< gridSize^2; node (i, j) at j * gridSize + i
+    Triangulation lights;                 ///< over the measured nodes' disk points (they come first)
+    Triangulation modelLights;            ///< over the modelled nodes' (index + measuredNodes); empty without
+    std::size_t measuredNodes = 0;
+    bool lutsLoaded = true;               ///< false: read without its LUTs (BankReadOptions::views)
+};
+
+struct BankLookup {
+    std::vector<float> values;  ///< nodeLength(): LUTs, or quantile functions (LutBank::blend)
+    Provenance provenance = Provenance::Measured;  ///< the worse of the two below
+    Provenance lightProvenance = Provenance::Measured, viewProvenance = Provenance::Measured;
+};
+
+struct LutBank {
+    /// A measured node: layer and node index.
+    struct NodeRef {
+        std::size_t layer = 0, node = 0;
+    };
+
+    int entries = 256;
+    ColourMode colour = ColourMode::Grey;
+    int gridSize = 17;
+    BankDomain domain = BankDomain::Layers;
+    std::vector<ViewLayer> layers;
+    Triangulation views;  ///< layers domain: over the layers' view directions
+    Triangulation3 pairs;  ///< isotropic domain: over the nodes' isotropicPoint
+    /// isotropic domain: the nodes at each point of `pairs` (several where the symmetry
+    /// maps measurements onto one point; they are averaged).
+    std::vector<std::vector<NodeRef>> pairNodes;
+
+    std::string referenceName;
+    Direction referenceLight, referenceView;
+    Image reference;  ///< without samples when the bank was written without it
+    Ptm ptm;          ///< the baseline PTM of the reference view; empty unless baked with one
+    /// The model's parameters (JSON, docs/model-params.md) where nodes were filled from the
+    /// fitted model (LightNode::modelled); empty otherwise.
+    std::string modelFill;
+    bool ptmInFile = false;  ///< read from a file holding a PTM (decoded or skipped)
+
+    /// Banks that make their LUTs at run time (bake --references K > 1, --regions, --colour
+    /// lrgb; relighter.h): K references blended per light, and regions of the sample, each
+    /// matched to its own target. Their nodes hold the targets' quantile functions.
+    struct Blend {
+        /// What is matched per light: the references blended, or the bank's PTM relit (the
+        /// PTM is then part of the bank's relighting, not only a baseline).
+        enum class Predictor : std::uint32_t { References = 0, Ptm = 1 } predictor = Predictor::References;
+        std::vector<Image> references;   ///< K, as blended: grey (lrgb) or as the source
+        std::vector<LightNode> lights;   ///< each reference's light and image
+        Triangulation triangulation;     ///< over their lights: the blend weights
+        Image albedo;                    ///< lrgb: the chroma, RGB 8-bit
+        std::vector<std::uint8_t> labels;  ///< per texel its region (all texels); empty: one region
+        Mask mask;                         ///< the sample texels: the blend's statistics are theirs
+        int regions = 1;
+        int quantiles = 0;  ///< samples per quantile function; 0: a bank of LUTs
+    } blend;
+
+    /// True for banks that make their LUTs at run time (see Blend).
+    bool makesLuts() const { return blend.quantiles > 0; }
+    int channels() const { return colour == ColourMode::Rgb ? 3 : 1; }
+    /// One code of the values the LUTs map to (those of the reference's format: 1/765 for
+    /// the grey of 8-bit RGB), the unit of the dithered output shift.
+    float targetCode() const {
+        int perValue = colour == ColourMode::Rgb ? 1 : reference.channels;
+        return 1.f / static_cast<float>(perValue * (reference.bitDepth == 16 ? 65535 : 255));
+    }
+    std::size_t lutLength() const { return static_cast<std::size_t>(channels()) * entries; }
+    /// Values per node: lutLength(), or regions x channels x quantiles (makesLuts).
+    std::size_t nodeLength() const {
+        return makesLuts() ? static_cast<std::size_t>(blend.regions) * channels() * blend.quantiles : lutLength();
+    }
+    /// The length of one monotonic segment of a node's values: entries or quantiles.
+    std::size_t segmentLength() const { return static_cast<std::size_t>(makesLuts() ? blend.quantiles : entries); }
+
+    /// The LUT for a light and view direction (any direction in the upper hemisphere);
+    /// with `interpolate` false, the LUT of the nearest measured node (for comparisons).
+    BankLookup lookup(Direction light, Direction view = {}, bool interpolate = true) const;
+
+    /// The LUT an engine reads from the resampled grid (layer `layer`): bilinear between the
+    /// four grid nodes around the light's disk point, from their unorm16 values, as one
+    /// filtered fetch of the exported 3D texture does (shaders/btflut.glsl). It equals
+    /// lookup() at grid nodes; between them it differs most near the measured triangles' edges.
+    std::vector<float> gridLookup(Direction light, std::size_t layer = 0) const;
+
+    /// Every view layer's grid as one block of unorm16 texels, channels interleaved, ordered
+    /// [layer][grid node j * gridSize + i][region][segment entry][channel]: for a bank of LUTs
+    /// (one region), the memory of the 3D texture that `export -o DIR/` writes and
+    /// shaders/btflut.glsl samples (x the LUT entry, y grid column i, z layer * G + row j).
+    std::vector<std::uint16_t> gridTexels() const;
+
+    /// The measured node nearest to a light direction in the layer nearest to a view
+    /// direction (nearest by angle); in the isotropic domain, the node nearest in it.
+    NodeRef nearestNode(Direction light, Direction view = {}) const;
+
+    /// Disk point of grid node (i, j): x = -1 + 2 i / (gridSize - 1), likewise y.
+    DiskPoint gridPoint(int i, int j) const;
+
+    /// The share of the hemisphere of light directions (by solid angle) where lookups at a
+    /// layer's view interpolate between measurements, rather than clamp or use the model.
+    double lightCoverage(std::size_t layer) const;
+
+    /// The layers that lookups at a view direction use: those the view triangulation blends
+    /// there, and the nearest by angle (every layer in the isotropic domain).
+    std::vector<std::size_t> layersFor(Direction view) const;
+
+    /// True when lookups at some view give different LUTs for different lights (there are
+    /// two measured light directions to blend between, in a layer or in the isotropic domain).
+    bool followsLight() const;
+
+    /// Rebuilds the triangulations from the node and layer directions (after loading).
+    void buildTriangulations();
+    /// Fills every layer's grid from its nodes.
+    void fillGrids();
+};
+
+/// A LUT at one light and view direction (measured or modelled); values are
+/// channels x entries.
+struct DirectionalLut {
+    std::string name;
+    Direction light;
+    Direction view;
+    std::vector<float> values;
+};
+
+/// Builds `bank`'s layers from LUTs: one layer per view direction, repeated light directions
+/// merged by averaging (the barycentre), then the domain, triangulations and grids.
+/// bank.entries, colour, gridSize (and blend) must be set; each holds bank.nodeLength() values.
+/// Without a domain: layers when there is one layer or every layer's lights span the light
+/// disk, isotropic otherwise. Refuses (naming `source`) a bank that could not follow the light.
+Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,
+                const std::string& source);
+
+struct BakeOptions {
+    std::string referenceName;  ///< empty: the image nearest to frontal light and view
+    int gridSize = 17;
+    int entries = 0;  ///< 0: 256 for an 8-bit reference, 1024 for a 16-bit one
+    ColourMode colour = ColourMode::Grey;
+    int threads = 0;  ///< 0: all cores
+    bool ptm = false;  ///< also fit a PTM (ptm.h) to the images of the reference's view
+    std::optional<BankDomain> domain;  ///< empty: chosen from the directions (setNodes)
+    int references = 1;       ///< K references blended per light (a fixed camera; relighter.h)
+    bool ptmPredictor = false;  ///< instead of references: the PTM relit, then matched (implies ptm)
+    int regions = 1;          ///< regions segmented from the images' responses over the lights
+    std::string labelsPath;   ///< instead: a label image (each grey value one region)
+    int quantiles = 1024;     ///< samples of the targets' quantile functions (banks that make LUTs)
+    /// Called after each image with (done, total); may be empty.
+    std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// Supplies image `index` of a dataset: decodes it into `storage` and returns &storage, or
+/// returns an image it already holds (benchmarks time the baking without the decoding).
+using ImageProvider = std::function<Result<const Image*>(std::size_t index, Image& storage)>;
+
+/// Bakes a bank from a dataset: decodes every image once, streaming, so memory holds only
+/// the reference and one image per thread. Errors name the file and the problem (corrupt
+/// image, sizes differ, mask of another size or empty, constant reference, ...).
+/// Without a provider, images are decoded from the dataset's files.
+Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
+                         const ImageProvider& provider = {});
+
+/// The reference image with the LUT for (light, view) applied to every pixel (see
+/// applyLuts), dithered unless `dither` is false; for banks that make their LUTs at run time,
+/// the references blended and matched (relighter.h).
+Image relight(const LutBank& bank, Direction light, Direction view = {}, bool dither = true);
+
+/// One code of the value a LUT maps for this image: of a channel in rgb mode or for a grey
+/// image, of the grey value (channels x max code) otherwise. The unit of the dithered input.
+float inputCode(const Image& image, ColourMode colour);
+
+/// Applies a LUT (channels x entries, as BankLookup::values) to an image. Grey mode sets
+/// each pixel's grey to LUT(grey), scaling its colour by LUT(grey) / grey and, where that
+/// would clip a channel, desaturating towards grey so the new grey value is kept exactly;
+/// rgb mode maps each channel by its own LUT. With `targetCode` > 0 (one code of the
+/// targets' values, e.g. 1/765) the LUT is applied dithered (lutInput/lutOutput in lut.h),
+/// which reproduces the target histogram closely; with 0, plainly.
+Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
+                int entries, float targetCode);
+
+/// The paper's "2D texture mapping" (renderer mode brdf): the factor that brings the mean
+/// grey of the reference (its grey counts over all texels) to the target's at a lookup's
+/// direction; 1 for a black reference.
+float brdfScale(const LutBank& bank, const LevelCounts& referenceGrey, const BankLookup& lookup);
+
+/// Grey mode's colour step: an RGB pixel of grey value `grey` (the mean of its channels)
+/// gets grey `target`: its colour is scaled by target / grey and, where a channel would
+/// exceed 1, desaturated towards grey so the grey stays `target` (black pixels become grey).
+void setGrey(float* rgb, float grey, float target);
+
+}  // namespace btflut

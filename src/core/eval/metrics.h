@@ -1,0 +1,33 @@
+#pragma once
+// How close a predicted image is to a photograph, as `btflut eval` reports it: in
+// distribution (masked 64-bin grey histograms: L1 and earth mover's distance) and in place
+// (RGB PSNR and grey SSIM over the mask).
+//
+//   ImageErrors e = compareImages(predicted, photo, mask);   // e.l1, e.emd, e.psnr, e.ssim
+//
+// Both images are first quantised to the photo's bit depth, as a saved prediction would be.
+// A grey prediction of a colour photo is compared as grey in every channel.
+
+#include "core/image/image.h"
+
+namespace btflut {
+
+struct ImageErrors {
+    double l1 = 0;    ///< sum of |h_pred - h_photo| over 64 grey bins, in [0, 2]
+    double emd = 0;   ///< earth mover's distance of the two histograms, grey scale units [0, 1]
+    double psnr = 0;  ///< 10 log10(1 / MSE) over the mask's pixels and the photo's channels, dB (capped at 99)
+    double ssim = 0;  ///< mean structural similarity of the grey images over the mask (Gaussian window, sigma 1.5)
+    double maxDifference = 0;   ///< largest |difference| of a sample over the mask, value units [0, 1]
+    double meanDifference = 0;  ///< mean |difference| over the mask's pixels and the photo's channels
+};
+
+/// The errors of `predicted` against `photo` (same size; mask of that size).
+ImageErrors compareImages(const Image& predicted, const Image& photo, const Mask& mask);
+
+/// The same from the images' codes (`predicted` brought to the photo's bit depth first).
+ImageErrors compareCodes(const ImageCodes& predicted, const ImageCodes& photo, const Mask& mask);
+
+/// The image quantised to integer codes of `bitDepth` bits (values as code / max code).
+Image quantised(const Image& image, int bitDepth);
+
+}  // namespace btflut

@@ -1,0 +1,232 @@
+#include "core/histogram/plot.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wold-style-cast"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#include <stb/stb_easy_font.h>
+#pragma GCC diagnostic pop
+
+namespace btflut {
+
+namespace {
+
+constexpr int kPanelW = 256, kPanelH = 60, kGapX = 36, kGapY = 10;
+constexpr int kLeft = 96, kTop = 44, kBottom = 44;
+constexpr int kTextScale = 2;
+
+struct Rgb {
+    float r, g, b;
+};
+const Rgb kInk{0.1f, 0.1f, 0.1f}, kBar{0.25f, 0.4f, 0.7f}, kAxis{0.55f, 0.55f, 0.55f},
+    kMark{0.75f, 0.15f, 0.1f};
+
+class Canvas {
+public:
+    Canvas(int w, int h) : m_image(w, h, 3) { std::fill(m_image.samples.begin(), m_image.samples.end(), 1.f); }
+    void fill(int x0, int y0, int x1, int y1, Rgb c) {
+        x0 = std::max(x0, 0), y0 = std::max(y0, 0);
+        x1 = std::min(x1, m_image.width), y1 = std::min(y1, m_image.height);
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                m_image.at(x, y, 0) = c.r;
+                m_image.at(x, y, 1) = c.g;
+                m_image.at(x, y, 2) = c.b;
+            }
+    }
+    // Text with its top-left corner at (x, y), stb_easy_font's quads scaled up.
+    void text(int x, int y, const std::string& s, Rgb c) {
+        std::vector<char> buffer(s.size() * 300 + 64);
+        std::string copy = s;
+        unsigned char colour[4] = {0, 0, 0, 255};
+        const int quads = stb_easy_font_print(0, 0, copy.data(), colour, buffer.data(), static_cast<int>(buffer.size()));
+        const auto* v = reinterpret_cast<const float*>(buffer.data());
+        for (int q = 0; q < quads; ++q) {
+            const float* a = v + q * 16;  // 4 vertices of (x, y, z, rgba) = 4 floats each
+            const float* d = a + 8;
+            fill(x + static_cast<int>(a[0] * kTextScale), y + static_cast<int>(a[1] * kTextScale),
+                 x + static_cast<int>(d[0] * kTextScale), y + static_cast<int>(d[1] * kTextScale), c);
+        }
+    }
+    static int textWidth(const std::string& s) {
+        std::string copy = s;
+        return stb_easy_font_width(copy.data()) * kTextScale;
+    }
+    // An RGB image with its top-left corner at (x, y).
+    void blit(int x, int y, const Image& image) {
+        for (int v = 0; v < image.height; ++v)
+            for (int u = 0; u < image.width; ++u)
+                for (int c = 0; c < 3; ++c) m_image.at(x + u, y + v, c) = image.at(u, v, c);
+    }
+    Image take() { return std::move(m_image); }
+
+private:
+    Image m_image;
+};
+
+std::string positionLabel(const std::string& name) {
+    if (name == "c2-4") return name + " L";
+    if (name == "c2-6") return name + " S";
+    if (name == "c2-8") return name + " C";
+    return name;
+}
+
+std::string format(const char* pattern, double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, pattern, v);
+    return buf;
+}
+
+}  // namespace
+
+Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay) {
+    BTFLUT_CHECK(!columns.empty());
+    std::size_t rows = 0;
+    for (const PlotColumn& c : columns) rows = std::max(rows, c.rows.size());
+    BTFLUT_CHECK(rows > 0);
+    auto labelOf = [&](std::size_t r) {
+        for (const PlotColumn& c : columns)
+            if (r < c.rows.size()) return positionLabel(c.rows[r].name);
+        return std::string();
+    };
+    int left = kLeft;  // fits the longest row label
+    for (std::size_t r = 0; r < rows; ++r) left = std::max(left, Canvas::textWidth(labelOf(r)) + 16);
+    const int panels = overlay ? 1 : static_cast<int>(columns.size());
+    const int top = overlay ? kTop + 18 * static_cast<int>(columns.size()) : kTop;
+    const int width = left + panels * (kPanelW + kGapX);
+    const int height = top + static_cast<int>(rows) * (kPanelH + kGapY) + kBottom;
+    Canvas canvas(width, height);
+    static const Rgb kLines[] = {{0.85f, 0.3f, 0.1f}, {0.1f, 0.6f, 0.3f}, {0.6f, 0.2f, 0.7f}, {0.9f, 0.6f, 0.0f}};
+    auto colourOf = [&](std::size_t c) { return c == 0 ? kBar : kLines[(c - 1) % 4]; };
+    auto fitted = [](std::string title) {  // shortened to the panel's width
+        if (Canvas::textWidth(title) <= kPanelW) return title;
+        while (!title.empty() && Canvas::textWidth(title + "..") > kPanelW) title.pop_back();
+        return title + "..";
+    };
+    if (overlay) {  // the legend
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+            const int y = 8 + 18 * static_cast<int>(c);
+            canvas.fill(left, y + 3, left + 24, y + 11, colourOf(c));
+            canvas.text(left + 32, y, fitted(columns[c].title), kInk);
+        }
+    } else {
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+            const int x0 = left + static_cast<int>(c) * (kPanelW + kGapX);
+            const std::string title = fitted(columns[c].title);
+            canvas.text(x0 + (kPanelW - Canvas::textWidth(title)) / 2, 10, title, kInk);
+        }
+    }
+    for (std::size_t r = 0; r < rows; ++r) {
+        const int y0 = top + static_cast<int>(r) * (kPanelH + kGapY);
+        const std::string label = labelOf(r);
+        const bool marked = label.size() > 2 && label[label.size() - 2] == ' ';
+        canvas.text(8, y0 + 20, label, marked ? kMark : kInk);
+        double overall = 0;  // overlay: one scale for the panel
+        for (const PlotColumn& c : columns)
+            if (r < c.rows.size()) overall = std::max(overall, *std::max_element(c.rows[r].bins.begin(), c.rows[r].bins.end()));
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+            const int x0 = left + (overlay ? 0 : static_cast<int>(c) * (kPanelW + kGapX));
+            canvas.fill(x0, y0 + kPanelH, x0 + kPanelW, y0 + kPanelH + 1, kAxis);  // baseline
+            canvas.fill(x0, y0, x0 + 1, y0 + kPanelH, kAxis);                      // y axis
+            if (r >= columns[c].rows.size()) continue;
+            const std::vector<double>& bins = columns[c].rows[r].bins;
+            const double rowMax = overlay ? overall : *std::max_element(bins.begin(), bins.end());
+            if (rowMax <= 0) continue;
+            const auto n = static_cast<int>(bins.size());
+            int previous = -1;
+            for (int b = 0; b < n; ++b) {
+                const int bx0 = x0 + 1 + b * (kPanelW - 1) / n, bx1 = std::max(x0 + 1 + (b + 1) * (kPanelW - 1) / n, bx0 + 1);
+                const int barHeight = static_cast<int>(bins[static_cast<std::size_t>(b)] / rowMax * (kPanelH - 4) + 0.5);
+                const int y = y0 + kPanelH - barHeight;
+                if (!overlay || c == 0) {
+                    canvas.fill(bx0, y, bx1, y0 + kPanelH, kBar);
+                } else {  // a step outline: the bin's top, and the rise from the previous one
+                    canvas.fill(bx0, y - 1, bx1, y + 1, colourOf(c));
+                    if (previous >= 0) canvas.fill(bx0, std::min(previous, y) - 1, bx0 + 2, std::max(previous, y) + 1, colourOf(c));
+                }
+                previous = y;
+            }
+            if (overlay && c > 0) continue;
+            // The panel's scale, over the bars on a white backing.
+            const std::string scale = format("%.3f", rowMax);
+            const int tx = x0 + kPanelW - Canvas::textWidth(scale) - 2;
+            canvas.fill(tx - 2, y0, x0 + kPanelW, y0 + 16, {1, 1, 1});
+            canvas.text(tx, y0 + 2, scale, kAxis);
+        }
+    }
+    // Grey-value axis under the last row of each column.
+    const int axisY = top + static_cast<int>(rows) * (kPanelH + kGapY) + 2;
+    for (int c = 0; c < panels; ++c) {
+        const int x0 = left + c * (kPanelW + kGapX);
+        for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+            const int x = x0 + static_cast<int>(t * (kPanelW - 1));
+            canvas.fill(x, axisY - 6, x + 1, axisY, kAxis);
+            const std::string tick = t == 0 ? "0" : t == 1 ? "1" : format("%.2g", t);
+            canvas.text(std::clamp(x - Canvas::textWidth(tick) / 2, 0, width - Canvas::textWidth(tick)), axisY + 2, tick, kInk);
+        }
+        canvas.text(x0 + (kPanelW - Canvas::textWidth("grey value")) / 2, axisY + 22, "grey value", kAxis);
+    }
+    return canvas.take();
+}
+
+namespace {
+
+// The image scaled to `width` pixels wide (box filter over the source pixels each output pixel covers), RGB.
+Image scaledTo(const Image& image, int width) {
+    const double step = static_cast<double>(image.width) / width;
+    const int height = std::max(1, static_cast<int>(image.height / step));
+    Image out(width, height, 3);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const int x0 = static_cast<int>(x * step), x1 = std::max(x0 + 1, static_cast<int>((x + 1) * step));
+            const int y0 = static_cast<int>(y * step), y1 = std::max(y0 + 1, static_cast<int>((y + 1) * step));
+            float sum[3] = {0, 0, 0};
+            int count = 0;
+            for (int v = y0; v < std::min(y1, image.height); ++v)
+                for (int u = x0; u < std::min(x1, image.width); ++u, ++count)
+                    for (int c = 0; c < 3; ++c) sum[c] += image.at(u, v, image.channels == 1 ? 0 : c);
+            for (int c = 0; c < 3; ++c) out.at(x, y, c) = count ? sum[c] / static_cast<float>(count) : 0.f;
+        }
+    return out;
+}
+
+}  // namespace
+
+Image contactSheet(const std::vector<std::vector<SheetCell>>& rows, int cellWidth) {
+    BTFLUT_CHECK(!rows.empty() && !rows.front().empty() && cellWidth > 0);
+    constexpr int kGap = 8, kLabel = 22;
+    std::size_t columns = 0;
+    int cellHeight = 0;
+    std::vector<std::vector<Image>> scaled;
+    for (const auto& row : rows) {
+        columns = std::max(columns, row.size());
+        scaled.emplace_back();
+        for (const SheetCell& cell : row) {
+            scaled.back().push_back(scaledTo(cell.image, cellWidth));
+            cellHeight = std::max(cellHeight, scaled.back().back().height);
+        }
+    }
+    const int width = static_cast<int>(columns) * (cellWidth + kGap) + kGap;
+    const int height = static_cast<int>(rows.size()) * (cellHeight + kLabel + kGap) + kGap;
+    Canvas canvas(width, height);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+        for (std::size_t c = 0; c < rows[r].size(); ++c) {
+            const int x = kGap + static_cast<int>(c) * (cellWidth + kGap);
+            const int y = kGap + static_cast<int>(r) * (cellHeight + kLabel + kGap);
+            std::string label = rows[r][c].label;  // clipped to its cell
+            if (Canvas::textWidth(label) > cellWidth) {
+                while (!label.empty() && Canvas::textWidth(label + "..") > cellWidth) label.pop_back();
+                label += "..";
+            }
+            canvas.text(x, y + 2, label, kInk);
+            canvas.blit(x, y + kLabel, scaled[r][c]);
+        }
+    return canvas.take();
+}
+
+}  // namespace btflut

@@ -1,0 +1,44 @@
+#pragma once
+// JSON files' text in and out, for every JSON file btflut reads or writes (manifests,
+// scenes, model parameters, sidecars, histograms):
+//   - parsing refuses, with the one-line error the command line prints ("FILE: not valid
+//     JSON (...)"), anything nlohmann::json throws on (syntax, numbers out of range such as
+//     1e999) and values nested deeper than kMaxJsonDepth (a 200000-deep array would
+//     otherwise exhaust the stack in recursive code that walks it);
+//   - writing replaces bytes that are not UTF-8 (file names are bytes on Linux) with
+//     U+FFFD instead of throwing.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/direction/direction.h"
+#include "core/result.h"
+
+namespace btflut {
+
+/// No btflut file needs more than a few levels.
+constexpr int kMaxJsonDepth = 64;
+
+/// A direction as the JSON files write it: {"theta": degrees, "phi": degrees}.
+inline nlohmann::json directionJson(Direction d) { return {{"theta", d.thetaDegrees()}, {"phi", d.phiDegrees()}}; }
+
+inline Result<nlohmann::json> parseJsonText(const std::string& text, const std::string& file) {
+    struct TooDeep {};
+    try {
+        return nlohmann::json::parse(text, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+            if (depth > kMaxJsonDepth) throw TooDeep{};
+            return true;
+        });
+    } catch (const TooDeep&) {
+        return Error{file + ": not valid JSON (nested deeper than " + std::to_string(kMaxJsonDepth) + " levels)"};
+    } catch (const nlohmann::json::exception& e) {
+        return Error{file + ": not valid JSON (" + e.what() + ")"};
+    }
+}
+
+/// The text of a JSON value (indent < 0: one line), never throwing on invalid UTF-8.
+inline std::string jsonText(const nlohmann::json& value, int indent = 1) {
+    return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace) + (indent >= 0 ? "\n" : "");
+}
+
+}  // namespace btflut
