@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/predict/relighter.h"
 #include "gl/context.h"

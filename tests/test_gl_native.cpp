@@ -1,6 +1,7 @@
 // GL tests (doctest suite "gl", CTest label gl): headless contexts, and the GPU path of relight.
 #include <doctest/doctest.h>
 
+#include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "gl/context.h"
 #include "gl/native_renderer.h"

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/predict/relighter.h"
 #include "gl/context.h"

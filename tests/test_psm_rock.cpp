@@ -1,6 +1,7 @@
 // Acceptance numbers on real measured data (../shared/data/psm-rock).
 #include <doctest/doctest.h>
 
+#include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "helpers.h"
 

@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/eval/holdout.h"
 #include "core/eval/metrics.h"

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "cli/cli.h"
+#include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/fit.h"
 #include "core/inverse/model_fill.h"

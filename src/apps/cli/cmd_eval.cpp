@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cli/cli.h"
+#include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/eval/holdout.h"
 #include "core/eval/metrics.h"

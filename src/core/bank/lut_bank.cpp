@@ -3,17 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <optional>
-
-#include "core/parallel.h"
-#include "core/predict/references.h"
 
 namespace btflut {
 
 namespace {
-
-constexpr double kSameDirection = 1e-6;  // radians: closer directions are one node
 
 int rank(Provenance p) {
     switch (p) {
@@ -31,31 +25,6 @@ Provenance provenanceOf(const Weights& w) {
     if (!w.inside) return Provenance::Extrapolated;
     double top = *std::max_element(w.weight.begin(), w.weight.begin() + w.count);
     return top > 1 - 1e-9 ? Provenance::Measured : Provenance::Interpolated;
-}
-
-// Per-image result of the streaming pass.
-struct ImageLuts {
-    std::vector<float> values;  // channels x entries
-    std::string error;
-};
-
-std::vector<LevelCounts> countLevels(const Image& image, const Mask& mask, ColourMode colour) {
-    if (colour == ColourMode::Grey) return {countGreyLevels(image, mask)};
-    return {countChannelLevels(image, mask, 0), countChannelLevels(image, mask, 1),
-            countChannelLevels(image, mask, 2)};
-}
-
-std::size_t chooseReference(const Dataset& dataset) {
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < dataset.images.size(); ++i) {
-        const DatasetImage& a = dataset.images[i];
-        const DatasetImage& b = dataset.images[best];
-        // Nearest to a frontal camera first, then nearest to frontal light.
-        if (a.view.theta < b.view.theta - 1e-12 ||
-            (std::abs(a.view.theta - b.view.theta) <= 1e-12 && a.light.theta < b.light.theta - 1e-12))
-            best = i;
-    }
-    return best;
 }
 
 }  // namespace
@@ -374,255 +343,6 @@ Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::opt
     return success();
 }
 
-namespace {
-
-// What a bank that makes its LUTs at run time is baked with besides the classic reference:
-// the other references, the regions (as one mask each) and, for lrgb, the albedo.
-struct BlendSetup {
-    std::vector<std::size_t> references;  // dataset indices, the classic reference first
-    std::vector<Mask> regionMasks;         // the sample mask split by region
-    Regions regions;
-};
-
-Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex, const Image& ref,
-                              const Mask& mask, const ImageProvider& images) {
-    BlendSetup setup;
-    if (!dataset.fixedView())
-        return Error{dataset.source + ": --references, --regions and --colour lrgb need one view (a fixed camera); "
-                                      "this dataset has several"};
-    std::vector<Direction> lights;
-    for (const DatasetImage& im : dataset.images) lights.push_back(im.light);
-    std::vector<DiskPoint> points;
-    for (Direction l : lights) points.push_back(toDisk(l));
-    std::size_t distinct = 0;  // distinct light directions
-    for (std::size_t i = 0; i < lights.size(); ++i) {
-        bool seen = false;
-        for (std::size_t j = 0; j < i && !seen; ++j) seen = angleBetween(lights[i], lights[j]) < kSameDirection;
-        distinct += !seen;
-    }
-    if (options.references < 1 || static_cast<std::size_t>(options.references) > distinct)
-        return Error{"--references " + std::to_string(options.references) + " must be within 1.." + std::to_string(distinct) +
-                     " (the distinct light directions of " + dataset.source + ")"};
-    if (options.ptmPredictor) {
-        // no references: the PTM is fitted from every image
-    } else if (options.colour == ColourMode::Lrgb && options.references > 16)
-        return Error{"--colour lrgb packs at most 16 references (four per texture layer); --references " +
-                     std::to_string(options.references) + " is more"};
-    else
-        setup.references = pickReferences(lights, refIndex, static_cast<std::size_t>(options.references));
-
-    if (!options.labelsPath.empty()) {
-        Result<Image> labels = loadImage(options.labelsPath);
-        if (!labels) return Error{labels.error()};
-        Result<Regions> r = regionsFromLabels(*labels, mask, ref.width, ref.height, options.labelsPath);
-        if (!r) return Error{r.error()};
-        setup.regions = std::move(*r);
-    } else if (options.regions > 1) {
-        // Responses under at most 32 lights spread over the measured ones.
-        const std::vector<std::size_t> spread = spreadLights(lights, 32);
-        Responses responses{ref.width, ref.height, static_cast<int>(spread.size()),
-                            std::vector<std::uint8_t>(ref.pixelCount() * spread.size())};
-        for (std::size_t k = 0; k < spread.size(); ++k) {
-            Image storage;
-            Result<const Image*> image = spread[k] == refIndex ? Result<const Image*>(&ref) : images(spread[k], storage);
-            if (!image) return Error{image.error()};
-            if (Status size = requireSameSize(**image, dataset.images[spread[k]].path, ref.width, ref.height,
-                                              dataset.images[refIndex].path + " (the reference)");
-                !size)
-                return Error{size.error()};
-            for (std::size_t i = 0; i < ref.pixelCount(); ++i)
-                responses.values[i * spread.size() + k] = static_cast<std::uint8_t>(std::lround((*image)->grey(i) * 255.f));
-        }
-        Result<Regions> r = segmentRegions(responses, mask, options.regions, dataset.source);
-        if (!r) return Error{r.error()};
-        setup.regions = std::move(*r);
-    } else {
-        setup.regions = {1, std::vector<std::uint8_t>(ref.pixelCount(), 0)};
-    }
-    for (int r = 0; r < setup.regions.count; ++r) {
-        Mask m = mask;
-        for (std::size_t i = 0; i < m.inside.size(); ++i) m.inside[i] = m.inside[i] && setup.regions.labels[i] == r;
-        setup.regionMasks.push_back(std::move(m));
-    }
-    return setup;
-}
-
-// A reference as the blend stores it: 8-bit (blends are integer sums of 8-bit codes,
-// relighter.h), its grey value alone for lrgb.
-Image blendForm(const Image& image, ColourMode colour) {
-    const bool grey = colour == ColourMode::Lrgb && image.channels == 3;
-    Image out(image.width, image.height, grey ? 1 : image.channels, 8);
-    for (std::size_t i = 0; i < out.pixelCount(); ++i)
-        for (int c = 0; c < out.channels; ++c) {
-            const float v = grey ? image.grey(i) : image.samples[i * static_cast<std::size_t>(image.channels) + static_cast<std::size_t>(c)];
-            out.samples[i * static_cast<std::size_t>(out.channels) + static_cast<std::size_t>(c)] = std::round(v * 255.f) / 255.f;
-        }
-    return out;
-}
-
-}  // namespace
-
-Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
-                         const ImageProvider& provider) {
-    const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {
-        Result<Image> image = loadImage(dataset.images[i].path);
-        if (!image) return Error{image.error()};
-        storage = std::move(*image);
-        return &storage;
-    };
-    const ImageProvider& images = provider ? provider : decode;
-    if (dataset.images.empty()) return Error{dataset.source + ": dataset has no images"};
-    if (options.gridSize < 2 || options.gridSize > 257)
-        return Error{"--grid " + std::to_string(options.gridSize) + " is outside [2, 257]"};
-    if (options.entries != 0 && (options.entries < 2 || options.entries > 65536))
-        return Error{"--entries " + std::to_string(options.entries) + " is outside [2, 65536]"};
-    if (options.regions < 1 || options.regions > 255) return Error{"--regions " + std::to_string(options.regions) + " is outside [1, 255]"};
-    if (options.quantiles < 2 || options.quantiles > 65536)
-        return Error{"--quantiles " + std::to_string(options.quantiles) + " is outside [2, 65536]"};
-
-    std::size_t refIndex = chooseReference(dataset);
-    if (!options.referenceName.empty()) {
-        auto it = std::find_if(dataset.images.begin(), dataset.images.end(),
-                               [&](const DatasetImage& im) {
-                                   return im.name == options.referenceName ||
-                                          im.path == options.referenceName;
-                               });
-        if (it == dataset.images.end())
-            return Error{dataset.source + ": no image named '" + options.referenceName +
-                         "' for --reference"};
-        refIndex = static_cast<std::size_t>(it - dataset.images.begin());
-    }
-    const DatasetImage& refInfo = dataset.images[refIndex];
-    Image referenceStorage;
-    Result<const Image*> reference = images(refIndex, referenceStorage);
-    if (!reference) return Error{reference.error()};
-    const Image& ref = **reference;
-    if (options.colour != ColourMode::Grey && ref.channels != 3)
-        return Error{refInfo.path + ": --colour " + colourName(options.colour) + " needs colour images, this one is grey"};
-    Result<Mask> loadedMask = loadDatasetMask(dataset, ref.width, ref.height);
-    if (!loadedMask) return Error{loadedMask.error()};
-    const Mask& mask = *loadedMask;
-
-    LutBank bank;
-    bank.colour = options.colour;
-    bank.gridSize = options.gridSize;
-    bank.entries = options.entries ? options.entries : (ref.bitDepth == 16 ? 1024 : 256);
-    bank.referenceName = refInfo.name;
-    bank.referenceLight = refInfo.light;
-    bank.referenceView = refInfo.view;
-
-    // Banks that make their LUTs at run time keep each image's target per region as a
-    // quantile function; classic banks keep each image's LUT from the reference.
-    const bool makesLuts = options.references > 1 || options.regions > 1 || !options.labelsPath.empty() ||
-                           options.colour == ColourMode::Lrgb || options.ptmPredictor;
-    if (options.ptmPredictor && (options.references > 1 || options.colour != ColourMode::Grey))
-        return Error{"--predictor ptm relights with the PTM: it takes no --references, and its colour is the PTM's (grey)"};
-    BlendSetup blend;
-    std::vector<LevelCounts> refLevels;
-    if (makesLuts) {
-        Result<BlendSetup> setup = setUpBlend(dataset, options, refIndex, ref, mask, images);
-        if (!setup) return Error{setup.error()};
-        blend = std::move(*setup);
-        bank.blend.regions = blend.regions.count;
-        bank.blend.quantiles = options.quantiles;
-    } else {
-        refLevels = countLevels(ref, mask, options.colour);
-        for (const LevelCounts& levels : refLevels)
-            if (levels.presentCodes() < 2)
-                return Error{refInfo.path + ": reference image is constant over the sample, so no "
-                                            "LUT can give it another histogram; choose another "
-                                            "with --reference"};
-    }
-    const std::size_t length = bank.nodeLength();
-
-    // Stream through the images: decode, count, match (or keep the quantiles), forget.
-    std::vector<ImageLuts> results(dataset.images.size());
-    std::mutex progressMutex;
-    std::size_t done = 0;
-    std::optional<PtmFitter> ptm;
-    if (options.ptm || options.ptmPredictor) ptm.emplace(ref.width, ref.height);
-    std::optional<AlbedoAccumulator> albedo;
-    if (options.colour == ColourMode::Lrgb) albedo.emplace(ref.width, ref.height);
-    // The references as the blend keeps them, in pick order.
-    std::vector<Image> blendReferences(blend.references.size());
-    parallelFor(dataset.images.size(), options.threads, [&](std::size_t i) {
-        const DatasetImage& info = dataset.images[i];
-        ImageLuts& out = results[i];
-        Image storage;
-        Result<const Image*> image =
-            i == refIndex ? Result<const Image*>(&ref) : images(i, storage);
-        if (!image) {
-            out.error = image.error();
-        } else if (Status size = requireSameSize(**image, info.path, ref.width, ref.height,
-                                                 refInfo.path + " (the reference)");
-                   !size) {
-            out.error = size.error();
-        } else if (options.colour != ColourMode::Grey && (*image)->channels != 3) {
-            out.error = info.path + ": --colour " + std::string(colourName(options.colour)) + " needs colour images, this one is grey";
-        } else {
-            if (ptm && angleBetween(info.view, refInfo.view) < 1e-9) ptm->add(**image, info.light);
-            if (albedo) albedo->add(**image);
-            out.values.reserve(length);
-            if (makesLuts) {
-                const ColourMode counted = options.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey;
-                for (const Mask& region : blend.regionMasks)
-                    for (const LevelCounts& levels : countLevels(**image, region, counted)) {
-                        const std::vector<float> q = quantileFunction(levels, options.quantiles);
-                        out.values.insert(out.values.end(), q.begin(), q.end());
-                    }
-                for (std::size_t k = 0; k < blend.references.size(); ++k)
-                    if (blend.references[k] == i) blendReferences[k] = blendForm(**image, options.colour);
-            } else {
-                std::vector<LevelCounts> levels = countLevels(**image, mask, options.colour);
-                for (std::size_t c = 0; c < levels.size(); ++c) {
-                    Lut lut = matchLut(refLevels[c], levels[c], bank.entries);
-                    out.values.insert(out.values.end(), lut.values.begin(), lut.values.end());
-                }
-            }
-        }
-        if (options.progress) {
-            std::lock_guard lock(progressMutex);
-            options.progress(++done, dataset.images.size());
-        }
-    });
-    for (const ImageLuts& r : results)
-        if (!r.error.empty()) return Error{r.error};
-
-    std::vector<DirectionalLut> luts;
-    for (std::size_t i = 0; i < dataset.images.size(); ++i) {
-        const DatasetImage& info = dataset.images[i];
-        luts.push_back({info.name, info.light, info.view, std::move(results[i].values)});
-    }
-    // The decoded reference is ours to keep; a provider's image is copied.
-    if (&ref == &referenceStorage)
-        bank.reference = std::move(referenceStorage);
-    else
-        bank.reference = ref;
-    if (makesLuts && options.ptmPredictor) {
-        bank.blend.predictor = LutBank::Blend::Predictor::Ptm;
-        bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
-        bank.blend.mask = mask;
-    } else if (makesLuts) {
-        bank.blend.references = std::move(blendReferences);
-        for (std::size_t k : blend.references) bank.blend.lights.push_back({dataset.images[k].name, dataset.images[k].light});
-        bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
-        if (albedo) bank.blend.albedo = albedo->finish();
-        bank.blend.mask = mask;
-        for (const Image& r : bank.blend.references) {
-            const std::vector<LevelCounts> levels = countLevels(r, mask, bank.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey);
-            for (const LevelCounts& l : levels)
-                if (l.presentCodes() < 2) return Error{dataset.source + ": a reference image is constant over the sample"};
-        }
-    }
-    if (Status s = setNodes(bank, luts, options.domain, dataset.source); !s) return Error{s.error()};
-    if (ptm) {
-        Result<Ptm> fitted = ptm->finish(dataset.source);
-        if (!fitted) return Error{fitted.error()};
-        bank.ptm = std::move(*fitted);
-    }
-    return bank;
-}
-
 float inputCode(const Image& image, ColourMode colour) {
     const int codes = colour == ColourMode::Rgb ? image.maxCode() : image.channels * image.maxCode();
     return 1.f / static_cast<float>(codes);
@@ -706,6 +426,5 @@ void setGrey(float* rgb, float grey, float target) {
         for (int c = 0; c < 3; ++c) rgb[c] = target + (rgb[c] - target) * k;
     }
 }
-
 
 }  // namespace btflut

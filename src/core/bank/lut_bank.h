@@ -2,7 +2,7 @@
 // A LUT bank: everything a renderer needs to give one reference image the histogram of the
 // material under any light (and view) direction.
 //
-//   Result<LutBank> bank = bakeBank(dataset, BakeOptions{});
+//   Result<LutBank> bank = bakeBank(dataset, BakeOptions{});    // bake.h
 //   BankLookup lut = bank->lookup(light, view);    // blended LUT + how it was obtained
 //   Image relit = relight(*bank, light, view);     // the CPU reference of the shader
 //
@@ -24,7 +24,6 @@
 //     light/view pairs; synth's curet-c2), where a layer holds one light or a few.
 
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,6 +63,9 @@ Result<BankDomain> parseDomain(const std::string& name);
 /// surfaces look the same mirrored), and the view's equal-area radius as z. A frontal view
 /// keeps the sample frame.
 Point3 isotropicPoint(Direction light, Direction view);
+
+/// Directions closer than this (radians) are one node: repeated measurements are merged.
+constexpr double kSameDirection = 1e-6;
 
 struct LightNode {
     std::string name;  ///< image it came from (merged duplicates: the first)
@@ -208,34 +210,6 @@ struct DirectionalLut {
 /// disk, isotropic otherwise. Refuses (naming `source`) a bank that could not follow the light.
 Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,
                 const std::string& source);
-
-struct BakeOptions {
-    std::string referenceName;  ///< empty: the image nearest to frontal light and view
-    int gridSize = 17;
-    int entries = 0;  ///< 0: 256 for an 8-bit reference, 1024 for a 16-bit one
-    ColourMode colour = ColourMode::Grey;
-    int threads = 0;  ///< 0: all cores
-    bool ptm = false;  ///< also fit a PTM (ptm.h) to the images of the reference's view
-    std::optional<BankDomain> domain;  ///< empty: chosen from the directions (setNodes)
-    int references = 1;       ///< K references blended per light (a fixed camera; relighter.h)
-    bool ptmPredictor = false;  ///< instead of references: the PTM relit, then matched (implies ptm)
-    int regions = 1;          ///< regions segmented from the images' responses over the lights
-    std::string labelsPath;   ///< instead: a label image (each grey value one region)
-    int quantiles = 1024;     ///< samples of the targets' quantile functions (banks that make LUTs)
-    /// Called after each image with (done, total); may be empty.
-    std::function<void(std::size_t, std::size_t)> progress;
-};
-
-/// Supplies image `index` of a dataset: decodes it into `storage` and returns &storage, or
-/// returns an image it already holds (benchmarks time the baking without the decoding).
-using ImageProvider = std::function<Result<const Image*>(std::size_t index, Image& storage)>;
-
-/// Bakes a bank from a dataset: decodes every image once, streaming, so memory holds only
-/// the reference and one image per thread. Errors name the file and the problem (corrupt
-/// image, sizes differ, mask of another size or empty, constant reference, ...).
-/// Without a provider, images are decoded from the dataset's files.
-Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
-                         const ImageProvider& provider = {});
 
 /// The reference image with the LUT for (light, view) applied to every pixel (see
 /// applyLuts), dithered unless `dither` is false; for banks that make their LUTs at run time,

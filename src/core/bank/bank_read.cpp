@@ -1,64 +1,18 @@
+// Reading .btflut files (bank_file.h): every field checked before it is used.
 #include "core/bank/bank_file.h"
 
-#include <zlib.h>
-
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 
+#include "core/bank/bank_format.h"
 #include "core/check.h"
 
 namespace btflut {
 
-static_assert(std::endian::native == std::endian::little,
-              "the .btflut reader/writer copies little-endian words directly");
+using namespace bank_format;
 
 namespace {
-
-constexpr std::uint8_t kSignature[8] = {0x89, 'B', 'T', 'F', 'L', 'U', 'T', 0x0A};
-constexpr std::uint32_t kMaxEntries = 65536;
-constexpr std::uint32_t kMaxGrid = 257;
-constexpr std::uint64_t kMaxChunk = 0xFFFFFFFFu;  // a chunk's length is a u32
-
-std::uint32_t tagOf(const char (&t)[5]) {
-    return static_cast<std::uint32_t>(t[0]) | static_cast<std::uint32_t>(t[1]) << 8 |
-           static_cast<std::uint32_t>(t[2]) << 16 | static_cast<std::uint32_t>(t[3]) << 24;
-}
-const std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
-                    kEnd = tagOf("END "), kReferences = tagOf("REFS"), kMask = tagOf("MASK"), kLabels = tagOf("LABL"),
-                    kAlbedo = tagOf("ALBD"), kFill = tagOf("FILL");
-
-std::string tagName(std::uint32_t tag) {
-    std::string s;
-    for (int i = 0; i < 4; ++i) {
-        char c = static_cast<char>((tag >> (8 * i)) & 0xFF);
-        s += (c >= 32 && c < 127) ? c : '?';
-    }
-    return s;
-}
-
-class Writer {
-public:
-    template <typename T>
-    void put(T v) {
-        auto p = reinterpret_cast<const std::uint8_t*>(&v);
-        m_bytes.insert(m_bytes.end(), p, p + sizeof(T));
-    }
-    void putBytes(const void* data, std::size_t n) {
-        if (n == 0) return;
-        auto p = static_cast<const std::uint8_t*>(data);
-        m_bytes.insert(m_bytes.end(), p, p + n);
-    }
-    void putString(const std::string& s) {
-        put(static_cast<std::uint32_t>(s.size()));
-        putBytes(s.data(), s.size());
-    }
-    Bytes& bytes() { return m_bytes; }
-
-private:
-    Bytes m_bytes;
-};
 
 // Bounds-checked reads over one chunk payload; the first failure sticks.
 class Reader {
@@ -95,26 +49,6 @@ private:
     std::size_t m_pos = 0;
     bool m_ok = true;
 };
-
-// CRC-32 of a chunk's tag and payload. (zlib's crc32 treats a null buffer as "return the
-// initial value", so an empty payload must not be passed through.)
-std::uint32_t chunkCrc(std::uint32_t tag, const std::uint8_t* payload, std::size_t length) {
-    uLong crc = crc32(0L, reinterpret_cast<const Bytef*>(&tag), 4);
-    if (length > 0) crc = crc32_z(crc, payload, length);
-    return static_cast<std::uint32_t>(crc);
-}
-
-void putChunk(Writer& file, std::uint32_t tag, const Bytes& payload) {
-    file.put(tag);
-    file.put(static_cast<std::uint32_t>(payload.size()));
-    file.putBytes(payload.data(), payload.size());
-    file.put(chunkCrc(tag, payload.data(), payload.size()));
-}
-
-void putDirection(Writer& w, Direction d) {
-    w.put(d.thetaDegrees());
-    w.put(d.phiDegrees());
-}
 
 Result<Direction> getDirection(Reader& in, const std::string& name, const std::string& what) {
     const double theta = in.get<double>(), phi = in.get<double>();
@@ -227,25 +161,6 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
     return head;
 }
 
-// PTMC payload: width, height (u32), scale[6], bias[6] (f32), then three PNGs, each
-// preceded by its byte length (u32): coefficients 0-2, coefficients 3-5, albedo (RGB8).
-Bytes encodePtm(const Ptm& ptm) {
-    Writer w;
-    w.put(static_cast<std::uint32_t>(ptm.width));
-    w.put(static_cast<std::uint32_t>(ptm.height));
-    for (float v : ptm.scale) w.put(v);
-    for (float v : ptm.bias) w.put(v);
-    for (int p = 0; p < 3; ++p) {
-        const std::vector<std::uint8_t> bytes = ptm.plane(p);
-        Image image(ptm.width, ptm.height, 3);
-        std::transform(bytes.begin(), bytes.end(), image.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
-        const Bytes png = encodePng(image, 8);
-        w.put(static_cast<std::uint32_t>(png.size()));
-        w.putBytes(png.data(), png.size());
-    }
-    return std::move(w.bytes());
-}
-
 // The PTM of a bank whose reference image is width x height (from HEAD, already checked
 // against the pixel limit): its own size must match before anything is allocated.
 Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t width, std::uint32_t height) {
@@ -287,105 +202,6 @@ Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t
 }
 
 }  // namespace
-
-std::uint32_t bankFormatVersion(const LutBank& bank) {
-    // The oldest version that holds everything: readers of version 1 keep reading the banks
-    // they always could.
-    if (!bank.modelFill.empty()) return 4;
-    if (bank.makesLuts()) return 3;
-    return bank.domain == BankDomain::Layers ? 1u : 2u;
-}
-
-Status checkBankSize(const LutBank& bank) {
-    const std::uint64_t length = bank.nodeLength(), cells = static_cast<std::uint64_t>(bank.gridSize) * bank.gridSize;
-    for (const ViewLayer& layer : bank.layers) {
-        std::uint64_t bytes = 20 + layer.nodes.size() * (20 + length * 4) + cells * (1 + length * 2);
-        for (const LightNode& node : layer.nodes) bytes += node.name.size();
-        if (bytes > kMaxChunk)
-            return Error{"a view layer of " + std::to_string(layer.nodes.size()) + " lights with a " +
-                         std::to_string(bank.gridSize) + "x" + std::to_string(bank.gridSize) + " grid of " +
-                         std::to_string(bank.entries) + "-entry LUTs takes " + std::to_string(bytes) +
-                         " bytes, over the .btflut format's 4 GiB chunk limit (use a smaller --grid or --entries)"};
-    }
-    std::size_t nodes = 0;
-    for (const ViewLayer& layer : bank.layers) nodes += layer.nodes.size();
-    if (nodes > kMaxBankNodes)
-        return Error{"the bank would hold " + std::to_string(nodes) + " measured directions, over the format's limit of " +
-                     std::to_string(kMaxBankNodes)};
-    return success();
-}
-
-Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
-    BTFLUT_CHECK(checkBankSize(bank).ok());
-    const std::uint32_t version = bankFormatVersion(bank);
-    Writer file;
-    file.putBytes(kSignature, sizeof kSignature);
-    file.put(version);
-
-    const bool embed = options.embedReference && !bank.reference.samples.empty();
-    Writer head;
-    head.put(static_cast<std::uint32_t>(bank.entries));
-    head.put(static_cast<std::uint32_t>(bank.colour));
-    head.put(static_cast<std::uint32_t>(bank.gridSize));
-    head.put(static_cast<std::uint32_t>(bank.layers.size()));
-    head.put(static_cast<std::uint32_t>(embed ? 1 : 0));
-    head.put(static_cast<std::uint32_t>(bank.reference.width));
-    head.put(static_cast<std::uint32_t>(bank.reference.height));
-    head.put(static_cast<std::uint32_t>(bank.reference.channels));
-    head.put(static_cast<std::uint32_t>(bank.reference.bitDepth));
-    putDirection(head, bank.referenceLight);
-    putDirection(head, bank.referenceView);
-    head.putString(bank.referenceName);
-    if (version >= 2) head.put(static_cast<std::uint32_t>(bank.domain));
-    if (version >= 3) {
-        // All zero for a bank of LUTs (a version 4 bank need not make its LUTs at run time).
-        head.put(static_cast<std::uint32_t>(bank.blend.references.size()));
-        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.regions : 0));
-        head.put(static_cast<std::uint32_t>(bank.blend.quantiles));
-    }
-    putChunk(file, kHead, head.bytes());
-
-    for (const ViewLayer& layer : bank.layers) {
-        BTFLUT_CHECK(layer.lutsLoaded && !layer.gridLuts.empty());  // read whole (BankReadOptions defaults)
-        Writer w;
-        putDirection(w, layer.view);
-        w.put(static_cast<std::uint32_t>(layer.nodes.size()));
-        for (const LightNode& node : layer.nodes) {
-            putDirection(w, node.light);
-            w.putString(node.name);
-        }
-        w.putBytes(layer.nodeLuts.data(), layer.nodeLuts.size() * sizeof(float));
-        for (Provenance p : layer.gridProvenance) w.put(static_cast<std::uint8_t>(p));
-        w.putBytes(layer.gridLuts.data(), layer.gridLuts.size() * sizeof(std::uint16_t));
-        putChunk(file, kLayer, w.bytes());
-    }
-    if (!bank.modelFill.empty()) {  // version 4: which nodes the model filled, and the model
-        Writer w;
-        w.putString(bank.modelFill);
-        for (const ViewLayer& layer : bank.layers)
-            for (const LightNode& node : layer.nodes) w.put(static_cast<std::uint8_t>(node.modelled ? 1 : 0));
-        putChunk(file, kFill, w.bytes());
-    }
-    if (embed) putChunk(file, kReference, encodePng(bank.reference, bank.reference.bitDepth));
-    if (bank.makesLuts()) {
-        const LutBank::Blend& blend = bank.blend;
-        Writer refs;
-        for (std::size_t k = 0; k < blend.references.size(); ++k) {
-            putDirection(refs, blend.lights[k].light);
-            refs.putString(blend.lights[k].name);
-            const Bytes png = encodePng(blend.references[k], blend.references[k].bitDepth);
-            refs.put(static_cast<std::uint32_t>(png.size()));
-            refs.putBytes(png.data(), png.size());
-        }
-        if (!blend.references.empty()) putChunk(file, kReferences, refs.bytes());
-        putChunk(file, kMask, encodePng(byteImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
-        if (!blend.labels.empty()) putChunk(file, kLabels, encodePng(byteImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
-        if (!blend.albedo.samples.empty()) putChunk(file, kAlbedo, encodePng(blend.albedo, 8));
-    }
-    if (!bank.ptm.empty()) putChunk(file, kPtm, encodePtm(bank.ptm));
-    putChunk(file, kEnd, {});
-    return std::move(file.bytes());
-}
 
 namespace {
 
@@ -617,11 +433,6 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
     if (!bank.followsLight()) return fail("the bank's directions cannot follow the light (one light per view, and no "
                                           "interpolation over the view)");
     return bank;
-}
-
-Status saveBank(const LutBank& bank, const std::string& path, const BankWriteOptions& options) {
-    if (Status s = checkBankSize(bank); !s) return Error{path + ": " + s.error()};
-    return writeFileAtomically(path, encodeBank(bank, options));
 }
 
 Result<LutBank> loadBank(const std::string& path, const BankReadOptions& options) {

@@ -1,0 +1,46 @@
+#pragma once
+// Baking a LUT bank from a measured image set (the construction; lut_bank.h is the bank and
+// its lookups): every image decoded once, streaming, its histogram counted over the sample
+// and matched from the reference's (or kept as a quantile function for banks that make their
+// LUTs at run time), then the nodes, triangulations and grids.
+//
+//   Result<LutBank> bank = bakeBank(dataset, BakeOptions{.references = 4});
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "core/bank/lut_bank.h"
+#include "core/data/dataset.h"
+
+namespace btflut {
+
+struct BakeOptions {
+    std::string referenceName;  ///< empty: the image nearest to frontal light and view
+    int gridSize = 17;
+    int entries = 0;  ///< 0: 256 for an 8-bit reference, 1024 for a 16-bit one
+    ColourMode colour = ColourMode::Grey;
+    int threads = 0;  ///< 0: all cores
+    bool ptm = false;  ///< also fit a PTM (ptm.h) to the images of the reference's view
+    std::optional<BankDomain> domain;  ///< empty: chosen from the directions (setNodes)
+    int references = 1;       ///< K references blended per light (a fixed camera; relighter.h)
+    bool ptmPredictor = false;  ///< instead of references: the PTM relit, then matched (implies ptm)
+    int regions = 1;          ///< regions segmented from the images' responses over the lights
+    std::string labelsPath;   ///< instead: a label image (each grey value one region)
+    int quantiles = 1024;     ///< samples of the targets' quantile functions (banks that make LUTs)
+    /// Called after each image with (done, total); may be empty.
+    std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// Supplies image `index` of a dataset: decodes it into `storage` and returns &storage, or
+/// returns an image it already holds (benchmarks time the baking without the decoding).
+using ImageProvider = std::function<Result<const Image*>(std::size_t index, Image& storage)>;
+
+/// Bakes a bank from a dataset: decodes every image once, streaming, so memory holds only
+/// the reference and one image per thread. Errors name the file and the problem (corrupt
+/// image, sizes differ, mask of another size or empty, constant reference, ...).
+/// Without a provider, images are decoded from the dataset's files.
+Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
+                         const ImageProvider& provider = {});
+
+}  // namespace btflut
