@@ -1,0 +1,243 @@
+// What each quad of a scene needs per frame (SceneRenderer, scene_renderer.h): its light and
+// view directions in its own frame, the LUTs or weights its mode applies, what is loaded the
+// first time a mode needs it, and the texture-space relit textures of mode lut.
+#include <algorithm>
+
+#include "core/bank/bank_file.h"
+#include "core/check.h"
+#include "gl/scene_renderer.h"
+#include "gl/textures.h"
+
+namespace btflut {
+
+namespace {
+
+bool sameVector(const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+}  // namespace
+
+// Every view direction the renderer may look a material up at: the view grid of each
+// visible quad that uses it (the centre is one of its points).
+std::vector<Direction> SceneRenderer::viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const {
+    std::vector<Direction> views;
+    for (std::size_t i : visible)
+        if (m_scene.quads[i].material == material) {
+            const std::vector<Direction> grid = viewGridDirections(m_scene.quads[i]);
+            views.insert(views.end(), grid.begin(), grid.end());
+        }
+    return views;
+}
+
+// The view directions at kViewGrid x kViewGrid points spread over the quad, row by row from
+// its (-1, -1) corner: the nodes of the LUT volume of a bank with view layers.
+std::vector<Direction> SceneRenderer::viewGridDirections(const SceneQuad& quad) const {
+    std::vector<Direction> views;
+    for (int j = 0; j < kViewGrid; ++j)
+        for (int i = 0; i < kViewGrid; ++i)
+            views.push_back(fromVector(viewAt(quad, -1 + 2.0 * i / (kViewGrid - 1), -1 + 2.0 * j / (kViewGrid - 1))));
+    return views;
+}
+
+// The direction from the quad point at corner coordinates (x, y) in [-1, 1]^2 to the eye,
+// in the quad's frame; behind the quad it is clamped to just above the horizon.
+Vec3 SceneRenderer::viewAt(const SceneQuad& quad, double x, double y) const {
+    const Vec3 b = bitangentOf(quad);
+    const double u = x * quad.width / 2, v = y * quad.height / 2;
+    const Vec3 point{quad.center.x + u * quad.tangent.x + v * b.x, quad.center.y + u * quad.tangent.y + v * b.y,
+                     quad.center.z + u * quad.tangent.z + v * b.z};
+    // An orthographic camera looks the same way from everywhere: towards it from the target.
+    const Vec3 from = m_scene.orthographicHeight > 0 ? m_scene.target : point;
+    Vec3 view = toQuadFrame(quad, {m_scene.eye.x - from.x, m_scene.eye.y - from.y, m_scene.eye.z - from.z});
+    view.z = std::max(view.z, 1e-6 * std::hypot(view.x, view.y, view.z));
+    return view;
+}
+
+RelightFrame SceneRenderer::centreFrame(std::size_t quad, const Vec3& light) const {
+    const SceneQuad& q = m_scene.quads[quad];
+    const Material& material = m_materials.at(q.material);
+    const Vec3 local = toQuadFrame(q, light);
+    const Direction l = fromVector({local.x, local.y, std::max(local.z, 1e-9)}), v = fromVector(viewAt(q, 0, 0));
+    return material.relighter->frame(l, v, m_interpolate);
+}
+
+// Per quad and frame, only what the mode needs and only when the light, the camera (for
+// banks with view layers) or the mode changed: the LUT volume (lut, banks with view layers),
+// the brightness (brdf), the PTM weights (ptm), the nearest image's name (nearest). Mode lut
+// on a bank of one view layer needs only the light in the quad's frame (relight()).
+void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
+    const SceneQuad& quad = m_scene.quads[q.index];
+    const Material& material = m_materials.at(quad.material);
+    const LutBank& bank = material.bank;
+    const bool viewGrid = bank.layers.size() > 1;
+    if (mode == q.modeUploaded && sameVector(light, q.lightUploaded) &&
+        (!viewGrid || sameVector(m_scene.eye, q.eyeUploaded)))
+        return;
+    q.modeUploaded = mode;
+    q.lightUploaded = light;
+    q.eyeUploaded = m_scene.eye;
+    q.light = toQuadFrame(quad, light);
+    q.unlit = q.light.z <= 1e-9;
+    if (q.unlit || mode == RenderMode::Flat || relitInTextureSpace(q, mode)) return;
+    const Direction lightDirection = fromVector(q.light);
+    const Direction centreView = fromVector(viewAt(quad, 0, 0));
+    if (mode == RenderMode::Ptm) {
+        // As RTI viewers draw: the light's terms folded with each coefficient's scale and bias
+        // into six weights and an offset, once per quad, so a fragment does two dot products.
+        if (!material.ptmLoaded) return;
+        const PtmWeights w = ptmWeights(material.ptmScale, material.ptmBias, lightDirection);
+        std::copy(w.weights.begin(), w.weights.end(), q.ptmWeights.begin());
+        q.ptmWeights[6] = w.offset;
+        return;
+    }
+    if (mode == RenderMode::Nearest) {
+        const LutBank::NodeRef nearest = bank.nearestNode(lightDirection, centreView);
+        q.nearestImage = bank.layers[nearest.layer].nodes[nearest.node].name;
+        return;
+    }
+    const std::size_t entries = static_cast<std::size_t>(bank.entries);
+    if (mode == RenderMode::Lut) {
+        // Volumes per channel: [mip level][grid row][grid column][entry], each grid point's
+        // LUT and the per-level LUTs made from it.
+        if (!material.mipLuts || q.luts.empty()) return;  // prepare() makes them, then updates again
+        constexpr int k = kViewGrid;
+        const MipLuts& mips = *material.mipLuts;
+        const auto levels = static_cast<std::size_t>(mips.levels());
+        const std::vector<Direction> views = viewGridDirections(quad);
+        std::vector<std::vector<float>> volume(q.luts.size(), std::vector<float>(levels * views.size() * entries));
+        std::vector<float> perLevel(levels * entries);
+        for (std::size_t v = 0; v < views.size(); ++v) {
+            const BankLookup lut = bank.lookup(lightDirection, views[v], m_interpolate);
+            for (std::size_t c = 0; c < q.luts.size(); ++c) {
+                mips.apply(static_cast<int>(c), &lut.values[c * entries], perLevel.data());
+                for (std::size_t m = 0; m < levels; ++m)
+                    std::copy_n(&perLevel[m * entries], entries, &volume[c][(m * views.size() + v) * entries]);
+            }
+        }
+        for (std::size_t c = 0; c < q.luts.size(); ++c) {
+            gl.BindTexture(GL_TEXTURE_3D, q.luts[c].id());
+            gl.TexSubImage3D(GL_TEXTURE_3D, 0, 0, 0, 0, bank.entries, k, k * static_cast<int>(levels), GL_RED, GL_FLOAT,
+                             volume[c].data());
+        }
+        return;
+    }
+    // brdf: the target's mean grey over the reference's own mean
+    q.brightness = brdfScale(bank, material.referenceGrey, bank.lookup(lightDirection, centreView, m_interpolate));
+}
+
+bool SceneRenderer::relitInTextureSpace(const QuadState& q, RenderMode mode) const {
+    return mode == RenderMode::Lut && m_materials.at(m_scene.quads[q.index].material).bank.layers.size() == 1;
+}
+
+// Loads what a mode needs beyond the reference, the first time it is needed.
+Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) {
+    const SceneQuad& quad = m_scene.quads[q.index];
+    Material& material = m_materials.at(quad.material);
+    const SceneMaterial& paths = m_scene.materials.at(quad.material);
+    TextureBytes& bytes = m_stats.textureBytes;
+    const bool blends = material.bank.makesLuts() && mode == RenderMode::Lut;
+    if (blends && !material.blend) material.blend = BlendTextures::upload(material.bank, bytes.blend);
+    if (!blends && mode != RenderMode::Ptm && mode != RenderMode::Nearest && !material.reference.id())
+        material.reference = uploadMipmapped(material.bank.reference, bytes.reference);
+    if (relitInTextureSpace(q, mode) && !material.pass)
+        material.pass.emplace(material.bank, material.reference.id(), material.blend ? &*material.blend : nullptr);
+    if (mode == RenderMode::Lut && !relitInTextureSpace(q, mode) && q.luts.empty()) {
+        if (!material.mipLuts) material.mipLuts.emplace(material.bank.reference, material.bank.colour, material.bank.entries);
+        const int levels = material.mipLuts->levels();
+        for (int c = 0; c < material.mipLuts->channels(); ++c) {
+            q.luts.push_back(uploadLutVolume(nullptr, material.bank.entries, kViewGrid, kViewGrid * levels));
+            bytes.luts += static_cast<std::size_t>(material.bank.entries) * kViewGrid * kViewGrid * static_cast<std::size_t>(levels) * 4;
+        }
+        q.lightUploaded = {0, 0, -2};
+        update(q, light, mode);
+    }
+    if (mode == RenderMode::Ptm && !material.ptmLoaded) {
+        Result<Ptm> ptm = loadBankPtm(paths.bank);
+        if (!ptm) return Error{ptm.error()};
+        for (int p = 0; p < 3; ++p)
+            material.ptm[static_cast<std::size_t>(p)] = uploadMipmapped(ptm->width, ptm->height, GL_RGB8, GL_RGB,
+                                                                        GL_UNSIGNED_BYTE, ptm->plane(p).data(), bytes.ptm);
+        material.ptmScale = ptm->scale;
+        material.ptmBias = ptm->bias;
+        material.ptmLoaded = true;
+        m_stats.loadedPtms.push_back(quad.material);
+        for (QuadState& other : m_quads)  // their PTM weights are due
+            if (m_scene.quads[other.index].material == quad.material) other.lightUploaded = {0, 0, -2};
+        update(q, light, mode);
+    }
+    if (mode == RenderMode::Nearest && !q.unlit && !material.imageTextures.count(q.nearestImage)) {
+        if (!material.images) {
+            if (paths.images.empty())
+                return Error{m_scene.file + ": material '" + quad.material +
+                             "' names no \"images\" (mode nearest draws the measured images)"};
+            Result<Dataset> dataset = openDataset(paths.images);
+            if (!dataset) return Error{dataset.error()};
+            material.images = std::move(*dataset);
+        }
+        const auto& all = material.images->images;
+        auto found = std::find_if(all.begin(), all.end(), [&](const DatasetImage& im) { return im.name == q.nearestImage; });
+        if (found == all.end())
+            return Error{paths.images + ": no image named '" + q.nearestImage + "' (the bank's node); is it the dataset "
+                         "the bank was baked from?"};
+        Result<Image> image = loadImage(found->path);
+        if (!image) return Error{image.error()};
+        material.imageTextures.emplace(q.nearestImage, uploadMipmapped(*image, bytes.images));
+        ++m_stats.imagesLoaded;
+    }
+    return success();
+}
+
+// The relit textures of this frame: one per material and distinct light direction among the
+// lit quads drawn in mode lut. A texture already relit for a wanted direction is used as it
+// is; a new direction takes the texture unused for longest (relit again, mipmaps remade), or
+// a new one. Textures are kept when no quad wants them (a viewer pane in another mode, a
+// light that comes back), so a material holds as many as it ever needed at once.
+Status SceneRenderer::relight(const std::vector<RenderMode>& modes) {
+    ++m_frame;
+    m_stats.relitTextures = 0;
+    m_stats.textureBytes.relit = 0;
+    for (auto& [name, material] : m_materials) {
+        std::vector<Relit>& relit = material.relit;
+        auto find = [&](const Vec3& light) {
+            return std::find_if(relit.begin(), relit.end(), [&](const Relit& r) { return sameVector(r.light, light); });
+        };
+        std::vector<QuadState*> due;  // quads whose direction has no relit texture yet
+        for (std::size_t i = 0; i < m_quads.size(); ++i) {
+            QuadState& q = m_quads[i];
+            if (m_scene.quads[q.index].material != name || q.unlit || !relitInTextureSpace(q, modes[i])) continue;
+            if (auto found = find(q.light); found != relit.end()) {
+                found->lastUsed = m_frame;
+                q.relit = static_cast<std::size_t>(found - relit.begin());
+            } else {
+                due.push_back(&q);
+            }
+        }
+        for (QuadState* q : due) {
+            auto found = find(q->light);  // a quad before it may have made it
+            if (found == relit.end()) {
+                found = std::min_element(relit.begin(), relit.end(),
+                                         [](const Relit& a, const Relit& b) { return a.lastUsed < b.lastUsed; });
+                if (found == relit.end() || found->lastUsed == m_frame) {  // every texture is in use: one more
+                    relit.push_back({{}, allocateRelitTexture(material.bank.reference), material.pass->makeLuts(), 0});
+                    found = relit.end() - 1;
+                }
+                found->light = q->light;
+                const Direction light = fromVector(q->light), view = material.bank.layers.front().view;
+                if (Status s = material.pass->run(material.relighter->frame(light, view, m_interpolate), found->luts,
+                                                  found->texture.id(), m_dither);
+                    !s)
+                    return s;
+                gl.BindTexture(GL_TEXTURE_2D, found->texture.id());
+                gl.GenerateMipmap(GL_TEXTURE_2D);  // from the relit texels: far quads average LUT values
+                ++m_stats.relightPasses;
+            }
+            found->lastUsed = m_frame;
+            q->relit = static_cast<std::size_t>(found - relit.begin());
+        }
+        m_stats.relitTextures += relit.size();
+        if (!relit.empty())
+            m_stats.textureBytes.relit += relit.size() * (relitTextureBytes(material.bank.reference) + material.pass->lutBytes());
+    }
+    return success();
+}
+
+}  // namespace btflut
