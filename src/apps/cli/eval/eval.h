@@ -1,0 +1,99 @@
+#pragma once
+// `btflut eval` (cmd_eval.cpp) in its parts: the variants the options ask for
+// (variants.cpp), baking and predicting the held-out images (predict.cpp), the GL figures
+// (measure_gl.cpp) and the report (report.cpp). Internal to the command.
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "core/bank/bake.h"
+#include "core/bank/lut_bank.h"
+#include "core/data/dataset.h"
+#include "core/data/scene.h"
+#include "core/eval/holdout.h"
+#include "core/eval/metrics.h"
+#include "core/histogram/plot.h"
+
+namespace btflut::cli::eval {
+
+using Clock = std::chrono::steady_clock;
+inline double seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
+
+struct EvalOptions {
+    std::string dataset;
+    std::string output;
+    std::string holdout = "every:4";
+    std::string modes = "lut,brdf,ptm,nearest";
+    std::string references = "1";
+    std::string regions = "1";
+    std::string colours = "grey";
+    std::string predictors = "references";
+    std::string fills = "clamp";
+    std::string mask;
+    std::string backend = "auto";
+    bool blendedLuts = false;
+    bool json = false;
+    bool noGl = false;
+    int frames = 6;
+    int grid = 17;
+    int sheetLights = 4;
+};
+
+// One column of the report: a mode, and for lut the bank's setting.
+struct Variant {
+    std::string name;
+    RenderMode mode = RenderMode::Lut;
+    int references = 1, regions = 1;  // references 0: the PTM predictor
+    ColourMode colour = ColourMode::Grey;
+    bool filled = false;       // bake --fill model (fitted to the training images)
+    bool blendedLuts = false;  // the alternative: per-reference LUTs blended
+    bool base() const { return references == 1 && regions == 1 && colour == ColourMode::Grey && !filled; }
+    using Setting = std::tuple<int, int, ColourMode, bool>;
+    Setting setting() const { return {references, regions, colour, filled}; }
+
+    std::vector<ImageErrors> errors;
+    std::vector<std::string> images;
+    std::vector<double> bakeSeconds, relightSeconds;
+    double bytesPerTexel = 0;
+    double gpuBytesPerTexel = std::nan(""), frameMs = std::nan(""), gpuMaxDiff = std::nan("");
+};
+
+/// The variants the options ask for, lut settings first.
+Result<std::vector<Variant>> variantsOf(const EvalOptions& o);
+/// What a lut variant's bank is baked with (`ptm`: also fit the PTM baseline).
+BakeOptions bakeOptionsOf(const Variant& v, const EvalOptions& o, bool ptm);
+/// Data bytes per texel of what a mode draws from (no padding, no mipmaps).
+double bytesPerTexel(const Variant& v, const LutBank& bank);
+
+/// Bakes each fold's banks from its training images and predicts its held-out images in
+/// every variant (errors, bake and relight times, the contact sheet's cells). Fold 0's banks
+/// are saved into `scratch` for the GL figures (bankFiles: variant name to path).
+Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds, const Image& first,
+                    const Mask& mask, bool ptm, const EvalOptions& o, const std::filesystem::path& scratch,
+                    std::map<std::string, std::string>& bankFiles, std::vector<std::vector<SheetCell>>& sheet);
+
+/// GL figures per variant: frame times (interleaved rounds, the light moving every frame),
+/// texture bytes per texel, and for lut the largest difference of the native renderer from
+/// the CPU relighting. `context` gets the GL context's description.
+Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std::string>& bankFiles, const Dataset& dataset,
+                 const EvalOptions& o, std::string& context);
+
+struct Report {
+    std::string text;
+    nlohmann::json json;
+};
+
+/// The table and its JSON.
+Report report(const std::vector<Variant>& variants, const Dataset& dataset, const EvalOptions& o,
+              const std::vector<Fold>& folds, std::size_t maskPixels, const std::string& context);
+/// eval.txt, eval.json, rows.csv and contact.png into the folder `o.output`, all or none.
+Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& sheet, const EvalOptions& o);
+
+}  // namespace btflut::cli::eval

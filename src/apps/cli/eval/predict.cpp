@@ -1,0 +1,108 @@
+// btflut eval: baking and predicting. Each fold's banks are baked from its training images,
+// and every held-out image is predicted through the code users run (the Relighter behind
+// `relight`, the PTM, the nearest training image, the 2D texture mapping).
+#include <chrono>
+#include <map>
+#include <memory>
+
+#include "cli/eval/eval.h"
+#include "core/bank/bake.h"
+#include "core/bank/bank_file.h"
+#include "core/inverse/model_fill.h"
+#include "core/predict/relighter.h"
+
+namespace btflut::cli::eval {
+
+Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds, const Image& first,
+                    const Mask& mask, bool ptm, const EvalOptions& o, const std::filesystem::path& scratch,
+                    std::map<std::string, std::string>& bankFiles, std::vector<std::vector<SheetCell>>& sheet) {
+    const std::size_t sheetEvery = std::max<std::size_t>(1, dataset.images.size() / std::max(o.sheetLights, 1));
+    for (std::size_t f = 0; f < folds.size(); ++f) {
+        const Fold& fold = folds[f];
+        const Dataset train = subset(dataset, fold.train);
+        // Banks per setting; the base (one grey reference) also serves brdf and ptm.
+        std::map<Variant::Setting, std::unique_ptr<LutBank>> banks;
+        std::map<Variant::Setting, std::unique_ptr<Relighter>> relighters;
+        auto bankFor = [&](Variant& v) -> Result<LutBank*> {
+            const auto key = v.mode == RenderMode::Lut ? v.setting() : Variant::Setting{1, 1, ColourMode::Grey, false};
+            if (!banks.count(key)) {
+                Variant setting = v;
+                std::tie(setting.references, setting.regions, setting.colour, setting.filled) = key;
+                const auto start = Clock::now();
+                Result<LutBank> bank = bakeBank(train, bakeOptionsOf(setting, o, ptm && setting.base()));
+                if (!bank) return Error{bank.error()};
+                if (setting.filled)  // fitted to the training images only
+                    if (Result<ModelFillReport> fill = fillFromDataset(*bank, train, nullptr); !fill) return Error{fill.error()};
+                const double took = seconds(start);
+                banks[key] = std::make_unique<LutBank>(std::move(*bank));
+                relighters[key] = std::make_unique<Relighter>(*banks[key]);
+                for (Variant& other : variants)
+                    if (other.mode == RenderMode::Lut && other.setting() == key)
+                        other.bakeSeconds.push_back(took);
+            }
+            LutBank* bank = banks[key].get();
+            if (f == 0 && !bankFiles.count(v.name)) {
+                const std::string path = (scratch / (std::to_string(bankFiles.size()) + ".btflut")).string();
+                if (Status s = saveBank(*bank, path); !s) return Error{s.error()};
+                bankFiles[v.name] = path;
+                v.bytesPerTexel = bytesPerTexel(v, *bank);
+            }
+            return bank;
+        };
+        for (Variant& v : variants)
+            if (Result<LutBank*> b = bankFor(v); !b) return Error{b.error()};
+
+        const LevelCounts referenceGrey = [&] {
+            const LutBank& base = *banks.begin()->second;
+            return countGreyLevels(base.reference, fullMask(base.reference.width, base.reference.height));
+        }();
+        std::map<std::size_t, Image> trainImages;  // nearest: decoded once per fold
+        for (std::size_t t : fold.test) {
+            const DatasetImage& info = dataset.images[t];
+            Result<Image> photo = loadImage(info.path);
+            if (!photo) return Error{photo.error()};
+            if (Status s = requireSameSize(*photo, info.path, first.width, first.height, dataset.images.front().path); !s)
+                return Error{s.error()};
+            const bool onSheet = t % sheetEvery == 0 && sheet.size() < static_cast<std::size_t>(o.sheetLights);
+            if (onSheet) sheet.push_back({{info.name + " (photo)", *photo}});
+            for (Variant& v : variants) {
+                Result<LutBank*> found = bankFor(v);
+                if (!found) return Error{found.error()};
+                const LutBank& bank = **found;
+                Image predicted;
+                if (v.mode == RenderMode::Lut) {
+                    const Relighter& relighter = *relighters.at(v.setting());
+                    const auto start = Clock::now();
+                    predicted = v.blendedLuts ? relighter.applyBlendingLuts(info.light, info.view, true)
+                                              : relighter.apply(relighter.frame(info.light, info.view), true);
+                    v.relightSeconds.push_back(seconds(start));
+                } else if (v.mode == RenderMode::Ptm) {
+                    predicted = bank.ptm.render(info.light);
+                } else if (v.mode == RenderMode::Nearest) {
+                    std::size_t nearest = fold.train.front();
+                    for (std::size_t i : fold.train)
+                        if (angleBetween(dataset.images[i].light, info.light) < angleBetween(dataset.images[nearest].light, info.light))
+                            nearest = i;
+                    if (!trainImages.count(nearest)) {
+                        Result<Image> image = loadImage(dataset.images[nearest].path);
+                        if (!image) return Error{image.error()};
+                        trainImages.emplace(nearest, std::move(*image));
+                    }
+                    predicted = trainImages.at(nearest);
+                } else {
+                    predicted = bank.reference;
+                    if (v.mode == RenderMode::Brdf) {
+                        const float scale = brdfScale(bank, referenceGrey, bank.lookup(info.light, info.view));
+                        for (float& s : predicted.samples) s = std::min(1.f, s * scale);
+                    }
+                }
+                v.errors.push_back(compareImages(predicted, *photo, mask));
+                v.images.push_back(info.name);
+                if (onSheet) sheet.back().push_back({v.name, std::move(predicted)});
+            }
+        }
+    }
+    return success();
+}
+
+}  // namespace btflut::cli::eval

@@ -1,0 +1,120 @@
+// btflut eval: the variants (columns of the report) that the options ask for.
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+
+#include "cli/eval/eval.h"
+
+namespace btflut::cli::eval {
+
+namespace {
+
+Result<std::vector<int>> parseList(const std::string& text, const std::string& flag, int low, int high) {
+    std::vector<int> values;
+    std::istringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ',')) {
+        char* end = nullptr;
+        const long v = std::strtol(item.c_str(), &end, 10);
+        if (item.empty() || *end != '\0' || v < low || v > high)
+            return Error{"--" + flag + " '" + text + "': expected a comma-separated list of integers within " +
+                         std::to_string(low) + ".." + std::to_string(high)};
+        values.push_back(static_cast<int>(v));
+    }
+    if (values.empty()) return Error{"--" + flag + " is empty"};
+    return values;
+}
+
+std::vector<std::string> split(const std::string& text) {
+    std::vector<std::string> items;
+    std::istringstream in(text);
+    std::string item;
+    while (std::getline(in, item, ','))
+        if (!item.empty()) items.push_back(item);
+    return items;
+}
+
+}  // namespace
+
+Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
+    Result<std::vector<int>> ks = parseList(o.references, "references", 1, 255), rs = parseList(o.regions, "regions", 1, 255);
+    if (!ks) return Error{ks.error()};
+    if (!rs) return Error{rs.error()};
+    std::vector<Variant> variants;
+    std::vector<std::string> modes = split(o.modes);
+    if (modes.empty()) return Error{"--modes is empty"};
+    for (const std::string& name : modes) {
+        Result<RenderMode> mode = parseRenderMode(name);
+        if (!mode) return Error{"--modes: " + mode.error()};
+        if (*mode != RenderMode::Lut) {
+            variants.push_back({name, *mode});
+            continue;
+        }
+        for (const std::string& predictor : split(o.predictors)) {
+            if (predictor == "references") continue;
+            if (predictor != "ptm") return Error{"--predictor '" + predictor + "' is not references or ptm"};
+            for (int r : *rs) variants.push_back({"lut ptm R" + std::to_string(r) + " grey", RenderMode::Lut, 0, r});
+        }
+        const std::vector<std::string> predictors = split(o.predictors);
+        if (std::find(predictors.begin(), predictors.end(), "references") == predictors.end()) continue;
+        for (const std::string& colourText : split(o.colours)) {
+            if (colourText != "grey" && colourText != "rgb" && colourText != "lrgb")
+                return Error{"--colour '" + colourText + "' is not grey, rgb or lrgb"};
+            const ColourMode colour = colourText == "rgb" ? ColourMode::Rgb : colourText == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
+            for (int k : *ks)
+                for (int r : *rs) {
+                    Variant v{"lut K" + std::to_string(k) + " R" + std::to_string(r) + " " + colourText, RenderMode::Lut, k, r, colour};
+                    variants.push_back(v);
+                    if (o.blendedLuts && k > 1) {
+                        v.name += " (LUTs blended)";
+                        v.blendedLuts = true;
+                        variants.push_back(v);
+                    }
+                }
+        }
+    }
+    // Each lut bank clamped, filled from the model, or both.
+    std::vector<std::string> fills = split(o.fills);
+    if (fills.empty()) return Error{"--fill is empty"};
+    for (const std::string& fill : fills)
+        if (fill != "clamp" && fill != "model") return Error{"--fill '" + fill + "' is not clamp or model"};
+    std::vector<Variant> all;
+    for (const Variant& v : variants)
+        for (const std::string& fill : fills) {
+            if (v.mode != RenderMode::Lut && fill != fills.front()) continue;
+            Variant f = v;
+            f.filled = v.mode == RenderMode::Lut && fill == "model";
+            if (v.mode == RenderMode::Lut && fills.size() > 1) f.name += fill == "model" ? " fill" : " clamp";
+            all.push_back(f);
+        }
+    variants = std::move(all);
+    // Lut variants first, then the baselines in the order asked.
+    std::stable_partition(variants.begin(), variants.end(), [](const Variant& v) { return v.mode == RenderMode::Lut; });
+    return variants;
+}
+
+BakeOptions bakeOptionsOf(const Variant& v, const EvalOptions& o, bool ptm) {
+    BakeOptions b;
+    b.gridSize = o.grid;
+    b.references = std::max(v.references, 1);
+    b.ptmPredictor = v.references == 0;
+    b.regions = v.regions;
+    b.colour = v.colour;
+    b.ptm = ptm;
+    return b;
+}
+
+double bytesPerTexel(const Variant& v, const LutBank& bank) {
+    const double reference = bank.reference.channels * (bank.reference.bitDepth / 8.0);
+    switch (v.mode) {
+        case RenderMode::Lut:
+            if (!bank.makesLuts()) return reference;
+            if (bank.blend.predictor == LutBank::Blend::Predictor::Ptm) return 9 + (bank.blend.regions > 1 ? 1 : 0);
+            return static_cast<double>(bank.blend.references.size()) * bank.blend.references.front().channels +
+                   (bank.colour == ColourMode::Lrgb ? 3 : 0) + (bank.blend.regions > 1 ? 1 : 0);
+        case RenderMode::Ptm: return 9;
+        default: return reference;
+    }
+}
+
+}  // namespace btflut::cli::eval
