@@ -1,4 +1,4 @@
-// The image metrics (core/metrics.h) against a plain reference written from their
+// The image metrics (core/eval/metrics.h) against a plain reference written from their
 // definitions: double precision, a 2D Gaussian window per pixel, histograms of exact codes.
 // The fast pass works in bands of 64 rows with a ring of row sums, so the images here are
 // taller than one band and not a multiple of it.

@@ -1,4 +1,4 @@
-// Per-mip LUTs (core/mip_luts.h): level m's LUT applied to level m's block means gives, over
+// Per-mip LUTs (core/bank/mip_luts.h): level m's LUT applied to level m's block means gives, over
 // the texture, the blocks' mean of LUT values, where the plain LUT of the mean does not.
 #include <doctest/doctest.h>
 

@@ -14,10 +14,11 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 # The program and the default material it renders at build time; the progress on one line,
 # the compiler's output in a log shown when the build fails.
 log="$build/build.log"
+: >"$log"  # exists before the progress line first reads it
 cmake --build "$build" -j "$(nproc)" --target btflut default_material >"$log" 2>&1 &
 pid=$!
 while kill -0 "$pid" 2>/dev/null; do
-  printf "\r  building: %s " "$(grep -o '^\[ *[0-9]*%\]' "$log" | tail -1)"
+  printf "\r  building: %s " "$(grep -so '^\[ *[0-9]*%\]' "$log" | tail -1)"
   sleep 2
 done
 if ! wait "$pid"; then

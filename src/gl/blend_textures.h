@@ -1,6 +1,6 @@
 #pragma once
 // The GPU side of a bank that blends references and matches regions (LutBank::Blend,
-// core/relighter.h): its textures, the shader defines of lut_common.glsl's BLEND path, and
+// core/predict/relighter.h): its textures, the shader defines of lut_common.glsl's BLEND path, and
 // the per-light uniforms and LUT tables. Shared by the native and the scene renderer.
 //
 //   BlendTextures t = BlendTextures::upload(bank, bytes);     // per bank

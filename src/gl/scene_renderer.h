@@ -1,5 +1,5 @@
 #pragma once
-// Draws a Scene (core/scene.h) with OpenGL, doing only the work the view needs: quads outside
+// Draws a Scene (core/data/scene.h) with OpenGL, doing only the work the view needs: quads outside
 // the frustum are culled; only materials that a visible quad uses are loaded and uploaded
 // (once); a material's PTM is read only when a quad is first drawn in mode ptm, and a
 // measured image only when mode nearest first needs it. Needs the context that was current

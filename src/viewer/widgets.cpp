@@ -9,7 +9,7 @@ namespace btflut {
 
 namespace {
 
-// Equal-area disk point of a direction and back (as core/direction.h's toDisk).
+// Equal-area disk point of a direction and back (as core/direction/direction.h's toDisk).
 ImVec2 diskOf(Direction d) {
     const DiskPoint p = toDisk(d);
     return {static_cast<float>(p.x), static_cast<float>(p.y)};
