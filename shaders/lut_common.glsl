@@ -20,17 +20,19 @@ float btflutApplyLutDithered(sampler1D lut, int entries, float v, uvec2 pixel, u
 }
 
 // Banks that blend references (src/core/predict/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
-// BLEND_PTM for the PTM predictor, REGIONS). The blend is exact integer arithmetic in float
-// (8-bit codes times weights in 1/4096, sums below 2^24), so its code is the CPU's; the LUT
+// BLEND_MODEL for a light model, REGIONS). The blend is exact integer arithmetic in float
+// (8-bit codes times integer weights, sums below 2^24), so its code is the CPU's; the LUT
 // of the texel's region is applied to it.
 #if defined(BLEND)
-// grey and rgb: one reference per layer; lrgb: four per RGBA layer; BLEND_PTM: the PTM's
-// coefficients 0-2, 3-5 and its albedo
+// grey and rgb: one reference per layer; lrgb: four per RGBA layer; BLEND_MODEL: the light
+// model's planes three to a layer (BLEND_MODEL_LAYERS), then its albedo (BLEND_MODEL_ALBEDO)
 uniform sampler2DArray blendReferences;
-#if defined(BLEND_PTM)
-uniform vec3 blendPtmWeights[2];  // integers (PtmFixed)
-uniform float blendPtmOffset;
-uniform float blendPtmScale;      // a power of two
+#if defined(BLEND_MODEL)
+// src/core/predict/light_model.h, LightModelFixed: per layer and channel, the integer weights
+// of its three planes; per channel the integer offset; the power of two to value * 4096.
+uniform vec3 blendModelWeights[BLEND_MODEL_LAYERS * BLEND_MODEL_CHANNELS];
+uniform vec3 blendModelOffset;
+uniform float blendModelScale;
 #elif defined(BLEND_PACKED)
 uniform vec4 blendWeights[BLEND_LAYERS]; // per layer, the integer weights of its four references (BLEND_LAYERS: 1 to 4)
 #else
@@ -59,13 +61,30 @@ struct BtflutBlend {
 
 BtflutBlend btflutBlend() {
     BtflutBlend b;
-#if defined(BLEND_PTM)
-    float sum = blendPtmOffset + dot(btflutBytes(btflutBlendTexel(0)).rgb, blendPtmWeights[0]) +
-                dot(btflutBytes(btflutBlendTexel(1)).rgb, blendPtmWeights[1]);
-    float luminance = floor(sum * blendPtmScale);  // times 4096
-    vec3 channels = clamp(btflutBytes(btflutBlendTexel(2)).rgb * luminance, 0.0, 255.0 * 4096.0);
+#if defined(BLEND_MODEL)
+    vec3 value = vec3(0.0);  // each channel's value before the albedo, times 4096
+    for (int c = 0; c < BLEND_MODEL_CHANNELS; ++c) {  // unrolled: constant bounds
+        float sum = blendModelOffset[c];
+        for (int l = 0; l < BLEND_MODEL_LAYERS; ++l)
+            sum += dot(btflutBytes(btflutBlendTexel(l)).rgb, blendModelWeights[l * BLEND_MODEL_CHANNELS + c]);
+        value[c] = floor(sum * blendModelScale);
+    }
+#if BLEND_MODEL_CHANNELS == 1
+    value = vec3(value.x);
+#endif
+#if defined(BLEND_MODEL_ALBEDO)
+    vec3 channels = clamp(btflutBytes(btflutBlendTexel(BLEND_MODEL_LAYERS)).rgb * value, 0.0, 255.0 * 4096.0);
+#else
+    vec3 channels = clamp(255.0 * value, 0.0, 255.0 * 4096.0);
+#endif
     b.colour = channels / (255.0 * 4096.0);
+#if defined(RGB_MODE)
+    b.codes = floor(channels / 4096.0 + 0.5);  // each channel matched apart
+#elif BLEND_MODEL_CHANNELS == 1 && !defined(BLEND_MODEL_ALBEDO)
+    b.codes = vec3(floor(channels.r / 4096.0 + 0.5));
+#else
     b.codes = vec3(floor((channels.r + channels.g + channels.b) / 4096.0 + 0.5));
+#endif
 #elif defined(BLEND_PACKED)
     float sum = 0.0;
     for (int l = 0; l < BLEND_LAYERS; ++l) sum += dot(btflutBytes(btflutBlendTexel(l)), blendWeights[l]);  // unrolled: a constant bound

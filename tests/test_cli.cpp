@@ -54,7 +54,7 @@ TEST_CASE("hist writes the documented CSV and JSON") {
 TEST_CASE("bake, info, relight and export work from files") {
     TempDir dir;
     std::string manifest = writeSyntheticDataset(dir, kShots);
-    CliRun bake = runCli({"bake", manifest, "-o", dir / "m.btflut", "--grid", "5"});
+    CliRun bake = runCli({"bake", manifest, "-o", dir / "m.btflut", "--grid", "5", "--references", "1"});
     REQUIRE(bake.status == 0);
     CHECK(bake.out.find("wrote") != std::string::npos);
     CliRun info = runCli({"info", dir / "m.btflut"});
@@ -126,7 +126,14 @@ TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched
         Image flat(40, 30, 1);
         std::fill(flat.samples.begin(), flat.samples.end(), 0.25f);
         REQUIRE(savePng(flat, dir / "shot0.png").ok());
-        requireOneLineError(runCli({"bake", manifest, "-o", dir / "keep.btflut"}), "reference image is constant");
+        requireOneLineError(runCli({"bake", manifest, "--references", "1", "-o", dir / "keep.btflut"}),
+                            "reference image is constant");
+        // The default bakes it all the same: a light model carries the brightness.
+        CliRun automatic = runCli({"bake", manifest, "-o", dir / "auto.btflut", "-q"});
+        CHECK(automatic.status == 0);
+        Result<LutBank> bank = loadBank(dir / "auto.btflut");
+        REQUIRE(bank.ok());
+        CHECK(bank->predictsWithModel());
     }
     CHECK(readText(dir / "keep.btflut") == "precious");
     CHECK(readText(dir / "keep.png") == "precious");

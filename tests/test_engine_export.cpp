@@ -46,9 +46,9 @@ TEST_SUITE("gl") {
     TEST_CASE("export -o DIR/: an engine program that loads only its files matches relight within 2/255") {
         TempDir dir;
         std::vector<std::pair<std::string, std::vector<std::string>>> banks{
-            {"default", {"bake", BTFLUT_DEFAULT_MATERIAL, "-q"}}};
+            {"default", {"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "1", "-q"}}};
         if (haveSharedData("psm-rock")) {
-            banks.push_back({"rock-grey", {"bake", sharedDataDir() + "/psm-rock", "-q"}});
+            banks.push_back({"rock-grey", {"bake", sharedDataDir() + "/psm-rock", "--references", "1", "-q"}});
             banks.push_back({"rock-rgb", {"bake", sharedDataDir() + "/psm-rock", "--colour", "rgb", "-q"}});
         }
         for (auto& [name, bake] : banks) {
@@ -81,7 +81,7 @@ TEST_SUITE("gl") {
 TEST_CASE("export: the folder refused when not empty (unless --force), banks it cannot hold refused") {
     TempDir dir;
     const std::string bank = dir / "m.btflut";
-    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "-o", bank, "-q"}).status == 0);
+    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "1", "-o", bank, "-q"}).status == 0);
     fs::create_directories(dir / "busy");
     std::ofstream(dir / "busy/notes.txt") << "mine";
     requireOneLineError(runCli({"export", bank, "-o", dir / "busy"}), "the folder is not empty");

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
@@ -41,17 +42,33 @@ double worstDifference(const Image& a, const Image& b) {
     return worst;
 }
 
-// The banks of each kind, baked from one material.
+// The banks of each kind, baked from one material (and the light models from its grey
+// original too: one output channel, no albedo).
 std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
     auto dataset = openDataset(colourMaterial(dir));
     REQUIRE(dataset.ok());
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "rti-9", "--size", "40", "--correlation-length", "5", "-q",
+                    "-o", dir / "grey"})
+                .status == 0);
+    auto grey = openDataset(dir / "grey");
+    REQUIRE(grey.ok());
+    using Basis = LightBasis;
+    using Target = LutBank::Blend::Target;
     std::vector<std::pair<std::string, LutBank>> banks;
-    for (const auto& [name, options] : {std::pair{"grey K3", BakeOptions{.references = 3}},
-                                        {"rgb K3 R2", BakeOptions{.colour = ColourMode::Rgb, .references = 3, .regions = 2}},
-                                        {"lrgb K5 R2", BakeOptions{.colour = ColourMode::Lrgb, .references = 5, .regions = 2}},
-                                        {"ptm R2", BakeOptions{.ptmPredictor = true, .regions = 2}}}) {
-        auto bank = bakeBank(*dataset, options);
-        REQUIRE(bank.ok());
+    for (const auto& [name, options, greyImages] :
+         {std::tuple{"grey K3", BakeOptions{.references = 3}, false},
+          {"rgb K3 R2", BakeOptions{.colour = ColourMode::Rgb, .references = 3, .regions = 2}, false},
+          {"lrgb K5 R2", BakeOptions{.colour = ColourMode::Lrgb, .references = 5, .regions = 2}, false},
+          {"ptm R2", BakeOptions{.model = LightModelOptions{.basis = Basis::Ptm}, .regions = 2}, false},
+          {"hsh3 rgb", BakeOptions{.colour = ColourMode::Rgb, .model = LightModelOptions{.basis = Basis::Hsh, .order = 3}}, false},
+          {"rbf5 match 0.5", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 5}, .match = 0.5f}, false},
+          {"bln4 corrections R2",
+           BakeOptions{.model = LightModelOptions{.basis = Basis::Bilinear, .planes = 4}, .target = Target::Corrections, .regions = 2},
+           false},
+          {"grey images hsh2", BakeOptions{.model = LightModelOptions{.basis = Basis::Hsh, .order = 2}}, true},
+          {"grey images rbf7", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 7}}, true}}) {
+        auto bank = bakeBank(greyImages ? *grey : *dataset, options);
+        REQUIRE_MESSAGE(bank.ok(), name << ": " << bank.error());
         banks.emplace_back(name, std::move(*bank));
     }
     return banks;

@@ -63,7 +63,7 @@ TEST_CASE("no exception escapes: numbers out of range, wrong JSON types, odd fil
     std::string manifest = writeSyntheticDataset(dir, kShots);
     std::ofstream(dir / "big.json") << R"({"images": [{"file": "shot0.png", "light": {"theta": 1e999, "phi": 0}}]})";
     requireOneLineError(runCli({"bake", dir / "big.json", "-o", dir / "m.btflut"}), "big.json: not valid JSON");
-    REQUIRE(runCli({"bake", manifest, "-o", dir / "m.btflut", "-q"}).status == 0);
+    REQUIRE(runCli({"bake", manifest, "--references", "1", "-o", dir / "m.btflut", "-q"}).status == 0);
     std::ofstream(dir / "s.json") << R"({"light": {"direction": [0,0,1]}, "materials": {"a": "m.btflut"},
         "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "mode": 5}]})";
     requireOneLineError(runCli({"render", dir / "s.json", "-o", dir / "r.png"}), "quads[0].mode: expected a string");
@@ -90,7 +90,7 @@ TEST_CASE("no exception escapes: numbers out of range, wrong JSON types, odd fil
 TEST_CASE("outputs go through exclusive temporary files: a planted symlink is not followed") {
     TempDir dir;
     std::string manifest = writeSyntheticDataset(dir, kShots);
-    REQUIRE(runCli({"bake", manifest, "-o", dir / "m.btflut", "-q"}).status == 0);
+    REQUIRE(runCli({"bake", manifest, "--references", "1", "-o", dir / "m.btflut", "-q"}).status == 0);
     std::ofstream(dir / "victim") << "precious";
     // The name the old scheme used (PATH.tmp.PID); the new one is random and made with O_EXCL.
     fs::create_symlink(dir / "victim", dir / ("out.png.tmp." + std::to_string(::getpid())));
@@ -115,7 +115,7 @@ TEST_CASE("simulate --smooth 1e9 stays finite") {
 TEST_CASE("options are honoured or refused, never ignored") {
     TempDir dir;
     std::string manifest = writeSyntheticDataset(dir, kShots);
-    REQUIRE(runCli({"bake", manifest, "-o", dir / "m.btflut", "-q", "--grid", "2"}).status == 0);
+    REQUIRE(runCli({"bake", manifest, "--references", "1", "-o", dir / "m.btflut", "-q", "--grid", "2"}).status == 0);
     const std::string bank = dir / "m.btflut";
     std::ofstream(dir / "s.json") << R"({"light": {"direction": [0,0,1]}, "materials": {"a": "m.btflut"},
         "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})";
@@ -144,14 +144,14 @@ TEST_CASE("options are honoured or refused, never ignored") {
     CHECK(info.out.find("nan") == std::string::npos);
     CHECK(info.out.find("of light directions covered") != std::string::npos);
 
-    requireOneLineError(runCli({"bake", manifest, "-o", dir / "huge.btflut", "--grid", "257", "--entries", "32768"}),
+    requireOneLineError(runCli({"bake", manifest, "--references", "1", "-o", dir / "huge.btflut", "--grid", "257", "--entries", "32768"}),
                         "over the .btflut format's 4 GiB chunk limit");
 }
 
 TEST_CASE("export replaces its two files together or not at all") {
     TempDir dir;
     std::string manifest = writeSyntheticDataset(dir, kShots);
-    REQUIRE(runCli({"bake", manifest, "-o", dir / "m.btflut", "-q", "--grid", "3"}).status == 0);
+    REQUIRE(runCli({"bake", manifest, "--references", "1", "-o", dir / "m.btflut", "-q", "--grid", "3"}).status == 0);
     std::ofstream(dir / "atlas.json") << "precious";
     fs::create_directories(dir / "atlas.png");  // the atlas cannot be renamed into place
     CliRun r = runCli({"export", dir / "m.btflut", "-o", dir / "atlas.png"});
@@ -230,7 +230,7 @@ TEST_CASE("a dataset that cannot vary with the light is refused; layered banks s
 
     TempDir other;
     std::string manifest = writeSyntheticDataset(other, kShots);
-    REQUIRE(runCli({"bake", manifest, "-o", other / "m.btflut", "-q"}).status == 0);
+    REQUIRE(runCli({"bake", manifest, "--references", "1", "-o", other / "m.btflut", "-q"}).status == 0);
     const std::string bytes = readText(other / "m.btflut");
     CHECK(bytes.substr(8, 4) == std::string("\x01\x00\x00\x00", 4));
 }

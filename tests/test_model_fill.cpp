@@ -43,8 +43,8 @@ TEST_CASE("fill model: at lights removed from a synthetic dataset, relit histogr
     std::ofstream list(dir / "grazing.txt");
     for (const std::string& name : grazingThird(folder)) list << name << "\n";
     list.close();
-    CliRun run = runCli({"eval", folder, "--holdout", dir / "grazing.txt", "--modes", "lut", "--fill", "clamp,model",
-                         "--no-gl", "--json"});
+    CliRun run = runCli({"eval", folder, "--holdout", dir / "grazing.txt", "--modes", "lut", "--predictor", "references",
+                         "--fill", "clamp,model", "--no-gl", "--json"});
     REQUIRE_MESSAGE(run.status == 0, run.err);
     const nlohmann::json report = nlohmann::json::parse(run.out);
     REQUIRE(report["modes"].size() == 2);
@@ -63,8 +63,8 @@ TEST_CASE("fill model: at lights removed from a synthetic dataset, relit histogr
 TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured ones untouched, no jump at the hull") {
     TempDir dir;
     const std::string folder = synthDome(dir);
-    REQUIRE(runCli({"bake", folder, "-o", dir / "clamp.btflut", "-q"}).status == 0);
-    CliRun run = runCli({"bake", folder, "--fill", "model", "-o", dir / "fill.btflut"});
+    REQUIRE(runCli({"bake", folder, "--references", "1", "-o", dir / "clamp.btflut", "-q"}).status == 0);
+    CliRun run = runCli({"bake", folder, "--references", "1", "--fill", "model", "-o", dir / "fill.btflut"});
     REQUIRE_MESSAGE(run.status == 0, run.err);
     CHECK(run.out.find("fitted lambert") != std::string::npos);
 

@@ -224,10 +224,10 @@ TEST_CASE("regions and the PTM predictor relight to the measured histograms; a o
     };
     const double classicL1 = l1Over(*bakeBank(*dataset, {}));
     for (BakeOptions options : {BakeOptions{.regions = 3}, BakeOptions{.references = 3, .regions = 2},
-                                BakeOptions{.ptmPredictor = true}, BakeOptions{.ptmPredictor = true, .regions = 2}}) {
+                                BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}}, BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}, .regions = 2}}) {
         auto bank = bakeBank(*dataset, options);
         REQUIRE(bank.ok());
-        INFO("references " << options.references << " regions " << options.regions << " ptm " << options.ptmPredictor);
+        INFO("references " << options.references << " regions " << options.regions << " model " << options.model.has_value());
         CHECK(l1Over(*bank) < classicL1 + 0.01);  // the measured histograms, as closely as the classic bank
     }
     auto classic = bakeBank(*dataset, {});
@@ -239,17 +239,17 @@ TEST_CASE("regions and the PTM predictor relight to the measured histograms; a o
     CHECK(bankFormatVersion(*one) == 1);
 }
 
-TEST_CASE("version 3 files round-trip, and every cut and flipped bit is refused") {
+TEST_CASE("version 3 and 5 files round-trip, and every cut and flipped bit is refused") {
     TempDir dir;
     const Material m = renderedMaterial(dir);
     auto dataset = openDataset(m.colour);
     REQUIRE(dataset.ok());
     for (BakeOptions options : {BakeOptions{.colour = ColourMode::Lrgb, .references = 4, .regions = 2},
                                 BakeOptions{.colour = ColourMode::Rgb, .references = 3},
-                                BakeOptions{.ptmPredictor = true, .regions = 2}}) {
+                                BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}, .regions = 2}}) {
         auto bank = bakeBank(*dataset, options);
         REQUIRE(bank.ok());
-        CHECK(bankFormatVersion(*bank) == 3);
+        CHECK(bankFormatVersion(*bank) == (options.model ? 5u : 3u));  // a light model: version 5
         const Bytes bytes = encodeBank(*bank);
         auto back = decodeBank(bytes, "b.btflut");
         REQUIRE(back.ok());

@@ -19,14 +19,17 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     BlendTextures t;
     t.m_bank = &bank;
     std::vector<std::uint8_t> data;
-    if (blend.predictor == LutBank::Blend::Predictor::Ptm) {
-        // The PTM's three RGB planes as three layers.
-        t.m_layers = 3;
-        for (int p = 0; p < 3; ++p) {
-            const std::vector<std::uint8_t> plane = bank.ptm.plane(p);
-            data.insert(data.end(), plane.begin(), plane.end());
-        }
-        t.m_references = uploadTextureArray(bank.ptm.width, bank.ptm.height, 3, 3, data.data(), bytes);
+    if (bank.predictsWithModel()) {
+        // The light model's planes three to an RGB layer, then its albedo.
+        const LightModel& m = blend.model;
+        const auto P = static_cast<std::size_t>(m.planes), n = m.texels();
+        t.m_layers = (m.planes + 2) / 3;
+        const int layers = t.m_layers + (m.albedo.empty() ? 0 : 1);
+        data.assign(static_cast<std::size_t>(layers) * n * 3, 0);
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t p = 0; p < P; ++p) data[((p / 3) * n + i) * 3 + p % 3] = m.coefficients[i * P + p];
+        if (!m.albedo.empty()) std::copy(m.albedo.begin(), m.albedo.end(), data.begin() + static_cast<std::ptrdiff_t>(t.m_layers * n * 3));
+        t.m_references = uploadTextureArray(m.width, m.height, layers, 3, data.data(), bytes);
     } else if (bank.colour == ColourMode::Lrgb) {
         // Four grey references per RGBA layer (reference j: layer j / 4, channel j % 4).
         t.m_layers = (k + 3) / 4;
@@ -56,7 +59,13 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
 
 std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
     std::vector<std::string> d{"BLEND"};
-    if (bank.blend.predictor == LutBank::Blend::Predictor::Ptm) d.push_back("BLEND_PTM");
+    if (bank.predictsWithModel()) {
+        const LightModel& m = bank.blend.model;
+        d.push_back("BLEND_MODEL");
+        d.push_back("BLEND_MODEL_LAYERS " + std::to_string((m.planes + 2) / 3));
+        d.push_back("BLEND_MODEL_CHANNELS " + std::to_string(m.channels));
+        if (!m.albedo.empty()) d.push_back("BLEND_MODEL_ALBEDO");
+    }
     if (bank.blend.predictor == LutBank::Blend::Predictor::References && bank.colour != ColourMode::Lrgb)
         d.push_back("BLEND_FETCHES " + std::to_string(std::min<std::size_t>(bank.blend.references.size(), 3)));
     if (bank.colour == ColourMode::Lrgb) {
@@ -105,20 +114,28 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
         unit(3 + c, GL_TEXTURE_2D, tables[std::min<std::size_t>(static_cast<std::size_t>(c), tables.size() - 1)].id(), name.c_str());
     }
     const LutBank& bank = *m_bank;
-    const bool ptm = bank.blend.predictor == LutBank::Blend::Predictor::Ptm;
-    const Image& reference = ptm ? bank.reference : bank.blend.references.front();
-    const int codes = ptm ? 765 : reference.maxCode() * (bank.colour == ColourMode::Grey ? reference.channels : 1);
+    const bool model = bank.predictsWithModel();
+    const Image& reference = model ? bank.reference : bank.blend.references.front();
+    const int codes = model ? 255 * (bank.colour == ColourMode::Rgb || (bank.blend.model.albedo.empty() && bank.blend.model.channels == 1) ? 1 : 3)
+                            : reference.maxCode() * (bank.colour == ColourMode::Grey ? reference.channels : 1);
     gl.Uniform1f(gl.GetUniformLocation(p, "blendCodes"), static_cast<float>(codes));
     gl.Uniform1i(gl.GetUniformLocation(p, "blendEntries"), bank.entries);
     gl.Uniform1i(gl.GetUniformLocation(p, "blendRegions"), bank.blend.regions);
-    if (ptm) {
-        // As the renderer's ptm mode: the light's terms with each coefficient's scale and
-        // bias folded into six weights and an offset (the CPU twin: Relighter::ptmColour).
-        float weights[Ptm::kTerms];
-        for (std::size_t k = 0; k < Ptm::kTerms; ++k) weights[k] = static_cast<float>(frame.ptm.weights[k]);
-        gl.Uniform3fv(gl.GetUniformLocation(p, "blendPtmWeights"), 2, weights);
-        gl.Uniform1f(gl.GetUniformLocation(p, "blendPtmOffset"), static_cast<float>(frame.ptm.offset));
-        gl.Uniform1f(gl.GetUniformLocation(p, "blendPtmScale"), frame.ptm.scale);
+    if (model) {
+        // The frame's integers (LightModelFixed; the CPU twin: predictFixed), per layer of three
+        // planes and per channel.
+        const LightModel& m = bank.blend.model;
+        const auto P = static_cast<std::size_t>(m.planes), C = static_cast<std::size_t>(m.channels);
+        const auto layers = static_cast<std::size_t>(m_layers);
+        std::vector<float> weights(layers * C * 3, 0.f);
+        for (std::size_t q = 0; q < P; ++q)
+            for (std::size_t c = 0; c < C; ++c)
+                weights[((q / 3) * C + c) * 3 + q % 3] = static_cast<float>(frame.model.weights[q * C + c]);
+        gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelWeights"), static_cast<GLsizei>(layers * C), weights.data());
+        const float offset[3] = {static_cast<float>(frame.model.offset[0]), static_cast<float>(frame.model.offset[1]),
+                                 static_cast<float>(frame.model.offset[2])};
+        gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelOffset"), 1, offset);
+        gl.Uniform1f(gl.GetUniformLocation(p, "blendModelScale"), frame.model.scale);
     } else if (bank.colour == ColourMode::Lrgb) {
         std::vector<float> weights(static_cast<std::size_t>(m_layers) * 4, 0.f);
         for (int k = 0; k < frame.count; ++k)

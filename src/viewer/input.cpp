@@ -68,7 +68,7 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
         BakeOptions bake = o.bake;
         bake.ptm = true;
         Result<LutBank> baked = bakeBank(*dataset, bake);
-        if (!baked && baked.error().find("a PTM needs") != std::string::npos && !bake.ptmPredictor) {
+        if (!baked && baked.error().find("a PTM needs") != std::string::npos) {
             bake.ptm = false;  // too few lights for a PTM: mode ptm stays off
             baked = bakeBank(*dataset, bake);
         }

@@ -272,8 +272,9 @@ bool Viewer::panel(int width, int height) {
                     colourName(m_bank->colour), m_bank->entries);
         if (m_bank->makesLuts()) {
             const LutBank::Blend& blend = m_bank->blend;
-            if (blend.predictor == LutBank::Blend::Predictor::Ptm)
-                ImGui::Text("lut: the PTM relit, matched in %d region(s)", blend.regions);
+            if (m_bank->predictsWithModel())
+                ImGui::Text("lut: %s relit, matched (%.2f) in %d region(s)", lightModelName(blend.model).c_str(),
+                            static_cast<double>(blend.match), blend.regions);
             else
                 ImGui::Text("lut: %zu references blended, matched in %d region(s)", blend.references.size(), blend.regions);
         }

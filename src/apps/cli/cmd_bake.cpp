@@ -1,4 +1,6 @@
 // btflut bake: a LUT bank from a dataset.
+#include <unistd.h>
+
 #include <filesystem>
 #include <iostream>
 #include <functional>
@@ -7,6 +9,7 @@
 #include <optional>
 
 #include "cli/cli.h"
+#include "core/bank/auto_bake.h"
 #include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/fit.h"
@@ -31,7 +34,9 @@ struct BakeCommandOptions {
     int regions = 1;
     int quantiles = 1024;
     std::string labels;
-    std::string predictor = "references";
+    std::string predictor = "auto";
+    float match = -1;  ///< unset: 1, or validated with auto
+    int budget = 9;
     std::string fill = "clamp";
     std::string params;
     std::string fitBrdf = "lambert";
@@ -125,7 +130,27 @@ Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, 
     return success();
 }
 
-Status runBake(const BakeCommandOptions& o) {
+// What `bank` predicts with, for the summary line.
+std::string predictorSummary(const LutBank& bank) {
+    if (!bank.makesLuts()) return "";
+    const LutBank::Blend& b = bank.blend;
+    std::string s = bank.predictsWithModel() ? ", " + std::string(lightBasisName(b.model.basis)) +
+                                                   (b.model.basis == LightBasis::Rbf || b.model.basis == LightBasis::Bilinear
+                                                        ? std::to_string(b.model.planes)
+                                                        : b.model.basis == LightBasis::Hsh ? std::to_string(b.model.order) : "")
+                                             : ", " + std::to_string(b.references.size()) + " reference(s)";
+    char match[32];
+    std::snprintf(match, sizeof match, "%.2f", static_cast<double>(b.match));
+    return s + (b.match == 1 ? " matched" : b.match == 0 ? " unmatched" : std::string(" matched ") + match) + ", " +
+           std::to_string(b.regions) + " region(s)";
+}
+
+Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
+    BakeCommandOptions o = given;
+    // The references' options without --predictor mean the references, as before auto.
+    const bool referencesAsked = app.count("--references") > 0 || o.colour != "grey" || !o.labels.empty();
+    if (app.count("--predictor") == 0 && referencesAsked) o.predictor = "references";
+    if (app.count("--budget") > 0 && o.predictor != "auto") return Error{"--budget goes with --predictor auto"};
     if (Status s = requireExtension(o.output, {"btflut"}, "output"); !s) return s;
     // A view layer's grid alone must fit a chunk of the file (4 GiB): refused before any work.
     const std::uint64_t gridBytes = static_cast<std::uint64_t>(o.grid) * o.grid * (o.entries ? o.entries : 1024) *
@@ -152,18 +177,35 @@ Status runBake(const BakeCommandOptions& o) {
     options.colour = o.colour == "rgb" ? ColourMode::Rgb : o.colour == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
     if (o.domain != "auto") options.domain = *parseDomain(o.domain);
     options.references = o.references;
-    options.ptmPredictor = o.predictor == "ptm";
+    if (o.predictor != "auto" && o.predictor != "references") {
+        std::optional<Result<LightModelOptions>> model = lightModelNamed(o.predictor);
+        if (!model) return Error{"--predictor '" + o.predictor + "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN or blnN"};
+        if (!*model) return Error{"--predictor " + model->error()};
+        options.model = **model;
+    }
+    if (o.match >= 0) options.match = o.match;
     options.regions = o.regions;
     options.quantiles = o.quantiles;
     options.labelsPath = o.labels;
     if (!o.labels.empty() && o.regions > 1) return Error{"give --regions or --labels, not both"};
     if (o.noReference && (o.references > 1 || o.regions > 1 || !o.labels.empty() || options.colour == ColourMode::Lrgb ||
-                          options.ptmPredictor))
-        return Error{"--no-reference: a bank that blends references or matches regions keeps its references"};
-    if (!o.quiet) options.progress = terminalProgress("baking");
+                          options.model || o.predictor == "auto"))
+        return Error{"--no-reference: a bank that predicts (the default --predictor auto, references, a model) keeps "
+                     "what it predicts from; give --references 1 for the paper's bank"};
+    if (!o.quiet) options.progress = terminalProgress(o.predictor == "auto" ? "validating" : "baking");
     HistogramsWhileBaking collector{*dataset};
     const bool fitting = o.fill == "model" && o.params.empty();
-    Result<LutBank> bank = fitting ? bakeBank(*dataset, options, std::ref(collector)) : bakeBank(*dataset, options);
+    const ImageProvider provider = fitting ? ImageProvider(std::ref(collector)) : ImageProvider();
+    Result<LutBank> bank = Error{""};
+    if (o.predictor == "auto") {
+        AutoBakeOptions automatic{.base = options, .budget = o.budget};
+        if (o.match >= 0) automatic.match = o.match;
+        if (!o.quiet && ::isatty(STDERR_FILENO))  // progress for people; errors stay one line
+            automatic.log = [](const std::string& line) { std::cerr << "\rauto: " << line << "\x1b[K\n"; };
+        bank = bakeAuto(*dataset, automatic, provider);
+    } else {
+        bank = bakeBank(*dataset, options, provider);
+    }
     if (!bank) return Error{bank.error()};
     if (o.fill == "model") {
         const std::optional<std::vector<HistogramRow>> histograms = collector.all();
@@ -178,11 +220,7 @@ Status runBake(const BakeCommandOptions& o) {
                   << bank->layers.size() << " view layer(s), " << nodes << " measured nodes, "
                   << bank->gridSize << "x" << bank->gridSize << " grid, " << bank->entries
                   << " entries, domain " << domainName(bank->domain) << ", colour " << colourName(bank->colour)
-                  << (!bank->makesLuts() ? std::string()
-                      : bank->blend.predictor == LutBank::Blend::Predictor::Ptm
-                          ? ", the PTM matched, " + std::to_string(bank->blend.regions) + " region(s)"
-                          : ", " + std::to_string(bank->blend.references.size()) + " reference(s), " +
-                                std::to_string(bank->blend.regions) + " region(s)")
+                  << predictorSummary(*bank) << (bank->selection.empty() ? "" : " (chosen by validation; btflut info)")
                   << ", reference " << bank->referenceName
                   << (bank->ptm.empty() ? "" : ", PTM") << ", "
                   << std::filesystem::file_size(o.output) << " bytes\n";
@@ -239,10 +277,19 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::Range(2, 65536))
         ->capture_default_str();
     app->add_option("--predictor", o->predictor,
-                    "what is matched per light: references (the --references blended) or ptm (the bank's PTM, "
-                    "fitted to every image, relit; then matched like a blend: the PTM's placement, the measured "
-                    "histogram)")
-        ->check(CLI::IsMember({"references", "ptm"}))
+                    "what places shadows and highlights before each light's LUT matches the histogram "
+                    "(docs/predictors.md): auto (the default without --references: validation on the dataset's own "
+                    "lights picks the predictor and how strongly to match, within --budget), references (the "
+                    "--references blended; --references 1 is the paper's bank), or a light model fitted to every "
+                    "image: ptm, hsh2 or hsh3 (hemispherical harmonics), rbfN or blnN (N principal components of "
+                    "the images, interpolated over the lights by radial basis functions or bilinearly; rbf, bln: 9)")
+        ->capture_default_str();
+    app->add_option("--match", o->match,
+                    "how far each light's LUT moves the prediction's distribution to the measured one: 1 fully, 0 not "
+                    "at all (the prediction as it is), between: the two blended (default: 1, or validated with auto)")
+        ->check(CLI::Range(0.0, 1.0));
+    app->add_option("--budget", o->budget, "with --predictor auto: bytes per texel the predictor may store")
+        ->check(CLI::Range(1, 64))
         ->capture_default_str();
     app->add_option("--domain", o->domain,
                     "what lookups interpolate over: layers (each view's lights, then between views; any "
@@ -271,7 +318,7 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
     app->add_flag("--no-reference", o->noReference,
                   "do not embed the reference image (relight then needs --reference-image)");
     app->add_flag("-q,--quiet", o->quiet, "no progress bar or summary");
-    commands.push_back({app, [o] { return runBake(*o); }});
+    commands.push_back({app, [o, app] { return runBake(*o, *app); }});
 }
 
 }  // namespace btflut::cli

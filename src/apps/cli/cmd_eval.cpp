@@ -97,6 +97,10 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
                     "lut: clamp, model (bake --fill model, the model fitted to the training images), or both: "
                     "clamp,model")
         ->capture_default_str();
+    app->add_option("--target", o->targets,
+                    "lut with a predictor: measured (each light's target blended from the measured distributions), corrections "
+                    "(each node's LUT from the prediction to its measurement, blended at the light), or both: measured,corrections")
+        ->capture_default_str();
     app->add_option("--mask", o->mask, "sample mask instead of the dataset's own");
     app->add_option("--grid", o->grid, "banks' grid size")->check(CLI::Range(2, 257))->capture_default_str();
     app->add_option("--frames", o->frames, "GL frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();

@@ -47,6 +47,9 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     if (!grid) return Error{grid.error()};
     const Image& atlas = *grid;
 
+    if (b.makesLuts() && b.blend.predictor == LutBank::Blend::Predictor::Model)
+        return Error{o.bank + ": its predictor is a light model (" + lightModelName(b.blend.model) +
+                     "), which has no atlas form; export the paper's bank (bake --references 1) or its PTM (--ptm)"};
     // The textures a bank that blends references relights from, beside the atlas.
     std::vector<std::pair<std::string, Bytes>> textures;
     const std::filesystem::path out(o.output);
@@ -129,7 +132,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
 Status exportFolder(const ExportOptions& o, const LutBank& b) {
     namespace fs = std::filesystem;
     if (b.makesLuts())
-        return Error{o.bank + ": this bank makes its LUTs at run time from blended references (relighter.h), which no "
+        return Error{o.bank + ": this bank makes its LUTs at run time from its predictor (relighter.h), which no "
                               "single texture holds; export its atlas with -o atlas.png, or bake with --references 1"};
     if (b.reference.samples.empty()) return Error{o.bank + ": the bank holds no reference image (baked with --no-reference)"};
     std::error_code ec;

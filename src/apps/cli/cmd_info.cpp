@@ -18,6 +18,42 @@ struct InfoOptions {
     bool json = false;
 };
 
+std::string fixed(double v, int decimals) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.*f", decimals, v);
+    return text;
+}
+
+// How bake --predictor auto chose: each candidate's validation figures at its best match
+// strength within the L1 rule, and the choice.
+void printSelection(const std::string& selection) {
+    const nlohmann::json s = nlohmann::json::parse(selection, nullptr, false);
+    if (!s.is_object() || !s.contains("chosen")) return;
+    const nlohmann::json& chosen = s["chosen"];
+    std::cout << "  chosen:    " << chosen.value("name", std::string("?")) << ", match "
+              << fixed(chosen.value("match", 1.0), 2) << ", " << chosen.value("bytes", 0) << " bytes per texel, by validation on "
+              << s.value("folds", 0) << " fold(s) of the dataset's own lights within a budget of " << s.value("budget", 0)
+              << " bytes (" << s.value("rule", std::string()) << ")\n";
+    if (s.contains("note")) std::cout << "             " << s["note"].get<std::string>() << "\n";
+    if (!s.contains("candidates") || !s["candidates"].is_array()) return;
+    std::cout << "             candidate   bytes  match   PSNR      L1\n";
+    for (const nlohmann::json& c : s["candidates"]) {
+        const std::string name = c.value("name", std::string("?"));
+        char line[200];
+        if (c.contains("skipped")) {
+            std::snprintf(line, sizeof line, "             %-10s %6d  %s\n", name.c_str(), c.value("bytes", 0),
+                          c["skipped"].get<std::string>().c_str());
+            std::cout << line;
+            continue;
+        }
+        for (const nlohmann::json& v : c.value("validation", nlohmann::json::array())) {
+            std::snprintf(line, sizeof line, "             %-10s %6d  %5.2f  %5.2f  %6.4f\n", name.c_str(), c.value("bytes", 0),
+                          v.value("match", 1.0), v.value("psnr", 0.0), v.value("l1", 0.0));
+            std::cout << line;
+        }
+    }
+}
+
 std::string degrees(Direction d) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "(%.2f, %.2f)", d.thetaDegrees(), d.phiDegrees());
@@ -64,11 +100,20 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
                                       {"embedded", !b.reference.samples.empty()}}},
                        {"ptm", !b.ptm.empty()},
                        {"layers", nlohmann::json::array()}};
-    if (b.makesLuts())
-        out["blend"] = {{"predictor", b.blend.predictor == LutBank::Blend::Predictor::Ptm ? "ptm" : "references"},
+    if (b.makesLuts()) {
+        out["blend"] = {{"predictor", b.predictsWithModel() ? lightModelName(b.blend.model) : "references"},
                         {"references", b.blend.references.size()},
                         {"regions", b.blend.regions},
-                        {"quantiles", b.blend.quantiles}};
+                        {"quantiles", b.blend.quantiles},
+                        {"match", b.blend.match},
+                        {"target", b.blend.target == LutBank::Blend::Target::Corrections ? "corrections" : "measured"}};
+        if (b.predictsWithModel()) {
+            const LightModel& m = b.blend.model;
+            out["blend"]["model"] = {{"basis", lightBasisName(m.basis)}, {"planes", m.planes}, {"channels", m.channels},
+                                     {"albedo", !m.albedo.empty()}, {"bytes_per_texel", m.bytesPerTexel()}};
+        }
+    }
+    if (!b.selection.empty()) out["selection"] = nlohmann::json::parse(b.selection, nullptr, false);
     if (!b.modelFill.empty()) out["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
     for (std::size_t l = 0; l < b.layers.size(); ++l) {
         const LayerSummary s = summarise(b, b.layers[l]);
@@ -105,10 +150,11 @@ Status runInfo(const InfoOptions& o) {
               << " " << b.reference.bitDepth << "-bit, "
               << (b.reference.samples.empty() ? "not embedded" : "embedded") << "\n";
     if (b.makesLuts()) {
-        if (b.blend.predictor == LutBank::Blend::Predictor::Ptm)
-            std::cout << "  blend:     the PTM relit per light and matched, LUTs made at run time from ";
+        if (b.predictsWithModel())
+            std::cout << "  predictor: " << lightModelName(b.blend.model) << " (" << b.blend.model.bytesPerTexel()
+                      << " bytes per texel), relit per light and matched, LUTs made at run time from ";
         else
-            std::cout << "  blend:     " << b.blend.references.size() << " reference(s) blended per light, LUTs made at run "
+            std::cout << "  predictor: " << b.blend.references.size() << " reference(s) blended per light, LUTs made at run "
                       << "time from ";
         std::cout << b.blend.quantiles << "-sample quantile functions; " << b.blend.regions << " region(s)";
         if (b.blend.regions > 1) {
@@ -118,11 +164,18 @@ Status runInfo(const InfoOptions& o) {
             for (std::size_t n : texels) std::cout << " " << n;
             std::cout << ")";
         }
-        std::cout << "\n";
+        std::cout << "\n  match:     " << (b.blend.match == 1 ? std::string("fully")
+                                          : b.blend.match == 0 ? std::string("not at all (the prediction as it is)")
+                                                               : fixed(b.blend.match, 2) + " of the way to the target")
+                  << (b.blend.target == LutBank::Blend::Target::Corrections
+                          ? ", through the nodes' corrections blended at the light"
+                          : ", to the measured distributions blended at the light")
+                  << "\n";
         for (std::size_t k = 0; k < b.blend.lights.size(); ++k)
             std::cout << "    reference " << k << ": " << b.blend.lights[k].name << ", light "
                       << degrees(b.blend.lights[k].light) << "\n";
     }
+    if (!b.selection.empty()) printSelection(b.selection);
     if (!b.ptm.empty())
         std::cout << "  ptm: " << b.ptm.width << "x" << b.ptm.height << ", 6 coefficients + RGB albedo per texel ("
                   << b.ptm.coefficients.size() + b.ptm.albedo.size() << " bytes)\n";

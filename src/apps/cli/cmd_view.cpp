@@ -57,8 +57,9 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     auto predictor = std::make_shared<std::string>("references");
     app->add_option("--colour", *colour, "with a dataset: grey, rgb or lrgb (bake --colour)")
         ->check(CLI::IsMember({"grey", "rgb", "lrgb"}));
-    app->add_option("--predictor", *predictor, "with a dataset: references or ptm (bake --predictor)")
-        ->check(CLI::IsMember({"references", "ptm"}));
+    app->add_option("--predictor", *predictor,
+                    "with a dataset: references, or a light model: ptm, hsh2, hsh3, rbfN, blnN (bake --predictor; the "
+                    "sphere and cylinder draw the references' bank)");
     commands.push_back({app, [o, colour, predictor, size] {
                             if (!size->empty()) {
                                 int w = 0, h = 0;
@@ -70,7 +71,12 @@ void addViewCommand(CLI::App& root, Commands& commands) {
                                 o->height = h;
                             }
                             o->bake.colour = *colour == "rgb" ? ColourMode::Rgb : *colour == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
-                            o->bake.ptmPredictor = *predictor == "ptm";
+                            if (*predictor != "references") {
+                                std::optional<Result<LightModelOptions>> model = lightModelNamed(*predictor);
+                                if (!model) return Status{Error{"--predictor '" + *predictor + "': expected references or a basis (ptm, hsh, rbf, bln)"}};
+                                if (!*model) return Status{Error{"--predictor " + model->error()}};
+                                o->bake.model = **model;
+                            }
                             return runViewer(*o);
                         }});
 }

@@ -64,8 +64,8 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
     if (options.references < 1 || static_cast<std::size_t>(options.references) > distinct)
         return Error{"--references " + std::to_string(options.references) + " must be within 1.." + std::to_string(distinct) +
                      " (the distinct light directions of " + dataset.source + ")"};
-    if (options.ptmPredictor) {
-        // no references: the PTM is fitted from every image
+    if (options.model) {
+        // no references: the model is fitted to every image
     } else if (options.colour == ColourMode::Lrgb && options.references > 16)
         return Error{"--colour lrgb packs at most 16 references (four per texture layer); --references " +
                      std::to_string(options.references) + " is more"};
@@ -106,6 +106,45 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
         setup.regionMasks.push_back(std::move(m));
     }
     return setup;
+}
+
+// Decodes every image into `decoded` (the reference copied) and fits the light model to those
+// of the reference's view.
+Result<LightModel> fitModel(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex, const Image& ref,
+                            const Mask& mask, const ImageProvider& images, std::vector<Image>& decoded) {
+    decoded.assign(dataset.images.size(), Image());
+    std::vector<std::string> errors(dataset.images.size());
+    parallelFor(dataset.images.size(), options.threads, [&](std::size_t i) {
+        if (i == refIndex) {
+            decoded[i] = ref;
+            return;
+        }
+        Image storage;
+        Result<const Image*> image = images(i, storage);
+        if (!image) {
+            errors[i] = image.error();
+        } else if (Status size = requireSameSize(**image, dataset.images[i].path, ref.width, ref.height,
+                                                 dataset.images[refIndex].path + " (the reference)");
+                   !size) {
+            errors[i] = size.error();
+        } else if ((*image)->channels != ref.channels) {
+            errors[i] = dataset.images[i].path + ": " + ((*image)->channels == 3 ? "colour" : "grey") + " among " +
+                        (ref.channels == 3 ? "colour" : "grey") + " images";
+        } else {
+            decoded[i] = *image == &storage ? std::move(storage) : **image;
+        }
+    });
+    for (const std::string& e : errors)
+        if (!e.empty()) return Error{e};
+    std::vector<const Image*> view;
+    std::vector<Direction> lights;
+    for (std::size_t i = 0; i < dataset.images.size(); ++i) {
+        view.push_back(&decoded[i]);
+        lights.push_back(dataset.images[i].light);
+    }
+    LightModelOptions o = *options.model;
+    o.threads = options.threads;
+    return fitLightModel(view, lights, mask, o, dataset.source);
 }
 
 // A reference as the blend stores it: 8-bit (blends are integer sums of 8-bit codes,
@@ -175,9 +214,11 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     // Banks that make their LUTs at run time keep each image's target per region as a
     // quantile function; classic banks keep each image's LUT from the reference.
     const bool makesLuts = options.references > 1 || options.regions > 1 || !options.labelsPath.empty() ||
-                           options.colour == ColourMode::Lrgb || options.ptmPredictor;
-    if (options.ptmPredictor && (options.references > 1 || options.colour != ColourMode::Grey))
-        return Error{"--predictor ptm relights with the PTM: it takes no --references, and its colour is the PTM's (grey)"};
+                           options.colour == ColourMode::Lrgb || options.model;
+    if (options.model && (options.references > 1 || options.colour == ColourMode::Lrgb))
+        return Error{"--predictor " + std::string(lightBasisName(options.model->basis)) +
+                     " relights with a light model: it takes no --references, and its colour is the model's (grey or rgb)"};
+    if (!(options.match >= 0 && options.match <= 1)) return Error{"--match must be from 0 (not at all) to 1 (fully)"};
     BlendSetup blend;
     std::vector<LevelCounts> refLevels;
     if (makesLuts) {
@@ -196,12 +237,24 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     }
     const std::size_t length = bank.nodeLength();
 
+    // A light model is fitted to every image of the view at once: they are decoded first and
+    // kept, and the pass below reads them from memory.
+    std::vector<Image> decoded;
+    ImageProvider fromMemory;
+    if (options.model) {
+        Result<LightModel> model = fitModel(dataset, options, refIndex, ref, mask, images, decoded);
+        if (!model) return Error{model.error()};
+        bank.blend.model = std::move(*model);
+        fromMemory = [&](std::size_t i, Image&) -> Result<const Image*> { return &decoded[i]; };
+    }
+    const ImageProvider& pass = options.model ? fromMemory : images;
+
     // Stream through the images: decode, count, match (or keep the quantiles), forget.
     std::vector<ImageLuts> results(dataset.images.size());
     std::mutex progressMutex;
     std::size_t done = 0;
     std::optional<PtmFitter> ptm;
-    if (options.ptm || options.ptmPredictor) ptm.emplace(ref.width, ref.height);
+    if (options.ptm) ptm.emplace(ref.width, ref.height);
     std::optional<AlbedoAccumulator> albedo;
     if (options.colour == ColourMode::Lrgb) albedo.emplace(ref.width, ref.height);
     // The references as the blend keeps them, in pick order.
@@ -211,7 +264,7 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         ImageLuts& out = results[i];
         Image storage;
         Result<const Image*> image =
-            i == refIndex ? Result<const Image*>(&ref) : images(i, storage);
+            i == refIndex ? Result<const Image*>(&ref) : pass(i, storage);
         if (!image) {
             out.error = image.error();
         } else if (Status size = requireSameSize(**image, info.path, ref.width, ref.height,
@@ -259,8 +312,10 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         bank.reference = std::move(referenceStorage);
     else
         bank.reference = ref;
-    if (makesLuts && options.ptmPredictor) {
-        bank.blend.predictor = LutBank::Blend::Predictor::Ptm;
+    bank.blend.match = makesLuts ? options.match : 1.f;
+    if (makesLuts) bank.blend.target = options.target;
+    if (makesLuts && options.model) {
+        bank.blend.predictor = LutBank::Blend::Predictor::Model;
         bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
         bank.blend.mask = mask;
     } else if (makesLuts) {

@@ -24,7 +24,11 @@ struct BakeOptions {
     bool ptm = false;  ///< also fit a PTM (ptm.h) to the images of the reference's view
     std::optional<BankDomain> domain;  ///< empty: chosen from the directions (setNodes)
     int references = 1;       ///< K references blended per light (a fixed camera; relighter.h)
-    bool ptmPredictor = false;  ///< instead of references: the PTM relit, then matched (implies ptm)
+    /// Instead of references: a light model (light_model.h) fitted to every image, relit,
+    /// then matched. Every image is held in memory while baking (the fit needs them all).
+    std::optional<LightModelOptions> model;
+    float match = 1;  ///< with a model or references: how far each light's LUT matches (LutBank::Blend::match)
+    LutBank::Blend::Target target = LutBank::Blend::Target::Measured;  ///< with a model or references (LutBank::Blend::target)
     int regions = 1;          ///< regions segmented from the images' responses over the lights
     std::string labelsPath;   ///< instead: a label image (each grey value one region)
     int quantiles = 1024;     ///< samples of the targets' quantile functions (banks that make LUTs)

@@ -17,14 +17,15 @@ namespace btflut {
 
 /// The newest version this btflut reads (it reads every older one) and writes when a bank
 /// needs it; bankFormatVersion says which a bank is written as.
-constexpr std::uint32_t kBankFormatVersion = 4;
+constexpr std::uint32_t kBankFormatVersion = 5;
 
 /// Most measured directions (nodes, over all layers) a bank may hold.
 constexpr std::size_t kMaxBankNodes = 65536;
 
 /// The version a bank is written as: the oldest that holds it (1; 2 for the isotropic
 /// domain; 3 for banks that make their LUTs at run time; 4 for banks with nodes filled from
-/// the model).
+/// the model; 5 for banks that predict with a light model, match partly, or record how
+/// their predictor was chosen).
 std::uint32_t bankFormatVersion(const LutBank& bank);
 
 /// Refuses a bank the format cannot hold (a chunk over 4 GiB, too many nodes).

@@ -7,6 +7,7 @@
 
 #include "core/bank/bank_format.h"
 #include "core/check.h"
+#include "core/io/json_text.h"
 
 namespace btflut {
 
@@ -108,6 +109,82 @@ struct Head {
     bool embedded = false;
 };
 
+// LMDL (encodeLightModel in bank_write.cpp): every count checked before anything is allocated
+// by it, every number finite, the planes and albedo the reference's size.
+Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const Head& head) {
+    auto fail = [&](const std::string& what) { return Error{name + ": LMDL chunk: " + what}; };
+    LightModel m;
+    const auto basis = in.get<std::uint32_t>(), planes = in.get<std::uint32_t>(), channels = in.get<std::uint32_t>(),
+               order = in.get<std::uint32_t>(), albedo = in.get<std::uint32_t>(), grid = in.get<std::uint32_t>();
+    m.sigma = in.get<float>();
+    if (!in.ok()) return fail("truncated");
+    if (basis > 3 || planes < 1 || planes > static_cast<std::uint32_t>(LightModel::kMaxPlanes) || (channels != 1 && channels != 3) ||
+        albedo > 1)
+        return fail("invalid description");
+    m.basis = static_cast<LightBasis>(basis);
+    m.planes = static_cast<int>(planes);
+    m.channels = static_cast<int>(channels);
+    m.order = static_cast<int>(order);
+    m.width = static_cast<int>(head.refWidth);
+    m.height = static_cast<int>(head.refHeight);
+    const bool fixedBasis = m.basis == LightBasis::Ptm || m.basis == LightBasis::Hsh;
+    if (fixedBasis && (channels != 1 || (m.basis == LightBasis::Hsh ? order != 2 && order != 3 : order != 0) ||
+                       static_cast<int>(planes) != LightModel::termCount(m.basis, m.order) || grid != 0))
+        return fail("a " + std::string(lightBasisName(m.basis)) + " model with the wrong terms");
+    if ((albedo ? 3u : channels) != head.refChannels) return fail("its colour does not match the reference image's");
+    if (m.basis == LightBasis::Bilinear && (grid < 2 || grid > 64)) return fail("invalid grid size");
+    if (m.basis != LightBasis::Bilinear && grid != 0) return fail("a grid for a basis without one");
+    m.grid = static_cast<int>(grid);
+    if (m.basis == LightBasis::Rbf && !(std::isfinite(m.sigma) && m.sigma > 0)) return fail("invalid rbf width");
+    for (std::uint32_t p = 0; p < planes; ++p) m.scale.push_back(in.get<float>());
+    for (std::uint32_t p = 0; p < planes; ++p) m.bias.push_back(in.get<float>());
+    for (std::uint32_t p = 0; p < planes; ++p)
+        if (!std::isfinite(m.scale[p]) || !(m.scale[p] > 0) || !std::isfinite(m.bias[p])) return fail("invalid scale or bias");
+    const auto lights = in.get<std::uint32_t>();
+    if (!in.ok() || lights > in.remaining() / 16 || (m.basis == LightBasis::Rbf) != (lights > 0))
+        return fail("invalid light count");
+    for (std::uint32_t l = 0; l < lights; ++l) {
+        Result<Direction> light = getDirection(in, name, "light model light");
+        if (!light) return Error{light.error()};
+        m.lights.push_back(*light);
+    }
+    const std::uint64_t row = (1 + std::uint64_t{planes}) * channels;
+    const std::uint64_t rows = m.basis == LightBasis::Rbf ? lights : m.basis == LightBasis::Bilinear ? std::uint64_t{grid} * grid : 0;
+    const auto tableLength = in.get<std::uint32_t>();
+    if (!in.ok() || tableLength != rows * row || tableLength > in.remaining() / 4) return fail("the table does not fit the model");
+    m.table.resize(tableLength);
+    if (const std::uint8_t* bytes = in.getBytes(tableLength * sizeof(float))) std::memcpy(m.table.data(), bytes, tableLength * sizeof(float));
+    for (float v : m.table)
+        if (!std::isfinite(v)) return fail("a table value is not finite");
+    auto png = [&](const std::string& what) -> Result<Image> {
+        const auto length = in.get<std::uint32_t>();
+        const std::uint8_t* bytes = in.getBytes(length);
+        if (!in.ok()) return fail("truncated " + what);
+        Result<Image> image = decodeImage(Bytes(bytes, bytes + length), name + " (light model " + what + ")", m.width, m.height);
+        if (!image) return Error{image.error()};
+        if (image->width != m.width || image->height != m.height || image->channels != 3 || image->bitDepth != 8)
+            return fail(what + " is not an RGB8 image of the reference's size");
+        return image;
+    };
+    const std::size_t P = planes;
+    m.coefficients.resize(m.texels() * P);
+    for (std::size_t first = 0; first < P; first += 3) {
+        Result<Image> image = png("planes " + std::to_string(first) + "-" + std::to_string(std::min(P, first + 3) - 1));
+        if (!image) return Error{image.error()};
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3 && first + c < P; ++c)
+                m.coefficients[i * P + first + c] = static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
+    }
+    if (albedo) {
+        Result<Image> image = png("albedo");
+        if (!image) return Error{image.error()};
+        m.albedo.resize(m.texels() * 3);
+        for (std::size_t s = 0; s < m.albedo.size(); ++s) m.albedo[s] = static_cast<std::uint8_t>(std::lround(image->samples[s] * 255));
+    }
+    if (in.remaining() != 0) return fail("has the wrong size");
+    return m;
+}
+
 Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::string& name, LutBank& bank) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
     Reader in(chunk.payload, chunk.length);
@@ -138,6 +215,18 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
         } else if (in.ok() && (head.references != 0 || regions != 0)) {
             return fail("references and regions without quantiles");
         }
+    }
+    if (version >= 5) {
+        const auto predictor = in.get<std::uint32_t>();
+        const auto match = in.get<float>();
+        const auto target = in.get<std::uint32_t>();
+        if (in.ok() && (predictor > 2 || !(match >= 0 && match <= 1) || target > 1 ||
+                        (bank.blend.quantiles > 0 ? (head.references == 0) != (predictor != 0)
+                                                  : predictor != 0 || match != 1 || target != 0)))
+            return fail("predictor, match or target out of range, or not what the references say");
+        if (bank.blend.quantiles > 0) bank.blend.predictor = static_cast<LutBank::Blend::Predictor>(predictor);
+        bank.blend.match = match;
+        bank.blend.target = static_cast<LutBank::Blend::Target>(target);
     }
     if (!in.ok() || in.remaining() != 0) return fail("HEAD chunk has the wrong size");
     if (!rl) return Error{rl.error()};
@@ -302,7 +391,7 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
         }
     }
 
-    bool haveReference = false, havePtm = false;
+    bool haveReference = false, havePtm = false, haveModel = false, haveSelection = false;
     std::size_t totalNodes = 0;
     const Chunk* fill = nullptr;
     for (std::size_t c = 1; c < chunks->list.size(); ++c) {
@@ -374,6 +463,19 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
         } else if (tag == kReferences || tag == kMask || tag == kLabels || tag == kAlbedo) {
             if (!bank.makesLuts()) return fail("unexpected chunk " + tagName(tag));
             if (Status st = readBlendChunk(tag, in, name, *head, bank); !st) return Error{st.error()};
+        } else if (tag == kLightModel) {
+            if (haveModel || bank.blend.predictor != LutBank::Blend::Predictor::Model) return fail("unexpected LMDL chunk");
+            haveModel = true;
+            Result<LightModel> model = decodeLightModel(in, name, *head);
+            if (!model) return Error{model.error()};
+            bank.blend.model = std::move(*model);
+        } else if (tag == kSelection) {
+            if (haveSelection || chunks->version < 5) return fail("unexpected CHOS chunk");
+            haveSelection = true;
+            bank.selection = in.getString();
+            if (!in.ok() || in.remaining() != 0) return fail("CHOS chunk has the wrong size");
+            if (Result<nlohmann::json> parsed = parseJsonText(bank.selection, name + " (CHOS chunk)"); !parsed)
+                return Error{parsed.error()};
         } else if (tag == kPtm) {
             if (havePtm) return fail("two PTMC chunks");
             havePtm = true;
@@ -419,6 +521,9 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
         const LutBank::Blend& blend = bank.blend;
         const bool ptmPredictor = blend.predictor == LutBank::Blend::Predictor::Ptm;
         if (ptmPredictor && (!havePtm || bank.colour != ColourMode::Grey)) return fail("a PTM-predicted bank without its PTM");
+        if (blend.predictor == LutBank::Blend::Predictor::Model && (!haveModel || bank.colour == ColourMode::Lrgb))
+            return fail("a bank predicted by a light model without its model (LMDL chunk)");
+        if (ptmPredictor) bank.blend.model = lightModelFromPtm(bank.ptm);
         if (!head->embedded || blend.references.size() != head->references || blend.mask.inside.empty() ||
             (blend.regions > 1) != !blend.labels.empty() || (bank.colour == ColourMode::Lrgb) != !blend.albedo.samples.empty() ||
             bank.layers.size() != 1)

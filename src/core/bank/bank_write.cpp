@@ -1,5 +1,6 @@
 // Writing .btflut files (bank_file.h; the reader is bank_read.cpp).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/bank/bank_file.h"
@@ -65,11 +66,50 @@ Bytes encodePtm(const Ptm& ptm) {
     return std::move(w.bytes());
 }
 
+// LMDL payload (docs/btflut-format.md): the model's description, its per-light table, then
+// its planes three to an RGB PNG and, in the LRGB layout, the albedo.
+Bytes encodeLightModel(const LightModel& m) {
+    Writer w;
+    const std::array<std::uint32_t, 6> description{static_cast<std::uint32_t>(m.basis), static_cast<std::uint32_t>(m.planes),
+                                                   static_cast<std::uint32_t>(m.channels), static_cast<std::uint32_t>(m.order),
+                                                   m.albedo.empty() ? 0u : 1u, static_cast<std::uint32_t>(m.grid)};
+    w.putBytes(description.data(), sizeof description);
+    w.put(m.sigma);
+    for (float v : m.scale) w.put(v);
+    for (float v : m.bias) w.put(v);
+    w.put(static_cast<std::uint32_t>(m.lights.size()));
+    for (Direction d : m.lights) putDirection(w, d);
+    w.put(static_cast<std::uint32_t>(m.table.size()));
+    w.putBytes(m.table.data(), m.table.size() * sizeof(float));
+    auto png = [&](const Image& image) {
+        const Bytes bytes = encodePng(image, 8);
+        w.put(static_cast<std::uint32_t>(bytes.size()));
+        w.putBytes(bytes.data(), bytes.size());
+    };
+    const auto P = static_cast<std::size_t>(m.planes);
+    for (std::size_t first = 0; first < P; first += 3) {
+        Image image(m.width, m.height, 3);
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3 && first + c < P; ++c) image.samples[i * 3 + c] = m.coefficients[i * P + first + c] / 255.f;
+        png(image);
+    }
+    if (!m.albedo.empty()) {
+        Image image(m.width, m.height, 3);
+        std::transform(m.albedo.begin(), m.albedo.end(), image.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
+        png(image);
+    }
+    return std::move(w.bytes());
+}
+
 }  // namespace
 
 std::uint32_t bankFormatVersion(const LutBank& bank) {
     // The oldest version that holds everything: readers of version 1 keep reading the banks
     // they always could.
+    if ((bank.makesLuts() && (bank.blend.predictor == LutBank::Blend::Predictor::Model || bank.blend.match != 1 ||
+                              bank.blend.target != LutBank::Blend::Target::Measured)) ||
+        !bank.selection.empty())
+        return 5;
     if (!bank.modelFill.empty()) return 4;
     if (bank.makesLuts()) return 3;
     return bank.domain == BankDomain::Layers ? 1u : 2u;
@@ -122,6 +162,11 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.regions : 0));
         head.put(static_cast<std::uint32_t>(bank.blend.quantiles));
     }
+    if (version >= 5) {
+        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.predictor : LutBank::Blend::Predictor::References));
+        head.put(bank.makesLuts() ? bank.blend.match : 1.f);
+        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.target : LutBank::Blend::Target::Measured));
+    }
     putChunk(file, kHead, head.bytes());
 
     for (const ViewLayer& layer : bank.layers) {
@@ -160,6 +205,13 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         putChunk(file, kMask, encodePng(byteImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
         if (!blend.labels.empty()) putChunk(file, kLabels, encodePng(byteImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
         if (!blend.albedo.samples.empty()) putChunk(file, kAlbedo, encodePng(blend.albedo, 8));
+    }
+    if (bank.makesLuts() && bank.blend.predictor == LutBank::Blend::Predictor::Model)
+        putChunk(file, kLightModel, encodeLightModel(bank.blend.model));
+    if (!bank.selection.empty()) {
+        Writer w;
+        w.putString(bank.selection);
+        putChunk(file, kSelection, w.bytes());
     }
     if (!bank.ptm.empty()) putChunk(file, kPtm, encodePtm(bank.ptm));
     putChunk(file, kEnd, {});

@@ -32,6 +32,7 @@
 #include "core/direction/triangulation.h"
 #include "core/histogram/lut.h"
 #include "core/image/image.h"
+#include "core/predict/light_model.h"
 #include "core/predict/ptm.h"
 
 namespace btflut {
@@ -123,9 +124,27 @@ struct LutBank {
     /// lrgb; relighter.h): K references blended per light, and regions of the sample, each
     /// matched to its own target. Their nodes hold the targets' quantile functions.
     struct Blend {
-        /// What is matched per light: the references blended, or the bank's PTM relit (the
-        /// PTM is then part of the bank's relighting, not only a baseline).
-        enum class Predictor : std::uint32_t { References = 0, Ptm = 1 } predictor = Predictor::References;
+        /// What is matched per light: the references blended, the bank's PTM relit (the PTM
+        /// is then part of the bank's relighting, not only a baseline), or a light model
+        /// (light_model.h: ptm, hsh, rbf, bln).
+        enum class Predictor : std::uint32_t { References = 0, Ptm = 1, Model = 2 } predictor = Predictor::References;
+        /// The predictor when it is not the references: the light model, or for Ptm the
+        /// bank's PTM as one (the file keeps it once, in its PTM chunk).
+        LightModel model;
+        /// How far each light's LUT moves the prediction's distribution towards the target's:
+        /// 1 fully (the target's histogram), 0 not at all (the prediction as it is); between,
+        /// the quantile functions blended (the Wasserstein geodesic between the two).
+        float match = 1;
+        /// How a light's LUT is made. Measured: the measured distributions' quantile
+        /// functions are blended at the light, and the prediction there is matched to that
+        /// target (its distribution counted per light change). Corrections: at each node the
+        /// LUT that takes the prediction at the node's light to the node's measured
+        /// distribution (made once per bank), blended at the light as a classic bank blends
+        /// its LUTs and applied to the prediction there: the predictor supplies how the
+        /// distribution moves between the measured lights, the measurements correct its
+        /// level and spread. Both reproduce a measured node exactly; only Measured counts
+        /// per light change.
+        enum class Target : std::uint32_t { Measured = 0, Corrections = 1 } target = Target::Measured;
         std::vector<Image> references;   ///< K, as blended: grey (lrgb) or as the source
         std::vector<LightNode> lights;   ///< each reference's light and image
         Triangulation triangulation;     ///< over their lights: the blend weights
@@ -136,8 +155,14 @@ struct LutBank {
         int quantiles = 0;  ///< samples per quantile function; 0: a bank of LUTs
     } blend;
 
+    /// How `bake --predictor auto` chose the predictor: the candidates and their validation
+    /// figures, JSON (docs/predictors.md); empty for banks baked otherwise.
+    std::string selection;
+
     /// True for banks that make their LUTs at run time (see Blend).
     bool makesLuts() const { return blend.quantiles > 0; }
+    /// True for banks whose prediction is a light model (Blend::model), not a blend of references.
+    bool predictsWithModel() const { return makesLuts() && blend.predictor != Blend::Predictor::References; }
     int channels() const { return colour == ColourMode::Rgb ? 3 : 1; }
     /// One code of the values the LUTs map to (those of the reference's format: 1/765 for
     /// the grey of 8-bit RGB), the unit of the dithered output shift.

@@ -5,6 +5,18 @@
 
 namespace btflut {
 
+namespace {
+
+// Predicted codes counted at their top-of-cell values (Relighter::predictedCounts) as
+// counts at their own values q / codes.
+LevelCounts ownValues(const LevelCounts& counts) {
+    LevelCounts own;
+    own.counts.assign(counts.counts.begin() + 1, counts.counts.end());
+    return own;
+}
+
+}  // namespace
+
 Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     if (!bank.makesLuts()) return;
     const LutBank::Blend& blend = bank.blend;
@@ -12,15 +24,52 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
         if (blend.mask.inside[i])
             m_regionTexels[blend.labels.empty() ? 0 : blend.labels[i]].push_back(static_cast<std::uint32_t>(i));
-    if (usesPtm()) {  // its grey on the scale of RGB8's grey codes
-        BTFLUT_CHECK(!bank.ptm.empty());
-        m_codes = 765;
-        return;
+    if (usesModel()) {  // its grey on the scale of its channels' codes (765 for RGB8's grey)
+        const LightModel& model = bank.blend.model;
+        BTFLUT_CHECK(!model.empty());
+        m_counted = bank.colour == ColourMode::Rgb ? 3 : 1;  // rgb: each channel matched apart
+        m_codes = 255 * (m_counted == 3 || (model.albedo.empty() && model.channels == 1) ? 1 : 3);
+    } else {
+        setUpReferenceCodes();
     }
+    if (blend.target == LutBank::Blend::Target::Corrections) {
+        // Each node's LUT from the prediction at its light to its target, in a bank of the
+        // same nodes (its lookups blend them as a classic bank's).
+        auto corrections = std::make_shared<LutBank>();
+        corrections->entries = bank.entries;
+        corrections->colour = bank.colour;
+        corrections->gridSize = bank.gridSize;
+        corrections->domain = bank.domain;
+        corrections->views = bank.views;
+        corrections->pairs = bank.pairs;
+        corrections->pairNodes = bank.pairNodes;
+        corrections->blend.regions = blend.regions;
+        corrections->blend.quantiles = bank.entries;  // its node values: regions x channels x entries
+        const auto samples = static_cast<std::size_t>(blend.quantiles);
+        for (const ViewLayer& layer : bank.layers) {
+            ViewLayer copy{layer.view, layer.nodes, {}, {}, {}, layer.lights, layer.modelLights, layer.measuredNodes, true};
+            for (std::size_t n = 0; n < layer.nodes.size(); ++n) {
+                const RelightFrame f = predictionFrame(layer.nodes[n].light);
+                const float* targets = &layer.nodeLuts[n * bank.nodeLength()];
+                for (std::size_t r = 0; r < m_regionTexels.size(); ++r)
+                    for (int c = 0; c < m_counted; ++c) {
+                        const float* q = targets + (r * static_cast<std::size_t>(m_counted) + static_cast<std::size_t>(c)) * samples;
+                        const Lut lut = matchToQuantiles(predictedCounts(f, r, c), std::span(q, samples), bank.entries);
+                        copy.nodeLuts.insert(copy.nodeLuts.end(), lut.values.begin(), lut.values.end());
+                    }
+            }
+            corrections->layers.push_back(std::move(copy));
+        }
+        m_corrections = std::move(corrections);
+    }
+}
+
+void Relighter::setUpReferenceCodes() {
+    const LutBank::Blend& blend = m_bank.blend;
     BTFLUT_CHECK(!blend.references.empty());
     const Image& first = blend.references.front();
     BTFLUT_CHECK(first.bitDepth == 8);  // the blend's codes are 8-bit (bakeBank's blendForm)
-    m_counted = bank.colour == ColourMode::Rgb ? 3 : 1;
+    m_counted = m_bank.colour == ColourMode::Rgb ? 3 : 1;
     m_codes = 255 * (m_counted == 1 ? first.channels : 1);
     auto code = [](float v) { return static_cast<std::int32_t>(std::lround(v * 255.f)); };
     for (const Image& reference : blend.references) {
@@ -37,39 +86,12 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     }
 }
 
-PtmFixed ptmFixed(const Ptm& ptm, Direction light) {
-    const PtmWeights w = ptmWeights(ptm.scale, ptm.bias, light);
-    // The most fraction bits (shift) that keep |offset| + 255 sum |weights| below 2^23.
-    double bound = std::abs(double{w.offset});  // the largest |luminance| (bytes at most 255)
-    for (float k : w.weights) bound += std::abs(double{k});
-    int shift = 0;
-    while (shift < 40 && bound * std::ldexp(1.0, shift + 1) < 0x1p23) ++shift;
-    PtmFixed f;
-    for (std::size_t k = 0; k < Ptm::kTerms; ++k)
-        f.weights[k] = static_cast<std::int32_t>(std::lround(double{w.weights[k]} / 255 * std::ldexp(1.0, shift)));
-    f.offset = static_cast<std::int32_t>(std::lround(double{w.offset} * std::ldexp(1.0, shift)));
-    f.scale = static_cast<float>(std::ldexp(1.0, 12 - shift));  // to luminance * kWeightUnit (2^12)
-    return f;
-}
-
-std::array<std::int64_t, 3> Relighter::ptmChannels(const PtmFixed& ptm, std::size_t texel) const {
-    static_assert(kWeightUnit == 4096, "ptmFixed scales to 2^12");
-    const std::uint8_t* a = &m_bank.ptm.coefficients[texel * Ptm::kTerms];
-    std::int64_t sum = ptm.offset;
-    for (std::size_t k = 0; k < Ptm::kTerms; ++k) sum += std::int64_t{a[k]} * ptm.weights[k];
-    const auto luminance = static_cast<std::int64_t>(std::floor(static_cast<double>(sum) * ptm.scale));
-    std::array<std::int64_t, 3> channels{};
-    for (std::size_t c = 0; c < 3; ++c)
-        channels[c] = std::clamp<std::int64_t>(std::int64_t{m_bank.ptm.albedo[texel * 3 + c]} * luminance, 0, 255 * kWeightUnit);
-    return channels;
-}
-
 std::size_t Relighter::predictedCode(const RelightFrame& frame, std::size_t texel, int channel) const {
     // floor(sum / kWeightUnit + 1/2): exact in float too, the sum being an integer below 2^24.
     std::int64_t sum = 0;
-    if (usesPtm()) {
-        const std::array<std::int64_t, 3> c = ptmChannels(frame.ptm, texel);
-        sum = c[0] + c[1] + c[2];
+    if (usesModel()) {
+        const std::array<std::int64_t, 3> c = predictFixed(m_bank.blend.model, frame.model, texel);
+        sum = m_counted == 3 ? c[static_cast<std::size_t>(channel)] : c[0] + c[1] + c[2];
     } else {
         for (int k = 0; k < frame.count; ++k)
             sum += std::int64_t{frame.weights[static_cast<std::size_t>(k)]} *
@@ -79,7 +101,7 @@ std::size_t Relighter::predictedCode(const RelightFrame& frame, std::size_t texe
 }
 
 RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate) const {
-    RelightFrame frame;
+    RelightFrame frame = m_bank.makesLuts() ? predictionFrame(light) : RelightFrame{};
     frame.light = light;
     frame.target = m_bank.lookup(light, view, interpolate);
     const BankLookup& target = frame.target;
@@ -90,10 +112,27 @@ RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate)
         frame.luts = target.values;
         return frame;
     }
+    if (m_corrections) {
+        frame.luts = m_corrections->lookup(light, view, interpolate).values;
+        if (const float match = m_bank.blend.match; match < 1) {
+            const auto entries = static_cast<std::size_t>(m_bank.entries);
+            for (std::size_t k = 0; k < frame.luts.size(); ++k) {
+                const float v = static_cast<float>(k % entries) / static_cast<float>(entries - 1);
+                frame.luts[k] = match * frame.luts[k] + (1 - match) * identity(v);
+            }
+        }
+        return frame;
+    }
+    frame.luts = lutsFor(frame, target.values);
+    return frame;
+}
+
+RelightFrame Relighter::predictionFrame(Direction light) const {
+    RelightFrame frame;
+    frame.light = light;
     frame.count = 0;
-    if (usesPtm()) {
-        frame.ptm = ptmFixed(m_bank.ptm, light);
-        frame.luts = lutsFor(frame, target.values);
+    if (usesModel()) {
+        frame.model = lightModelFixed(m_bank.blend.model, light);
         return frame;
     }
     // Barycentric weights in 1 / kWeightUnit; the largest takes the rounding so they sum to it.
@@ -110,24 +149,37 @@ RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate)
         ++frame.count;
     }
     frame.weights[largest] += kWeightUnit - total;
-    frame.luts = lutsFor(frame, target.values);
     return frame;
 }
 
-// Per region and channel: the blend's codes over the region's sample texels, matched to the
-// region's target quantile function.
+LevelCounts Relighter::predictedCounts(const RelightFrame& frame, std::size_t region, int channel) const {
+    LevelCounts counts;
+    counts.counts.assign(static_cast<std::size_t>(m_codes) + 2, 0);
+    for (std::uint32_t texel : m_regionTexels[region]) ++counts.counts[predictedCode(frame, texel, channel) + 1];
+    return counts;
+}
+
+float Relighter::identity(float v) const {
+    return std::clamp((v * static_cast<float>(m_codes + 1) - 1) / static_cast<float>(m_codes), 0.f, 1.f);
+}
+
+// Per region and channel: the prediction's codes over the region's sample texels, matched to
+// the region's target quantile function (with a match below 1, to its blend with the
+// prediction's own).
 std::vector<float> Relighter::lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const {
     const auto entries = static_cast<std::size_t>(m_bank.entries), samples = static_cast<std::size_t>(m_bank.blend.quantiles);
+    const float match = m_bank.blend.match;
     std::vector<float> luts;
     for (std::size_t r = 0; r < m_regionTexels.size(); ++r)
         for (int c = 0; c < m_counted; ++c) {
-            // Code q at value (q + 1) / (codes + 1): every code's cell lies inside [0, 1]
-            // (code 0 of these counts stays empty).
-            LevelCounts counts;
-            counts.counts.assign(static_cast<std::size_t>(m_codes) + 2, 0);
-            for (std::uint32_t texel : m_regionTexels[r]) ++counts.counts[predictedCode(frame, texel, c) + 1];
+            const LevelCounts counts = predictedCounts(frame, r, c);
             const float* q = &quantiles[(r * static_cast<std::size_t>(m_counted) + static_cast<std::size_t>(c)) * samples];
-            const Lut lut = matchToQuantiles(counts, std::span(q, samples), static_cast<int>(entries));
+            std::vector<float> target(q, q + samples);
+            if (match < 1) {
+                const std::vector<float> own = quantileFunction(ownValues(counts), static_cast<int>(samples));
+                for (std::size_t m = 0; m < samples; ++m) target[m] = match * target[m] + (1 - match) * own[m];
+            }
+            const Lut lut = matchToQuantiles(counts, target, static_cast<int>(entries));
             luts.insert(luts.end(), lut.values.begin(), lut.values.end());
         }
     return luts;
@@ -137,7 +189,7 @@ Image Relighter::apply(const RelightFrame& frame, bool dither) const {
     const float targetCode = dither ? m_bank.targetCode() : 0.f;
     if (!m_bank.makesLuts()) return applyLuts(m_bank.reference, m_bank.colour, frame.luts, m_bank.entries, targetCode);
     const LutBank::Blend& blend = m_bank.blend;
-    const Image& first = usesPtm() ? m_bank.reference : blend.references.front();
+    const Image& first = usesModel() ? m_bank.reference : blend.references.front();
     const ColourMode colour = m_bank.colour;
     const int outChannels = colour == ColourMode::Grey ? first.channels : 3;
     Image out(first.width, first.height, outChannels, m_bank.reference.bitDepth);
@@ -159,9 +211,9 @@ Image Relighter::apply(const RelightFrame& frame, bool dither) const {
         } else if (outChannels == 1) {
             p[0] = map(0);
         } else {
-            // The chroma: the blended references' (grey), the albedo's (lrgb) or the PTM's.
-            if (usesPtm()) {
-                const std::array<std::int64_t, 3> c = ptmChannels(frame.ptm, i);
+            // The chroma: the blended references' (grey), the albedo's (lrgb) or the model's.
+            if (usesModel()) {
+                const std::array<std::int64_t, 3> c = predictFixed(blend.model, frame.model, i);
                 for (std::size_t k = 0; k < 3; ++k) p[k] = static_cast<float>(c[k]) / (255.f * kWeightUnit);
             } else if (colour == ColourMode::Lrgb) {
                 std::copy_n(&blend.albedo.samples[i * 3], 3, p);

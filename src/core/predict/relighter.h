@@ -5,10 +5,12 @@
 // time (LutBank::Blend: several references, regions, lrgb) is relit in two steps:
 //   1. predict: the references around the light (a Delaunay triangle of their lights,
 //      clamped outside their hull) are blended per texel with barycentric weights, on their
-//      codes; or the bank's PTM is evaluated for the light (--predictor ptm);
-//   2. match: per region, the blend's exact distribution over the region's sample texels is
-//      counted, and ONE LUT maps it onto the target distribution at the light (the nodes'
-//      quantile functions blended, as LutBank::lookup blends LUTs).
+//      codes; or the bank's light model (light_model.h: ptm, hsh, rbf, bln) is evaluated
+//      for the light;
+//   2. match: per region, the prediction's exact distribution over the region's sample
+//      texels is counted, and ONE LUT maps it onto the target distribution at the light (the
+//      nodes' quantile functions blended, as LutBank::lookup blends LUTs); with
+//      Blend::match below 1, onto the blend of that target with the prediction's own.
 // So the histogram is the target's, as with one reference, while shadows and highlights come
 // from the references lit most like the light. Colour: grey blends RGB references and keeps
 // the blend's chroma; rgb matches each channel; lrgb blends grey references and takes the
@@ -19,6 +21,7 @@
 //   Image image = relighter.apply(frame, true);       // the CPU twin of the shader
 
 #include <array>
+#include <memory>
 #include <vector>
 
 #include "core/bank/lut_bank.h"
@@ -30,22 +33,12 @@ namespace btflut {
 /// integers summing to kWeightUnit, applied to the references' 8-bit codes.
 constexpr int kWeightUnit = 4096;
 
-/// The PTM predictor's per-light integers (from ptmWeights): a texel's fixed-point luminance
-/// L = floor((offset + sum_k byte_k weights[k]) * scale), luminance * kWeightUnit; the sum
-/// stays below 2^23, scale is a power of two.
-struct PtmFixed {
-    std::array<std::int32_t, Ptm::kTerms> weights{};
-    std::int32_t offset = 0;
-    float scale = 1;
-};
-PtmFixed ptmFixed(const Ptm& ptm, Direction light);
-
 struct RelightFrame {
     Direction light;                     ///< what the frame is for
-    int count = 1;                       ///< references blended, 1 to 3 (0 for the PTM predictor)
+    int count = 1;                       ///< references blended, 1 to 3 (0 for a light model)
     std::array<int, 3> references{0, 0, 0};
     std::array<std::int32_t, 3> weights{kWeightUnit, 0, 0};  ///< in 1 / kWeightUnit, summing to kWeightUnit
-    PtmFixed ptm;                        ///< the PTM predictor's
+    LightModelFixed model;               ///< a light model's per-light integers
     std::vector<float> luts;             ///< regions x channels x entries
     /// Of the target (LutBank::lookup): the worse of the light's and the view's.
     Provenance provenance = Provenance::Measured, lightProvenance = Provenance::Measured,
@@ -76,19 +69,29 @@ public:
     float inputCode() const { return 1.f / static_cast<float>(m_codes + 1); }
 
 private:
+    /// The references' codes per texel (banks that blend references).
+    void setUpReferenceCodes();
+    /// The prediction's part of a frame (blend weights or the model's integers), no LUTs.
+    RelightFrame predictionFrame(Direction light) const;
     std::vector<float> lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const;
-    /// The PTM predictor: a texel's channels times 255 * kWeightUnit, clipped (Ptm::render in
-    /// fixed point).
-    std::array<std::int64_t, 3> ptmChannels(const PtmFixed& ptm, std::size_t texel) const;
-    /// A texel's predicted code, 0 .. codes: the blend, or the PTM's grey.
+    /// The identity's LUT on the predicted codes' scale (code q read at (q + 1) / (codes + 1)
+    /// gives q / codes): what a match of 0 leaves.
+    float identity(float v) const;
+    /// A region's and channel's predicted codes as counts (code q at index q + 1, value
+    /// (q + 1) / (codes + 1): every cell inside [0, 1]).
+    LevelCounts predictedCounts(const RelightFrame& frame, std::size_t region, int channel) const;
+    /// A texel's predicted code, 0 .. codes: the blend, or the light model's grey.
     std::size_t predictedCode(const RelightFrame& frame, std::size_t texel, int channel) const;
-    bool usesPtm() const { return m_bank.blend.predictor == LutBank::Blend::Predictor::Ptm; }
+    bool usesModel() const { return m_bank.predictsWithModel(); }
 
     const LutBank& m_bank;
-    int m_codes = 255;                       // codes of a blended value (765 for the grey of RGB8)
+    int m_codes = 255;                       // codes of a predicted value (765 for the grey of RGB8)
     int m_counted = 1;                       // channels counted: 3 for rgb, else 1 (grey)
     std::vector<std::vector<std::int32_t>> m_referenceCodes;  // [reference][texel * counted + c]
     std::vector<std::vector<std::uint32_t>> m_regionTexels;    // sample texels of each region
+    /// Corrections (LutBank::Blend::Target::Corrections): the bank's nodes with, instead of
+    /// their targets, the LUTs from the prediction at their lights to their targets.
+    std::shared_ptr<const LutBank> m_corrections;
 };
 
 }  // namespace btflut

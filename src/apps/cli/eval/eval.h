@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "core/eval/holdout.h"
 #include "core/eval/metrics.h"
 #include "core/histogram/plot.h"
+#include "core/predict/light_model.h"
 
 namespace btflut::cli::eval {
 
@@ -30,12 +32,13 @@ struct EvalOptions {
     std::string dataset;
     std::string output;
     std::string holdout = "every:4";
-    std::string modes = "lut,brdf,ptm,nearest";
+    std::string modes = "lut,ptm,hsh,rbf,bln,nearest,brdf";
     std::string references = "1";
     std::string regions = "1";
     std::string colours = "grey";
-    std::string predictors = "references";
+    std::string predictors = "auto,references";
     std::string fills = "clamp";
+    std::string targets = "measured";
     std::string mask;
     std::string backend = "auto";
     bool blendedLuts = false;
@@ -50,13 +53,25 @@ struct EvalOptions {
 struct Variant {
     std::string name;
     RenderMode mode = RenderMode::Lut;
-    int references = 1, regions = 1;  // references 0: the PTM predictor
+    /// lut: what is matched: references (the --references blended), auto (bake's validated
+    /// choice), or a light model's name (ptm, hsh2, rbf9, ...)
+    std::string predictor = "references";
+    int references = 1, regions = 1;
     ColourMode colour = ColourMode::Grey;
     bool filled = false;       // bake --fill model (fitted to the training images)
+    bool corrections = false;     // lut with a predictor: the nodes' corrections blended (LutBank::Blend::Target)
     bool blendedLuts = false;  // the alternative: per-reference LUTs blended
-    bool base() const { return references == 1 && regions == 1 && colour == ColourMode::Grey && !filled; }
-    using Setting = std::tuple<int, int, ColourMode, bool>;
-    Setting setting() const { return {references, regions, colour, filled}; }
+    /// An RTI basis on its own, unmatched (modes hsh, rbf, bln; a number after the name is
+    /// the hsh order or the planes): fitted to the fold's training images.
+    std::optional<LightModelOptions> basis;
+    /// The mode as the report names it: the render mode, or the basis.
+    std::string modeName() const { return basis ? lightBasisName(basis->basis) : renderModeName(mode); }
+    bool base() const {
+        return predictor == "references" && references == 1 && regions == 1 && colour == ColourMode::Grey && !filled &&
+               !corrections;
+    }
+    using Setting = std::tuple<std::string, int, int, ColourMode, bool, bool>;
+    Setting setting() const { return {predictor, references, regions, colour, filled, corrections}; }
 
     std::vector<ImageErrors> errors;
     std::vector<std::string> images;

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "cli/eval/eval.h"
+#include "core/bank/auto_bake.h"
 #include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/model_fill.h"
@@ -24,12 +25,14 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
         std::map<Variant::Setting, std::unique_ptr<LutBank>> banks;
         std::map<Variant::Setting, std::unique_ptr<Relighter>> relighters;
         auto bankFor = [&](Variant& v) -> Result<LutBank*> {
-            const auto key = v.mode == RenderMode::Lut ? v.setting() : Variant::Setting{1, 1, ColourMode::Grey, false};
+            const auto key = v.mode == RenderMode::Lut ? v.setting() : Variant::Setting{"references", 1, 1, ColourMode::Grey, false, false};
             if (!banks.count(key)) {
                 Variant setting = v;
-                std::tie(setting.references, setting.regions, setting.colour, setting.filled) = key;
+                std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled, setting.corrections) = key;
                 const auto start = Clock::now();
-                Result<LutBank> bank = bakeBank(train, bakeOptionsOf(setting, o, ptm && setting.base()));
+                const BakeOptions options = bakeOptionsOf(setting, o, ptm && setting.base());
+                // lut auto: bake's validated choice, from the fold's training images alone
+                Result<LutBank> bank = setting.predictor == "auto" ? bakeAuto(train, {.base = options}) : bakeBank(train, options);
                 if (!bank) return Error{bank.error()};
                 if (setting.filled)  // fitted to the training images only
                     if (Result<ModelFillReport> fill = fillFromDataset(*bank, train, nullptr); !fill) return Error{fill.error()};
@@ -51,6 +54,33 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
         };
         for (Variant& v : variants)
             if (Result<LutBank*> b = bankFor(v); !b) return Error{b.error()};
+        // The RTI bases on their own, fitted to the training images (decoded once per fold).
+        std::map<std::string, LightModel> models;
+        if (std::any_of(variants.begin(), variants.end(), [](const Variant& v) { return v.basis.has_value(); })) {
+            std::vector<Image> decoded;
+            std::vector<const Image*> images;
+            std::vector<Direction> lights;
+            for (std::size_t i : fold.train) {
+                Result<Image> image = loadImage(dataset.images[i].path);
+                if (!image) return Error{image.error()};
+                if (Status s = requireSameSize(*image, dataset.images[i].path, first.width, first.height,
+                                               dataset.images.front().path);
+                    !s)
+                    return Error{s.error()};
+                decoded.push_back(std::move(*image));
+                lights.push_back(dataset.images[i].light);
+            }
+            for (const Image& image : decoded) images.push_back(&image);
+            for (Variant& v : variants) {
+                if (!v.basis) continue;
+                const auto start = Clock::now();
+                Result<LightModel> model = fitLightModel(images, lights, mask, *v.basis, dataset.source);
+                if (!model) return Error{model.error()};
+                v.bakeSeconds.push_back(seconds(start));
+                v.bytesPerTexel = model->bytesPerTexel();
+                models[v.name] = std::move(*model);
+            }
+        }
 
         const LevelCounts referenceGrey = [&] {
             const LutBank& base = *banks.begin()->second;
@@ -70,7 +100,9 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 if (!found) return Error{found.error()};
                 const LutBank& bank = **found;
                 Image predicted;
-                if (v.mode == RenderMode::Lut) {
+                if (v.basis) {
+                    predicted = models.at(v.name).render(info.light);
+                } else if (v.mode == RenderMode::Lut) {
                     const Relighter& relighter = *relighters.at(v.setting());
                     const auto start = Clock::now();
                     predicted = v.blendedLuts ? relighter.applyBlendingLuts(info.light, info.view, true)

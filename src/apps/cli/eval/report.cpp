@@ -43,7 +43,7 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                       l1, emd, psnr, ssim, v.bytesPerTexel, v.gpuBytesPerTexel, bake, relight, v.frameMs, v.gpuMaxDiff);
         text += line;
         auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-        json["modes"].push_back({{"name", v.name}, {"mode", renderModeName(v.mode)}, {"references", v.references},
+        json["modes"].push_back({{"name", v.name}, {"mode", v.modeName()}, {"references", v.references},
                                  {"regions", v.regions}, {"colour", colourName(v.colour)}, {"luts_blended", v.blendedLuts}, {"fill", v.filled ? "model" : "clamp"},
                                  {"l1", number(l1)}, {"emd", number(emd)}, {"psnr", number(psnr)}, {"ssim", number(ssim)},
                                  {"bytes_per_texel", v.bytesPerTexel}, {"gpu_bytes_per_texel", number(v.gpuBytesPerTexel)},

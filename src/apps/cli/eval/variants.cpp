@@ -45,6 +45,14 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
     if (modes.empty()) return Error{"--modes is empty"};
     for (const std::string& name : modes) {
         Result<RenderMode> mode = parseRenderMode(name);
+        if (!mode)
+            if (std::optional<Result<LightModelOptions>> basis = lightModelNamed(name)) {
+                if (!*basis) return Error{"--modes: " + basis->error()};
+                Variant v{name, RenderMode::Flat};
+                v.basis = **basis;
+                variants.push_back(v);
+                continue;
+            }
         if (!mode) return Error{"--modes: " + mode.error()};
         if (*mode != RenderMode::Lut) {
             variants.push_back({name, *mode});
@@ -52,8 +60,20 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
         }
         for (const std::string& predictor : split(o.predictors)) {
             if (predictor == "references") continue;
-            if (predictor != "ptm") return Error{"--predictor '" + predictor + "' is not references or ptm"};
-            for (int r : *rs) variants.push_back({"lut ptm R" + std::to_string(r) + " grey", RenderMode::Lut, 0, r});
+            if (predictor == "auto") {
+                Variant v{"lut auto", RenderMode::Lut, "auto"};
+                variants.push_back(v);
+                continue;
+            }
+            std::optional<Result<LightModelOptions>> model = lightModelNamed(predictor);
+            if (!model) return Error{"--predictor '" + predictor + "' is not auto, references or a basis (ptm, hsh, rbf, bln)"};
+            if (!*model) return Error{"--predictor " + model->error()};
+            for (const std::string& colourText : split(o.colours)) {
+                if (colourText != "grey" && colourText != "rgb") continue;  // a model's colour is its own or matched per channel
+                for (int r : *rs)
+                    variants.push_back({"lut " + predictor + " R" + std::to_string(r) + " " + colourText, RenderMode::Lut, predictor, 1,
+                                        r, colourText == "rgb" ? ColourMode::Rgb : ColourMode::Grey});
+            }
         }
         const std::vector<std::string> predictors = split(o.predictors);
         if (std::find(predictors.begin(), predictors.end(), "references") == predictors.end()) continue;
@@ -63,7 +83,8 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             const ColourMode colour = colourText == "rgb" ? ColourMode::Rgb : colourText == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
             for (int k : *ks)
                 for (int r : *rs) {
-                    Variant v{"lut K" + std::to_string(k) + " R" + std::to_string(r) + " " + colourText, RenderMode::Lut, k, r, colour};
+                    Variant v{"lut K" + std::to_string(k) + " R" + std::to_string(r) + " " + colourText, RenderMode::Lut,
+                              "references", k, r, colour};
                     variants.push_back(v);
                     if (o.blendedLuts && k > 1) {
                         v.name += " (LUTs blended)";
@@ -88,6 +109,23 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             all.push_back(f);
         }
     variants = std::move(all);
+    // Lut variants with a predictor: measured targets, the nodes' corrections, or both.
+    const std::vector<std::string> targets = split(o.targets);
+    if (targets.empty()) return Error{"--target is empty"};
+    for (const std::string& t : targets)
+        if (t != "measured" && t != "corrections") return Error{"--target '" + t + "' is not measured or corrections"};
+    all.clear();
+    for (const Variant& v : variants)
+        for (const std::string& t : targets) {
+            const bool predicts = v.mode == RenderMode::Lut && v.predictor != "auto" &&
+                                  (v.predictor != "references" || v.references > 1 || v.regions > 1 || v.colour == ColourMode::Lrgb);
+            if (!predicts && t != targets.front()) continue;
+            Variant r = v;
+            r.corrections = predicts && t == "corrections";
+            if (predicts && targets.size() > 1) r.name += t == "corrections" ? " corrections" : " measured";
+            all.push_back(r);
+        }
+    variants = std::move(all);
     // Lut variants first, then the baselines in the order asked.
     std::stable_partition(variants.begin(), variants.end(), [](const Variant& v) { return v.mode == RenderMode::Lut; });
     return variants;
@@ -96,8 +134,9 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
 BakeOptions bakeOptionsOf(const Variant& v, const EvalOptions& o, bool ptm) {
     BakeOptions b;
     b.gridSize = o.grid;
-    b.references = std::max(v.references, 1);
-    b.ptmPredictor = v.references == 0;
+    b.references = v.references;
+    if (std::optional<Result<LightModelOptions>> model = lightModelNamed(v.predictor)) b.model = **model;
+    if (v.corrections) b.target = LutBank::Blend::Target::Corrections;
     b.regions = v.regions;
     b.colour = v.colour;
     b.ptm = ptm;
@@ -109,7 +148,7 @@ double bytesPerTexel(const Variant& v, const LutBank& bank) {
     switch (v.mode) {
         case RenderMode::Lut:
             if (!bank.makesLuts()) return reference;
-            if (bank.blend.predictor == LutBank::Blend::Predictor::Ptm) return 9 + (bank.blend.regions > 1 ? 1 : 0);
+            if (bank.predictsWithModel()) return bank.blend.model.bytesPerTexel() + (bank.blend.regions > 1 ? 1 : 0);
             return static_cast<double>(bank.blend.references.size()) * bank.blend.references.front().channels +
                    (bank.colour == ColourMode::Lrgb ? 3 : 0) + (bank.blend.regions > 1 ? 1 : 0);
         case RenderMode::Ptm: return 9;

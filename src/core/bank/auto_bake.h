@@ -1,0 +1,44 @@
+#pragma once
+// `bake --predictor auto` (the default): the predictor, and how strongly to match it, chosen
+// by validation on the dataset's own lights, within a byte budget per texel.
+//
+//   Result<LutBank> bank = bakeAuto(dataset, {.budget = 9});
+//   bank->selection;   // JSON: every candidate's validation figures and the choice
+//
+// Candidates that fit the budget: the paper's one-reference bank; K references blended
+// (K + 3 bytes with an albedo); the light models ptm, hsh (order 2 and 3) and rbf and bln
+// with as many planes as the budget allows (light_model.h). Some of the dataset's lights are
+// left out in turn (every 4th, two folds; each light once for small sets), each candidate is
+// baked from the others, and each left-out image is predicted at match strengths 0, 1/4,
+// ..., 1 (LutBank::Blend::match) and compared with the photograph (eval/metrics.h). The
+// choice is the highest PSNR among the settings whose histogram L1 stays within 0.002 of
+// the one-reference bank's (the histograms are the method's point; the predictor only
+// places them). Never a held-out image of an outer evaluation: only `dataset` is used.
+// A basis that collapses (lights too clustered for it) validates badly and is not chosen.
+
+#include <functional>
+#include <optional>
+
+#include "core/bank/bake.h"
+
+namespace btflut {
+
+struct AutoBakeOptions {
+    BakeOptions base;          ///< grid, entries, threads, reference, quantiles, regions, ptm, progress
+    int budget = 9;            ///< bytes per texel the predictor may store
+    std::optional<float> match;  ///< a fixed match strength instead of the validated one
+    /// Called with a line per stage (candidates, folds); may be empty.
+    std::function<void(const std::string&)> log;
+};
+
+/// The bytes per texel of the smallest candidate for a dataset whose images have
+/// `channels` channels (the one-reference bank's: the reference itself).
+int smallestBudget(int channels);
+
+/// Bakes the validated choice; refuses a budget below every candidate with a line naming the
+/// smallest that works. Datasets with several views, or too few images to leave one out,
+/// get the one-reference bank (or, where its reference is constant, the rbf model) and say
+/// so in the selection.
+Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options, const ImageProvider& provider = {});
+
+}  // namespace btflut

@@ -1,0 +1,127 @@
+#pragma once
+// Linear light models: the per-texel predictors of RTI tools as one form. A texel stores P
+// coefficient planes (bytes, plane p's value v_p = (byte_p - bias_p) scale_p) and, in the
+// LRGB layout, an RGB albedo; a light L gives each plane and output channel a weight
+// w_pc(L) and each channel an offset o_c(L). The prediction of channel c is
+//
+//   pred_c = a_c (o_c(L) + sum_p v_p w_pc(L)),   clamped to [0, 1],
+//
+// a_c the albedo (byte / 255) in the LRGB layout, 1 otherwise. The bases differ only in
+// w(L):
+//   ptm  Malzbender's biquadratic (u^2, v^2, uv, u, v, 1) in the light's (x, y); LRGB.
+//   hsh  hemispherical harmonics (Gautron et al. 2004) of order 2 (4 terms) or 3 (9); LRGB.
+//   rbf  a PCA basis of the training images (mean and P principal components over every
+//        light and channel): w and o at L are the components' values at the training
+//        lights, blended by normalised Gaussian weights of the distance to L.
+//   bln  the same PCA basis resampled on a G x G grid over the equal-area light disk
+//        (regularised least squares), read bilinearly.
+// The texture-space GL pass evaluates the same sums in the same integers
+// (LightModelFixed, shaders/lut_common.glsl), so CPU and GPU predictions agree to the code.
+//
+//   Result<LightModel> m = fitLightModel(images, lights, mask, {.basis = LightBasis::Rbf, .planes = 9});
+//   Image predicted = m->render(light);                 // float, the CPU reference
+//   LightModelFixed f = lightModelFixed(*m, light);      // per light change: integer weights
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/direction/direction.h"
+#include "core/image/image.h"
+#include "core/predict/ptm.h"
+#include "core/result.h"
+
+namespace btflut {
+
+enum class LightBasis : std::uint32_t { Ptm = 0, Hsh = 1, Rbf = 2, Bilinear = 3 };
+
+const char* lightBasisName(LightBasis basis);
+Result<LightBasis> parseLightBasis(const std::string& name);
+
+struct LightModel {
+    static constexpr int kMaxPlanes = 32;
+
+    LightBasis basis = LightBasis::Ptm;
+    int width = 0, height = 0;
+    int planes = 0;    ///< P, 1..kMaxPlanes
+    int channels = 1;  ///< output channels: 1 (grey) or 3
+    int order = 0;     ///< hsh: 2 or 3
+    std::vector<float> scale, bias;        ///< per plane: v_p = (byte_p - bias_p) * scale_p, scale > 0
+    std::vector<std::uint8_t> coefficients;  ///< P bytes per texel, rows top first
+    std::vector<std::uint8_t> albedo;        ///< LRGB layout: RGB bytes per texel; empty otherwise
+
+    /// rbf: the training lights and, per light, (1 + P) x channels values (the offset, then
+    /// each plane's weight); sigma the Gaussian's width (unit-vector distance).
+    std::vector<Direction> lights;
+    float sigma = 0;
+    /// bln: grid nodes per side G and, per node (j * G + i, disk point as LutBank::gridPoint),
+    /// (1 + P) x channels values.
+    int grid = 0;
+    std::vector<float> table;  ///< rbf: per light; bln: per grid node
+
+    bool empty() const { return coefficients.empty(); }
+    std::size_t texels() const { return static_cast<std::size_t>(width) * height; }
+    /// Bytes per texel the model stores: its planes and the albedo.
+    int bytesPerTexel() const { return planes + (albedo.empty() ? 0 : 3); }
+    /// The basis's own terms count (ptm 6, hsh 4 or 9); 0 for the PCA bases.
+    static int termCount(LightBasis basis, int order);
+
+    /// w (planes x channels, plane-major) and o (channels) at a light.
+    struct Weights {
+        std::vector<float> weight;  ///< w[p * channels + c]
+        std::array<float, 3> offset{};
+    };
+    Weights weightsAt(Direction light) const;
+
+    /// The prediction (float, clamped to [0, 1]): grey when channels is 1, else RGB.
+    Image render(Direction light) const;
+};
+
+/// The six PTM terms or the 4 / 9 HSH terms of a light (ptm: Ptm::terms' order).
+std::vector<double> basisTerms(LightBasis basis, int order, Direction light);
+
+/// The per-light integers both the CPU and the shader evaluate (as PtmFixed, for every
+/// basis): per channel S_c = offset_c + sum_p byte_p weights[p][c], exact below 2^23, and
+/// L_c = floor(S_c * scale) = the channel's value before the albedo, times kWeightUnit; a
+/// channel is clamp(a_c L_c, 0, 255 kWeightUnit) with a_c the albedo byte (255 without).
+struct LightModelFixed {
+    std::vector<std::int32_t> weights;      ///< [p * channels + c]
+    std::array<std::int32_t, 3> offset{};
+    float scale = 1;  ///< a power of two
+};
+LightModelFixed lightModelFixed(const LightModel& model, Direction light);
+
+/// A texel's channels times 255 * kWeightUnit (kWeightUnit: relighter.h), clamped: the
+/// fixed-point prediction, channels 1 or 3 (grey models give one).
+std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightModelFixed& fixed, std::size_t texel);
+
+/// A PTM as a light model (the same bytes, scales, biases and albedo).
+LightModel lightModelFromPtm(const Ptm& ptm);
+
+struct LightModelOptions {
+    LightBasis basis = LightBasis::Rbf;
+    int order = 3;    ///< hsh
+    int planes = 9;   ///< rbf, bln: principal components kept
+    int grid = 8;     ///< bln: grid nodes per side over the light disk
+    bool colour = true;  ///< rbf, bln: predict RGB (the images' colour); else grey
+    int threads = 0;
+};
+
+/// A model from its command-line name: ptm; hsh (order 2), hsh2, hsh3; rbf and bln (9
+/// planes), rbfN and blnN (N planes); nothing when the name names no basis, an error for a
+/// number out of range.
+std::optional<Result<LightModelOptions>> lightModelNamed(const std::string& name);
+
+/// The model's name as the command line gives it: ptm, hsh2, hsh3, rbfN, blnN.
+std::string lightModelName(const LightModel& model);
+
+/// Fits a model to images of one view under `lights` (same size; RGB or grey). ptm and hsh:
+/// least squares per texel on the grey value, ridge-regularised where the lights leave a term
+/// undetermined (the albedo is the texel's mean colour); refuses lights that determine too
+/// little (`what` names the dataset). rbf, bln: PCA over the sample texels of `mask`.
+Result<LightModel> fitLightModel(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
+                                 const Mask& mask, const LightModelOptions& options, const std::string& what);
+
+}  // namespace btflut

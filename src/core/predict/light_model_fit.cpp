@@ -1,0 +1,310 @@
+// Fitting linear light models (light_model.h) to the images of one view: least squares per
+// texel for the fixed bases (ptm, hsh), PCA over the sample texels for rbf and bln.
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.h"
+#include "core/parallel.h"
+#include "core/predict/light_model.h"
+
+namespace btflut {
+
+namespace {
+
+// Planes as bytes: each plane's range over every texel mapped onto 0..255 (as the .ptm format
+// and RTI web formats store them: one scale and bias per plane).
+void quantisePlanes(const std::vector<double>& values, LightModel& m) {
+    const auto P = static_cast<std::size_t>(m.planes);
+    const std::size_t texels = m.texels();
+    m.scale.assign(P, 1.f);
+    m.bias.assign(P, 0.f);
+    m.coefficients.resize(texels * P);
+    for (std::size_t p = 0; p < P; ++p) {
+        double low = values[p], high = values[p];
+        for (std::size_t i = 0; i < texels; ++i) {
+            low = std::min(low, values[i * P + p]);
+            high = std::max(high, values[i * P + p]);
+        }
+        const double scale = high > low ? (high - low) / 255 : 1.0;
+        m.scale[p] = static_cast<float>(scale);
+        m.bias[p] = static_cast<float>(-low / scale);
+        for (std::size_t i = 0; i < texels; ++i)
+            m.coefficients[i * P + p] = static_cast<std::uint8_t>(
+                std::clamp<long>(std::lround(values[i * P + p] / m.scale[p] + m.bias[p]), 0, 255));
+    }
+}
+
+// The albedo of the LRGB layout: the texel's mean colour, its largest channel 255; and the
+// factor that brings the grey value to the largest channel's (what the luminance then fits).
+void albedoOf(const std::vector<const Image*>& images, LightModel& m, std::vector<double>& luminanceScale) {
+    const std::size_t texels = m.texels();
+    m.albedo.resize(texels * 3);
+    luminanceScale.assign(texels, 1.0);
+    for (std::size_t i = 0; i < texels; ++i) {
+        std::array<double, 3> sum{};
+        for (const Image* image : images)
+            for (std::size_t c = 0; c < 3; ++c) sum[c] += image->samples[i * 3 + c];
+        const double grey = (sum[0] + sum[1] + sum[2]) / 3, top = std::max({sum[0], sum[1], sum[2]});
+        luminanceScale[i] = grey > 0 ? top / grey : 1.0;
+        for (std::size_t c = 0; c < 3; ++c)
+            m.albedo[i * 3 + c] = static_cast<std::uint8_t>(top > 0 ? std::lround(255 * sum[c] / top) : 255);
+    }
+}
+
+Result<LightModel> fitFixedBasis(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
+                                 const LightModelOptions& o, const std::string& what) {
+    LightModel m;
+    m.basis = o.basis;
+    m.order = o.basis == LightBasis::Hsh ? o.order : 0;
+    if (o.basis == LightBasis::Hsh && m.order != 2 && m.order != 3)
+        return Error{"hsh order " + std::to_string(o.order) + ": expected 2 (4 terms) or 3 (9 terms)"};
+    const int K = LightModel::termCount(o.basis, m.order);
+    const auto k = static_cast<std::size_t>(K);
+    m.width = images.front()->width;
+    m.height = images.front()->height;
+    m.planes = K;
+    m.channels = 1;
+    const std::size_t texels = m.texels();
+    std::vector<double> luminanceScale(texels, 1.0);
+    if (images.front()->channels == 3) albedoOf(images, m, luminanceScale);
+
+    // The normal equations (the same for every texel), ridge-regularised where the lights
+    // leave the terms ill-determined: a basis whose terms barely vary over the measured
+    // lights (HSH of order 3 under lights within 40 degrees of the normal) would otherwise
+    // amplify noise into a collapsed relighting.
+    Eigen::MatrixXd A(lights.size(), K);
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const std::vector<double> t = basisTerms(o.basis, m.order, lights[i]);
+        for (std::size_t j = 0; j < k; ++j) A(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = t[j];
+    }
+    Eigen::MatrixXd normal = A.transpose() * A;
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(normal);
+    const double top = svd.singularValues()(0);
+    if (!(top > 0) || !std::isfinite(top))
+        return Error{what + ": the light directions determine none of the " + std::string(lightBasisName(o.basis)) + " terms"};
+    const double condition = top / std::max(svd.singularValues()(K - 1), 1e-300);
+    if (condition > 1e3) normal += Eigen::MatrixXd::Identity(K, K) * (top * 1e-3);
+    const Eigen::MatrixXd solve = normal.inverse() * A.transpose();  // K x lights
+
+    std::vector<double> fitted(texels * k);
+    parallelFor((texels + 4095) / 4096, o.threads, [&](std::size_t block) {
+        const std::size_t end = std::min(texels, (block + 1) * 4096);
+        Eigen::VectorXd grey(static_cast<Eigen::Index>(images.size()));
+        for (std::size_t i = block * 4096; i < end; ++i) {
+            for (std::size_t l = 0; l < images.size(); ++l) grey(static_cast<Eigen::Index>(l)) = images[l]->grey(i);
+            const Eigen::VectorXd a = solve * grey * luminanceScale[i];
+            for (std::size_t j = 0; j < k; ++j) fitted[i * k + j] = a(static_cast<Eigen::Index>(j));
+        }
+    });
+    quantisePlanes(fitted, m);
+    return m;
+}
+
+// The training lights' rows of a PCA model blended by normalised Gaussians of width sigma,
+// each row left out of its own prediction: the squared error of predicting every row from
+// the others, each plane's part weighted by its variance (so it is the expected squared
+// error over the texels).
+double leaveOneOutError(const std::vector<Direction>& lights, const std::vector<float>& table, std::size_t row,
+                        std::size_t channels, const std::vector<double>& variance, double sigma) {
+    double error = 0;
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const Vec3 l = toVector(lights[i]);
+        std::vector<double> sum(row, 0.0);
+        double total = 0;
+        for (std::size_t j = 0; j < lights.size(); ++j) {
+            if (j == i) continue;
+            const Vec3 m = toVector(lights[j]);
+            const double d2 = (l.x - m.x) * (l.x - m.x) + (l.y - m.y) * (l.y - m.y) + (l.z - m.z) * (l.z - m.z);
+            const double g = std::exp(-d2 / (sigma * sigma));
+            total += g;
+            for (std::size_t k = 0; k < row; ++k) sum[k] += g * table[j * row + k];
+        }
+        if (!(total > 1e-300)) return INFINITY;
+        for (std::size_t k = 0; k < row; ++k) {
+            const double d = sum[k] / total - table[i * row + k];
+            error += d * d * (k < channels ? 1.0 : variance[k / channels - 1]);
+        }
+    }
+    return error;
+}
+
+// The grid of a bln model: at each node the rows that fit the training lights' rows best
+// when read bilinearly, pulled towards the rbf blend at the node where the lights leave the
+// grid undetermined: min |A V - T|^2 + k |V - B T|^2, A the lights' bilinear weights on the
+// grid, B the nodes' rbf weights over the lights.
+std::vector<float> resampleOnGrid(const LightModel& rbf, int grid) {
+    const std::size_t n = rbf.lights.size(), nodes = static_cast<std::size_t>(grid) * grid;
+    const std::size_t row = (1 + static_cast<std::size_t>(rbf.planes)) * static_cast<std::size_t>(rbf.channels);
+    Eigen::MatrixXd T(n, row), A = Eigen::MatrixXd::Zero(n, nodes), B(nodes, n);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t k = 0; k < row; ++k) T(i, k) = rbf.table[i * row + k];
+    for (std::size_t i = 0; i < n; ++i) {
+        const DiskPoint p = toDisk(rbf.lights[i]);
+        const double gx = std::clamp((p.x + 1) / 2 * (grid - 1), 0.0, grid - 1.0);
+        const double gy = std::clamp((p.y + 1) / 2 * (grid - 1), 0.0, grid - 1.0);
+        const int x = std::min(static_cast<int>(gx), grid - 2), y = std::min(static_cast<int>(gy), grid - 2);
+        const double fx = gx - x, fy = gy - y;
+        A(i, y * grid + x) = (1 - fx) * (1 - fy);
+        A(i, y * grid + x + 1) = fx * (1 - fy);
+        A(i, (y + 1) * grid + x) = (1 - fx) * fy;
+        A(i, (y + 1) * grid + x + 1) = fx * fy;
+    }
+    for (int j = 0; j < grid; ++j)
+        for (int i = 0; i < grid; ++i) {
+            const Direction node = fromDisk({-1 + 2.0 * i / (grid - 1), -1 + 2.0 * j / (grid - 1)});
+            const Vec3 l = toVector(node);
+            double total = 0;
+            std::vector<double> g(n);
+            for (std::size_t k = 0; k < n; ++k) {
+                const Vec3 m = toVector(rbf.lights[k]);
+                const double d2 = (l.x - m.x) * (l.x - m.x) + (l.y - m.y) * (l.y - m.y) + (l.z - m.z) * (l.z - m.z);
+                g[k] = std::exp(-d2 / (double{rbf.sigma} * rbf.sigma));
+                total += g[k];
+            }
+            std::size_t nearest = 0;
+            for (std::size_t k = 1; k < n; ++k)
+                if (angleBetween(rbf.lights[k], node) < angleBetween(rbf.lights[nearest], node)) nearest = k;
+            for (std::size_t k = 0; k < n; ++k)
+                B(static_cast<Eigen::Index>(j * grid + i), static_cast<Eigen::Index>(k)) =
+                    total > 1e-300 ? g[k] / total : (k == nearest ? 1.0 : 0.0);
+        }
+    const double k = 0.1;
+    const Eigen::MatrixXd prior = B * T;
+    const Eigen::MatrixXd V =
+        prior + (A.transpose() * A + k * Eigen::MatrixXd::Identity(nodes, nodes)).ldlt().solve(A.transpose() * (T - A * prior));
+    std::vector<float> out(nodes * row);
+    for (std::size_t i = 0; i < nodes; ++i)
+        for (std::size_t c = 0; c < row; ++c) out[i * row + c] = static_cast<float>(V(i, c));
+    return out;
+}
+
+Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::vector<Direction>& lights, const Mask& mask,
+                          const LightModelOptions& o, const std::string& what) {
+    const Image& first = *images.front();
+    LightModel m;
+    m.basis = o.basis;
+    m.width = first.width;
+    m.height = first.height;
+    m.channels = o.colour && first.channels == 3 ? 3 : 1;
+    const auto C = static_cast<std::size_t>(m.channels), n = images.size();
+    const std::size_t D = n * C;
+    if (o.planes < 1 || o.planes > LightModel::kMaxPlanes)
+        return Error{std::string(lightBasisName(o.basis)) + ": " + std::to_string(o.planes) + " planes is outside 1.." +
+                     std::to_string(LightModel::kMaxPlanes)};
+    m.planes = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(o.planes), D));
+    const auto P = static_cast<std::size_t>(m.planes);
+    auto value = [&](std::size_t texel, std::size_t d) -> double {
+        const Image& image = *images[d / C];
+        return C == 1 ? image.grey(texel) : image.samples[texel * 3 + d % C];
+    };
+
+    // Mean and covariance over (at most about 2^16 of) the sample's texels.
+    std::vector<std::uint32_t> sample;
+    for (std::size_t i = 0; i < mask.inside.size(); ++i)
+        if (mask.inside[i]) sample.push_back(static_cast<std::uint32_t>(i));
+    if (sample.empty()) return Error{what + ": the mask has no sample pixels"};
+    const std::size_t step = std::max<std::size_t>(1, sample.size() / 65536);
+    std::vector<std::uint32_t> used;
+    for (std::size_t i = 0; i < sample.size(); i += step) used.push_back(sample[i]);
+    const std::size_t blocks = std::min<std::size_t>(16, used.size());
+    std::vector<Eigen::MatrixXd> partial(blocks, Eigen::MatrixXd::Zero(D, D));
+    std::vector<Eigen::VectorXd> partialMean(blocks, Eigen::VectorXd::Zero(D));
+    parallelFor(blocks, o.threads, [&](std::size_t b) {
+        Eigen::VectorXd x(D);
+        for (std::size_t s = b; s < used.size(); s += blocks) {
+            for (std::size_t d = 0; d < D; ++d) x(d) = value(used[s], d);
+            partial[b].selfadjointView<Eigen::Lower>().rankUpdate(x);
+            partialMean[b] += x;
+        }
+    });
+    Eigen::MatrixXd second = Eigen::MatrixXd::Zero(D, D);
+    Eigen::VectorXd mean = Eigen::VectorXd::Zero(D);
+    for (std::size_t b = 0; b < blocks; ++b) {
+        second += partial[b];
+        mean += partialMean[b];
+    }
+    const auto count = static_cast<double>(used.size());
+    mean /= count;
+    Eigen::MatrixXd covariance = second.selfadjointView<Eigen::Lower>();
+    covariance = covariance / count - mean * mean.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance);
+    if (eigen.info() != Eigen::Success) return Error{what + ": the images' principal components did not converge"};
+    // The largest P components (the solver sorts ascending).
+    Eigen::MatrixXd E(D, P);
+    std::vector<double> variance(P);
+    for (std::size_t p = 0; p < P; ++p) {
+        E.col(static_cast<Eigen::Index>(p)) = eigen.eigenvectors().col(static_cast<Eigen::Index>(D - 1 - p));
+        variance[p] = std::max(0.0, eigen.eigenvalues()(static_cast<Eigen::Index>(D - 1 - p)));
+    }
+
+    // Each texel's coordinates on the components.
+    const std::size_t texels = m.texels();
+    std::vector<double> coordinates(texels * P);
+    parallelFor((texels + 4095) / 4096, o.threads, [&](std::size_t block) {
+        const std::size_t end = std::min(texels, (block + 1) * 4096);
+        Eigen::VectorXd x(D);
+        for (std::size_t i = block * 4096; i < end; ++i) {
+            for (std::size_t d = 0; d < D; ++d) x(d) = value(i, d) - mean(d);
+            const Eigen::VectorXd c = E.transpose() * x;
+            for (std::size_t p = 0; p < P; ++p) coordinates[i * P + p] = c(static_cast<Eigen::Index>(p));
+        }
+    });
+    quantisePlanes(coordinates, m);
+
+    // Per training light: the mean's values there, then each component's.
+    const std::size_t row = (1 + P) * C;
+    m.lights = lights;
+    m.table.resize(n * row);
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t c = 0; c < C; ++c) {
+            m.table[i * row + c] = static_cast<float>(mean(i * C + c));
+            for (std::size_t p = 0; p < P; ++p) m.table[i * row + (1 + p) * C + c] = static_cast<float>(E(i * C + c, p));
+        }
+    // sigma: the multiple of the lights' median spacing that predicts each light's row best
+    // from the others.
+    std::vector<double> spacing;
+    for (std::size_t i = 0; i < n; ++i) {
+        double nearest = INFINITY;
+        const Vec3 a = toVector(lights[i]);
+        for (std::size_t j = 0; j < n; ++j) {
+            if (j == i) continue;
+            const Vec3 b = toVector(lights[j]);
+            const double d = std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
+            if (d > 1e-9) nearest = std::min(nearest, d);
+        }
+        if (std::isfinite(nearest)) spacing.push_back(nearest);
+    }
+    std::sort(spacing.begin(), spacing.end());
+    const double unit = spacing.empty() ? 0.1 : std::max(spacing[spacing.size() / 2], 1e-3);
+    double best = INFINITY;
+    m.sigma = static_cast<float>(unit);
+    for (double factor : {0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 4.0}) {
+        const double e = n > 1 ? leaveOneOutError(lights, m.table, row, C, variance, unit * factor) : 0;
+        if (e < best) best = e, m.sigma = static_cast<float>(unit * factor);
+    }
+    if (o.basis == LightBasis::Bilinear) {
+        if (o.grid < 2 || o.grid > 64) return Error{"bln grid " + std::to_string(o.grid) + " is outside 2..64"};
+        m.grid = o.grid;
+        m.table = resampleOnGrid(m, o.grid);
+        m.lights.clear();
+        m.sigma = 0;
+    }
+    return m;
+}
+
+}  // namespace
+
+Result<LightModel> fitLightModel(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
+                                 const Mask& mask, const LightModelOptions& options, const std::string& what) {
+    BTFLUT_CHECK(images.size() == lights.size());
+    if (images.empty()) return Error{what + ": no images to fit a light model to"};
+    for (const Image* image : images)
+        BTFLUT_CHECK(image->width == images.front()->width && image->height == images.front()->height &&
+                     image->channels == images.front()->channels);
+    if (options.basis == LightBasis::Ptm || options.basis == LightBasis::Hsh) return fitFixedBasis(images, lights, options, what);
+    return fitPca(images, lights, mask, options, what);
+}
+
+}  // namespace btflut
