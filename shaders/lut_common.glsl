@@ -25,12 +25,20 @@ float btflutApplyLutDithered(sampler1D lut, int entries, float v, uvec2 pixel, u
 // of the texel's region is applied to it.
 #if defined(BLEND)
 // grey and rgb: one reference per layer; lrgb: four per RGBA layer; BLEND_MODEL: the light
-// model's planes three to a layer (BLEND_MODEL_LAYERS), then its albedo (BLEND_MODEL_ALBEDO)
+// model's 8-bit planes three to a layer (BLEND_MODEL_LAYERS), its 4-bit planes six to a layer
+// (BLEND_MODEL_NIBBLE_LAYERS: two to a channel, the first in the high nibble), then its albedo
+// (BLEND_MODEL_ALBEDO)
 uniform sampler2DArray blendReferences;
 #if defined(BLEND_MODEL)
 // src/core/predict/light_model.h, LightModelFixed: per layer and channel, the integer weights
-// of its three planes; per channel the integer offset; the power of two to value * 4096.
+// of its three planes (4-bit layers: of their high, then their low nibbles); per channel the
+// integer offset; the power of two to value * 4096.
+#if BLEND_MODEL_LAYERS > 0
 uniform vec3 blendModelWeights[BLEND_MODEL_LAYERS * BLEND_MODEL_CHANNELS];
+#endif
+#if BLEND_MODEL_NIBBLE_LAYERS > 0
+uniform vec3 blendModelNibbleWeights[BLEND_MODEL_NIBBLE_LAYERS * BLEND_MODEL_CHANNELS * 2];
+#endif
 uniform vec3 blendModelOffset;
 uniform float blendModelScale;
 #elif defined(BLEND_PACKED)
@@ -65,15 +73,26 @@ BtflutBlend btflutBlend() {
     vec3 value = vec3(0.0);  // each channel's value before the albedo, times 4096
     for (int c = 0; c < BLEND_MODEL_CHANNELS; ++c) {  // unrolled: constant bounds
         float sum = blendModelOffset[c];
+#if BLEND_MODEL_LAYERS > 0
         for (int l = 0; l < BLEND_MODEL_LAYERS; ++l)
             sum += dot(btflutBytes(btflutBlendTexel(l)).rgb, blendModelWeights[l * BLEND_MODEL_CHANNELS + c]);
+#endif
+#if BLEND_MODEL_NIBBLE_LAYERS > 0
+        for (int l = 0; l < BLEND_MODEL_NIBBLE_LAYERS; ++l) {
+            vec3 bytes = btflutBytes(btflutBlendTexel(BLEND_MODEL_LAYERS + l)).rgb;
+            vec3 high = floor(bytes / 16.0);
+            int at = (l * BLEND_MODEL_CHANNELS + c) * 2;
+            sum += dot(high, blendModelNibbleWeights[at]) + dot(bytes - 16.0 * high, blendModelNibbleWeights[at + 1]);
+        }
+#endif
         value[c] = floor(sum * blendModelScale);
     }
 #if BLEND_MODEL_CHANNELS == 1
     value = vec3(value.x);
 #endif
 #if defined(BLEND_MODEL_ALBEDO)
-    vec3 channels = clamp(btflutBytes(btflutBlendTexel(BLEND_MODEL_LAYERS)).rgb * value, 0.0, 255.0 * 4096.0);
+    vec3 channels = clamp(btflutBytes(btflutBlendTexel(BLEND_MODEL_LAYERS + BLEND_MODEL_NIBBLE_LAYERS)).rgb * value, 0.0,
+                          255.0 * 4096.0);
 #else
     vec3 channels = clamp(255.0 * value, 0.0, 255.0 * 4096.0);
 #endif

@@ -66,7 +66,10 @@ std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
            BakeOptions{.model = LightModelOptions{.basis = Basis::Bilinear, .planes = 4}, .target = Target::Corrections, .regions = 2},
            false},
           {"grey images hsh2", BakeOptions{.model = LightModelOptions{.basis = Basis::Hsh, .order = 2}}, true},
-          {"grey images rbf7", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 7}}, true}}) {
+          {"grey images rbf7", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 7}}, true},
+          {"bln5c (4-bit planes)", BakeOptions{.model = LightModelOptions{.basis = Basis::Bilinear, .planes = 5, .packed = true}},
+           false},
+          {"grey images rbf4c", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 4, .packed = true}}, true}}) {
         auto bank = bakeBank(greyImages ? *grey : *dataset, options);
         REQUIRE_MESSAGE(bank.ok(), name << ": " << bank.error());
         banks.emplace_back(name, std::move(*bank));

@@ -20,15 +20,23 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     t.m_bank = &bank;
     std::vector<std::uint8_t> data;
     if (bank.predictsWithModel()) {
-        // The light model's planes three to an RGB layer, then its albedo.
+        // The light model's 8-bit planes three to an RGB layer, its 4-bit planes six (two to a
+        // channel, the first in the high nibble), then its albedo.
         const LightModel& m = blend.model;
-        const auto P = static_cast<std::size_t>(m.planes), n = m.texels();
-        t.m_layers = (m.planes + 2) / 3;
-        const int layers = t.m_layers + (m.albedo.empty() ? 0 : 1);
+        const auto P = static_cast<std::size_t>(m.planes), W = static_cast<std::size_t>(m.wide), n = m.texels();
+        t.m_layers = (m.wide + 2) / 3;
+        t.m_nibbleLayers = (m.planes - m.wide + 5) / 6;
+        const auto planeLayers = static_cast<std::size_t>(t.m_layers + t.m_nibbleLayers);
+        const int layers = static_cast<int>(planeLayers) + (m.albedo.empty() ? 0 : 1);
         data.assign(static_cast<std::size_t>(layers) * n * 3, 0);
-        for (std::size_t i = 0; i < n; ++i)
-            for (std::size_t p = 0; p < P; ++p) data[((p / 3) * n + i) * 3 + p % 3] = m.coefficients[i * P + p];
-        if (!m.albedo.empty()) std::copy(m.albedo.begin(), m.albedo.end(), data.begin() + static_cast<std::ptrdiff_t>(t.m_layers * n * 3));
+        for (std::size_t i = 0; i < n; ++i) {
+            for (std::size_t p = 0; p < W; ++p) data[((p / 3) * n + i) * 3 + p % 3] = m.coefficients[i * P + p];
+            for (std::size_t p = W; p < P; ++p) {
+                const std::size_t q = p - W, layer = static_cast<std::size_t>(t.m_layers) + q / 6;
+                data[(layer * n + i) * 3 + (q % 6) / 2] += static_cast<std::uint8_t>(m.coefficients[i * P + p] << (q % 2 == 0 ? 4 : 0));
+            }
+        }
+        if (!m.albedo.empty()) std::copy(m.albedo.begin(), m.albedo.end(), data.begin() + static_cast<std::ptrdiff_t>(planeLayers * n * 3));
         t.m_references = uploadTextureArray(m.width, m.height, layers, 3, data.data(), bytes);
     } else if (bank.colour == ColourMode::Lrgb) {
         // Four grey references per RGBA layer (reference j: layer j / 4, channel j % 4).
@@ -62,7 +70,8 @@ std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
     if (bank.predictsWithModel()) {
         const LightModel& m = bank.blend.model;
         d.push_back("BLEND_MODEL");
-        d.push_back("BLEND_MODEL_LAYERS " + std::to_string((m.planes + 2) / 3));
+        d.push_back("BLEND_MODEL_LAYERS " + std::to_string((m.wide + 2) / 3));
+        d.push_back("BLEND_MODEL_NIBBLE_LAYERS " + std::to_string((m.planes - m.wide + 5) / 6));
         d.push_back("BLEND_MODEL_CHANNELS " + std::to_string(m.channels));
         if (!m.albedo.empty()) d.push_back("BLEND_MODEL_ALBEDO");
     }
@@ -125,13 +134,22 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
         // The frame's integers (LightModelFixed; the CPU twin: predictFixed), per layer of three
         // planes and per channel.
         const LightModel& m = bank.blend.model;
-        const auto P = static_cast<std::size_t>(m.planes), C = static_cast<std::size_t>(m.channels);
-        const auto layers = static_cast<std::size_t>(m_layers);
-        std::vector<float> weights(layers * C * 3, 0.f);
-        for (std::size_t q = 0; q < P; ++q)
+        const auto P = static_cast<std::size_t>(m.planes), W = static_cast<std::size_t>(m.wide),
+                   C = static_cast<std::size_t>(m.channels);
+        const auto layers = static_cast<std::size_t>(m_layers), nibbleLayers = static_cast<std::size_t>(m_nibbleLayers);
+        std::vector<float> weights(layers * C * 3, 0.f), nibbles(nibbleLayers * C * 2 * 3, 0.f);
+        for (std::size_t q = 0; q < W; ++q)
             for (std::size_t c = 0; c < C; ++c)
                 weights[((q / 3) * C + c) * 3 + q % 3] = static_cast<float>(frame.model.weights[q * C + c]);
-        gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelWeights"), static_cast<GLsizei>(layers * C), weights.data());
+        for (std::size_t q = W; q < P; ++q)  // layer, channel, high or low nibble, then the texel's channel
+            for (std::size_t c = 0; c < C; ++c) {
+                const std::size_t k = q - W;
+                nibbles[(((k / 6) * C + c) * 2 + k % 2) * 3 + (k % 6) / 2] = static_cast<float>(frame.model.weights[q * C + c]);
+            }
+        if (layers > 0) gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelWeights"), static_cast<GLsizei>(layers * C), weights.data());
+        if (nibbleLayers > 0)
+            gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelNibbleWeights"), static_cast<GLsizei>(nibbleLayers * C * 2),
+                          nibbles.data());
         const float offset[3] = {static_cast<float>(frame.model.offset[0]), static_cast<float>(frame.model.offset[1]),
                                  static_cast<float>(frame.model.offset[2])};
         gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelOffset"), 1, offset);

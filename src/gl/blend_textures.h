@@ -39,7 +39,8 @@ public:
 private:
     const LutBank* m_bank = nullptr;
     GlTexture m_references, m_albedo, m_labels;
-    int m_layers = 0;
+    int m_layers = 0;        ///< reference layers, or a light model's 8-bit plane layers
+    int m_nibbleLayers = 0;  ///< a light model's 4-bit plane layers
 };
 
 }  // namespace btflut

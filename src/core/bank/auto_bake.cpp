@@ -61,6 +61,9 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int 
     const int planes = std::clamp(budget - region, 1, LightModel::kMaxPlanes);
     model("rbf" + std::to_string(planes), {.basis = LightBasis::Rbf, .planes = planes}, planes);
     model("bln" + std::to_string(planes), {.basis = LightBasis::Bilinear, .planes = planes}, planes);
+    // Packed: the same bytes holding more components, the trailing ones with 4 bits.
+    model("rbf" + std::to_string(planes) + "c", {.basis = LightBasis::Rbf, .planes = planes, .packed = true}, planes);
+    model("bln" + std::to_string(planes) + "c", {.basis = LightBasis::Bilinear, .planes = planes, .packed = true}, planes);
     return out;
 }
 

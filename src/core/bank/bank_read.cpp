@@ -114,13 +114,15 @@ struct Head {
 Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const Head& head) {
     auto fail = [&](const std::string& what) { return Error{name + ": LMDL chunk: " + what}; };
     LightModel m;
-    const auto basis = in.get<std::uint32_t>(), planes = in.get<std::uint32_t>(), channels = in.get<std::uint32_t>(),
-               order = in.get<std::uint32_t>(), albedo = in.get<std::uint32_t>(), grid = in.get<std::uint32_t>();
+    const auto basis = in.get<std::uint32_t>(), planes = in.get<std::uint32_t>(), wide = in.get<std::uint32_t>(),
+               channels = in.get<std::uint32_t>(), order = in.get<std::uint32_t>(), albedo = in.get<std::uint32_t>(),
+               grid = in.get<std::uint32_t>();
     m.sigma = in.get<float>();
     if (!in.ok()) return fail("truncated");
-    if (basis > 3 || planes < 1 || planes > static_cast<std::uint32_t>(LightModel::kMaxPlanes) || (channels != 1 && channels != 3) ||
-        albedo > 1)
+    if (basis > 3 || planes < 1 || planes > static_cast<std::uint32_t>(LightModel::kMaxPlanes) || wide > planes ||
+        (channels != 1 && channels != 3) || albedo > 1)
         return fail("invalid description");
+    m.wide = static_cast<int>(wide);
     m.basis = static_cast<LightBasis>(basis);
     m.planes = static_cast<int>(planes);
     m.channels = static_cast<int>(channels);
@@ -129,7 +131,7 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
     m.height = static_cast<int>(head.refHeight);
     const bool fixedBasis = m.basis == LightBasis::Ptm || m.basis == LightBasis::Hsh;
     if (fixedBasis && (channels != 1 || (m.basis == LightBasis::Hsh ? order != 2 && order != 3 : order != 0) ||
-                       static_cast<int>(planes) != LightModel::termCount(m.basis, m.order) || grid != 0))
+                       static_cast<int>(planes) != LightModel::termCount(m.basis, m.order) || grid != 0 || wide != planes))
         return fail("a " + std::string(lightBasisName(m.basis)) + " model with the wrong terms");
     if ((albedo ? 3u : channels) != head.refChannels) return fail("its colour does not match the reference image's");
     if (m.basis == LightBasis::Bilinear && (grid < 2 || grid > 64)) return fail("invalid grid size");
@@ -166,14 +168,24 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
             return fail(what + " is not an RGB8 image of the reference's size");
         return image;
     };
-    const std::size_t P = planes;
+    const std::size_t P = planes, W = wide;
     m.coefficients.resize(m.texels() * P);
-    for (std::size_t first = 0; first < P; first += 3) {
-        Result<Image> image = png("planes " + std::to_string(first) + "-" + std::to_string(std::min(P, first + 3) - 1));
+    for (std::size_t first = 0; first < W; first += 3) {
+        Result<Image> image = png("planes " + std::to_string(first) + "-" + std::to_string(std::min(W, first + 3) - 1));
         if (!image) return Error{image.error()};
         for (std::size_t i = 0; i < m.texels(); ++i)
-            for (std::size_t c = 0; c < 3 && first + c < P; ++c)
+            for (std::size_t c = 0; c < 3 && first + c < W; ++c)
                 m.coefficients[i * P + first + c] = static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
+    }
+    for (std::size_t first = W; first < P; first += 6) {  // 4-bit planes, two to a channel
+        Result<Image> image = png("4-bit planes " + std::to_string(first) + "-" + std::to_string(std::min(P, first + 6) - 1));
+        if (!image) return Error{image.error()};
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3; ++c) {
+                const auto code = static_cast<int>(std::lround(image->samples[i * 3 + c] * 255));
+                if (first + 2 * c < P) m.coefficients[i * P + first + 2 * c] = static_cast<std::uint8_t>(code / 16);
+                if (first + 2 * c + 1 < P) m.coefficients[i * P + first + 2 * c + 1] = static_cast<std::uint8_t>(code % 16);
+            }
     }
     if (albedo) {
         Result<Image> image = png("albedo");

@@ -70,9 +70,10 @@ Bytes encodePtm(const Ptm& ptm) {
 // its planes three to an RGB PNG and, in the LRGB layout, the albedo.
 Bytes encodeLightModel(const LightModel& m) {
     Writer w;
-    const std::array<std::uint32_t, 6> description{static_cast<std::uint32_t>(m.basis), static_cast<std::uint32_t>(m.planes),
-                                                   static_cast<std::uint32_t>(m.channels), static_cast<std::uint32_t>(m.order),
-                                                   m.albedo.empty() ? 0u : 1u, static_cast<std::uint32_t>(m.grid)};
+    const std::array<std::uint32_t, 7> description{static_cast<std::uint32_t>(m.basis), static_cast<std::uint32_t>(m.planes),
+                                                   static_cast<std::uint32_t>(m.wide), static_cast<std::uint32_t>(m.channels),
+                                                   static_cast<std::uint32_t>(m.order), m.albedo.empty() ? 0u : 1u,
+                                                   static_cast<std::uint32_t>(m.grid)};
     w.putBytes(description.data(), sizeof description);
     w.put(m.sigma);
     for (float v : m.scale) w.put(v);
@@ -86,11 +87,23 @@ Bytes encodeLightModel(const LightModel& m) {
         w.put(static_cast<std::uint32_t>(bytes.size()));
         w.putBytes(bytes.data(), bytes.size());
     };
-    const auto P = static_cast<std::size_t>(m.planes);
-    for (std::size_t first = 0; first < P; first += 3) {
+    // The 8-bit planes three to an image, then the 4-bit ones six to an image (two to a channel:
+    // the first in the high nibble).
+    const auto P = static_cast<std::size_t>(m.planes), wide = static_cast<std::size_t>(m.wide);
+    for (std::size_t first = 0; first < wide; first += 3) {
         Image image(m.width, m.height, 3);
         for (std::size_t i = 0; i < m.texels(); ++i)
-            for (std::size_t c = 0; c < 3 && first + c < P; ++c) image.samples[i * 3 + c] = m.coefficients[i * P + first + c] / 255.f;
+            for (std::size_t c = 0; c < 3 && first + c < wide; ++c) image.samples[i * 3 + c] = m.coefficients[i * P + first + c] / 255.f;
+        png(image);
+    }
+    for (std::size_t first = wide; first < P; first += 6) {
+        Image image(m.width, m.height, 3);
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3; ++c) {
+                const std::size_t hi = first + 2 * c, lo = hi + 1;
+                const int code = (hi < P ? m.coefficients[i * P + hi] : 0) * 16 + (lo < P ? m.coefficients[i * P + lo] : 0);
+                image.samples[i * 3 + c] = static_cast<float>(code) / 255.f;
+            }
         png(image);
     }
     if (!m.albedo.empty()) {

@@ -53,8 +53,12 @@ std::optional<Result<LightModelOptions>> lightModelNamed(const std::string& name
     for (LightBasis b : {LightBasis::Hsh, LightBasis::Rbf, LightBasis::Bilinear}) {
         const std::string prefix = lightBasisName(b);
         if (name.rfind(prefix, 0) != 0) continue;
-        const std::string number = name.substr(prefix.size());
+        std::string number = name.substr(prefix.size());
         LightModelOptions o{.basis = b, .order = 2, .planes = 9};
+        if (b != LightBasis::Hsh && !number.empty() && number.back() == 'c') {
+            o.packed = true;
+            number.pop_back();
+        }
         if (!number.empty()) {
             char* end = nullptr;
             const long n = std::strtol(number.c_str(), &end, 10);
@@ -73,7 +77,9 @@ std::optional<Result<LightModelOptions>> lightModelNamed(const std::string& name
 std::string lightModelName(const LightModel& model) {
     const std::string name = lightBasisName(model.basis);
     if (model.basis == LightBasis::Ptm) return name;
-    return name + std::to_string(model.basis == LightBasis::Hsh ? model.order : model.planes);
+    if (model.basis == LightBasis::Hsh) return name + std::to_string(model.order);
+    if (model.wide < model.planes) return name + std::to_string(model.bytesPerTexel()) + "c";
+    return name + std::to_string(model.planes);
 }
 
 int LightModel::termCount(LightBasis basis, int order) {
@@ -185,7 +191,7 @@ LightModelFixed lightModelFixed(const LightModel& model, Direction light) {
         for (std::size_t p = 0; p < P; ++p) {
             folded[p * C + c] = double{model.scale[p]} * w.weight[p * C + c];
             offset[c] -= double{model.bias[p]} * folded[p * C + c];
-            sum += 255 * std::abs(folded[p * C + c]);
+            sum += model.maxCode(static_cast<int>(p)) * std::abs(folded[p * C + c]);
         }
         bound = std::max(bound, std::abs(offset[c]) + sum);
     }
@@ -224,7 +230,7 @@ LightModel lightModelFromPtm(const Ptm& ptm) {
     m.basis = LightBasis::Ptm;
     m.width = ptm.width;
     m.height = ptm.height;
-    m.planes = Ptm::kTerms;
+    m.planes = m.wide = Ptm::kTerms;
     m.channels = 1;
     m.scale.assign(ptm.scale.begin(), ptm.scale.end());
     m.bias.assign(ptm.bias.begin(), ptm.bias.end());

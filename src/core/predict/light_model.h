@@ -46,10 +46,13 @@ struct LightModel {
     LightBasis basis = LightBasis::Ptm;
     int width = 0, height = 0;
     int planes = 0;    ///< P, 1..kMaxPlanes
+    /// The leading planes stored with 8 bits (codes 0..255); the others, the components of
+    /// least variance, with 4 bits (codes 0..15, two to a byte in files and textures).
+    int wide = 0;
     int channels = 1;  ///< output channels: 1 (grey) or 3
     int order = 0;     ///< hsh: 2 or 3
     std::vector<float> scale, bias;        ///< per plane: v_p = (byte_p - bias_p) * scale_p, scale > 0
-    std::vector<std::uint8_t> coefficients;  ///< P bytes per texel, rows top first
+    std::vector<std::uint8_t> coefficients;  ///< P codes per texel (one byte each in memory), rows top first
     std::vector<std::uint8_t> albedo;        ///< LRGB layout: RGB bytes per texel; empty otherwise
 
     /// rbf: the training lights and, per light, (1 + P) x channels values (the offset, then
@@ -63,8 +66,10 @@ struct LightModel {
 
     bool empty() const { return coefficients.empty(); }
     std::size_t texels() const { return static_cast<std::size_t>(width) * height; }
-    /// Bytes per texel the model stores: its planes and the albedo.
-    int bytesPerTexel() const { return planes + (albedo.empty() ? 0 : 3); }
+    /// Bytes per texel the model stores: its planes (two 4-bit planes to a byte) and the albedo.
+    int bytesPerTexel() const { return wide + (planes - wide + 1) / 2 + (albedo.empty() ? 0 : 3); }
+    /// The largest code of plane p: 255 or 15.
+    int maxCode(int p) const { return p < wide ? 255 : 15; }
     /// The basis's own terms count (ptm 6, hsh 4 or 9); 0 for the PCA bases.
     static int termCount(LightBasis basis, int order);
 
@@ -103,18 +108,21 @@ LightModel lightModelFromPtm(const Ptm& ptm);
 struct LightModelOptions {
     LightBasis basis = LightBasis::Rbf;
     int order = 3;    ///< hsh
-    int planes = 9;   ///< rbf, bln: principal components kept
+    int planes = 9;   ///< rbf, bln: principal components kept (8-bit); with `packed`, bytes per texel
+    /// rbf, bln: as many components as `planes` bytes hold, the leading ones 8-bit, the rest
+    /// 4-bit, split where the training images are reconstructed best.
+    bool packed = false;
     int grid = 8;     ///< bln: grid nodes per side over the light disk
     bool colour = true;  ///< rbf, bln: predict RGB (the images' colour); else grey
     int threads = 0;
 };
 
 /// A model from its command-line name: ptm; hsh (order 2), hsh2, hsh3; rbf and bln (9
-/// planes), rbfN and blnN (N planes); nothing when the name names no basis, an error for a
-/// number out of range.
+/// planes), rbfN and blnN (N 8-bit planes), rbfNc and blnNc (N bytes of packed planes);
+/// nothing when the name names no basis, an error for a number out of range.
 std::optional<Result<LightModelOptions>> lightModelNamed(const std::string& name);
 
-/// The model's name as the command line gives it: ptm, hsh2, hsh3, rbfN, blnN.
+/// The model's name as the command line gives it: ptm, hsh2, hsh3, rbfN, blnN, rbfNc, blnNc.
 std::string lightModelName(const LightModel& model);
 
 /// Fits a model to images of one view under `lights` (same size; RGB or grey). ptm and hsh:

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/check.h"
@@ -13,8 +14,8 @@ namespace btflut {
 
 namespace {
 
-// Planes as bytes: each plane's range over every texel mapped onto 0..255 (as the .ptm format
-// and RTI web formats store them: one scale and bias per plane).
+// Planes as codes: each plane's range over every texel mapped onto 0..255 (0..15 for the
+// 4-bit planes), as the .ptm format and RTI web formats store them: one scale and bias per plane.
 void quantisePlanes(const std::vector<double>& values, LightModel& m) {
     const auto P = static_cast<std::size_t>(m.planes);
     const std::size_t texels = m.texels();
@@ -27,12 +28,13 @@ void quantisePlanes(const std::vector<double>& values, LightModel& m) {
             low = std::min(low, values[i * P + p]);
             high = std::max(high, values[i * P + p]);
         }
-        const double scale = high > low ? (high - low) / 255 : 1.0;
+        const int top = m.maxCode(static_cast<int>(p));
+        const double scale = high > low ? (high - low) / top : 1.0;
         m.scale[p] = static_cast<float>(scale);
         m.bias[p] = static_cast<float>(-low / scale);
         for (std::size_t i = 0; i < texels; ++i)
             m.coefficients[i * P + p] = static_cast<std::uint8_t>(
-                std::clamp<long>(std::lround(values[i * P + p] / m.scale[p] + m.bias[p]), 0, 255));
+                std::clamp<long>(std::lround(values[i * P + p] / m.scale[p] + m.bias[p]), 0, top));
     }
 }
 
@@ -64,7 +66,7 @@ Result<LightModel> fitFixedBasis(const std::vector<const Image*>& images, const 
     const auto k = static_cast<std::size_t>(K);
     m.width = images.front()->width;
     m.height = images.front()->height;
-    m.planes = K;
+    m.planes = m.wide = K;
     m.channels = 1;
     const std::size_t texels = m.texels();
     std::vector<double> luminanceScale(texels, 1.0);
@@ -100,6 +102,43 @@ Result<LightModel> fitFixedBasis(const std::vector<const Image*>& images, const 
     });
     quantisePlanes(fitted, m);
     return m;
+}
+
+// The packed layout's split: with `bytes` per texel, `wide` 8-bit components and
+// 2 (bytes - wide) 4-bit ones, where the training images are reconstructed best: the
+// variance of the components left out plus the quantisation error of those kept (the
+// components are orthonormal, so the errors add), over the sample texels.
+void chooseSplit(const std::vector<double>& coordinates, const std::vector<double>& variance,
+                 const std::vector<std::uint32_t>& sample, int bytes, LightModel& m) {
+    const auto P = static_cast<std::size_t>(m.planes);
+    const std::size_t texels = coordinates.size() / P;
+    // Each component's mean squared quantisation error with 8 and with 4 bits.
+    std::vector<std::array<double, 2>> error(P);
+    for (std::size_t p = 0; p < P; ++p) {
+        double low = coordinates[p], high = coordinates[p];
+        for (std::size_t i = 0; i < texels; ++i) {
+            low = std::min(low, coordinates[i * P + p]);
+            high = std::max(high, coordinates[i * P + p]);
+        }
+        for (int k = 0; k < 2; ++k) {
+            const double step = std::max(high - low, 1e-30) / (k == 0 ? 255 : 15);
+            double sum = 0;
+            for (std::uint32_t i : sample) {
+                const double v = coordinates[i * P + p] - low;
+                const double d = v - std::round(v / step) * step;
+                sum += d * d;
+            }
+            error[p][static_cast<std::size_t>(k)] = sum / static_cast<double>(sample.size());
+        }
+    }
+    double best = INFINITY;
+    for (int wide = std::min(bytes, static_cast<int>(P)); wide >= 0; --wide) {
+        const int planes = std::min(static_cast<int>(P), wide + 2 * (bytes - wide));
+        double cost = 0;
+        for (std::size_t p = 0; p < P; ++p)
+            cost += static_cast<int>(p) >= planes ? variance[p] : error[p][static_cast<int>(p) < wide ? 0 : 1];
+        if (planes >= 1 && cost < best) best = cost, m.wide = wide, m.planes = planes;
+    }
 }
 
 // The training lights' rows of a PCA model blended by normalised Gaussians of width sigma,
@@ -193,7 +232,11 @@ Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::ve
     if (o.planes < 1 || o.planes > LightModel::kMaxPlanes)
         return Error{std::string(lightBasisName(o.basis)) + ": " + std::to_string(o.planes) + " planes is outside 1.." +
                      std::to_string(LightModel::kMaxPlanes)};
-    m.planes = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(o.planes), D));
+    // Packed: up to two components per byte; the split between 8-bit and 4-bit ones is chosen
+    // below, from the components' variances and quantisation errors.
+    const std::size_t most = o.packed ? std::min<std::size_t>(2 * static_cast<std::size_t>(o.planes), LightModel::kMaxPlanes)
+                                      : static_cast<std::size_t>(o.planes);
+    m.planes = m.wide = static_cast<int>(std::min(most, D));
     const auto P = static_cast<std::size_t>(m.planes);
     auto value = [&](std::size_t texel, std::size_t d) -> double {
         const Image& image = *images[d / C];
@@ -251,16 +294,28 @@ Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::ve
             for (std::size_t p = 0; p < P; ++p) coordinates[i * P + p] = c(static_cast<Eigen::Index>(p));
         }
     });
+    if (o.packed) {
+        chooseSplit(coordinates, variance, sample, o.planes, m);
+        if (static_cast<std::size_t>(m.planes) < P) {  // fewer components kept: drop the rest
+            std::vector<double> kept;
+            for (std::size_t i = 0; i < texels; ++i)
+                kept.insert(kept.end(), coordinates.begin() + static_cast<std::ptrdiff_t>(i * P),
+                            coordinates.begin() + static_cast<std::ptrdiff_t>(i * P) + m.planes);
+            coordinates = std::move(kept);
+            E.conservativeResize(Eigen::NoChange, m.planes);
+        }
+    }
     quantisePlanes(coordinates, m);
+    const auto kept = static_cast<std::size_t>(m.planes);
 
     // Per training light: the mean's values there, then each component's.
-    const std::size_t row = (1 + P) * C;
+    const std::size_t row = (1 + kept) * C;
     m.lights = lights;
     m.table.resize(n * row);
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t c = 0; c < C; ++c) {
             m.table[i * row + c] = static_cast<float>(mean(i * C + c));
-            for (std::size_t p = 0; p < P; ++p) m.table[i * row + (1 + p) * C + c] = static_cast<float>(E(i * C + c, p));
+            for (std::size_t p = 0; p < kept; ++p) m.table[i * row + (1 + p) * C + c] = static_cast<float>(E(i * C + c, p));
         }
     // sigma: the multiple of the lights' median spacing that predicts each light's row best
     // from the others.

@@ -1,0 +1,312 @@
+// Linear light models (core/predict/light_model.h) and `bake --predictor auto`
+// (core/bank/auto_bake.h): fits, the fixed-point evaluator, numerical traps, degenerate
+// captures, version 5 files, and the validated choice on the shared data.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "core/bank/auto_bake.h"
+#include "core/bank/bake.h"
+#include "core/bank/bank_file.h"
+#include "core/data/dataset.h"
+#include "core/eval/metrics.h"
+#include "core/predict/light_model.h"
+#include "core/predict/relighter.h"
+#include "helpers.h"
+
+using namespace btflut;
+using namespace btflut::test;
+
+namespace {
+
+// A Lambertian relief under `lights`: a normal map of bumps, an albedo varying in colour,
+// cast-shadow-free shading, and a black border of `border` pixels (masked out when > 0).
+struct Relief {
+    int size = 48, border = 0;
+    bool colour = true;
+};
+
+Image reliefImage(const Relief& r, Direction light) {
+    Image im(r.size, r.size, r.colour ? 3 : 1);
+    const Vec3 l = toVector(light);
+    for (int y = 0; y < r.size; ++y)
+        for (int x = 0; x < r.size; ++x) {
+            const bool inside = x >= r.border && y >= r.border && x < r.size - r.border && y < r.size - r.border;
+            const double p = 0.6 * std::sin(0.31 * x) * std::cos(0.23 * y), q = 0.5 * std::cos(0.27 * x + 0.4 * y);
+            const double norm = std::sqrt(p * p + q * q + 1);
+            const double shade = std::max(0.0, (-p * l.x - q * l.y + l.z) / norm);
+            for (int c = 0; c < im.channels; ++c) {
+                const double albedo = 0.55 + 0.3 * std::sin(0.11 * (x + 3 * c) + 0.07 * y);
+                im.at(x, y, c) = inside ? static_cast<float>(std::lround(std::clamp(albedo * shade, 0.0, 1.0) * 255) / 255.0) : 0.f;
+            }
+        }
+    return im;
+}
+
+// The relief's images as a dataset on disk (and its mask when it has a border).
+std::string writeRelief(const TempDir& dir, const Relief& r, const std::vector<Direction>& lights) {
+    nlohmann::json manifest{{"btflut_dataset", 1}, {"images", nlohmann::json::array()}};
+    for (std::size_t i = 0; i < lights.size(); ++i) {
+        const std::string name = "l" + std::to_string(i) + ".png";
+        REQUIRE(savePng(reliefImage(r, lights[i]), dir / name).ok());
+        manifest["images"].push_back({{"file", name}, {"light", {{"theta", lights[i].thetaDegrees()}, {"phi", lights[i].phiDegrees()}}}});
+    }
+    if (r.border > 0) {
+        Image mask(r.size, r.size, 1);
+        for (int y = r.border; y < r.size - r.border; ++y)
+            for (int x = r.border; x < r.size - r.border; ++x) mask.at(x, y, 0) = 1;
+        REQUIRE(savePng(mask, dir / "mask.png").ok());
+        manifest["mask"] = "mask.png";
+    }
+    std::ofstream(dir / "btflut-dataset.json") << manifest.dump(1);
+    return dir / "btflut-dataset.json";
+}
+
+// Lights on rings around the normal up to `maxTheta` degrees.
+std::vector<Direction> dome(int count, double maxTheta) {
+    std::vector<Direction> lights;
+    for (int i = 0; i < count; ++i) {
+        const double t = (i + 0.5) / count;
+        lights.push_back(Direction::fromDegrees(maxTheta * std::sqrt(t), std::fmod(137.5 * i, 360.0)));
+    }
+    return lights;
+}
+
+std::vector<LightModelOptions> everyBasis() {
+    return {{.basis = LightBasis::Ptm},
+            {.basis = LightBasis::Hsh, .order = 2},
+            {.basis = LightBasis::Hsh, .order = 3},
+            {.basis = LightBasis::Rbf, .planes = 6},
+            {.basis = LightBasis::Bilinear, .planes = 6},
+            {.basis = LightBasis::Rbf, .planes = 5, .packed = true},
+            {.basis = LightBasis::Bilinear, .planes = 4, .packed = true}};
+}
+
+Result<LightModel> fit(const std::vector<Image>& images, const std::vector<Direction>& lights, const Mask& mask,
+                       const LightModelOptions& o) {
+    std::vector<const Image*> pointers;
+    for (const Image& image : images) pointers.push_back(&image);
+    return fitLightModel(pointers, lights, mask, o, "relief");
+}
+
+}  // namespace
+
+TEST_CASE("light models: a Lambertian relief between the measured lights, every basis closer than the nearest image") {
+    const Relief relief;
+    const std::vector<Direction> lights = dome(30, 70);
+    std::vector<Image> images;
+    for (Direction l : lights) images.push_back(reliefImage(relief, l));
+    const Mask mask = fullMask(relief.size, relief.size);
+    for (const LightModelOptions& o : everyBasis()) {
+        Result<LightModel> model = fit(images, lights, mask, o);
+        REQUIRE_MESSAGE(model.ok(), model.error());
+        CHECK(model->bytesPerTexel() == (o.basis == LightBasis::Ptm ? 9 : o.basis == LightBasis::Hsh ? o.order * o.order + 3 : o.planes));
+        double psnr = 0, nearest = 0;
+        for (Direction l : {Direction::fromDegrees(25, 10), Direction::fromDegrees(45, 200), Direction::fromDegrees(60, 300)}) {
+            const Image truth = reliefImage(relief, l);
+            psnr += compareImages(model->render(l), truth, mask).psnr / 3;
+            std::size_t n = 0;
+            for (std::size_t i = 1; i < lights.size(); ++i)
+                if (angleBetween(lights[i], l) < angleBetween(lights[n], l)) n = i;
+            nearest += compareImages(images[n], truth, mask).psnr / 3;
+        }
+        INFO(lightModelName(*model) << ": " << psnr << " dB, the nearest image " << nearest << " dB");
+        CHECK(psnr > nearest + 3);
+        // hsh3 holds a Lambertian relief without shadows almost exactly.
+        if (o.basis == LightBasis::Hsh && o.order == 3) CHECK(psnr > 38);
+    }
+}
+
+TEST_CASE("light models: the fixed-point prediction (the shader's arithmetic) is the float one within a code") {
+    const Relief relief{.size = 24};
+    const std::vector<Direction> lights = dome(20, 65);
+    std::vector<Image> images;
+    for (Direction l : lights) images.push_back(reliefImage(relief, l));
+    for (const LightModelOptions& o : everyBasis()) {
+        Result<LightModel> model = fit(images, lights, fullMask(relief.size, relief.size), o);
+        REQUIRE(model.ok());
+        for (Direction l : {Direction::fromDegrees(0, 0), Direction::fromDegrees(35, 80), Direction::fromDegrees(80, 250)}) {
+            const Image ideal = model->render(l);
+            const LightModelFixed fixed = lightModelFixed(*model, l);
+            double w = 0;
+            for (std::size_t i = 0; i < model->texels(); ++i) {
+                const std::array<std::int64_t, 3> c = predictFixed(*model, fixed, i);
+                for (int k = 0; k < ideal.channels; ++k)
+                    w = std::max(w, std::abs(static_cast<double>(c[static_cast<std::size_t>(k)]) / (255.0 * kWeightUnit) -
+                                             ideal.samples[i * static_cast<std::size_t>(ideal.channels) + static_cast<std::size_t>(k)]));
+            }
+            INFO(lightModelName(*model) << " at " << l.thetaDegrees() << ": " << w * 255 << "/255");
+            CHECK(w <= 1.0 / 255);
+        }
+    }
+}
+
+TEST_CASE("light models: lights within 5 degrees and black pixels give finite models, banks and relightings") {
+    TempDir dir;
+    const Relief relief{.size = 32, .border = 4};
+    std::vector<Direction> clustered;
+    for (int i = 0; i < 9; ++i) clustered.push_back(Direction::fromDegrees(30 + 2.0 * (i % 3), 40 + 2.5 * (i / 3)));
+    const std::string manifest = writeRelief(dir, relief, clustered);
+    Result<Dataset> dataset = openDataset(manifest);
+    REQUIRE(dataset.ok());
+    for (const LightModelOptions& o : everyBasis()) {
+        Result<LutBank> bank = bakeBank(*dataset, {.model = o});
+        REQUIRE_MESSAGE(bank.ok(), bank.error());
+        const LightModel& m = bank->blend.model;
+        for (std::size_t p = 0; p < static_cast<std::size_t>(m.planes); ++p) {
+            CHECK(std::isfinite(m.scale[p]));
+            CHECK(std::isfinite(m.bias[p]));
+        }
+        for (float v : m.table) CHECK(std::isfinite(v));
+        const Relighter relighter(*bank);
+        for (Direction l : {Direction::fromDegrees(31, 42), Direction::fromDegrees(75, 200)}) {  // inside, far outside
+            const Image image = relighter.apply(relighter.frame(l), true);
+            bool finite = true, blackBorder = true;
+            for (float v : image.samples) finite = finite && std::isfinite(v) && v >= 0 && v <= 1;
+            for (int c = 0; c < image.channels; ++c) blackBorder = blackBorder && image.at(0, 0, c) >= 0;
+            CHECK(finite);
+            CHECK(blackBorder);
+        }
+        const Bytes bytes = encodeBank(*bank);
+        CHECK(decodeBank(bytes, "clustered.btflut").ok());
+    }
+    // The default bakes them and says what it chose.
+    CliRun run = runCli({"bake", manifest, "-o", dir / "auto.btflut"});
+    REQUIRE_MESSAGE(run.status == 0, run.err);
+    CHECK(run.out.find("chosen by validation") != std::string::npos);
+    CliRun info = runCli({"info", dir / "auto.btflut"});
+    CHECK(info.out.find("chosen:") != std::string::npos);
+}
+
+TEST_CASE("auto: the choice is the best validation PSNR within 0.002 L1 of the paper's bank, and info prints it") {
+    TempDir dir;
+    const std::string manifest = writeRelief(dir, Relief{.size = 40, .border = 3}, dome(16, 70));
+    Result<Dataset> dataset = openDataset(manifest);
+    REQUIRE(dataset.ok());
+    Result<LutBank> bank = bakeAuto(*dataset, {});
+    REQUIRE_MESSAGE(bank.ok(), bank.error());
+    const nlohmann::json s = nlohmann::json::parse(bank->selection);
+    REQUIRE(s["candidates"].size() >= 8);
+    const nlohmann::json& classic = s["candidates"][0];
+    REQUIRE(classic["name"] == "K1");
+    const double bound = classic["validation"][0]["l1"].get<double>() + 0.002;
+    double best = -1;
+    std::string bestName;
+    double bestMatch = -1;
+    for (const nlohmann::json& c : s["candidates"]) {
+        if (c.contains("skipped")) continue;
+        for (const nlohmann::json& v : c["validation"])
+            if (v["l1"].get<double>() <= bound && v["psnr"].get<double>() > best)
+                best = v["psnr"], bestName = c["name"], bestMatch = v["match"];
+    }
+    CHECK(s["chosen"]["name"] == bestName);
+    CHECK(s["chosen"]["match"].get<double>() == doctest::Approx(bestMatch));
+    CHECK(s["candidates"][0]["bytes"] == 3);
+    // Over the budget: listed, not validated.
+    bool overBudget = false;
+    for (const nlohmann::json& c : s["candidates"]) overBudget |= c.contains("skipped") && c["bytes"].get<int>() > 9;
+    CHECK(overBudget);
+    REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+    CliRun info = runCli({"info", dir / "m.btflut"});
+    CHECK(info.out.find("chosen:    " + bestName) != std::string::npos);
+    CliRun json = runCli({"info", dir / "m.btflut", "--json"});
+    CHECK(nlohmann::json::parse(json.out)["selection"]["chosen"]["name"] == bestName);
+    // The same relit image from the file (version 5) as from the bank baked.
+    Result<LutBank> back = loadBank(dir / "m.btflut");
+    REQUIRE(back.ok());
+    const Relighter a(*bank), b(*back);
+    const Direction light = Direction::fromDegrees(33, 120);
+    CHECK(a.apply(a.frame(light), true).samples == b.apply(b.frame(light), true).samples);
+}
+
+TEST_CASE("auto: degenerate captures bake; a budget below every predictor is refused naming the smallest") {
+    TempDir dir;
+    SUBCASE("all black") {
+        // A border as wide as the image: every pixel black, and the whole image the sample.
+        const std::string manifest = writeRelief(dir, Relief{.size = 16, .border = 8}, dome(9, 60));
+        nlohmann::json m = nlohmann::json::parse(readText(manifest));
+        m.erase("mask");
+        std::ofstream(manifest) << m.dump();
+        CliRun run = runCli({"bake", manifest, "-o", dir / "black.btflut", "-q"});
+        CHECK_MESSAGE(run.status == 0, run.err);
+        CHECK(runCli({"relight", dir / "black.btflut", "--light", "20,0", "-o", dir / "r.png", "-q"}).status == 0);
+    }
+    SUBCASE("1 x 1 images") {
+        const std::string manifest = writeRelief(dir, Relief{.size = 1}, dome(8, 60));
+        CliRun run = runCli({"bake", manifest, "-o", dir / "one.btflut", "-q"});
+        CHECK_MESSAGE(run.status == 0, run.err);
+        CHECK(runCli({"relight", dir / "one.btflut", "--light", "20,0", "-o", dir / "r.png", "-q"}).status == 0);
+    }
+    SUBCASE("budget") {
+        const std::string manifest = writeRelief(dir, Relief{.size = 16}, dome(8, 60));
+        requireOneLineError(runCli({"bake", manifest, "--budget", "2", "-o", dir / "x.btflut"}),
+                            "the smallest budget that works is 3 bytes per texel");
+        requireOneLineError(runCli({"bake", manifest, "--budget", "4", "--predictor", "rbf", "-o", dir / "x.btflut"}),
+                            "--budget goes with --predictor auto");
+        requireOneLineError(runCli({"bake", manifest, "--predictor", "rbf99", "-o", dir / "x.btflut"}), "rbf99");
+        CHECK_FALSE(fs::exists(dir / "x.btflut"));
+        // The smallest budget bakes within it: the paper's bank or a PCA basis of 3 planes.
+        REQUIRE(runCli({"bake", manifest, "--budget", "3", "-o", dir / "b3.btflut", "-q"}).status == 0);
+        Result<LutBank> bank = loadBank(dir / "b3.btflut");
+        REQUIRE(bank.ok());
+        CHECK((bank->predictsWithModel() ? bank->blend.model.bytesPerTexel() : bank->reference.channels) <= 3);
+    }
+}
+
+TEST_CASE("version 5 banks of every basis round-trip; every cut and flipped bit is refused") {
+    TempDir dir;
+    Result<Dataset> dataset = openDataset(writeRelief(dir, Relief{.size = 20}, dome(12, 65)));
+    REQUIRE(dataset.ok());
+    for (const LightModelOptions& o : everyBasis()) {
+        Result<LutBank> bank = bakeBank(*dataset, {.model = o, .match = 0.5f, .regions = 2});
+        REQUIRE(bank.ok());
+        CHECK(bankFormatVersion(*bank) == 5);
+        const Bytes bytes = encodeBank(*bank);
+        Result<LutBank> back = decodeBank(bytes, "b.btflut");
+        REQUIRE_MESSAGE(back.ok(), back.error());
+        CHECK(encodeBank(*back) == bytes);
+        CHECK(back->blend.model.coefficients == bank->blend.model.coefficients);
+        CHECK(back->blend.match == 0.5f);
+        for (std::size_t cut = 8; cut < bytes.size(); cut += bytes.size() / 29)
+            CHECK_FALSE(decodeBank(Bytes(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(cut)), "cut").ok());
+        for (std::size_t at = 12; at < bytes.size(); at += bytes.size() / 41) {
+            Bytes flipped = bytes;
+            flipped[at] ^= 0x10;
+            CHECK_FALSE(decodeBank(flipped, "flip").ok());
+        }
+    }
+    // A newer format is refused with a line naming its version.
+    Result<LutBank> bank = bakeBank(*dataset, {.model = LightModelOptions{.basis = LightBasis::Rbf}});
+    REQUIRE(bank.ok());
+    Bytes bytes = encodeBank(*bank);
+    bytes[8] = 6;
+    Result<LutBank> newer = decodeBank(bytes, "new.btflut");
+    REQUIRE_FALSE(newer.ok());
+    CHECK(newer.error().find("unsupported .btflut version 6") != std::string::npos);
+}
+
+TEST_CASE("shared data: lut auto beats relight-cli's best 9-plane basis, with the histograms of the paper's bank") {
+    // relight-cli's figures on the same protocol (issue 21): dome-synth every:4 rbf9 19.73 dB;
+    // psm-rock's best 9-plane basis (bln9, leave-one-out) 32.49 dB, checked here on every:4 (fewer training
+    // lights than leave-one-out; the leave-one-out figures are in bench/RESULTS.md).
+    for (const auto& [name, path, relight] :
+         {std::tuple{"dome-synth", "/dome-synth/dirs.lp", 19.73}, {"psm-rock", "/psm-rock", 32.49}}) {
+        if (!haveSharedData(name)) continue;
+        CliRun run = runCli({"eval", sharedDataDir() + path, "--modes", "lut,rbf,bln", "--no-gl", "--json"});
+        REQUIRE_MESSAGE(run.status == 0, run.err);
+        const nlohmann::json report = nlohmann::json::parse(run.out);
+        std::map<std::string, nlohmann::json> modes;
+        for (const nlohmann::json& m : report["modes"]) modes[m["name"]] = m;
+        const nlohmann::json& automatic = modes.at("lut auto");
+        const nlohmann::json& paper = modes.at("lut K1 R1 grey");
+        MESSAGE(std::string(name) << ": lut auto " << automatic["psnr"] << " dB, L1 " << automatic["l1"] << "; the paper's bank "
+                     << paper["psnr"] << " dB, L1 " << paper["l1"] << "; rbf " << modes.at("rbf")["psnr"] << ", bln "
+                     << modes.at("bln")["psnr"]);
+        CHECK(automatic["bytes_per_texel"].get<double>() <= 9);
+        CHECK(automatic["psnr"].get<double>() >= relight);
+        CHECK(automatic["psnr"].get<double>() >= modes.at("rbf")["psnr"].get<double>());
+        CHECK(automatic["psnr"].get<double>() >= modes.at("bln")["psnr"].get<double>());
+        CHECK(automatic["l1"].get<double>() <= paper["l1"].get<double>() + 0.002);
+    }
+}
