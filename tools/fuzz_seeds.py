@@ -78,10 +78,16 @@ try:
             grey = Image.open(os.path.join(colour, f)).convert('L')
             Image.merge('RGB', (grey, grey.point(lambda v: v * 3 // 4), grey.point(lambda v: v // 2))).save(
                 os.path.join(colour, f))
-    for name, folder, args in [('grey', tiny, []), ('ptm', tiny, ['--ptm']), ('rgb', colour, ['--colour', 'rgb']),
+    for name, folder, args in [('grey', tiny, ['--references', '1']), ('ptm', tiny, ['--references', '1', '--ptm']),
+                               ('rgb', colour, ['--colour', 'rgb']),
                                ('blend', colour, ['--colour', 'lrgb', '--references', '3', '--regions', '2', '--quantiles', '16']),
                                ('blend-rgb', colour, ['--colour', 'rgb', '--references', '2', '--quantiles', '8']),
-                               ('predictor', tiny, ['--predictor', 'ptm', '--regions', '2', '--quantiles', '16'])]:
+                               ('predictor', tiny, ['--predictor', 'ptm', '--regions', '2', '--quantiles', '16']),
+                               # version 5: light models, partial matching, the validated choice
+                               ('auto', colour, ['--quantiles', '16']),
+                               ('hsh', colour, ['--predictor', 'hsh3', '--colour', 'rgb', '--quantiles', '8']),
+                               ('rbf', colour, ['--predictor', 'rbf4c', '--match', '0.5', '--quantiles', '16']),
+                               ('bln', tiny, ['--predictor', 'bln3', '--regions', '2', '--quantiles', '16'])]:
         bank = os.path.join(work, name + '.btflut')
         run('bake', folder, '-o', bank, '--grid', '3', '--entries', '16', '-q', *args)
         seed('bank', name + '.btflut', open(bank, 'rb').read())

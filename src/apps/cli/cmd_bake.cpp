@@ -261,7 +261,8 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
                     "K reference images spread over the measured lights (a fixed camera): at a light the references "
                     "around it are blended per texel and one LUT maps the blend onto the light's histogram, so "
                     "shadows and highlights move while the histogram stays the measured one. They are held in memory "
-                    "while baking; 1 is the classic bank")
+                    "while baking; 1 is the paper's bank. Given without --predictor (as --colour rgb|lrgb or "
+                    "--labels are), it bakes the references' bank instead of --predictor auto")
         ->check(CLI::Range(1, 255))
         ->capture_default_str();
     app->add_option("--regions", o->regions,

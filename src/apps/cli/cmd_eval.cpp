@@ -85,11 +85,17 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
     app->add_option("--holdout", o->holdout,
                     "every:K (every K-th image; one fold), loo (each image in turn), or a file of image names")
         ->capture_default_str();
-    app->add_option("--modes", o->modes, "comma-separated: lut, brdf, ptm, nearest, flat")->capture_default_str();
+    app->add_option("--modes", o->modes,
+                    "comma-separated: lut, brdf, ptm, nearest, flat, and the RTI bases unmatched: hsh (hsh2, hsh3), rbf "
+                    "and bln (9 planes; rbfN, blnN: N planes; rbfNc, blnNc: N bytes of packed 8- and 4-bit planes)")
+        ->capture_default_str();
     app->add_option("--references", o->references, "lut: references per bank, a list (e.g. 1,4,6)")->capture_default_str();
     app->add_option("--regions", o->regions, "lut: regions per bank, a list")->capture_default_str();
     app->add_option("--colour", o->colours, "lut: grey, rgb, lrgb, a list")->capture_default_str();
-    app->add_option("--predictor", o->predictors, "lut: references, ptm (the PTM relit, then matched), a list")
+    app->add_option("--predictor", o->predictors,
+                    "lut: auto (what bake makes without options, from each fold's training images), references (the "
+                    "--references blended), or a light model relit, then matched: ptm, hsh2, hsh3, rbfN, blnN, rbfNc, "
+                    "blnNc; a list")
         ->capture_default_str();
     app->add_flag("--blended-luts", o->blendedLuts,
                   "also the alternative to blend-then-match: each reference matched alone, the results blended");

@@ -47,9 +47,6 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     if (!grid) return Error{grid.error()};
     const Image& atlas = *grid;
 
-    if (b.makesLuts() && b.blend.predictor == LutBank::Blend::Predictor::Model)
-        return Error{o.bank + ": its predictor is a light model (" + lightModelName(b.blend.model) +
-                     "), which has no atlas form; export the paper's bank (bake --references 1) or its PTM (--ptm)"};
     // The textures a bank that blends references relights from, beside the atlas.
     std::vector<std::pair<std::string, Bytes>> textures;
     const std::filesystem::path out(o.output);
@@ -63,10 +60,34 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
         const LutBank::Blend& bl = b.blend;
         blend["quantiles"] = bl.quantiles;
         blend["regions"] = bl.regions;
+        blend["match"] = bl.match;  // the LUT blended with the prediction's own distribution below 1
+        blend["target"] = bl.target == LutBank::Blend::Target::Corrections ? "corrections" : "measured";
         blend["mask"] = texture("mask", byteImage(bl.mask.inside, b.reference.width, b.reference.height, 255));
         if (!bl.labels.empty()) blend["labels"] = texture("labels", byteImage(bl.labels, b.reference.width, b.reference.height, 1));
         if (!bl.albedo.samples.empty()) blend["albedo"] = texture("albedo", bl.albedo);
-        if (bl.predictor == LutBank::Blend::Predictor::Ptm) {
+        if (bl.predictor == LutBank::Blend::Predictor::Model) {
+            // The light model (docs/predictors.md; its LMDL chunk in docs/btflut-format.md).
+            const LightModel& m = bl.model;
+            nlohmann::json model{{"basis", lightBasisName(m.basis)}, {"name", lightModelName(m)}, {"planes", m.planes},
+                                 {"planes_8bit", m.wide}, {"channels", m.channels}, {"order", m.order},
+                                 {"scale", m.scale}, {"bias", m.bias}, {"images", nlohmann::json::array()}};
+            if (m.basis == LightBasis::Rbf) {
+                model["sigma"] = m.sigma;
+                for (Direction d : m.lights) model["lights"].push_back(directionJson(d));
+            }
+            if (m.basis == LightBasis::Bilinear) model["grid"] = m.grid;
+            if (!m.table.empty()) model["table"] = m.table;
+            const std::vector<Image> images = lightModelImages(m);
+            for (std::size_t k = 0; k < images.size(); ++k)
+                model["images"].push_back(texture("model-" + std::to_string(k), images[k]));
+            model["layout"] =
+                "images: the 8-bit planes three to an image (R, G, B), then the 4-bit planes six to an image (two to a "
+                "channel, the first in the high nibble), then the albedo if the model has one; value = (code - bias) * "
+                "scale; table rows (per rbf light or bln grid node j * grid + i): the channels' offsets, then each "
+                "plane's channel weights";
+            blend["predictor"] = lightModelName(m);
+            blend["model"] = model;
+        } else if (bl.predictor == LutBank::Blend::Predictor::Ptm) {
             blend["predictor"] = "ptm";
             blend["ptm_scale"] = b.ptm.scale;
             blend["ptm_bias"] = b.ptm.bias;
@@ -84,7 +105,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
         }
         blend["how"] =
             "per light: blend the references of the Delaunay triangle (equal-area disk) around the light with "
-            "barycentric weights (or relight the PTM), round the blend to its codes, and per region map its "
+            "barycentric weights (or relight the PTM or the light model), round the blend to its codes, and per region map its "
             "distribution over the mask's texels onto the quantile function blended from the atlas's nodes "
             "(see src/core/predict/relighter.h)";
     }

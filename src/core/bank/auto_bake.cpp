@@ -157,17 +157,17 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
                 continue;
             }
             const Relighter relighter(*bank);
-            for (std::size_t t : fold.test) {
-                const DatasetImage& info = dataset.images[t];
-                for (float strength : c.classic || !bank->makesLuts() ? std::vector<float>{1.f} : strengths) {
-                    bank->blend.match = strength;
-                    const ImageErrors e = compareImages(relighter.apply(relighter.frame(info.light, info.view), true), decoded[t], *mask);
-                    auto& [psnr, l1] = c.sums[strength];
-                    psnr += e.psnr;
-                    l1 += e.l1;
-                }
-                ++c.images;
+            for (float strength : c.classic || !bank->makesLuts() ? std::vector<float>{1.f} : strengths) {
+                bank->blend.match = strength;  // read by the frames below (one strength at a time)
+                std::vector<ImageErrors> figures(fold.test.size());
+                parallelFor(fold.test.size(), options.base.threads, [&](std::size_t k) {
+                    const DatasetImage& info = dataset.images[fold.test[k]];
+                    figures[k] = compareImages(relighter.apply(relighter.frame(info.light, info.view), true), decoded[fold.test[k]], *mask);
+                });
+                auto& [psnr, l1] = c.sums[strength];
+                for (const ImageErrors& e : figures) psnr += e.psnr, l1 += e.l1;
             }
+            c.images += fold.test.size();
             if (options.base.progress) options.base.progress(++done, steps);
         }
     }

@@ -155,7 +155,8 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
     const auto tableLength = in.get<std::uint32_t>();
     if (!in.ok() || tableLength != rows * row || tableLength > in.remaining() / 4) return fail("the table does not fit the model");
     m.table.resize(tableLength);
-    if (const std::uint8_t* bytes = in.getBytes(tableLength * sizeof(float))) std::memcpy(m.table.data(), bytes, tableLength * sizeof(float));
+    if (const std::uint8_t* bytes = in.getBytes(tableLength * sizeof(float)); bytes && tableLength > 0)
+        std::memcpy(m.table.data(), bytes, tableLength * sizeof(float));
     for (float v : m.table)
         if (!std::isfinite(v)) return fail("a table value is not finite");
     auto png = [&](const std::string& what) -> Result<Image> {

@@ -82,34 +82,10 @@ Bytes encodeLightModel(const LightModel& m) {
     for (Direction d : m.lights) putDirection(w, d);
     w.put(static_cast<std::uint32_t>(m.table.size()));
     w.putBytes(m.table.data(), m.table.size() * sizeof(float));
-    auto png = [&](const Image& image) {
+    for (const Image& image : lightModelImages(m)) {  // the planes, then the albedo
         const Bytes bytes = encodePng(image, 8);
         w.put(static_cast<std::uint32_t>(bytes.size()));
         w.putBytes(bytes.data(), bytes.size());
-    };
-    // The 8-bit planes three to an image, then the 4-bit ones six to an image (two to a channel:
-    // the first in the high nibble).
-    const auto P = static_cast<std::size_t>(m.planes), wide = static_cast<std::size_t>(m.wide);
-    for (std::size_t first = 0; first < wide; first += 3) {
-        Image image(m.width, m.height, 3);
-        for (std::size_t i = 0; i < m.texels(); ++i)
-            for (std::size_t c = 0; c < 3 && first + c < wide; ++c) image.samples[i * 3 + c] = m.coefficients[i * P + first + c] / 255.f;
-        png(image);
-    }
-    for (std::size_t first = wide; first < P; first += 6) {
-        Image image(m.width, m.height, 3);
-        for (std::size_t i = 0; i < m.texels(); ++i)
-            for (std::size_t c = 0; c < 3; ++c) {
-                const std::size_t hi = first + 2 * c, lo = hi + 1;
-                const int code = (hi < P ? m.coefficients[i * P + hi] : 0) * 16 + (lo < P ? m.coefficients[i * P + lo] : 0);
-                image.samples[i * 3 + c] = static_cast<float>(code) / 255.f;
-            }
-        png(image);
-    }
-    if (!m.albedo.empty()) {
-        Image image(m.width, m.height, 3);
-        std::transform(m.albedo.begin(), m.albedo.end(), image.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
-        png(image);
     }
     return std::move(w.bytes());
 }

@@ -198,10 +198,15 @@ LightModelFixed lightModelFixed(const LightModel& model, Direction light) {
     // The most fraction bits that keep |S_c| below 2^23 (exact in a float, fused or not).
     int shift = -40;
     while (shift < 40 && bound * std::ldexp(1.0, shift + 1) < 0x1p23) ++shift;
+    // Clamped for models no capture makes (weights beyond 2^63 in a corrupt file): still integers.
+    auto integer = [&](double v) {
+        const double scaled = std::ldexp(v, shift);
+        return static_cast<std::int32_t>(std::isfinite(scaled) ? std::clamp(std::round(scaled), -0x1p30, 0x1p30) : 0.0);
+    };
     LightModelFixed f;
     f.weights.resize(P * C);
-    for (std::size_t k = 0; k < P * C; ++k) f.weights[k] = static_cast<std::int32_t>(std::lround(std::ldexp(folded[k], shift)));
-    for (std::size_t c = 0; c < C; ++c) f.offset[c] = static_cast<std::int32_t>(std::lround(std::ldexp(offset[c], shift)));
+    for (std::size_t k = 0; k < P * C; ++k) f.weights[k] = integer(folded[k]);
+    for (std::size_t c = 0; c < C; ++c) f.offset[c] = integer(offset[c]);
     static_assert(kWeightUnit == 4096, "the luminance is scaled to 2^12");
     f.scale = static_cast<float>(std::ldexp(1.0, 12 - shift));
     return f;
@@ -214,7 +219,7 @@ std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightMod
     for (std::size_t c = 0; c < C; ++c) {
         std::int64_t sum = fixed.offset[c];
         for (std::size_t p = 0; p < P; ++p) sum += std::int64_t{bytes[p]} * fixed.weights[p * C + c];
-        value[c] = static_cast<std::int64_t>(std::floor(static_cast<double>(sum) * fixed.scale));
+        value[c] = static_cast<std::int64_t>(std::clamp(std::floor(static_cast<double>(sum) * fixed.scale), -0x1p40, 0x1p40));
     }
     std::array<std::int64_t, 3> out{};
     const std::size_t outputs = model.albedo.empty() ? C : 3;
@@ -223,6 +228,33 @@ std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightMod
         out[c] = std::clamp<std::int64_t>(a * value[C == 1 ? 0 : c], 0, 255 * kWeightUnit);
     }
     return out;
+}
+
+std::vector<Image> lightModelImages(const LightModel& m) {
+    const auto P = static_cast<std::size_t>(m.planes), wide = static_cast<std::size_t>(m.wide);
+    std::vector<Image> images;
+    for (std::size_t first = 0; first < wide; first += 3) {
+        Image image(m.width, m.height, 3);
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3 && first + c < wide; ++c) image.samples[i * 3 + c] = m.coefficients[i * P + first + c] / 255.f;
+        images.push_back(std::move(image));
+    }
+    for (std::size_t first = wide; first < P; first += 6) {
+        Image image(m.width, m.height, 3);
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3; ++c) {
+                const std::size_t high = first + 2 * c, low = high + 1;
+                const int code = (high < P ? m.coefficients[i * P + high] : 0) * 16 + (low < P ? m.coefficients[i * P + low] : 0);
+                image.samples[i * 3 + c] = static_cast<float>(code) / 255.f;
+            }
+        images.push_back(std::move(image));
+    }
+    if (!m.albedo.empty()) {
+        Image image(m.width, m.height, 3);
+        std::transform(m.albedo.begin(), m.albedo.end(), image.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
+        images.push_back(std::move(image));
+    }
+    return images;
 }
 
 LightModel lightModelFromPtm(const Ptm& ptm) {

@@ -102,6 +102,11 @@ LightModelFixed lightModelFixed(const LightModel& model, Direction light);
 /// fixed-point prediction, channels 1 or 3 (grey models give one).
 std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightModelFixed& fixed, std::size_t texel);
 
+/// The model's planes as RGB8 images, as files and engines hold them: the 8-bit planes three
+/// to an image (planes 3k, 3k + 1, 3k + 2 in R, G, B; missing ones 0), then the 4-bit planes
+/// six to an image (two to a channel, the first in the high nibble), then the albedo if any.
+std::vector<Image> lightModelImages(const LightModel& model);
+
 /// A PTM as a light model (the same bytes, scales, biases and albedo).
 LightModel lightModelFromPtm(const Ptm& ptm);
 
