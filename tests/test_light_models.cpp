@@ -310,3 +310,37 @@ TEST_CASE("shared data: lut auto beats relight-cli's best 9-plane basis, with th
         CHECK(automatic["l1"].get<double>() <= paper["l1"].get<double>() + 0.002);
     }
 }
+
+TEST_CASE("the match LUTs baked over the grid: close to the exact run-time LUT, finer grids closer, kept in the file") {
+    TempDir dir;
+    Result<Dataset> dataset = openDataset(writeRelief(dir, Relief{.size = 40}, dome(20, 70)));
+    REQUIRE(dataset.ok());
+    const Mask mask = fullMask(40, 40);
+    double previous = 0;
+    for (int grid : {9, 33}) {
+        Result<LutBank> bank = bakeBank(*dataset, {.gridSize = grid, .model = LightModelOptions{.basis = LightBasis::Rbf, .planes = 6}});
+        REQUIRE(bank.ok());
+        REQUIRE(bank->layers[0].matchGridLuts.size() == static_cast<std::size_t>(grid * grid) * bank->matchLength());
+        const Relighter relighter(*bank);
+        double psnr = 0;
+        for (Direction l : {Direction::fromDegrees(27, 15), Direction::fromDegrees(52, 170), Direction::fromDegrees(66, 290)})
+            psnr += compareImages(relighter.apply(relighter.gridFrame(l), true), relighter.apply(relighter.frame(l), true), mask).psnr / 3;
+        INFO("grid " << grid << ": the grid's relighting against the exact one, " << psnr << " dB");
+        CHECK(psnr > 35);
+        CHECK(psnr > previous);
+        previous = psnr;
+        // In the file: read back, the same grid and the same relighting.
+        Result<LutBank> back = decodeBank(encodeBank(*bank), "g.btflut");
+        REQUIRE(back.ok());
+        CHECK(back->layers[0].matchGridLuts == bank->layers[0].matchGridLuts);
+    }
+    // A corrupted grid is refused.
+    Result<LutBank> bank = bakeBank(*dataset, {.gridSize = 5, .model = LightModelOptions{.basis = LightBasis::Ptm}});
+    REQUIRE(bank.ok());
+    LutBank broken = *bank;
+    broken.layers[0].matchGridLuts[0] = 65535;  // the first LUT falls from its first entry to its second
+    broken.layers[0].matchGridLuts[1] = 0;
+    Result<LutBank> refused = decodeBank(encodeBank(broken), "broken.btflut");
+    REQUIRE_FALSE(refused.ok());
+    CHECK(refused.error().find("match grid is not monotonic") != std::string::npos);
+}

@@ -108,7 +108,12 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
                     "(each node's LUT from the prediction to its measurement, blended at the light), or both: measured,corrections")
         ->capture_default_str();
     app->add_option("--mask", o->mask, "sample mask instead of the dataset's own");
-    app->add_option("--grid", o->grid, "banks' grid size")->check(CLI::Range(2, 257))->capture_default_str();
+    app->add_option("--grid", o->grids, "banks' grid sizes, a list (e.g. 17,33,65)")->capture_default_str();
+    app->add_option("--luts", o->lutSources,
+                    "lut: exact (each light's LUT made at the light), grid (read bilinearly from the bank's grid, as an "
+                    "engine reads the export: for a bank with a predictor, the match LUTs baked over the grid), or "
+                    "both: exact,grid")
+        ->capture_default_str();
     app->add_option("--frames", o->frames, "GL frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();
     app->add_option("--backend", o->backend, "GL: auto, osmesa or egl")->capture_default_str();
     app->add_flag("--no-gl", o->noGl, "skip the GL figures (frame time, GPU bytes, GPU against CPU)");

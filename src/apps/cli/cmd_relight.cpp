@@ -46,8 +46,14 @@ Status runRelight(const RelightOptions& o) {
     }
     if (bank.reference.samples.empty())
         return Error{o.bank + ": the bank has no reference image inside; give --reference-image"};
+    if (o.grid && bank.makesLuts()) {  // the prediction, then the LUT read from the bank's match grid
+        const Relighter relighter(bank);
+        const Image out = relighter.apply(relighter.gridFrame(query->light), !o.noDither);
+        if (Status s = savePng(out, o.output, o.depth); !s) return s;
+        if (!o.quiet) std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT from the match grid)\n";
+        return success();
+    }
     if (o.grid) {  // what an engine reads from `export -o DIR/`
-        if (bank.makesLuts()) return Error{o.bank + ": --grid: this bank makes its LUTs at run time (no grid of LUTs)"};
         const std::size_t layer = bank.nearestNode(query->light, query->view).layer;
         const Image out = applyLuts(bank.reference, bank.colour, bank.gridLookup(query->light, layer), bank.entries,
                                     o.noDither ? 0.f : bank.targetCode());
@@ -80,7 +86,8 @@ void addRelightCommand(CLI::App& root, Commands& commands) {
                     "reference image, for a bank baked with --no-reference");
     app->add_flag("--grid", o->grid,
                   "the LUT as an engine reads it from the exported grid (bilinear between grid nodes, as "
-                  "shaders/btflut.glsl's one filtered fetch), not interpolated over the measured directions");
+                  "shaders/btflut.glsl's one filtered fetch), not interpolated over the measured directions; for a bank "
+                  "with a predictor, the LUT baked over the grid (no counting of the prediction per light)");
     app->add_flag("-q,--quiet", o->quiet, "do not say what was written");
     commands.push_back({app, [o] { return runRelight(*o); }});
 }

@@ -147,6 +147,7 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
             BakeOptions o = c.options;
             o.progress = {};
             o.ptm = false;
+            o.matchGrid = false;  // validated with exact LUTs; only the chosen bank gets its grid
             auto bank = std::make_unique<LutBank>();
             if (Result<LutBank> baked = bakeBank(train, o, trainImages); baked) {
                 *bank = std::move(*baked);

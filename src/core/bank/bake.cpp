@@ -7,6 +7,7 @@
 
 #include "core/parallel.h"
 #include "core/predict/references.h"
+#include "core/predict/relighter.h"
 
 namespace btflut {
 
@@ -336,6 +337,7 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         if (!fitted) return Error{fitted.error()};
         bank.ptm = std::move(*fitted);
     }
+    if (bank.makesLuts() && options.matchGrid) bakeMatchGrid(bank, options.threads);  // the LUTs an engine or a moving light reads
     return bank;
 }
 

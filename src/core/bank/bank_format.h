@@ -26,7 +26,7 @@ inline std::uint32_t tagOf(const char (&t)[5]) {
 const std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
                     kEnd = tagOf("END "), kReferences = tagOf("REFS"), kMask = tagOf("MASK"), kLabels = tagOf("LABL"),
                     kAlbedo = tagOf("ALBD"), kFill = tagOf("FILL"), kLightModel = tagOf("LMDL"),
-                    kSelection = tagOf("CHOS");
+                    kSelection = tagOf("CHOS"), kMatchGrid = tagOf("MGRD");
 
 inline std::string tagName(std::uint32_t tag) {
     std::string s;

@@ -405,6 +405,7 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
     }
 
     bool haveReference = false, havePtm = false, haveModel = false, haveSelection = false;
+    std::size_t matchGrids = 0;
     std::size_t totalNodes = 0;
     const Chunk* fill = nullptr;
     for (std::size_t c = 1; c < chunks->list.size(); ++c) {
@@ -482,6 +483,21 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             Result<LightModel> model = decodeLightModel(in, name, *head);
             if (!model) return Error{model.error()};
             bank.blend.model = std::move(*model);
+        } else if (tag == kMatchGrid) {
+            // One per layer, in order, after the layers: the LUTs over the grid of a bank with a predictor.
+            const std::size_t cells = static_cast<std::size_t>(bank.gridSize) * static_cast<std::size_t>(bank.gridSize);
+            const std::size_t lutLength = static_cast<std::size_t>(bank.entries);
+            if (chunks->version < 5 || !bank.makesLuts() || matchGrids >= bank.layers.size() ||
+                length != cells * bank.matchLength() * sizeof(std::uint16_t))
+                return fail("unexpected MGRD chunk, or one of the wrong size");
+            ViewLayer& layer = bank.layers[matchGrids++];
+            if (!options.grids || !layer.lutsLoaded) continue;
+            layer.matchGridLuts.resize(length / sizeof(std::uint16_t));
+            std::memcpy(layer.matchGridLuts.data(), payload, length);
+            for (std::size_t at = 0; at < layer.matchGridLuts.size(); at += lutLength)
+                if (!std::is_sorted(layer.matchGridLuts.begin() + static_cast<std::ptrdiff_t>(at),
+                                    layer.matchGridLuts.begin() + static_cast<std::ptrdiff_t>(at + lutLength)))
+                    return fail("a LUT of the match grid is not monotonic (file is corrupted)");
         } else if (tag == kSelection) {
             if (haveSelection || chunks->version < 5) return fail("unexpected CHOS chunk");
             haveSelection = true;
@@ -505,6 +521,7 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
         return fail("declares " + std::to_string(head->layerCount) + " layers but holds " +
                     std::to_string(bank.layers.size()));
     if (head->embedded && !haveReference) return fail("reference image chunk is missing");
+    if (matchGrids != 0 && matchGrids != bank.layers.size()) return fail("a match grid (MGRD) for some layers only");
     if (fill) {
         Reader in(fill->payload, fill->length);
         bank.modelFill = in.getString();

@@ -97,7 +97,9 @@ std::uint32_t bankFormatVersion(const LutBank& bank) {
     // they always could.
     if ((bank.makesLuts() && (bank.blend.predictor == LutBank::Blend::Predictor::Model || bank.blend.match != 1 ||
                               bank.blend.target != LutBank::Blend::Target::Measured)) ||
-        !bank.selection.empty())
+        !bank.selection.empty() || std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) {
+            return !l.matchGridLuts.empty();
+        }))
         return 5;
     if (!bank.modelFill.empty()) return 4;
     if (bank.makesLuts()) return 3;
@@ -197,6 +199,9 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     }
     if (bank.makesLuts() && bank.blend.predictor == LutBank::Blend::Predictor::Model)
         putChunk(file, kLightModel, encodeLightModel(bank.blend.model));
+    for (const ViewLayer& layer : bank.layers)  // version 5: every layer's or none
+        if (!layer.matchGridLuts.empty()) putChunk(file, kMatchGrid, Bytes(reinterpret_cast<const std::uint8_t*>(layer.matchGridLuts.data()),
+                                                                           reinterpret_cast<const std::uint8_t*>(layer.matchGridLuts.data() + layer.matchGridLuts.size())));
     if (!bank.selection.empty()) {
         Writer w;
         w.putString(bank.selection);

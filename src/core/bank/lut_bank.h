@@ -81,6 +81,11 @@ struct ViewLayer {
     /// their LUTs at run time, its targets' quantile functions (regions x channels x quantiles)
     std::vector<float> nodeLuts;
     std::vector<std::uint16_t> gridLuts;  ///< gridSize^2 x nodeLength(), unorm16
+    /// Banks with a predictor: at each grid node, the LUT that takes the prediction at the
+    /// node's light to the target there (regions x channels x entries, unorm16; Relighter::
+    /// bakeMatchGrid). Read bilinearly (matchGridLookup), it spares the renderer counting the
+    /// prediction when the light moves. Empty for banks of LUTs.
+    std::vector<std::uint16_t> matchGridLuts;
     std::vector<Provenance> gridProvenance;  ///< gridSize^2; node (i, j) at j * gridSize + i
     Triangulation lights;                 ///< over the measured nodes' disk points (they come first)
     Triangulation modelLights;            ///< over the modelled nodes' (index + measuredNodes); empty without
@@ -187,6 +192,13 @@ struct LutBank {
     /// filtered fetch of the exported 3D texture does (shaders/btflut.glsl). It equals
     /// lookup() at grid nodes; between them it differs most near the measured triangles' edges.
     std::vector<float> gridLookup(Direction light, std::size_t layer = 0) const;
+    /// The same over a layer's matchGridLuts: per region and channel, the LUT on the
+    /// prediction's codes (Relighter::gridFrame).
+    std::vector<float> matchGridLookup(Direction light, std::size_t layer = 0) const;
+    /// Values per node of matchGridLuts: regions x channels x entries.
+    std::size_t matchLength() const {
+        return static_cast<std::size_t>(blend.regions) * static_cast<std::size_t>(channels()) * static_cast<std::size_t>(entries);
+    }
 
     /// Every view layer's grid as one block of unorm16 texels, channels interleaved, ordered
     /// [layer][grid node j * gridSize + i][region][segment entry][channel]: for a bank of LUTs

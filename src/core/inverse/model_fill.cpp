@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "core/parallel.h"
+#include "core/predict/relighter.h"
 
 namespace btflut {
 
@@ -105,6 +106,7 @@ Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& para
     bank.modelFill = report.nodes > 0 ? description : std::string();
     bank.buildTriangulations();
     bank.fillGrids();
+    if (bank.makesLuts()) bakeMatchGrid(bank);  // the targets changed: the LUTs over the grid too
     return report;
 }
 

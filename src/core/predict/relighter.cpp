@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+
+#include "core/parallel.h"
 
 namespace btflut {
 
@@ -47,7 +50,7 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
         corrections->blend.quantiles = bank.entries;  // its node values: regions x channels x entries
         const auto samples = static_cast<std::size_t>(blend.quantiles);
         for (const ViewLayer& layer : bank.layers) {
-            ViewLayer copy{layer.view, layer.nodes, {}, {}, {}, layer.lights, layer.modelLights, layer.measuredNodes, true};
+            ViewLayer copy{layer.view, layer.nodes, {}, {}, {}, {}, layer.lights, layer.modelLights, layer.measuredNodes, true};
             for (std::size_t n = 0; n < layer.nodes.size(); ++n) {
                 const RelightFrame f = predictionFrame(layer.nodes[n].light);
                 const float* targets = &layer.nodeLuts[n * bank.nodeLength()];
@@ -125,6 +128,54 @@ RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate)
     }
     frame.luts = lutsFor(frame, target.values);
     return frame;
+}
+
+RelightFrame Relighter::gridFrame(Direction light) const {
+    BTFLUT_CHECK(m_bank.makesLuts() && m_bank.layers.size() == 1);
+    RelightFrame frame = predictionFrame(light);
+    if (!m_bank.layers[0].matchGridLuts.empty()) {
+        frame.luts = m_bank.matchGridLookup(light);
+        return frame;
+    }
+    static std::mutex making;
+    std::shared_ptr<const LutBank> grid;
+    {
+        std::lock_guard lock(making);
+        if (!m_gridBank) {  // a bank read without its grid: made once, here
+            auto copy = std::make_shared<LutBank>();
+            copy->entries = m_bank.entries;
+            copy->colour = m_bank.colour;
+            copy->gridSize = m_bank.gridSize;
+            copy->blend.regions = m_bank.blend.regions;
+            LutBank whole = m_bank;
+            bakeMatchGrid(whole);
+            copy->layers.resize(1);
+            copy->layers[0].matchGridLuts = std::move(whole.layers[0].matchGridLuts);
+            m_gridBank = std::move(copy);
+        }
+        grid = m_gridBank;
+    }
+    frame.luts = grid->matchGridLookup(light);
+    return frame;
+}
+
+void bakeMatchGrid(LutBank& bank, int threads) {
+    BTFLUT_CHECK(bank.makesLuts());
+    const Relighter relighter(bank);
+    const auto cells = static_cast<std::size_t>(bank.gridSize) * static_cast<std::size_t>(bank.gridSize);
+    const std::size_t length = bank.matchLength();
+    for (ViewLayer& layer : bank.layers) {
+        std::vector<std::uint16_t> grid(cells * length);
+        parallelFor(cells, threads, [&](std::size_t cell) {
+            const int i = static_cast<int>(cell % static_cast<std::size_t>(bank.gridSize)),
+                      j = static_cast<int>(cell / static_cast<std::size_t>(bank.gridSize));
+            // Beyond the horizon: the horizon's LUT (fromDisk pulls the point onto it).
+            const RelightFrame f = relighter.frame(fromDisk(bank.gridPoint(i, j)), layer.view);
+            for (std::size_t k = 0; k < length; ++k)
+                grid[cell * length + k] = static_cast<std::uint16_t>(std::lround(std::clamp(f.luts[k], 0.f, 1.f) * 65535.0));
+        });
+        layer.matchGridLuts = std::move(grid);
+    }
 }
 
 RelightFrame Relighter::predictionFrame(Direction light) const {

@@ -54,6 +54,11 @@ public:
     /// the nearest node.
     RelightFrame frame(Direction light, Direction view = {}, bool interpolate = true) const;
 
+    /// A bank with a predictor: the frame with its LUTs read bilinearly from the bank's match
+    /// grid (LutBank::matchGridLuts; made here when the bank has none), as an engine reads the
+    /// exported grid: no counting of the prediction when the light moves.
+    RelightFrame gridFrame(Direction light) const;
+
     /// The relit image at the reference's size; dithered (lut.h) unless `dither` is false.
     Image apply(const RelightFrame& frame, bool dither) const;
 
@@ -92,6 +97,14 @@ private:
     /// Corrections (LutBank::Blend::Target::Corrections): the bank's nodes with, instead of
     /// their targets, the LUTs from the prediction at their lights to their targets.
     std::shared_ptr<const LutBank> m_corrections;
+    /// For a bank read without its match grid (older files): the grid, made on first use.
+    mutable std::shared_ptr<const LutBank> m_gridBank;
 };
+
+/// Fills every layer's match grid of a bank with a predictor (LutBank::matchGridLuts): at each
+/// grid node the LUT from the prediction at the node's light (beyond the horizon: at the
+/// horizon) to the target there, made as Relighter::frame makes it. Bake calls it; so must
+/// whatever changes a bank's targets or predictor afterwards (model fill).
+void bakeMatchGrid(LutBank& bank, int threads = 0);
 
 }  // namespace btflut

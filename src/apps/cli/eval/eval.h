@@ -45,7 +45,8 @@ struct EvalOptions {
     bool json = false;
     bool noGl = false;
     int frames = 6;
-    int grid = 17;
+    std::string grids = "17";    ///< banks' grid sizes, a list
+    std::string lutSources = "exact";  ///< lut: exact (made at the light), grid (read from the bank's grid), a list
     int sheetLights = 4;
 };
 
@@ -59,6 +60,8 @@ struct Variant {
     int references = 1, regions = 1;
     ColourMode colour = ColourMode::Grey;
     bool filled = false;       // bake --fill model (fitted to the training images)
+    int grid = 17;             // the bank's grid size
+    bool fromGrid = false;     // lut: the LUT read from the bank's grid (as an engine does), not made at the light
     bool corrections = false;     // lut with a predictor: the nodes' corrections blended (LutBank::Blend::Target)
     bool blendedLuts = false;  // the alternative: per-reference LUTs blended
     /// An RTI basis on its own, unmatched (modes hsh, rbf, bln; a number after the name is
@@ -70,8 +73,8 @@ struct Variant {
         return predictor == "references" && references == 1 && regions == 1 && colour == ColourMode::Grey && !filled &&
                !corrections;
     }
-    using Setting = std::tuple<std::string, int, int, ColourMode, bool, bool>;
-    Setting setting() const { return {predictor, references, regions, colour, filled, corrections}; }
+    using Setting = std::tuple<std::string, int, int, ColourMode, bool, bool, int>;
+    Setting setting() const { return {predictor, references, regions, colour, filled, corrections, grid}; }
 
     std::vector<ImageErrors> errors;
     std::vector<std::string> images;
@@ -83,7 +86,7 @@ struct Variant {
 /// The variants the options ask for, lut settings first.
 Result<std::vector<Variant>> variantsOf(const EvalOptions& o);
 /// What a lut variant's bank is baked with (`ptm`: also fit the PTM baseline).
-BakeOptions bakeOptionsOf(const Variant& v, const EvalOptions& o, bool ptm);
+BakeOptions bakeOptionsOf(const Variant& v, bool ptm);
 /// Data bytes per texel of what a mode draws from (no padding, no mipmaps).
 double bytesPerTexel(const Variant& v, const LutBank& bank);
 

@@ -25,12 +25,13 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
         std::map<Variant::Setting, std::unique_ptr<LutBank>> banks;
         std::map<Variant::Setting, std::unique_ptr<Relighter>> relighters;
         auto bankFor = [&](Variant& v) -> Result<LutBank*> {
-            const auto key = v.mode == RenderMode::Lut ? v.setting() : Variant::Setting{"references", 1, 1, ColourMode::Grey, false, false};
+            const auto key = v.mode == RenderMode::Lut ? v.setting() : Variant::Setting{"references", 1, 1, ColourMode::Grey, false, false, v.grid};
             if (!banks.count(key)) {
                 Variant setting = v;
-                std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled, setting.corrections) = key;
+                std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled, setting.corrections,
+                         setting.grid) = key;
                 const auto start = Clock::now();
-                const BakeOptions options = bakeOptionsOf(setting, o, ptm && setting.base());
+                const BakeOptions options = bakeOptionsOf(setting, ptm && setting.base());
                 // lut auto: bake's validated choice, from the fold's training images alone
                 Result<LutBank> bank = setting.predictor == "auto" ? bakeAuto(train, {.base = options}) : bakeBank(train, options);
                 if (!bank) return Error{bank.error()};
@@ -105,8 +106,13 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 } else if (v.mode == RenderMode::Lut) {
                     const Relighter& relighter = *relighters.at(v.setting());
                     const auto start = Clock::now();
-                    predicted = v.blendedLuts ? relighter.applyBlendingLuts(info.light, info.view, true)
-                                              : relighter.apply(relighter.frame(info.light, info.view), true);
+                    if (v.fromGrid && bank.makesLuts())  // the prediction, the LUT from the match grid
+                        predicted = relighter.apply(relighter.gridFrame(info.light), true);
+                    else if (v.fromGrid)  // the classic grid, as an engine reads it
+                        predicted = applyLuts(bank.reference, bank.colour, bank.gridLookup(info.light), bank.entries, bank.targetCode());
+                    else
+                        predicted = v.blendedLuts ? relighter.applyBlendingLuts(info.light, info.view, true)
+                                                  : relighter.apply(relighter.frame(info.light, info.view), true);
                     v.relightSeconds.push_back(seconds(start));
                 } else if (v.mode == RenderMode::Ptm) {
                     predicted = bank.ptm.render(info.light);

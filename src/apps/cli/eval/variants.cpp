@@ -37,9 +37,11 @@ std::vector<std::string> split(const std::string& text) {
 }  // namespace
 
 Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
-    Result<std::vector<int>> ks = parseList(o.references, "references", 1, 255), rs = parseList(o.regions, "regions", 1, 255);
+    Result<std::vector<int>> ks = parseList(o.references, "references", 1, 255), rs = parseList(o.regions, "regions", 1, 255),
+                             gs = parseList(o.grids, "grid", 2, 257);
     if (!ks) return Error{ks.error()};
     if (!rs) return Error{rs.error()};
+    if (!gs) return Error{gs.error()};
     std::vector<Variant> variants;
     std::vector<std::string> modes = split(o.modes);
     if (modes.empty()) return Error{"--modes is empty"};
@@ -126,14 +128,32 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             all.push_back(r);
         }
     variants = std::move(all);
+    // Each lut bank at every grid size, its LUTs made at the light, read from the grid, or both.
+    const std::vector<std::string> sources = split(o.lutSources);
+    if (sources.empty()) return Error{"--luts is empty"};
+    for (const std::string& s : sources)
+        if (s != "exact" && s != "grid") return Error{"--luts '" + s + "' is not exact or grid"};
+    all.clear();
+    for (const Variant& v : variants)
+        for (int g : *gs)
+            for (const std::string& s : sources) {
+                if (v.mode != RenderMode::Lut && (g != gs->front() || s != sources.front())) continue;
+                Variant r = v;
+                r.grid = g;
+                r.fromGrid = v.mode == RenderMode::Lut && s == "grid";
+                if (v.mode == RenderMode::Lut && gs->size() > 1) r.name += " G" + std::to_string(g);
+                if (v.mode == RenderMode::Lut && sources.size() > 1) r.name += s == "grid" ? " (grid)" : " (exact)";
+                all.push_back(r);
+            }
+    variants = std::move(all);
     // Lut variants first, then the baselines in the order asked.
     std::stable_partition(variants.begin(), variants.end(), [](const Variant& v) { return v.mode == RenderMode::Lut; });
     return variants;
 }
 
-BakeOptions bakeOptionsOf(const Variant& v, const EvalOptions& o, bool ptm) {
+BakeOptions bakeOptionsOf(const Variant& v, bool ptm) {
     BakeOptions b;
-    b.gridSize = o.grid;
+    b.gridSize = v.grid;
     b.references = v.references;
     if (std::optional<Result<LightModelOptions>> model = lightModelNamed(v.predictor)) b.model = **model;
     if (v.corrections) b.target = LutBank::Blend::Target::Corrections;
