@@ -19,6 +19,11 @@ float btflutApplyLutDithered(sampler1D lut, int entries, float v, uvec2 pixel, u
     return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
 }
 
+// The frame's LUTs, as RelightPass (native.frag) and the scene's per-fragment path
+// (scene.frag, LUT_FRAGMENT) apply them: MAPS_REFERENCE for banks of LUTs, BLEND for banks that
+// make their LUTs; DITHER; PREDICTION_ONLY leaves the LUTs out (bench render's baseline).
+uniform float outCode;  // one target code
+
 // Banks that blend references (src/core/predict/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
 // BLEND_MODEL for a light model, REGIONS). The blend is exact integer arithmetic in float
 // (8-bit codes times integer weights, sums below 2^24), so its code is the CPU's; the LUT
@@ -54,8 +59,11 @@ uniform int blendRegions;
 #if defined(REGIONS)
 uniform usampler2D blendLabels;
 #endif
+#if defined(BLEND_PACKED)
+uniform sampler2D blendAlbedo;           // lrgb: the chroma
+#endif
 
-// A reference layer's texel: defined by each shader (fetched or filtered).
+// A reference layer's texel at btflutBlendAt (below).
 vec4 btflutBlendTexel(int layer);
 
 vec4 btflutBytes(vec4 texel) { return floor(texel * 255.0 + 0.5); }
@@ -129,6 +137,34 @@ BtflutBlend btflutBlend() {
 // A code read at the top of its cell [q, q + 1) / (codes + 1) (Relighter::inputCode).
 float btflutBlendValue(float code) { return (code + 1.0) / (blendCodes + 1.0); }
 
+// The texel the blend reads (texelFetch at level 0): set by each shader's main.
+ivec2 btflutBlendAt;
+
+vec4 btflutBlendTexel(int layer) { return texelFetch(blendReferences, ivec3(btflutBlendAt, layer), 0); }
+
+// A region's LUT applied to a blended code (below).
+float btflutBlendMap(int channel, uint region, float code, uvec2 pixel);
+
+// The texel's relit colour: grey keeps the blend's chroma (lrgb: the albedo's), rgb matches
+// each channel; `greyReference`: the bank's references have one channel.
+vec3 btflutBlendColour(uvec2 pixel, bool greyReference) {
+#if defined(REGIONS)
+    uint region = texelFetch(blendLabels, btflutBlendAt, 0).r;
+#else
+    uint region = 0u;
+#endif
+    BtflutBlend blend = btflutBlend();
+#if defined(RGB_MODE)
+    return vec3(btflutBlendMap(0, region, blend.codes.r, pixel), btflutBlendMap(1, region, blend.codes.g, pixel),
+                btflutBlendMap(2, region, blend.codes.b, pixel));
+#elif defined(BLEND_PACKED)
+    return btflutSetGrey(texelFetch(blendAlbedo, btflutBlendAt, 0).rgb, btflutBlendMap(0, region, blend.codes.x, pixel));
+#else
+    if (greyReference) return vec3(btflutBlendMap(0, region, blend.codes.x, pixel));
+    return btflutSetGrey(blend.colour, btflutBlendMap(0, region, blend.codes.x, pixel));
+#endif
+}
+
 // The LUT of a region at v in [0, 1] (linear between entries, as Lut::applyLut).
 float btflutBlendLut(int channel, uint region, float v) {
     vec2 at = vec2((clamp(v, 0.0, 1.0) * float(blendEntries - 1) + 0.5) / float(blendEntries),
@@ -143,5 +179,48 @@ float btflutBlendLutDithered(int channel, uint region, float v, uvec2 pixel, flo
     float moved = v + (btflutDitherOffset(pixel.x, pixel.y, uint(channel)) - 0.5) / (blendCodes + 1.0);
     float value = btflutBlendLut(channel, region, moved);
     return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
+}
+
+float btflutBlendMap(int channel, uint region, float code, uvec2 pixel) {
+#if defined(PREDICTION_ONLY)
+    return code / blendCodes;  // bench render's baseline: the predictor as an RTI viewer draws it
+#elif defined(DITHER)
+    return btflutBlendLutDithered(channel, region, btflutBlendValue(code), pixel, outCode);
+#else
+    return btflutBlendLut(channel, region, btflutBlendValue(code));
+#endif
+}
+#endif  // BLEND
+
+#if defined(MAPS_REFERENCE)
+// Banks of LUTs: the frame's LUT per channel (grey mode uses lut[0]).
+uniform sampler1D lut[3];
+uniform int entries;
+uniform float inCode;  // one input code of the value a LUT maps
+
+// A channel's LUT applied to v, dithered per `pixel` (DITHER).
+float btflutMapValue(int channel, float v, uvec2 pixel) {
+#if defined(PREDICTION_ONLY)
+    return v;
+#elif defined(DITHER)
+    if (channel == 0) return btflutApplyLutDithered(lut[0], entries, v, pixel, 0u, inCode, outCode);
+    if (channel == 1) return btflutApplyLutDithered(lut[1], entries, v, pixel, 1u, inCode, outCode);
+    return btflutApplyLutDithered(lut[2], entries, v, pixel, 2u, inCode, outCode);
+#else
+    if (channel == 0) return btflutApplyLut(lut[0], entries, v);
+    if (channel == 1) return btflutApplyLut(lut[1], entries, v);
+    return btflutApplyLut(lut[2], entries, v);
+#endif
+}
+
+// A reference texel (its stored values) through the LUTs: grey keeps its chroma, rgb maps each
+// channel.
+vec3 btflutReferenceColour(vec3 texel, bool greyReference, uvec2 pixel) {
+    if (greyReference) return vec3(btflutMapValue(0, texel.r, pixel));
+#if defined(RGB_MODE)
+    return vec3(btflutMapValue(0, texel.r, pixel), btflutMapValue(1, texel.g, pixel), btflutMapValue(2, texel.b, pixel));
+#else
+    return btflutSetGrey(texel, btflutMapValue(0, (texel.r + texel.g + texel.b) * (1.0 / 3.0), pixel));
+#endif
 }
 #endif

@@ -1,7 +1,10 @@
 // A scene quad in one of five modes (one define each).
 // LUT_MODE: banks with several view layers, whose LUT varies over the quad (banks of one view
-//   layer are relit in texture space and drawn by FLAT_MODE: RelightPass). RGB_MODE: a LUT per
-//   channel; GREY_TEXTURE: a grey reference.
+//   layer are relit in texture space and drawn by FLAT_MODE: RelightPass, or per fragment by
+//   LUT_FRAGMENT). RGB_MODE: a LUT per channel; GREY_TEXTURE: a grey reference.
+// LUT_FRAGMENT: a bank of one view layer relit per fragment while the light moves: the
+//   prediction (BLEND: references blended or a light model; else the reference, filtered) and
+//   the frame's LUTs (lut_common.glsl); DITHER per texel, as relight.
 // BRDF_MODE: the paper's 2D texture mapping, brightness scaled by the target-to-reference ratio.
 // PTM_MODE: the polynomial texture map, as RTI viewers draw it.
 // FLAT_MODE: the plain texture, or a relit one. NEAREST_MODE: `reference` is the nearest measured image.
@@ -45,6 +48,10 @@ vec3 shade(float level) {
 }
 #endif
 
+#if defined(LUT_FRAGMENT)
+uniform ivec2 texels;  // the reference's size: the dither and the blend's fetches are per texel, as relight's
+#endif
+
 #if defined(PTM_MODE)
 uniform sampler2D ptmLow, ptmHigh, ptmAlbedo;  // coefficients 0-2, 3-5 (bytes), RGB albedo
 uniform vec3 ptmWeightsLow, ptmWeightsHigh;    // the light's terms with scale and bias folded in
@@ -54,6 +61,19 @@ uniform float ptmOffset;
 void main() {
 #if defined(UNLIT)
     colour = vec4(0.0, 0.0, 0.0, 1.0);
+#elif defined(LUT_FRAGMENT)
+    ivec2 texel = ivec2(mod(floor(uv * vec2(texels)), vec2(texels)));
+#if defined(GREY_TEXTURE)
+    const bool grey = true;
+#else
+    const bool grey = false;
+#endif
+#if defined(BLEND)
+    btflutBlendAt = texel;
+    colour = vec4(btflutBlendColour(uvec2(texel), grey), 1.0);
+#else
+    colour = vec4(btflutReferenceColour(texture(reference, uv).rgb, grey, uvec2(texel)), 1.0);
+#endif
 #elif defined(FLAT_MODE)
     colour = vec4(texture(reference, uv).rgb, 1.0);
 #elif defined(PTM_MODE)

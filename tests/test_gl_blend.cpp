@@ -101,30 +101,46 @@ TEST_SUITE("gl") {
         TempDir dir;
         auto context = createHeadlessContext(GlBackend::Auto);
         if (!context.ok()) FAIL(context.error());
+        struct Way {
+            const char* name;
+            bool exact;
+            LutPath path;
+        };
+        // The match LUTs read from the baked grid (the default), in texture space and per
+        // fragment, and made at the light ("interpolation": "exact").
+        const Way ways[] = {{"grid, texture space", false, LutPath::TextureSpace},
+                            {"grid, per fragment", false, LutPath::PerFragment},
+                            {"exact", true, LutPath::Auto}};
         for (const auto& [name, bank] : blendingBanks(dir)) {
             REQUIRE(saveBank(bank, dir / "b.btflut").ok());
-            auto renderer = SceneRenderer::create(frontalScene(dir / "b.btflut", "", 40, 40));
-            REQUIRE(renderer.ok());
-            const Direction light = Direction::fromDegrees(35, 100);
-            REQUIRE((*renderer)->draw(toVector(light), RenderMode::Flat).ok());
-            CHECK((*renderer)->stats().textureBytes.blend == 0);  // flat needs the reference only
-            REQUIRE((*renderer)->draw(toVector(light)).ok());
-            CHECK((*renderer)->stats().textureBytes.blend > 0);
-            const Image gpu = (*renderer)->readBack();
             const Relighter relighter(bank);
-            const Image cpu = relighter.apply(relighter.frame(light), true);  // relit in texture space, dithered per texel
-            const Image cpuRgb = cpu.channels == 3 ? cpu : [&] {
-                Image rgb(cpu.width, cpu.height, 3);
-                for (std::size_t i = 0; i < cpu.pixelCount(); ++i) rgb.samples[i * 3] = rgb.samples[i * 3 + 1] = rgb.samples[i * 3 + 2] = cpu.samples[i];
-                return rgb;
-            }();
-            double mean = 0;
-            for (std::size_t i = 0; i < gpu.samples.size(); ++i) mean += std::abs(gpu.samples[i] - cpuRgb.samples[i]);
-            mean /= static_cast<double>(gpu.samples.size());
-            INFO(name << ": worst " << worstDifference(gpu, cpuRgb) * 255 << "/255, mean " << mean * 255);
-            // 8-bit relit texture and framebuffer, filtered fetches at texel centres.
-            CHECK(worstDifference(gpu, cpuRgb) <= 1.0 / 255);
-            CHECK(mean <= 0.6 / 255);
+            const Direction light = Direction::fromDegrees(35, 100);
+            for (const Way& way : ways) {
+                Scene scene = frontalScene(dir / "b.btflut", "", 40, 40);
+                scene.exactMatch = way.exact;
+                auto renderer = SceneRenderer::create(scene, {.lutPath = way.path});
+                REQUIRE(renderer.ok());
+                REQUIRE((*renderer)->draw(toVector(light), RenderMode::Flat).ok());
+                CHECK((*renderer)->stats().textureBytes.blend == 0);  // flat needs the reference only
+                REQUIRE((*renderer)->draw(toVector(light)).ok());
+                CHECK((*renderer)->stats().textureBytes.blend > 0);
+                CHECK((*renderer)->stats().quadsPerFragment == (way.path == LutPath::PerFragment ? 1u : 0u));
+                const Image gpu = (*renderer)->readBack();
+                // Relit in texture space, or per fragment at 1:1, dithered per texel.
+                const Image cpu = relighter.apply(way.exact ? relighter.frame(light) : relighter.gridFrame(light), true);
+                const Image cpuRgb = cpu.channels == 3 ? cpu : [&] {
+                    Image rgb(cpu.width, cpu.height, 3);
+                    for (std::size_t i = 0; i < cpu.pixelCount(); ++i) rgb.samples[i * 3] = rgb.samples[i * 3 + 1] = rgb.samples[i * 3 + 2] = cpu.samples[i];
+                    return rgb;
+                }();
+                double mean = 0;
+                for (std::size_t i = 0; i < gpu.samples.size(); ++i) mean += std::abs(gpu.samples[i] - cpuRgb.samples[i]);
+                mean /= static_cast<double>(gpu.samples.size());
+                INFO(name << ", " << way.name << ": worst " << worstDifference(gpu, cpuRgb) * 255 << "/255, mean " << mean * 255);
+                // 8-bit relit texture and framebuffer, filtered fetches at texel centres.
+                CHECK(worstDifference(gpu, cpuRgb) <= 1.0 / 255);
+                CHECK(mean <= 0.6 / 255);
+            }
         }
     }
 }

@@ -89,7 +89,7 @@ TEST_SUITE("gl") {
         tilted.normal = {0, tilted.normal.y / length, tilted.normal.z / length};
         scene.quads.push_back(twin);
         scene.quads.push_back(tilted);
-        auto renderer = SceneRenderer::create(scene);
+        auto renderer = SceneRenderer::create(scene, {.lutPath = LutPath::TextureSpace});
         REQUIRE(renderer.ok());
         SceneRenderer& r = **renderer;
         const Direction a = Direction::fromDegrees(30, 20), b = Direction::fromDegrees(40, 200);
@@ -105,6 +105,47 @@ TEST_SUITE("gl") {
         draw(r, b);
         CHECK(r.stats().relightPasses == 4);
         CHECK(r.stats().textureBytes.relit >= 2 * bank.reference.pixelCount());
+    }
+
+    TEST_CASE("a moving light is drawn per fragment where that costs less than relighting; the frame after it stops relights") {
+        TempDir dir;
+        const LutBank bank = savedBank(dir, steepShots());
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        const Direction a = Direction::fromDegrees(30, 20), b = Direction::fromDegrees(40, 200), c = Direction::fromDegrees(50, 80);
+        auto renderer = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 40, 30));
+        REQUIRE(renderer.ok());
+        SceneRenderer& r = **renderer;
+        draw(r, a);  // a first frame relights: its texture is mipmapped from relit texels
+        CHECK(r.stats().quadsTextureSpace == 1);
+        CHECK(r.stats().relightPasses == 1);
+        const Image moving = draw(r, b);  // moved: 1,200 pixels per fragment cost less than the pass
+        CHECK(r.stats().quadsPerFragment == 1);
+        CHECK(r.stats().relightPasses == 1);
+        // Per fragment at 1:1 is relight: the same LUT, dithered per texel.
+        const Image cpu = applyLuts(bank.reference, bank.colour, bank.lookup(b).values, bank.entries, bank.targetCode());
+        double worst = 0;
+        for (int y = 0; y < 30; ++y)
+            for (int x = 0; x < 40; ++x) worst = std::max(worst, std::abs(static_cast<double>(moving.at(x, y, 0)) - cpu.at(x, y, 0)));
+        INFO("per fragment against relight: worst " << worst * 255 << "/255");
+        CHECK(worst <= 1.0 / 255 + 1e-6);
+        draw(r, b);  // stopped: relit once
+        CHECK(r.stats().quadsTextureSpace == 1);
+        CHECK(r.stats().relightPasses == 2);
+        draw(r, b);
+        CHECK(r.stats().relightPasses == 2);
+        draw(r, c);
+        CHECK(r.stats().quadsPerFragment == 1);
+        CHECK(r.stats().textureBytes.luts > 0);  // the quad's LUTs, made once
+
+        // A quad covering many more pixels than the reference has texels relights even while
+        // the light moves.
+        auto big = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 400, 300));
+        REQUIRE(big.ok());
+        draw(**big, a);
+        draw(**big, b);
+        CHECK((*big)->stats().quadsTextureSpace == 1);
+        CHECK((*big)->stats().relightPasses == 2);
     }
 
     TEST_CASE("scene quads are dithered per texel, as relight is; --no-dither applies the plain LUT") {
@@ -221,4 +262,13 @@ TEST_CASE("bench render reports static and moving frames, GPU time and overdraw"
     CHECK(out["sizes"][0]["lut_static_ms"].get<double>() > 0);
     if (out["gpu_timer"].get<bool>()) CHECK(out["sizes"][0].contains("lut_gpu_ms"));
     requireOneLineError(runCli({"bench", "render", dir / "m.btflut", "--size", "64by48"}), "--size '64by48'");
+    // A bank with a predictor: the lut over the predictor drawn per fragment without its LUT.
+    REQUIRE(runCli({"bake", dir / "btflut-dataset.json", "--predictor", "ptm", "--ptm", "-o", dir / "p.btflut", "-q"}).status == 0);
+    run = runCli({"bench", "render", dir / "p.btflut", "--size", "64x48", "--frames", "2", "--repeat", "1", "--json"});
+    REQUIRE(run.status == 0);
+    const nlohmann::json predictor = nlohmann::json::parse(run.out);
+    CHECK(predictor["lut_over_predictor_moving"].get<double>() > 0);
+    CHECK(predictor["sizes"][0]["predictor_ms"].get<double>() > 0);
+    CHECK(predictor["sizes"][0]["lut_moving_quads_per_fragment"].get<int>() == 4);  // 64 x 48 pixels: per fragment
+    requireOneLineError(runCli({"bench", "render", dir / "p.btflut", "--lut-path", "screen"}), "--lut-path");
 }

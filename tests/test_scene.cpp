@@ -54,6 +54,16 @@ TEST_CASE("a scene written as JSON reads back the same") {
     CHECK(back->quads[0].uvScale == 2);
     CHECK(back->quads[0].tangent.x == doctest::Approx(scene->quads[0].tangent.x));
     CHECK(back->quads[1].mode == RenderMode::Flat);
+    // "exact": interpolated, the match LUTs made at the light
+    std::string exact = kScene;
+    exact.replace(exact.find("\"nearest\""), 9, "\"exact\"");
+    auto e = parseScene(exact, "e.json", "/scenes");
+    REQUIRE(e.ok());
+    CHECK(e->interpolateLuts);
+    CHECK(e->exactMatch);
+    auto eBack = parseScene(sceneToJson(*e), "back.json", "/elsewhere");
+    REQUIRE(eBack.ok());
+    CHECK(eBack->exactMatch);
 }
 
 TEST_CASE("bad scenes are refused naming the file and the field") {
@@ -84,7 +94,7 @@ TEST_CASE("bad scenes are refused naming the file and the field") {
          "materials.a: expected a .btflut path or {\"bank\": path, \"images\": dataset path}"},
         {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"}, "interpolation": "cubic",
              "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
-         "interpolation: expected \"linear\" or \"nearest\""},
+         "interpolation: expected \"linear\", \"exact\" or \"nearest\""},
         {R"({"camera": {"position": [0,0,1], "target": [0,0,1]}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
              "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
          "position and target coincide"},

@@ -28,7 +28,7 @@ Result<GLuint> RelightPass::program(bool dither) {
     auto found = m_programs.find(dither);
     if (found == m_programs.end()) {
         const LutBank& bank = *m_bank;
-        std::vector<std::string> defines = m_blend ? BlendTextures::defines(bank) : std::vector<std::string>{};
+        std::vector<std::string> defines = m_blend ? BlendTextures::defines(bank) : std::vector<std::string>{"MAPS_REFERENCE"};
         if (!m_blend && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
         if (dither) defines.push_back("DITHER");
         Result<GlProgram> p = buildProgram({"quad.vert"}, {"btflut.glsl", "lut_common.glsl", "native.frag"}, defines);
@@ -38,20 +38,40 @@ Result<GLuint> RelightPass::program(bool dither) {
     return found->second.id();
 }
 
-Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither) {
+void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlTexture>& luts) const {
+    if (m_blend) {
+        m_blend->updateLuts(luts, frame);
+        return;
+    }
+    for (std::size_t c = 0; c < luts.size(); ++c) {
+        gl.BindTexture(GL_TEXTURE_1D, luts[c].id());
+        gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, m_bank->entries, GL_RED, GL_FLOAT, &frame.luts[c * static_cast<std::size_t>(m_bank->entries)]);
+    }
+}
+
+void RelightPass::bindLuts(GLuint p, const RelightFrame& frame, const std::vector<GlTexture>& luts, int first) const {
     const LutBank& bank = *m_bank;
-    const Image& ref = bank.reference;
+    if (m_blend) {
+        m_blend->bind(p, frame, luts, first);
+    } else {
+        for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
+            gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + c));
+            gl.BindTexture(GL_TEXTURE_1D, luts[static_cast<std::size_t>(std::min(c, bank.channels() - 1))].id());
+            const std::string name = "lut[" + std::to_string(c) + "]";
+            gl.Uniform1i(gl.GetUniformLocation(p, name.c_str()), first + c);
+        }
+        gl.Uniform1i(gl.GetUniformLocation(p, "entries"), bank.entries);
+        gl.Uniform1f(gl.GetUniformLocation(p, "inCode"), inputCode(bank.reference, bank.colour));
+    }
+    gl.Uniform1f(gl.GetUniformLocation(p, "outCode"), bank.targetCode());
+}
+
+Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither) {
+    const Image& ref = m_bank->reference;
     Result<GLuint> program = this->program(dither);
     if (!program) return Error{program.error()};
     const GLuint p = *program;
-    if (m_blend) {
-        m_blend->updateLuts(luts, frame);
-    } else {
-        for (std::size_t c = 0; c < luts.size(); ++c) {
-            gl.BindTexture(GL_TEXTURE_1D, luts[c].id());
-            gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, bank.entries, GL_RED, GL_FLOAT, &frame.luts[c * static_cast<std::size_t>(bank.entries)]);
-        }
-    }
+    uploadLuts(frame, luts);
     gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
     if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
@@ -60,20 +80,8 @@ Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>&
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, m_reference);
     gl.Uniform1i(gl.GetUniformLocation(p, "reference"), 0);
-    if (m_blend) {
-        m_blend->bind(p, frame, luts, 4);
-    } else {
-        for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
-            gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE1 + c));
-            gl.BindTexture(GL_TEXTURE_1D, luts[static_cast<std::size_t>(std::min(c, bank.channels() - 1))].id());
-            const std::string name = "lut[" + std::to_string(c) + "]";
-            gl.Uniform1i(gl.GetUniformLocation(p, name.c_str()), 1 + c);
-        }
-    }
-    gl.Uniform1i(gl.GetUniformLocation(p, "entries"), bank.entries);
+    bindLuts(p, frame, luts, m_blend ? 4 : 1);
     gl.Uniform1i(gl.GetUniformLocation(p, "referenceChannels"), ref.channels);
-    gl.Uniform1f(gl.GetUniformLocation(p, "inCode"), inputCode(ref, bank.colour));
-    gl.Uniform1f(gl.GetUniformLocation(p, "outCode"), bank.targetCode());
     gl.BindVertexArray(m_vertexArray.id());
     gl.Disable(GL_DEPTH_TEST);
     gl.Viewport(0, 0, ref.width, ref.height);

@@ -40,6 +40,13 @@ public:
     /// framebuffer bound.
     Status run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither);
 
+    /// The frame's LUTs into `luts` (made by makeLuts).
+    void uploadLuts(const RelightFrame& frame, const std::vector<GlTexture>& luts) const;
+    /// Binds `luts` from texture unit `first` (BlendTextures::kUnits, or 3) and sets the
+    /// uniforms lut_common.glsl's LUT functions read (and the blend's weights): what
+    /// native.frag and scene.frag's LUT_FRAGMENT share.
+    void bindLuts(GLuint program, const RelightFrame& frame, const std::vector<GlTexture>& luts, int first) const;
+
 private:
     Result<GLuint> program(bool dither);
 

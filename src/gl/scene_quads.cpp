@@ -2,6 +2,7 @@
 // view directions in its own frame, the LUTs or weights its mode applies, what is loaded the
 // first time a mode needs it, and the texture-space relit textures of mode lut.
 #include <algorithm>
+#include <functional>
 
 #include "core/bank/bank_file.h"
 #include "core/check.h"
@@ -57,7 +58,14 @@ RelightFrame SceneRenderer::centreFrame(std::size_t quad, const Vec3& light) con
     const Material& material = m_materials.at(q.material);
     const Vec3 local = toQuadFrame(q, light);
     const Direction l = fromVector({local.x, local.y, std::max(local.z, 1e-9)}), v = fromVector(viewAt(q, 0, 0));
-    return material.relighter->frame(l, v, m_interpolate);
+    return frameFor(material, l, v);
+}
+
+RelightFrame SceneRenderer::frameFor(const Material& material, Direction light, Direction view) const {
+    const LutBank& bank = material.bank;
+    if (bank.makesLuts() && bank.layers.size() == 1 && m_interpolate && !m_exactMatch)
+        return material.relighter->gridFrame(light);  // no counting of the prediction per light change
+    return material.relighter->frame(light, view, m_interpolate);
 }
 
 // Per quad and frame, only what the mode needs and only when the light, the camera (for
@@ -77,7 +85,8 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
     q.eyeUploaded = m_scene.eye;
     q.light = toQuadFrame(quad, light);
     q.unlit = q.light.z <= 1e-9;
-    if (q.unlit || mode == RenderMode::Flat || relitInTextureSpace(q, mode)) return;
+    if (q.unlit || mode == RenderMode::Flat) return;
+    if (oneLayerLut(q, mode)) return;  // the rest is relight()'s, or choosePaths()'s
     const Direction lightDirection = fromVector(q.light);
     const Direction centreView = fromVector(viewAt(quad, 0, 0));
     if (mode == RenderMode::Ptm) {
@@ -124,8 +133,115 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
     q.brightness = brdfScale(bank, material.referenceGrey, bank.lookup(lightDirection, centreView, m_interpolate));
 }
 
-bool SceneRenderer::relitInTextureSpace(const QuadState& q, RenderMode mode) const {
+bool SceneRenderer::oneLayerLut(const QuadState& q, RenderMode mode) const {
     return mode == RenderMode::Lut && m_materials.at(m_scene.quads[q.index].material).bank.layers.size() == 1;
+}
+
+bool SceneRenderer::relitInTextureSpace(const QuadState& q, RenderMode mode) const {
+    return oneLayerLut(q, mode) && !q.perFragment;
+}
+
+namespace {
+
+// What the paths cost on llvmpipe, in units of one pixel shaded flat (bench render --lut-path
+// texture and fragment, issue 22; bench/RESULTS.md): a texel relit in texture space, its
+// mipmaps and the pass's render targets included, and a pixel shaded per fragment beyond its
+// flat cost. A relit texel costs about ten times a per-fragment pixel's extra.
+double relitTexelCost(const LutBank& bank) { return bank.makesLuts() ? 5.0 : 4.6; }
+double perFragmentExtraCost(const LutBank& bank) { return bank.makesLuts() ? 0.5 : 0.45; }
+
+}  // namespace
+
+// Per material and light direction (in the quads' own frames), the lit mode lut quads of a
+// bank of one view layer are drawn per fragment when the light moved since the last frame, no
+// relit texture holds the direction, and covering their pixels per fragment costs less than
+// relighting the reference; else in texture space (relight()). A renderer's first frame, and
+// the frame after the light stops, relight: the relit texture is mipmapped from relit texels
+// (a far quad shows the mean of LUT values), and later frames draw it flat.
+Status SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
+    m_stats.quadsTextureSpace = m_stats.quadsPerFragment = 0;
+    std::map<std::pair<std::string, std::array<double, 3>>, std::vector<QuadState*>> groups;
+    for (std::size_t i = 0; i < m_quads.size(); ++i) {
+        QuadState& q = m_quads[i];
+        q.perFragment = false;
+        if (!oneLayerLut(q, modes[i]) || q.unlit) continue;
+        groups[{m_scene.quads[q.index].material, {q.light.x, q.light.y, q.light.z}}].push_back(&q);
+    }
+    for (auto& [key, quads] : groups) {
+        Material& material = m_materials.at(key.first);
+        const LutBank& bank = material.bank;
+        const Vec3 light = quads.front()->light;
+        bool perFragment = m_lutPath == LutPath::PerFragment;
+        if (m_lutPath == LutPath::Auto) {
+            const bool moved = std::all_of(quads.begin(), quads.end(), [&](const QuadState* q) {
+                return q->lastFrameLight.z > 0 && !sameVector(q->lastFrameLight, light);
+            });
+            const bool relit = std::any_of(material.relit.begin(), material.relit.end(),
+                                           [&](const Relit& r) { return sameVector(r.light, light); });
+            double pixels = 0;
+            for (const QuadState* q : quads) pixels += coveredPixels(m_scene.quads[q->index]);
+            const double relightCost = static_cast<double>(bank.reference.pixelCount()) * relitTexelCost(bank);
+            perFragment = moved && !relit && pixels * perFragmentExtraCost(bank) < relightCost;
+        }
+        for (QuadState* q : quads) {
+            q->perFragment = perFragment;
+            if (!perFragment) continue;
+            if (q->luts.empty()) {
+                q->luts = material.pass->makeLuts();
+                m_stats.textureBytes.luts += material.pass->lutBytes();
+            }
+            if (!sameVector(q->frameLight, light)) {
+                q->frame = frameFor(material, fromVector(light), bank.layers.front().view);
+                material.pass->uploadLuts(q->frame, q->luts);
+                q->frameLight = light;
+            }
+        }
+        (perFragment ? m_stats.quadsPerFragment : m_stats.quadsTextureSpace) += quads.size();
+    }
+    for (QuadState& q : m_quads) q.lastFrameLight = q.unlit ? Vec3{0, 0, -2} : q.light;
+    return success();
+}
+
+double SceneRenderer::coveredPixels(const SceneQuad& quad) const {
+    // The quad in clip space, clipped to the view volume's sides and to w > 0 (the polygon
+    // clipping of Sutherland and Hodgman, in homogeneous coordinates), then its area on screen.
+    using Clip = std::array<double, 4>;
+    const std::array<float, 16> m = viewProjection(m_scene);  // column-major
+    const Vec3 b = bitangentOf(quad);
+    std::vector<Clip> polygon;
+    for (const auto& [su, sv] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+        const double u = su * quad.width / 2, v = sv * quad.height / 2;
+        const double p[3] = {quad.center.x + u * quad.tangent.x + v * b.x, quad.center.y + u * quad.tangent.y + v * b.y,
+                             quad.center.z + u * quad.tangent.z + v * b.z};
+        Clip c{};
+        for (std::size_t r = 0; r < 4; ++r) c[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+        polygon.push_back(c);
+    }
+    const std::array<std::function<double(const Clip&)>, 5> inside{
+        [](const Clip& c) { return c[3] - 1e-6; }, [](const Clip& c) { return c[3] + c[0]; },
+        [](const Clip& c) { return c[3] - c[0]; }, [](const Clip& c) { return c[3] + c[1]; },
+        [](const Clip& c) { return c[3] - c[1]; }};
+    for (const auto& distance : inside) {
+        std::vector<Clip> kept;
+        for (std::size_t k = 0; k < polygon.size(); ++k) {
+            const Clip &a = polygon[k], &c = polygon[(k + 1) % polygon.size()];
+            const double da = distance(a), dc = distance(c);
+            if (da >= 0) kept.push_back(a);
+            if ((da >= 0) != (dc >= 0)) {  // the edge crosses the plane
+                const double t = da / (da - dc);
+                Clip x{};
+                for (std::size_t r = 0; r < 4; ++r) x[r] = a[r] + t * (c[r] - a[r]);
+                kept.push_back(x);
+            }
+        }
+        polygon = std::move(kept);
+    }
+    double area = 0;  // the shoelace formula over the screen points
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+        const Clip &a = polygon[k], &c = polygon[(k + 1) % polygon.size()];
+        area += a[0] / a[3] * c[1] / c[3] - c[0] / c[3] * a[1] / a[3];
+    }
+    return std::abs(area) / 2 * m_scene.width / 2 * m_scene.height / 2;
 }
 
 // Loads what a mode needs beyond the reference, the first time it is needed.
@@ -138,9 +254,9 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
     if (blends && !material.blend) material.blend = BlendTextures::upload(material.bank, bytes.blend);
     if (!blends && mode != RenderMode::Ptm && mode != RenderMode::Nearest && !material.reference.id())
         material.reference = uploadMipmapped(material.bank.reference, bytes.reference);
-    if (relitInTextureSpace(q, mode) && !material.pass)
+    if (oneLayerLut(q, mode) && !material.pass)
         material.pass.emplace(material.bank, material.reference.id(), material.blend ? &*material.blend : nullptr);
-    if (mode == RenderMode::Lut && !relitInTextureSpace(q, mode) && q.luts.empty()) {
+    if (mode == RenderMode::Lut && !oneLayerLut(q, mode) && q.luts.empty()) {
         if (!material.mipLuts) material.mipLuts.emplace(material.bank.reference, material.bank.colour, material.bank.entries);
         const int levels = material.mipLuts->levels();
         for (int c = 0; c < material.mipLuts->channels(); ++c) {
@@ -222,7 +338,7 @@ Status SceneRenderer::relight(const std::vector<RenderMode>& modes) {
                 }
                 found->light = q->light;
                 const Direction light = fromVector(q->light), view = material.bank.layers.front().view;
-                if (Status s = material.pass->run(material.relighter->frame(light, view, m_interpolate), found->luts,
+                if (Status s = material.pass->run(frameFor(material, light, view), found->luts,
                                                   found->texture.id(), m_dither);
                     !s)
                     return s;

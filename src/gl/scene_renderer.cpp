@@ -28,6 +28,9 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene,
     std::unique_ptr<SceneRenderer> r(new SceneRenderer());
     r->m_scene = scene;
     r->m_interpolate = scene.interpolateLuts;
+    r->m_exactMatch = scene.exactMatch;
+    r->m_lutPath = options.lutPath;
+    r->m_predictionOnly = options.predictionOnly;
     r->m_dither = scene.dither;
     r->m_fixedCamera = options.fixedCamera;
     const std::vector<std::size_t> visible = visibleQuads(scene);
@@ -36,9 +39,9 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene,
         const std::string& name = scene.quads[i].material;
         if (!r->m_materials.count(name)) {
             const std::string& path = scene.materials.at(name).bank;
-            // Not the PTM (read when a ptm quad is drawn), nor the grids (the renderer blends
-            // nodes), nor, for a fixed camera, view layers that no visible quad looks along.
-            BankReadOptions read{.ptm = false, .grids = false};
+            // Not the PTM (read when a ptm quad is drawn), nor, for a fixed camera, view layers
+            // that no visible quad looks along. The grids: the per-fragment path reads them.
+            BankReadOptions read{.ptm = false};
             if (options.fixedCamera) read.views = r->viewsOf(name, visible);
             Result<LutBank> bank = loadBank(path, read);
             if (!bank) return Error{bank.error()};
@@ -95,11 +98,21 @@ const LutBank* SceneRenderer::bank(const std::string& material) const {
     return it == m_materials.end() ? nullptr : &it->second.bank;
 }
 
-Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool unlit) {
-    // Mode lut on a bank of one view layer draws its relit texture: the flat shader.
-    if (mode == RenderMode::Lut && bank.layers.size() == 1) mode = RenderMode::Flat;
+Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool unlit, bool perFragment) {
     std::vector<std::string> defines{unlit ? "UNLIT" : modeDefine(mode)};
-    if (!unlit && mode == RenderMode::Lut) {
+    if (!unlit && mode == RenderMode::Lut && bank.layers.size() == 1) {
+        // A bank of one view layer: its relit texture, drawn flat; or relit per fragment.
+        defines = {perFragment ? "LUT_FRAGMENT" : "FLAT_MODE"};
+        if (perFragment) {
+            const std::vector<std::string> blend = BlendTextures::defines(bank);
+            if (bank.makesLuts()) defines.insert(defines.end(), blend.begin(), blend.end());
+            if (!bank.makesLuts()) defines.push_back("MAPS_REFERENCE");
+            if (!bank.makesLuts() && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+            if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
+            if (m_dither) defines.push_back("DITHER");
+            if (m_predictionOnly) defines.push_back("PREDICTION_ONLY");
+        }
+    } else if (!unlit && mode == RenderMode::Lut) {
         if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
         if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
     }
@@ -120,6 +133,7 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
         update(q, light, mode);
         if (Status s = prepare(q, mode, light); !s) return s;
     }
+    if (Status s = choosePaths(modes); !s) return s;
     if (Status s = relight(modes); !s) return s;
     gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
     gl.Viewport(0, 0, m_scene.width, m_scene.height);
@@ -135,7 +149,7 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
         const RenderMode mode = modes[i];
         const Material& material = m_materials.at(quad.material);
         const bool unlit = mode != RenderMode::Flat && q.unlit;
-        Result<GLuint> p = program(mode, material.bank, unlit);
+        Result<GLuint> p = program(mode, material.bank, unlit, q.perFragment);
         if (!p) return Error{p.error()};
         gl.UseProgram(*p);
         auto bind = [&](int unit, GLenum target, GLuint texture, const char* name) {
@@ -157,10 +171,12 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
             bind(0, GL_TEXTURE_2D, material.imageTextures.at(q.nearestImage).id(), "reference");
         } else if (relitInTextureSpace(q, mode)) {
             bind(0, GL_TEXTURE_2D, material.relit[q.relit].texture.id(), "reference");
+        } else if (oneLayerLut(q, mode)) {
+            bindPerFragment(*p, q, material);
         } else {
             bind(0, GL_TEXTURE_2D, material.reference.id(), "reference");
         }
-        if (mode == RenderMode::Lut && !unlit && !relitInTextureSpace(q, mode)) {
+        if (mode == RenderMode::Lut && !unlit && !oneLayerLut(q, mode)) {
             for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
                 const std::string name = "lut[" + std::to_string(c) + "]";
                 bind(1 + c, GL_TEXTURE_3D, q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id(),
@@ -191,6 +207,19 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
     if (GLenum error = gl.GetError(); error != GL_NO_ERROR)
         return Error{"OpenGL error " + std::to_string(error) + " while rendering " + m_scene.file};
     return success();
+}
+
+// LUT_FRAGMENT's textures and uniforms: the reference (unit 0) or the blend's textures, and
+// the quad's frame (its LUTs, and a predictor's weights), from unit 1.
+void SceneRenderer::bindPerFragment(GLuint p, const QuadState& q, const Material& material) const {
+    const LutBank& bank = material.bank;
+    if (!bank.makesLuts()) {
+        gl.ActiveTexture(GL_TEXTURE0);
+        gl.BindTexture(GL_TEXTURE_2D, material.reference.id());
+        gl.Uniform1i(gl.GetUniformLocation(p, "reference"), 0);
+    }
+    material.pass->bindLuts(p, q.frame, q.luts, 1);
+    gl.Uniform2i(gl.GetUniformLocation(p, "texels"), bank.reference.width, bank.reference.height);
 }
 
 void SceneRenderer::finish() const { gl.Finish(); }

@@ -15,6 +15,15 @@
 // the relit texture; it is redone only when the light changed, so a frame whose light did not
 // move costs what a flat frame costs.
 //
+// While the light moves, a new direction each frame, the pass would relight the whole
+// reference every frame: a quad then draws per fragment instead (LUT_FRAGMENT in scene.frag:
+// the prediction, or the filtered reference, through the frame's LUTs, the pass's shader code),
+// when that costs less than the pass (the pixels it covers against the texels to relight:
+// choosePaths). When the light stops, the next frame relights in texture space and the frames
+// after it draw flat. Both paths take the same LUTs: banks with a predictor read their match
+// LUTs from the baked grid (Relighter::gridFrame; "interpolation": "exact" makes them at the
+// light by counting the prediction), so a light change costs no per-texel work on the CPU.
+//
 // Mode lut, banks with several view layers: the view direction changes across a quad under a
 // perspective camera, so the LUT is blended on the CPU for a kViewGrid x kViewGrid grid of
 // points on the quad and the shader interpolates between them (a 3D texture). So that a far
@@ -50,10 +59,20 @@ struct TextureBytes {
     std::size_t total() const { return reference + blend + relit + luts + ptm + images; }
 };
 
+/// How mode lut draws a bank of one view layer.
+enum class LutPath {
+    Auto,          ///< per quad and frame, whichever costs less (choosePaths)
+    TextureSpace,  ///< relit textures only
+    PerFragment,   ///< per fragment only (where the scene allows it)
+};
+
 struct SceneRendererOptions {
     /// The camera stays where the scene puts it: a bank's view layers that no visible quad's
     /// view directions use are not decoded. A viewer that moves the camera says false.
     bool fixedCamera = true;
+    LutPath lutPath = LutPath::Auto;
+    /// Per fragment, the prediction without its LUT (bench render's baseline: an RTI viewer).
+    bool predictionOnly = false;
 };
 
 struct RenderStats {
@@ -65,6 +84,9 @@ struct RenderStats {
     std::size_t quadsDrawn = 0, quadsCulled = 0, quadsUnlit = 0;
     std::size_t relitTextures = 0;  ///< mode lut's relit textures held (per material and light direction)
     std::size_t relightPasses = 0;  ///< passes run, since creation
+    /// The last frame's lit mode lut quads of banks of one view layer: drawn from a relit
+    /// texture, or relit per fragment.
+    std::size_t quadsTextureSpace = 0, quadsPerFragment = 0;
     TextureBytes textureBytes;
 };
 
@@ -135,9 +157,15 @@ private:
     };
     struct QuadState {
         std::size_t index;
-        std::vector<GlTexture> luts;  ///< banks with view layers: per channel, 3D over the view grid and mip levels
+        /// banks with view layers: per channel, 3D over the view grid and mip levels; of one view
+        /// layer drawn per fragment: the frame's LUTs (RelightPass::makeLuts)
+        std::vector<GlTexture> luts;
         Vec3 light;                   ///< in the quad's frame
         std::size_t relit = 0;        ///< mode lut of a bank of one view layer: its material's relit texture
+        bool perFragment = false;     ///< ... or relit per fragment this frame (choosePaths)
+        Vec3 lastFrameLight{0, 0, -2};  ///< the light in its frame at the previous frame (none yet: below the horizon)
+        RelightFrame frame;           ///< per fragment: the frame in `luts`
+        Vec3 frameLight{0, 0, -2};    ///< ... and the light (in the quad's frame) it is for
         Vec3 lightUploaded{0, 0, -2}, eyeUploaded;  ///< what its state was computed for
         RenderMode modeUploaded = RenderMode::Flat;
         float brightness = 1;  ///< brdf mode
@@ -146,7 +174,7 @@ private:
         std::string nearestImage;
     };
     SceneRenderer() = default;
-    Result<GLuint> program(RenderMode mode, const LutBank& bank, bool unlit);
+    Result<GLuint> program(RenderMode mode, const LutBank& bank, bool unlit, bool perFragment);
     Vec3 viewAt(const SceneQuad& quad, double x, double y) const;
     std::vector<Direction> viewGridDirections(const SceneQuad& quad) const;
     std::vector<Direction> viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const;
@@ -154,10 +182,21 @@ private:
     Status prepare(QuadState& q, RenderMode mode, const Vec3& light);
     /// Mode lut on banks of one view layer: the relit textures this frame's lights need.
     Status relight(const std::vector<RenderMode>& modes);
+    bool oneLayerLut(const QuadState& q, RenderMode mode) const;
     bool relitInTextureSpace(const QuadState& q, RenderMode mode) const;
+    /// Mode lut on banks of one view layer: per fragment or in texture space, per quad.
+    Status choosePaths(const std::vector<RenderMode>& modes);
+    /// The pixels a quad covers on screen (its projection, clipped to the image; occlusion ignored).
+    double coveredPixels(const SceneQuad& quad) const;
+    /// A frame of a material's LUTs for a light and view, as the scene asks (grid, exact, nearest).
+    RelightFrame frameFor(const Material& material, Direction light, Direction view) const;
+    void bindPerFragment(GLuint program, const QuadState& q, const Material& material) const;
 
     Scene m_scene;
     bool m_interpolate = true;
+    bool m_exactMatch = false;
+    LutPath m_lutPath = LutPath::Auto;
+    bool m_predictionOnly = false;
     bool m_fixedCamera = true;
     bool m_dither = true;
     std::uint64_t m_frame = 0;

@@ -221,8 +221,17 @@ struct BenchRenderOptions {
     std::vector<std::string> sizes{"1024x1024", "1920x1080"};
     int overdraw = 1;
     std::string backend = "auto";
+    std::string lutPath = "auto";
     bool json = false;
 };
+
+// The moving light: a new direction every frame (so no relit texture holds it), its elevation
+// alternating between the two bench lights' and its azimuth sweeping between theirs.
+Vec3 movingLight() {
+    static int frame = 0;
+    ++frame;
+    return toVector(Direction::fromDegrees(frame % 2 ? 55 : 40, 252 + std::fmod(0.37 * frame, 46.0)));
+}
 
 // Frame times of one renderer: `frames` frames drawn back to back with no wait between them,
 // then one glFinish; wall time per frame is the whole run's over the frames. GPU time per
@@ -232,8 +241,7 @@ struct FrameTimes {
     double wall = 0, gpu = 0;
 };
 
-Result<FrameTimes> timeFrames(SceneRenderer& renderer, RenderMode mode, bool movingLight, int frames, bool timer) {
-    const std::array<Vec3, 2>& lights = benchLights();
+Result<FrameTimes> timeFrames(SceneRenderer& renderer, RenderMode mode, bool moving, int frames, bool timer) {
     std::vector<GlQuery> queries;
     const auto start = std::chrono::steady_clock::now();
     for (int f = 0; f < frames; ++f) {
@@ -241,7 +249,7 @@ Result<FrameTimes> timeFrames(SceneRenderer& renderer, RenderMode mode, bool mov
             queries.push_back(makeQuery());
             gl.BeginQuery(GL_TIME_ELAPSED, queries.back().id());
         }
-        if (Status s = renderer.draw(lights[movingLight ? static_cast<std::size_t>(f % 2) : 0], mode); !s) return Error{s.error()};
+        if (Status s = renderer.draw(moving ? movingLight() : benchLights()[0], mode); !s) return Error{s.error()};
         if (timer) gl.EndQuery(GL_TIME_ELAPSED);
     }
     renderer.finish();
@@ -272,11 +280,14 @@ Status runBenchRender(const BenchRenderOptions& o) {
     nlohmann::json out{{"context", (*context)->description()}, {"bank", o.bank}, {"frames", o.frames},
                        {"rounds", o.repeat},  {"overdraw", o.overdraw}, {"quads", 4 * o.overdraw},
                        {"gpu_timer", timer},  {"sizes", nlohmann::json::array()}};
-    // Static: the light stays (lut relights nothing after the first frame). Moving: two lights
-    // alternated every frame, so each frame relights (lut), recomputes the brightness (brdf)
-    // or the PTM weights (ptm).
-    const RenderMode modes[] = {RenderMode::Lut, RenderMode::Flat, RenderMode::Brdf, RenderMode::Ptm};
-    auto name = [](RenderMode m) { return std::string(renderModeName(m)); };
+    // Static: the light stays (lut relights nothing after the first frame). Moving: a new
+    // direction every frame, so each frame relights or draws per fragment (lut), recomputes
+    // the brightness (brdf) or the PTM weights (ptm).
+    Result<LutPath> lutPath = o.lutPath == "auto"       ? Result<LutPath>(LutPath::Auto)
+                              : o.lutPath == "texture"  ? Result<LutPath>(LutPath::TextureSpace)
+                              : o.lutPath == "fragment" ? Result<LutPath>(LutPath::PerFragment)
+                                                        : Result<LutPath>(Error{"--lut-path: expected auto, texture or fragment"});
+    if (!lutPath) return Error{lutPath.error()};
     std::string text;
     bool first = true;
     for (const std::string& size : o.sizes) {
@@ -285,57 +296,84 @@ Status runBenchRender(const BenchRenderOptions& o) {
         if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 || w > 16384 ||
             h > 16384)
             return Error{"--size '" + size + "': expected WxH with both within 1..16384"};
-        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(benchScene(o.bank, w, h, {}, o.overdraw));
+        const Scene scene = benchScene(o.bank, w, h, {}, o.overdraw);
+        Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(scene, {.lutPath = *lutPath});
         if (!renderer) return Error{renderer.error()};
-        std::map<std::pair<RenderMode, bool>, std::vector<double>> wall, gpu;
-        for (RenderMode mode : modes)  // the first frames load and upload
-            if (Status s = (*renderer)->draw(benchLights()[0], mode); !s) return s;
+        // The rows: the four modes, and for a bank with a predictor the predictor drawn per
+        // fragment without its LUT (what an RTI viewer draws), by a renderer of its own.
+        struct Row {
+            std::string name;
+            SceneRenderer* renderer;
+            RenderMode mode;
+        };
+        std::vector<Row> rows{{"lut", renderer->get(), RenderMode::Lut},
+                              {"flat", renderer->get(), RenderMode::Flat},
+                              {"brdf", renderer->get(), RenderMode::Brdf},
+                              {"ptm", renderer->get(), RenderMode::Ptm}};
+        std::unique_ptr<SceneRenderer> predictor;
+        if (const LutBank* bank = (*renderer)->bank("m"); bank && bank->makesLuts() && bank->layers.size() == 1) {
+            Result<std::unique_ptr<SceneRenderer>> p =
+                SceneRenderer::create(scene, {.lutPath = LutPath::PerFragment, .predictionOnly = true});
+            if (!p) return Error{p.error()};
+            predictor = std::move(*p);
+            rows.push_back({"predictor", predictor.get(), RenderMode::Lut});
+        }
+        std::map<std::pair<std::string, bool>, std::vector<double>> wall, gpu;
+        RenderStats movingLutStats;  // of the last moving lut frame
+        for (const Row& row : rows)  // the first frames load and upload
+            if (Status s = row.renderer->draw(benchLights()[0], row.mode); !s) return s;
         (*renderer)->finish();
         for (int r = 0; r < o.repeat; ++r)  // interleaved, so drift hits every mode alike
             for (bool moving : {false, true})
-                for (RenderMode mode : modes) {
+                for (const Row& row : rows) {
                     if (!moving) {  // the static run starts from its light, relit before the clock starts
-                        if (Status s = (*renderer)->draw(benchLights()[0], mode); !s) return s;
-                        (*renderer)->finish();
+                        if (Status s = row.renderer->draw(benchLights()[0], row.mode); !s) return s;
+                        if (Status s = row.renderer->draw(benchLights()[0], row.mode); !s) return s;
+                        row.renderer->finish();
                     }
-                    Result<FrameTimes> t = timeFrames(**renderer, mode, moving, o.frames, timer);
+                    Result<FrameTimes> t = timeFrames(*row.renderer, row.mode, moving, o.frames, timer);
                     if (!t) return Error{t.error()};
-                    wall[{mode, moving}].push_back(t->wall);
-                    gpu[{mode, moving}].push_back(t->gpu);
+                    if (moving && row.name == "lut") movingLutStats = row.renderer->stats();
+                    wall[{row.name, moving}].push_back(t->wall);
+                    gpu[{row.name, moving}].push_back(t->gpu);
                 }
         nlohmann::json entry{{"width", w}, {"height", h}};
         char line[320];
-        std::snprintf(line, sizeof line, "  %dx%d, %d quads\n    %-8s %13s %13s %13s %13s\n", w, h, 4 * o.overdraw, "",
+        std::snprintf(line, sizeof line, "  %dx%d, %d quads\n    %-9s %13s %13s %13s %13s\n", w, h, 4 * o.overdraw, "",
                       "static ms", "moving ms", "static GPU ms", "moving GPU ms");
         text += line;
-        for (RenderMode mode : modes) {
-            const double sw = median(wall[{mode, false}]), mw = median(wall[{mode, true}]);
-            const double sg = timer ? median(gpu[{mode, false}]) : NAN, mg = timer ? median(gpu[{mode, true}]) : NAN;
-            entry[name(mode) + "_ms"] = mw * 1e3;
-            entry[name(mode) + "_static_ms"] = sw * 1e3;
+        for (const Row& row : rows) {
+            const double sw = median(wall[{row.name, false}]), mw = median(wall[{row.name, true}]);
+            const double sg = timer ? median(gpu[{row.name, false}]) : NAN, mg = timer ? median(gpu[{row.name, true}]) : NAN;
+            entry[row.name + "_ms"] = mw * 1e3;
+            entry[row.name + "_static_ms"] = sw * 1e3;
             if (timer) {
-                entry[name(mode) + "_gpu_ms"] = mg * 1e3;
-                entry[name(mode) + "_static_gpu_ms"] = sg * 1e3;
+                entry[row.name + "_gpu_ms"] = mg * 1e3;
+                entry[row.name + "_static_gpu_ms"] = sg * 1e3;
             }
-            std::snprintf(line, sizeof line, "    %-8s %13.2f %13.2f %13.2f %13.2f\n", name(mode).c_str(), sw * 1e3,
+            std::snprintf(line, sizeof line, "    %-9s %13.2f %13.2f %13.2f %13.2f\n", row.name.c_str(), sw * 1e3,
                           mw * 1e3, sg * 1e3, mg * 1e3);
             text += line;
         }
-        auto ratio = [&](RenderMode a, RenderMode b, bool moving, bool onGpu) {
+        auto ratio = [&](const char* a, const char* b, bool moving, bool onGpu) {
             auto& t = onGpu ? gpu : wall;
             return median(t[{a, moving}]) / median(t[{b, moving}]);
         };
         // lut_over_flat and lut_over_ptm: the light moving every frame (as before this split).
-        entry["lut_over_flat"] = ratio(RenderMode::Lut, RenderMode::Flat, true, false);
-        entry["lut_over_ptm"] = ratio(RenderMode::Lut, RenderMode::Ptm, true, false);
-        entry["lut_over_brdf"] = ratio(RenderMode::Lut, RenderMode::Brdf, true, false);
-        entry["lut_over_flat_static"] = ratio(RenderMode::Lut, RenderMode::Flat, false, false);
-        entry["lut_over_ptm_static"] = ratio(RenderMode::Lut, RenderMode::Ptm, false, false);
+        entry["lut_over_flat"] = ratio("lut", "flat", true, false);
+        entry["lut_over_ptm"] = ratio("lut", "ptm", true, false);
+        entry["lut_over_brdf"] = ratio("lut", "brdf", true, false);
+        entry["lut_over_flat_static"] = ratio("lut", "flat", false, false);
+        entry["lut_over_ptm_static"] = ratio("lut", "ptm", false, false);
+        if (predictor) {
+            entry["lut_over_predictor_moving"] = ratio("lut", "predictor", true, false);
+            entry["lut_over_predictor_static"] = ratio("lut", "predictor", false, false);
+        }
         if (timer) {
-            entry["gpu_lut_over_flat"] = ratio(RenderMode::Lut, RenderMode::Flat, true, true);
-            entry["gpu_lut_over_ptm"] = ratio(RenderMode::Lut, RenderMode::Ptm, true, true);
-            entry["gpu_lut_over_flat_static"] = ratio(RenderMode::Lut, RenderMode::Flat, false, true);
-            entry["gpu_lut_over_ptm_static"] = ratio(RenderMode::Lut, RenderMode::Ptm, false, true);
+            entry["gpu_lut_over_flat"] = ratio("lut", "flat", true, true);
+            entry["gpu_lut_over_ptm"] = ratio("lut", "ptm", true, true);
+            entry["gpu_lut_over_flat_static"] = ratio("lut", "flat", false, true);
+            entry["gpu_lut_over_ptm_static"] = ratio("lut", "ptm", false, true);
         }
         std::snprintf(line, sizeof line,
                       "    lut/flat: static %.3f, moving %.3f (GPU %.3f, %.3f);  lut/ptm: static %.3f, moving %.3f "
@@ -346,10 +384,19 @@ Status runBenchRender(const BenchRenderOptions& o) {
                       entry["lut_over_ptm"].get<double>(), timer ? entry["gpu_lut_over_ptm_static"].get<double>() : NAN,
                       timer ? entry["gpu_lut_over_ptm"].get<double>() : NAN);
         text += line;
+        if (predictor) {
+            std::snprintf(line, sizeof line, "    lut/predictor (the predictor per fragment, no LUT): static %.3f, moving %.3f\n",
+                          entry["lut_over_predictor_static"].get<double>(), entry["lut_over_predictor_moving"].get<double>());
+            text += line;
+        }
+        std::snprintf(line, sizeof line, "    lut quads per fragment in the moving frames: %zu of %zu (the last frame)\n",
+                      movingLutStats.quadsPerFragment, movingLutStats.quadsPerFragment + movingLutStats.quadsTextureSpace);
+        entry["lut_moving_quads_per_fragment"] = movingLutStats.quadsPerFragment;
+        text += line;
         if (first) {  // the headline figures: the first size
             first = false;
             for (const char* key : {"lut_over_flat", "lut_over_ptm", "lut_over_flat_static", "lut_over_ptm_static",
-                                    "gpu_lut_over_flat", "gpu_lut_over_ptm", "gpu_lut_over_flat_static",
+                                    "lut_over_predictor_moving", "lut_over_predictor_static", "gpu_lut_over_flat", "gpu_lut_over_ptm", "gpu_lut_over_flat_static",
                                     "gpu_lut_over_ptm_static"})
                 if (entry.contains(key)) out[key] = entry[key];
             // Per material: lut reads the reference and draws one relit texture per light
@@ -414,8 +461,9 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
 
     auto ro = std::make_shared<BenchRenderOptions>();
     CLI::App* render = bench->add_subcommand(
-        "render", "Frame times of the scene renderer in modes flat, brdf, ptm and lut, light static and moving, "
-                  "wall and GPU time, interleaved");
+        "render", "Frame times of the scene renderer in modes flat, brdf, ptm and lut (and, for a bank with a "
+                  "predictor, the predictor per fragment without its LUT), light static and moving (a new direction "
+                  "every frame), wall and GPU time, interleaved");
     render->add_option("BANK", ro->bank, "M.btflut used for every quad (baked with --ptm)")->required();
     render->add_option("--frames", ro->frames, "frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();
     render->add_option("--repeat", ro->repeat, "rounds")->check(CLI::Range(1, 100))->capture_default_str();
@@ -424,6 +472,11 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
     render->add_option("--backend", ro->backend, "auto, osmesa or egl")->capture_default_str();
+    render->add_option("--lut-path", ro->lutPath,
+                       "mode lut on banks of one view layer: auto (per quad and frame, whichever costs less), texture "
+                       "(relit textures only) or fragment (per fragment only)")
+        ->check(CLI::IsMember({"auto", "texture", "fragment"}))
+        ->capture_default_str();
     render->add_flag("--json", ro->json, "print JSON");
     commands.push_back({render, [ro] { return runBenchRender(*ro); }});
 }

@@ -59,7 +59,10 @@ Status runSceneRender(const RenderOptions& o) {
         if (!mode) return Error{"--" + mode.error()};
         for (SceneQuad& q : scene->quads) q.mode = *mode;
     }
-    if (!o.interpolation.empty()) scene->interpolateLuts = o.interpolation == "linear";
+    if (!o.interpolation.empty()) {
+        scene->interpolateLuts = o.interpolation != "nearest";
+        scene->exactMatch = o.interpolation == "exact";
+    }
     if (o.noDither) scene->dither = false;
     Result<std::unique_ptr<HeadlessContext>> context = makeContext(o);
     if (!context) return Error{context.error()};
@@ -80,6 +83,8 @@ Status runSceneRender(const RenderOptions& o) {
                   << "\nmeasured images loaded (for nearest quads): " << stats.imagesLoaded
                   << "\nview layers decoded: " << stats.viewLayersLoaded << " of " << stats.viewLayers
                   << "\nrelit textures (mode lut, one per material and light direction): " << stats.relitTextures
+                  << "\nmode lut, banks of one view layer: " << stats.quadsTextureSpace << " quads drawn from relit textures, "
+                  << stats.quadsPerFragment << " relit per fragment (the light moved and that cost less)"
                   << "\ntexture memory: " << stats.textureBytes.total() << " bytes (references "
                   << stats.textureBytes.reference << ", blended references " << stats.textureBytes.blend
                   << ", relit " << stats.textureBytes.relit << ", LUTs " << stats.textureBytes.luts << ", PTMs "
@@ -133,9 +138,10 @@ void addRenderCommand(CLI::App& root, Commands& commands) {
     app->add_option("--mode", o->mode,
                     "lut, brdf, ptm, flat or nearest for every quad (overrides the file); --native draws lut only");
     app->add_option("--interpolation", o->interpolation,
-                    "linear: LUTs interpolated between the measured directions; nearest: the nearest one's "
-                    "(overrides the file)")
-        ->check(CLI::IsMember({"linear", "nearest"}));
+                    "linear: LUTs interpolated between the measured directions (banks with a predictor: "
+                    "their match LUTs read from the baked grid); exact: banks with a predictor make the LUT at "
+                    "the light, as relight (and --native) do; nearest: the nearest one's (overrides the file)")
+        ->check(CLI::IsMember({"linear", "exact", "nearest"}));
     app->add_flag("--stats", o->stats, "print what was loaded, what was skipped and the texture memory");
     app->add_option("--view", o->view,
                     "with --native: view direction THETA,PHI in degrees (default: the reference image's view)");

@@ -140,9 +140,10 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
     }
     if (doc.contains("interpolation")) {
         const json& i = doc["interpolation"];
-        if (i != "linear" && i != "nearest")
-            return Error{at + "interpolation: expected \"linear\" or \"nearest\" (between the LUTs' directions)"};
-        scene.interpolateLuts = i == "linear";
+        if (i != "linear" && i != "nearest" && i != "exact")
+            return Error{at + "interpolation: expected \"linear\", \"exact\" or \"nearest\" (between the LUTs' directions)"};
+        scene.interpolateLuts = i != "nearest";
+        scene.exactMatch = i == "exact";
     }
     if (doc.contains("dither")) {
         if (!doc["dither"].is_boolean()) return Error{at + "dither: expected true or false"};
@@ -201,7 +202,7 @@ std::string sceneToJson(const Scene& scene, const std::string& folder) {
              {"camera", {{"position", vec(scene.eye)}, {"target", vec(scene.target)}, {"up", vec(scene.up)},
                          {"fov_degrees", scene.fovDegrees}}},
              {"light", {{"direction", vec(scene.light)}}},
-             {"interpolation", scene.interpolateLuts ? "linear" : "nearest"},
+             {"interpolation", !scene.interpolateLuts ? "nearest" : scene.exactMatch ? "exact" : "linear"},
              {"dither", scene.dither},
              {"materials", json::object()},
              {"quads", json::array()}};

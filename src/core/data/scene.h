@@ -49,6 +49,10 @@ struct Scene {
     Vec3 light{0, 0, 1};  ///< unit vector towards the light, world frame
     std::map<std::string, SceneMaterial> materials;
     bool interpolateLuts = true;  ///< false: the LUT of the nearest measured direction (for comparison)
+    /// Banks with a predictor: the LUT made at the light by counting the prediction (CPU work
+    /// per light change, drawn in texture space only) rather than read from the bank's baked
+    /// grid ("interpolation": "exact").
+    bool exactMatch = false;
     bool dither = true;           ///< mode lut dithers per texel (lut.h), so the histogram is the target's
     std::vector<SceneQuad> quads;
 };

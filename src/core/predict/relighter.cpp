@@ -133,6 +133,10 @@ RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate)
 RelightFrame Relighter::gridFrame(Direction light) const {
     BTFLUT_CHECK(m_bank.makesLuts() && m_bank.layers.size() == 1);
     RelightFrame frame = predictionFrame(light);
+    frame.target = m_bank.lookup(light);  // what the frame says of the target (a viewer plots it): no per-texel work
+    frame.provenance = frame.target.provenance;
+    frame.lightProvenance = frame.target.lightProvenance;
+    frame.viewProvenance = frame.target.viewProvenance;
     if (!m_bank.layers[0].matchGridLuts.empty()) {
         frame.luts = m_bank.matchGridLookup(light);
         return frame;
