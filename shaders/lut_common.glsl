@@ -137,10 +137,24 @@ BtflutBlend btflutBlend() {
 // A code read at the top of its cell [q, q + 1) / (codes + 1) (Relighter::inputCode).
 float btflutBlendValue(float code) { return (code + 1.0) / (blendCodes + 1.0); }
 
-// The texel the blend reads (texelFetch at level 0): set by each shader's main.
+// The texel the blend reads (texelFetch at level 0): set by each shader's main. BLEND_FILTERED
+// (the scene's per-fragment path) samples bilinearly at btflutBlendUv instead, so a magnified
+// quad is smooth while the light moves, as its relit texture is once it stops: the prediction
+// of filtered planes, each rounded to 8 bits; 4-bit planes, two to a byte, are fetched as they are.
 ivec2 btflutBlendAt;
+vec2 btflutBlendUv;
 
-vec4 btflutBlendTexel(int layer) { return texelFetch(blendReferences, ivec3(btflutBlendAt, layer), 0); }
+vec4 btflutBlendTexel(int layer) {
+#if defined(BLEND_FILTERED)
+#if defined(BLEND_MODEL) && BLEND_MODEL_NIBBLE_LAYERS > 0
+    if (layer >= BLEND_MODEL_LAYERS && layer < BLEND_MODEL_LAYERS + BLEND_MODEL_NIBBLE_LAYERS)
+        return texelFetch(blendReferences, ivec3(btflutBlendAt, layer), 0);
+#endif
+    return textureLod(blendReferences, vec3(btflutBlendUv, float(layer)), 0.0);
+#else
+    return texelFetch(blendReferences, ivec3(btflutBlendAt, layer), 0);
+#endif
+}
 
 // A region's LUT applied to a blended code (below).
 float btflutBlendMap(int channel, uint region, float code, uvec2 pixel);

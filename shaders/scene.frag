@@ -70,6 +70,7 @@ void main() {
 #endif
 #if defined(BLEND)
     btflutBlendAt = texel;
+    btflutBlendUv = uv;
     colour = vec4(btflutBlendColour(uvec2(texel), grey), 1.0);
 #else
     colour = vec4(btflutReferenceColour(texture(reference, uv).rgb, grey, uvec2(texel)), 1.0);

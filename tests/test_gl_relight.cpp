@@ -268,6 +268,8 @@ TEST_CASE("bench render reports static and moving frames, GPU time and overdraw"
     REQUIRE(run.status == 0);
     const nlohmann::json predictor = nlohmann::json::parse(run.out);
     CHECK(predictor["lut_over_predictor_moving"].get<double>() > 0);
+    CHECK(predictor["bytes_per_texel_per_fragment"].get<double>() > 0);
+    CHECK(predictor["bytes_per_texel_ptm"].get<double>() > 0);
     CHECK(predictor["sizes"][0]["predictor_ms"].get<double>() > 0);
     CHECK(predictor["sizes"][0]["lut_moving_quads_per_fragment"].get<int>() == 4);  // 64 x 48 pixels: per fragment
     requireOneLineError(runCli({"bench", "render", dir / "p.btflut", "--lut-path", "screen"}), "--lut-path");

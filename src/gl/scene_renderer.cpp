@@ -106,6 +106,7 @@ Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool
         if (perFragment) {
             const std::vector<std::string> blend = BlendTextures::defines(bank);
             if (bank.makesLuts()) defines.insert(defines.end(), blend.begin(), blend.end());
+            if (bank.makesLuts()) defines.push_back("BLEND_FILTERED");
             if (!bank.makesLuts()) defines.push_back("MAPS_REFERENCE");
             if (!bank.makesLuts() && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
             if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");

@@ -73,8 +73,10 @@ GlTexture uploadTextureArray(int width, int height, int layers, int channels, co
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, channels == 4 ? GL_RGBA8 : GL_RGB8, width, height, layers, 0,
                   channels == 4 ? GL_RGBA : GL_RGB, GL_UNSIGNED_BYTE, data);
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
     bytes += static_cast<std::size_t>(width) * height * layers * 4;  // RGB padded to RGBA
     return texture;
 }

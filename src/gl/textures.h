@@ -29,8 +29,9 @@ GlTexture uploadMipmapped(const Image& image, std::size_t& bytes);
 /// entries, clamped (a row per region of a bank that blends references); values may be null.
 GlTexture uploadLutTable(const float* values, int entries, int rows);
 
-/// Layers of 8-bit RGBA or RGB texels as an unfiltered 2D array texture read with texelFetch
-/// (`layers` x width x height x channels bytes, top row first); adds its bytes.
+/// Layers of 8-bit RGBA or RGB texels as a 2D array texture, no mipmaps, bilinear where a
+/// shader samples it (texelFetch reads texels as they are), repeating (`layers` x width x
+/// height x channels bytes, top row first); adds its bytes.
 GlTexture uploadTextureArray(int width, int height, int layers, int channels, const std::uint8_t* data,
                              std::size_t& bytes);
 

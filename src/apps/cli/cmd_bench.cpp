@@ -415,6 +415,16 @@ Status runBenchRender(const BenchRenderOptions& o) {
                           lutBytes, bytes.reference + bytes.blend, directions, bytes.relit / directions, bytes.ptm,
                           static_cast<double>(lutBytes) / static_cast<double>(bytes.ptm));
             text += line;
+            // Drawn per fragment a material needs its source (the reference, or a predictor's
+            // planes) and a LUT per channel and region: per texel against the PTM's.
+            const double texels = static_cast<double>((*renderer)->bank("m")->reference.pixelCount());
+            const double perFragment = static_cast<double>(bytes.reference + bytes.blend + bytes.luts) / texels;
+            out["bytes_per_texel_per_fragment"] = perFragment;
+            out["bytes_per_texel_ptm"] = static_cast<double>(bytes.ptm) / texels;
+            std::snprintf(line, sizeof line,
+                          "  drawn per fragment: %.2f bytes per texel (mipmaps and LUTs included), the PTM %.2f\n",
+                          perFragment, static_cast<double>(bytes.ptm) / texels);
+            text += line;
         }
         out["sizes"].push_back(entry);
     }
