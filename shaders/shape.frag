@@ -20,6 +20,84 @@ in vec3 worldTangent;
 in vec2 uv;
 out vec4 colour;
 
+#if defined(MODEL)
+// A bank with a light model (src/core/predict/light_model.h; the layers as BlendTextures uploads
+// them): its 8-bit planes three to a layer, its 4-bit planes six (two to a channel, the first
+// in the high nibble), then its albedo; its weights over the light disk (lightModelWeightGrid,
+// four to a layer); its match LUTs over the grid, a region's grid above the last (`luts`).
+uniform sampler2DArray planes;
+uniform sampler2DArray modelWeights;
+#if defined(REGIONS)
+uniform usampler2D labels;
+#endif
+uniform ivec2 texels;  // the planes' size
+uniform float codes;   // codes of a predicted value: 255, or 765 for the grey of RGB
+
+// The relit colour at `uv` for a light at disk point `disk`: the prediction (planes sampled
+// bilinearly, 4-bit planes fetched), each channel's code through its region's match LUT there.
+vec3 relightModel(vec2 disk, uvec2 pixel) {
+    vec2 at = (disk + 1.0) * 0.5;  // the weight grid's texture coordinate: node centres at the edges
+    at = (at * float(textureSize(modelWeights, 0).x - 1) + 0.5) / vec2(textureSize(modelWeights, 0).xy);
+    vec4 w[MODEL_WEIGHT_LAYERS];
+    for (int k = 0; k < MODEL_WEIGHT_LAYERS; ++k) w[k] = textureLod(modelWeights, vec3(at, float(k)), 0.0);
+    ivec2 texel = ivec2(mod(floor(uv * vec2(texels)), vec2(texels)));
+    vec2 position = uv * vec2(texels) - 0.5;  // bilinear filtering's texel corner and fractions
+    ivec2 corner = ivec2(floor(position));
+    vec2 f = position - floor(position);
+    vec3 value = vec3(0.0);
+    for (int c = 0; c < MODEL_CHANNELS; ++c) {
+        int o = MODEL_PLANES * MODEL_CHANNELS + c;
+        value[c] = w[o / 4][o % 4];
+    }
+    for (int p = 0; p < MODEL_PLANES; ++p) {
+        float code;
+        if (p < MODEL_WIDE) {
+            code = textureLod(planes, vec3(uv, float(p / 3)), 0.0)[p % 3] * 255.0;
+        } else {  // two to a byte: each of the four texels around decoded, then weighted bilinearly
+            int q = p - MODEL_WIDE;
+            code = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                ivec2 at = ivec2(mod(vec2(corner + ivec2(k % 2, k / 2)), vec2(texels)));
+                float byte = floor(texelFetch(planes, ivec3(at, BLEND_MODEL_LAYERS + q / 6), 0)[(q % 6) / 2] * 255.0 + 0.5);
+                float high = floor(byte / 16.0);
+                code += (k % 2 == 0 ? 1.0 - f.x : f.x) * (k / 2 == 0 ? 1.0 - f.y : f.y) * (q % 2 == 0 ? high : byte - 16.0 * high);
+            }
+        }
+        for (int c = 0; c < MODEL_CHANNELS; ++c) {
+            int k = p * MODEL_CHANNELS + c;
+            value[c] += code * w[k / 4][k % 4];
+        }
+    }
+#if MODEL_CHANNELS == 1
+    value = vec3(value.x);
+#endif
+#if defined(MODEL_ALBEDO)
+    vec3 albedo = textureLod(planes, vec3(uv, float(BLEND_MODEL_LAYERS + BLEND_MODEL_NIBBLE_LAYERS)), 0.0).rgb * 255.0;
+    vec3 channels = clamp(albedo * value, 0.0, 255.0);
+#else
+    vec3 channels = clamp(255.0 * value, 0.0, 255.0);
+#endif
+#if defined(REGIONS)
+    int region = int(texelFetch(labels, texel, 0).r);
+#else
+    int region = 0;
+#endif
+    BtflutMaterial m = BtflutMaterial(region, false, false, 1.0 / (codes + 1.0), outputCode, true);
+    // A code q is read at the top of its cell, (q + 1) / (codes + 1) (Relighter::inputCode).
+#if defined(RGB_MODE)
+    vec3 q = floor(channels + 0.5);
+    return vec3(btflutMap(luts, m, disk, (q.r + 1.0) / (codes + 1.0), pixel, 0),
+                btflutMap(luts, m, disk, (q.g + 1.0) / (codes + 1.0), pixel, 1),
+                btflutMap(luts, m, disk, (q.b + 1.0) / (codes + 1.0), pixel, 2));
+#else
+    float q = codes == 255.0 ? floor(channels.r + 0.5) : floor(channels.r + channels.g + channels.b + 0.5);
+    float grey = btflutMap(luts, m, disk, (q + 1.0) / (codes + 1.0), pixel, 0);
+    if (greyReference) return vec3(grey);
+    return btflutSetGrey(channels / 255.0, grey);
+#endif
+}
+#endif
+
 void main() {
     vec3 n = normalize(worldNormal);
     vec3 t = normalize(worldTangent - n * dot(n, worldTangent));
@@ -42,6 +120,10 @@ void main() {
             layer = k;
         }
     }
+#if defined(MODEL)
+    colour = vec4(relightModel(btflutDiskPoint(lightTangent), uvec2(gl_FragCoord.xy)), 1.0);
+    return;
+#endif
     BtflutMaterial m = BtflutMaterial(layer, rgbLuts, greyReference, inputCode, outputCode, true);
     vec3 texel = texture(reference, uv).rgb;
     colour = vec4(btflutRelight(luts, m, texel, lightTangent, uvec2(gl_FragCoord.xy)), 1.0);

@@ -11,6 +11,8 @@
 #include "gl/context.h"
 #include "gl/native_renderer.h"
 #include "gl/scene_renderer.h"
+#include "gl/shape_renderer.h"
+#include "gl/textures.h"
 #include "helpers.h"
 
 using namespace btflut;
@@ -141,6 +143,78 @@ TEST_SUITE("gl") {
                 CHECK(worstDifference(gpu, cpuRgb) <= 1.0 / 255);
                 CHECK(mean <= 0.6 / 255);
             }
+        }
+    }
+}
+
+TEST_SUITE("gl") {
+    TEST_CASE("the cylinder draws banks with a light model: their prediction and match LUTs at each fragment's light") {
+        TempDir dir;
+        auto context = createHeadlessContext(GlBackend::Auto);
+        if (!context.ok()) FAIL(context.error());
+        // Seen from far along -y (almost orthographic), the cylinder's front line faces the camera:
+        // there the tangent frame is x, z, -y, the texture column 0.25 of a turn (3 repeats of a
+        // square texture around), its rows along z. A light from (0.3, -0.8, 0.5) is (0.3, 0.5,
+        // 0.8) in that frame.
+        const int size = 80;
+        const double half = 1.05;
+        ShapeFrame frame{Shape::Cylinder, {0, -200, 0}, {0, 0, 0}, {0, 0, 1}, 2 * std::atan(half / 200) * 180 / M_PI, {}};
+        const Vec3 world{0.3, -0.8, 0.5};
+        const double n = std::sqrt(0.98);
+        frame.light.direction = {world.x / n, world.y / n, world.z / n};
+        const Direction local = fromVector({0.3, 0.5, 0.8});
+        for (const auto& [name, bank] : blendingBanks(dir)) {
+            if (!bank.predictsWithModel()) {
+                REQUIRE(saveBank(bank, dir / "r.btflut").ok());
+                CHECK_FALSE(ShapeRenderer::create(dir / "r.btflut").ok());  // blended references: refused
+                continue;
+            }
+            REQUIRE(saveBank(bank, dir / "s.btflut").ok());
+            auto shape = ShapeRenderer::create(dir / "s.btflut");
+            REQUIRE_MESSAGE(shape.ok(), name);
+            REQUIRE((*shape)->draw(frame, size, size).ok());
+            const Image gpu = readFramebufferRgb((*shape)->framebuffer(), size, size);
+            const Relighter relighter(bank);
+            auto errorAt = [&](Direction light) {
+                const Image cpu = relighter.apply(relighter.gridFrame(light), false);
+                const Image rgb = cpu.channels == 3 ? cpu : [&] {
+                    Image out(cpu.width, cpu.height, 3);
+                    for (std::size_t i = 0; i < cpu.pixelCount(); ++i) out.samples[i * 3] = out.samples[i * 3 + 1] = out.samples[i * 3 + 2] = cpu.samples[i];
+                    return out;
+                }();
+                double sum = 0;
+                int count = 0;
+                for (int y = 0; y < size; ++y) {
+                    const double z = half - (y + 0.5) * 2 * half / size;
+                    if (std::abs(z) > 0.9) continue;
+                    const double px = (size / 2 + 0.5) * 2 * half / size - half;  // the pixel column right of the centre
+                    const double tx = (0.75 + std::asin(px) / (2 * M_PI)) * 3 * rgb.width, ty = (1 - z) / 2 * rgb.height;
+                    for (int c = 0; c < 3; ++c) {
+                        // The relit image sampled bilinearly where the fragment samples the planes.
+                        const double fx = std::fmod(tx - 0.5 + rgb.width, rgb.width), fy = std::clamp(ty - 0.5, 0.0, rgb.height - 1.0);
+                        const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+                        const int x1 = (x0 + 1) % rgb.width, y1 = std::min(y0 + 1, rgb.height - 1);
+                        const double ax = fx - x0, ay = fy - y0;
+                        const double v = (1 - ay) * ((1 - ax) * rgb.at(x0, y0, c) + ax * rgb.at(x1, y0, c)) +
+                                         ay * ((1 - ax) * rgb.at(x0, y1, c) + ax * rgb.at(x1, y1, c));
+                        sum += std::abs(v - gpu.at(size / 2, y, c));
+                        ++count;
+                    }
+                }
+                return sum / count;
+            };
+            const double right = errorAt(local), wrong = errorAt(Direction::fromDegrees(60, 200));
+            INFO(name << ": mean " << right * 255 << "/255 against the relit column; " << wrong * 255 << "/255 under another light");
+            CHECK(right < 2.0 / 255);  // 0.4-1.3: bilinear before the LUT against after, the weights' grid, the dither
+            CHECK(wrong > 10 * right);
+            // A point light far along the same direction lights it alike (its direction per fragment).
+            ShapeFrame point = frame;
+            point.light = {true, {}, {1e4 * frame.light.direction.x, 1e4 * frame.light.direction.y, 1e4 * frame.light.direction.z}};
+            REQUIRE((*shape)->draw(point, size, size).ok());
+            const Image far = readFramebufferRgb((*shape)->framebuffer(), size, size);
+            double mean = 0;
+            for (std::size_t i = 0; i < far.samples.size(); ++i) mean += std::abs(far.samples[i] - gpu.samples[i]);
+            CHECK(mean / static_cast<double>(far.samples.size()) < 0.5 / 255);
         }
     }
 }

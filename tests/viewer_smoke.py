@@ -275,7 +275,7 @@ def main():
                             (["--projection", "4d"], "--projection"), (["--compare", "blink"], "--compare"),
                             (["--compare", "wipe", "--compare-mode", "nearest", os.path.join(tmp, "blend", "material.btflut")],
                              "nearest"),
-                            (["--geometry", "sphere", os.path.join(tmp, "blend", "material.btflut")], "grid of LUTs")):
+                            (["--geometry", "sphere", os.path.join(tmp, "blend", "material.btflut")], "blends references")):
             result = subprocess.run(XVFB + [btflut, "view", "--frames", "1"] + bad, capture_output=True, text=True)
             check(result.returncode != 0 and needle in result.stderr, f"bad {needle} refused ({result.stderr.strip()!r})")
 

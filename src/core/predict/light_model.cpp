@@ -212,6 +212,29 @@ LightModelFixed lightModelFixed(const LightModel& model, Direction light) {
     return f;
 }
 
+std::vector<float> lightModelWeightGrid(const LightModel& model, int size) {
+    BTFLUT_CHECK(size >= 2);
+    const auto P = static_cast<std::size_t>(model.planes), C = static_cast<std::size_t>(model.channels);
+    const std::size_t stride = P * C + C;
+    std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * stride);
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i) {
+            const DiskPoint point{-1 + 2.0 * i / (size - 1), -1 + 2.0 * j / (size - 1)};
+            const LightModel::Weights w = model.weightsAt(fromDisk(point));  // beyond the rim: at the horizon
+            float* node = &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * stride];
+            for (std::size_t c = 0; c < C; ++c) {
+                double offset = w.offset[c];
+                for (std::size_t p = 0; p < P; ++p) {
+                    const double folded = double{model.scale[p]} * w.weight[p * C + c];
+                    node[p * C + c] = static_cast<float>(folded);
+                    offset -= double{model.bias[p]} * folded;
+                }
+                node[P * C + c] = static_cast<float>(offset);
+            }
+        }
+    return grid;
+}
+
 std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightModelFixed& fixed, std::size_t texel) {
     const auto P = static_cast<std::size_t>(model.planes), C = static_cast<std::size_t>(model.channels);
     const std::uint8_t* bytes = &model.coefficients[texel * P];
