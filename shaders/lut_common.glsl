@@ -29,7 +29,8 @@ uniform float outCode;  // one target code
 // (8-bit codes times integer weights, sums below 2^24), so its code is the CPU's; the LUT
 // of the texel's region is applied to it.
 #if defined(BLEND)
-// grey and rgb: one reference per layer; lrgb: four per RGBA layer; BLEND_MODEL: the light
+// grey and rgb: one reference per layer (grey references in all three channels:
+// BLEND_GREY_REFERENCES); lrgb: four per RGBA layer; BLEND_MODEL: the light
 // model's 8-bit planes three to a layer (BLEND_MODEL_LAYERS), its 4-bit planes six to a layer
 // (BLEND_MODEL_NIBBLE_LAYERS: two to a channel, the first in the high nibble), then its albedo
 // (BLEND_MODEL_ALBEDO)
@@ -127,6 +128,8 @@ BtflutBlend btflutBlend() {
     }
 #if defined(RGB_MODE)
     b.codes = floor(sum / 4096.0 + 0.5);
+#elif defined(BLEND_GREY_REFERENCES)
+    b.codes = vec3(floor(sum.r / 4096.0 + 0.5));  // one channel (stored in all three)
 #else
     b.codes = vec3(floor((sum.r + sum.g + sum.b) / 4096.0 + 0.5));  // the grey of RGB: the channel codes' sum
 #endif

@@ -44,8 +44,8 @@ double worstDifference(const Image& a, const Image& b) {
     return worst;
 }
 
-// The banks of each kind, baked from one material (and the light models from its grey
-// original too: one output channel, no albedo).
+// The banks of each kind, baked from one material (and from a grey one: references of one
+// channel; light models of one output channel, no albedo).
 std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
     auto dataset = openDataset(colourMaterial(dir));
     REQUIRE(dataset.ok());
@@ -60,6 +60,7 @@ std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
     for (const auto& [name, options, greyImages] :
          {std::tuple{"grey K3", BakeOptions{.references = 3}, false},
           {"rgb K3 R2", BakeOptions{.colour = ColourMode::Rgb, .references = 3, .regions = 2}, false},
+          {"grey images K4 R2", BakeOptions{.references = 4, .regions = 2}, true},  // one channel per reference
           {"lrgb K5 R2", BakeOptions{.colour = ColourMode::Lrgb, .references = 5, .regions = 2}, false},
           {"ptm R2", BakeOptions{.model = LightModelOptions{.basis = Basis::Ptm}, .regions = 2}, false},
           {"hsh3 rgb", BakeOptions{.colour = ColourMode::Rgb, .model = LightModelOptions{.basis = Basis::Hsh, .order = 3}}, false},

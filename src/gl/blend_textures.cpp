@@ -75,8 +75,12 @@ std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
         d.push_back("BLEND_MODEL_CHANNELS " + std::to_string(m.channels));
         if (!m.albedo.empty()) d.push_back("BLEND_MODEL_ALBEDO");
     }
-    if (bank.blend.predictor == LutBank::Blend::Predictor::References && bank.colour != ColourMode::Lrgb)
+    if (bank.blend.predictor == LutBank::Blend::Predictor::References && bank.colour != ColourMode::Lrgb) {
         d.push_back("BLEND_FETCHES " + std::to_string(std::min<std::size_t>(bank.blend.references.size(), 3)));
+        // Grey references are uploaded in all three channels; their code is one channel's
+        // (Relighter: codes 255), not the sum the grey of RGB takes.
+        if (bank.blend.references.front().channels == 1) d.push_back("BLEND_GREY_REFERENCES");
+    }
     if (bank.colour == ColourMode::Lrgb) {
         d.push_back("BLEND_PACKED");
         d.push_back("BLEND_LAYERS " + std::to_string((bank.blend.references.size() + 3) / 4));
