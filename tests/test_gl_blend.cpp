@@ -149,11 +149,12 @@ TEST_SUITE("gl") {
 }
 
 TEST_SUITE("gl") {
-    TEST_CASE("the cylinder draws banks with a light model: their prediction and match LUTs at each fragment's light") {
+    TEST_CASE("the cylinder draws banks with a predictor: their prediction and match LUTs at each fragment's light") {
         TempDir dir;
         auto context = createHeadlessContext(GlBackend::Auto);
         if (!context.ok()) FAIL(context.error());
-        // Seen from far along -y (almost orthographic), the cylinder's front line faces the camera:
+        // Every kind of bank with a predictor (the banks of LUTs: the viewer tests). Seen from
+        // far along -y (almost orthographic), the cylinder's front line faces the camera:
         // there the tangent frame is x, z, -y, the texture column 0.25 of a turn (3 repeats of a
         // square texture around), its rows along z. A light from (0.3, -0.8, 0.5) is (0.3, 0.5,
         // 0.8) in that frame.
@@ -165,14 +166,9 @@ TEST_SUITE("gl") {
         frame.light.direction = {world.x / n, world.y / n, world.z / n};
         const Direction local = fromVector({0.3, 0.5, 0.8});
         for (const auto& [name, bank] : blendingBanks(dir)) {
-            if (!bank.predictsWithModel()) {
-                REQUIRE(saveBank(bank, dir / "r.btflut").ok());
-                CHECK_FALSE(ShapeRenderer::create(dir / "r.btflut").ok());  // blended references: refused
-                continue;
-            }
             REQUIRE(saveBank(bank, dir / "s.btflut").ok());
             auto shape = ShapeRenderer::create(dir / "s.btflut");
-            REQUIRE_MESSAGE(shape.ok(), name);
+            if (!shape.ok()) FAIL(name << ": " << shape.error());
             REQUIRE((*shape)->draw(frame, size, size).ok());
             const Image gpu = readFramebufferRgb((*shape)->framebuffer(), size, size);
             const Relighter relighter(bank);
@@ -206,7 +202,9 @@ TEST_SUITE("gl") {
             };
             const double right = errorAt(local), wrong = errorAt(Direction::fromDegrees(60, 200));
             INFO(name << ": mean " << right * 255 << "/255 against the relit column; " << wrong * 255 << "/255 under another light");
-            CHECK(right < 2.0 / 255);  // 0.4-1.3: bilinear before the LUT against after, the weights' grid, the dither
+            // 0.4-2.1: bilinear before the LUT against after, the weights' grid (barycentric
+            // weights have kinks it smooths), region labels per texel, the dither per pixel.
+            CHECK(right < 3.0 / 255);
             CHECK(wrong > 10 * right);
             // A point light far along the same direction lights it alike (its direction per fragment).
             ShapeFrame point = frame;

@@ -274,10 +274,19 @@ def main():
         for bad, needle in ((["--camera", "30"], "--camera"), (["--size", "10x10"], "--size"), (["--zoom", "0"], "--zoom"),
                             (["--projection", "4d"], "--projection"), (["--compare", "blink"], "--compare"),
                             (["--compare", "wipe", "--compare-mode", "nearest", os.path.join(tmp, "blend", "material.btflut")],
-                             "nearest"),
-                            (["--geometry", "sphere", os.path.join(tmp, "blend", "material.btflut")], "blends references")):
+                             "nearest")):
             result = subprocess.run(XVFB + [btflut, "view", "--frames", "1"] + bad, capture_output=True, text=True)
             check(result.returncode != 0 and needle in result.stderr, f"bad {needle} refused ({result.stderr.strip()!r})")
+        # A bank that blends references goes on the sphere too (its weights per fragment).
+        shots = os.path.join(tmp, "blend-sphere")
+        run(XVFB + [btflut, "view", "--frames", "1", "--geometry", "sphere", "--light", "60,0", "--camera", "-90,5",
+                    "--screenshot-dir", shots, os.path.join(tmp, "blend", "material.btflut")])
+        state = json.load(open(os.path.join(shots, "frame-0000.json")))
+        x, y, w, h = state["scene_viewport"]
+        grey = load(os.path.join(shots, "frame-0000.png"))[y:y + h, x:x + w].mean(axis=2)
+        left, right = grey[:, : w // 2].mean(), grey[:, w // 2:].mean()
+        check(state["geometry"] == "sphere" and right > 2 * left + 0.02,
+              f"sphere of a bank that blends references: the lit side is brighter (right {right:.3f}, left {left:.3f})")
 
     # No display: one line naming `btflut render`, non-zero exit.
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}

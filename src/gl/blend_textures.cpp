@@ -66,6 +66,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
 }
 
 std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
+    BTFLUT_CHECK(bank.makesLuts());
     std::vector<std::string> d{"BLEND"};
     if (bank.predictsWithModel()) {
         const LightModel& m = bank.blend.model;

@@ -40,6 +40,7 @@ public:
     /// read them their own way (the shapes: ShapeRenderer).
     GLuint planes() const { return m_references.id(); }
     GLuint labels() const { return m_labels.id(); }
+    GLuint albedo() const { return m_albedo.id(); }
 
 private:
     const LutBank* m_bank = nullptr;

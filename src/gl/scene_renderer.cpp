@@ -104,11 +104,14 @@ Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool
         // A bank of one view layer: its relit texture, drawn flat; or relit per fragment.
         defines = {perFragment ? "LUT_FRAGMENT" : "FLAT_MODE"};
         if (perFragment) {
-            const std::vector<std::string> blend = BlendTextures::defines(bank);
-            if (bank.makesLuts()) defines.insert(defines.end(), blend.begin(), blend.end());
-            if (bank.makesLuts()) defines.push_back("BLEND_FILTERED");
-            if (!bank.makesLuts()) defines.push_back("MAPS_REFERENCE");
-            if (!bank.makesLuts() && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+            if (bank.makesLuts()) {
+                const std::vector<std::string> blend = BlendTextures::defines(bank);
+                defines.insert(defines.end(), blend.begin(), blend.end());
+                defines.push_back("BLEND_FILTERED");
+            } else {
+                defines.push_back("MAPS_REFERENCE");
+                if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+            }
             if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
             if (m_dither) defines.push_back("DITHER");
             if (m_predictionOnly) defines.push_back("PREDICTION_ONLY");

@@ -60,13 +60,19 @@ GlTexture uploadMatchGrid(const LutBank& bank) {
     return uploadLuts16(entries, g, g * regions, channels, texels.data());
 }
 
-// A light model's weights over the light disk (lightModelWeightGrid, kWeightGrid nodes a side)
-// as a 2D array of RGBA32F layers, four weights to a layer, read bilinearly.
+// A predictor's weights over the light disk (lightModelWeightGrid, referenceWeightGrid:
+// kWeightGrid nodes a side, `stride` per node) as a 2D array of RGBA32F layers, four weights
+// to a layer, read bilinearly.
 constexpr int kWeightGrid = 65;
-GlTexture uploadWeights(const LightModel& model) {
-    const std::vector<float> grid = lightModelWeightGrid(model, kWeightGrid);
-    const std::size_t stride = static_cast<std::size_t>(model.planes * model.channels + model.channels),
-                      layers = (stride + 3) / 4, nodes = static_cast<std::size_t>(kWeightGrid) * kWeightGrid;
+std::size_t weightStride(const LutBank& bank) {
+    const LightModel& m = bank.blend.model;
+    return bank.predictsWithModel() ? static_cast<std::size_t>(m.planes * m.channels + m.channels) : bank.blend.references.size();
+}
+GlTexture uploadWeights(const LutBank& bank) {
+    const std::vector<float> grid = bank.predictsWithModel() ? lightModelWeightGrid(bank.blend.model, kWeightGrid)
+                                                             : referenceWeightGrid(bank, kWeightGrid);
+    const std::size_t stride = weightStride(bank), layers = (stride + 3) / 4,
+                      nodes = static_cast<std::size_t>(kWeightGrid) * kWeightGrid;
     std::vector<float> data(layers * nodes * 4, 0.f);
     for (std::size_t n = 0; n < nodes; ++n)
         for (std::size_t k = 0; k < stride; ++k) data[((k / 4) * nodes + n) * 4 + k % 4] = grid[n * stride + k];
@@ -109,20 +115,23 @@ Result<std::unique_ptr<ShapeRenderer>> ShapeRenderer::create(const std::string& 
     Result<LutBank> loaded = loadBank(bankPath, {.ptm = false});
     if (!loaded) return Error{loaded.error()};
     LutBank& bank = *loaded;
-    if (bank.makesLuts() && !bank.predictsWithModel())
-        return Error{"this bank blends references at run time; the sphere and the cylinder draw banks of LUTs and "
-                     "banks with a light model (bake with the default --predictor auto, or a basis: ptm, hsh, rbf, bln)"};
     if (bank.layers.size() > kMaxLayers)
         return Error{"the sphere and the cylinder draw banks of up to " + std::to_string(kMaxLayers) + " view layers"};
     std::vector<std::string> defines;
     if (bank.makesLuts()) {
+        defines = {"PREDICTOR", "WEIGHT_LAYERS " + std::to_string((weightStride(bank) + 3) / 4)};
         const LightModel& m = bank.blend.model;
-        defines = {"MODEL", "MODEL_PLANES " + std::to_string(m.planes), "MODEL_WIDE " + std::to_string(m.wide),
-                   "MODEL_CHANNELS " + std::to_string(m.channels),
-                   "MODEL_WEIGHT_LAYERS " + std::to_string((m.planes * m.channels + m.channels + 3) / 4),
-                   "BLEND_MODEL_LAYERS " + std::to_string((m.wide + 2) / 3),
-                   "BLEND_MODEL_NIBBLE_LAYERS " + std::to_string((m.planes - m.wide + 5) / 6)};
-        if (!m.albedo.empty()) defines.push_back("MODEL_ALBEDO");
+        if (bank.predictsWithModel()) {
+            defines.insert(defines.end(), {"MODEL", "MODEL_PLANES " + std::to_string(m.planes), "MODEL_WIDE " + std::to_string(m.wide),
+                                           "MODEL_CHANNELS " + std::to_string(m.channels),
+                                           "BLEND_MODEL_LAYERS " + std::to_string((m.wide + 2) / 3),
+                                           "BLEND_MODEL_NIBBLE_LAYERS " + std::to_string((m.planes - m.wide + 5) / 6)});
+            if (!m.albedo.empty()) defines.push_back("MODEL_ALBEDO");
+        } else {
+            defines.push_back("REFERENCE_COUNT " + std::to_string(bank.blend.references.size()));
+            if (bank.colour == ColourMode::Lrgb) defines.push_back("LRGB");
+            if (bank.blend.references.front().channels == 1) defines.push_back("GREY_REFERENCES");
+        }
         if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
         if (bank.blend.regions > 1) defines.push_back("REGIONS");
     }
@@ -136,7 +145,7 @@ Result<std::unique_ptr<ShapeRenderer>> ShapeRenderer::create(const std::string& 
     if (bank.makesLuts()) {
         if (bank.layers[0].matchGridLuts.empty()) bakeMatchGrid(bank);  // a file older than the match grid
         r->m_luts = uploadMatchGrid(bank);
-        r->m_weights = uploadWeights(bank.blend.model);
+        r->m_weights = uploadWeights(bank);
     } else {
         r->m_luts = uploadGrid(bank);
     }
@@ -200,15 +209,22 @@ Status ShapeRenderer::draw(const ShapeFrame& frame, int width, int height) {
     gl.ActiveTexture(GL_TEXTURE1);
     gl.BindTexture(GL_TEXTURE_3D, m_luts.id());
     gl.Uniform1i(location("luts"), 1);
-    if (m_planes) {  // a light model: its planes, weights and labels; the codes its LUTs read
+    if (m_planes) {  // a predictor: its planes (or references), weights and labels; the codes its LUTs read
         const LightModel& model = m_bank.blend.model;
-        const bool oneCode = m_bank.colour == ColourMode::Rgb || (model.albedo.empty() && model.channels == 1);
+        const bool oneCode = m_bank.predictsWithModel()
+                                 ? m_bank.colour == ColourMode::Rgb || (model.albedo.empty() && model.channels == 1)
+                                 : m_bank.colour != ColourMode::Grey || m_bank.blend.references.front().channels == 1;
         gl.ActiveTexture(GL_TEXTURE2);
         gl.BindTexture(GL_TEXTURE_2D_ARRAY, m_planes->planes());
         gl.Uniform1i(location("planes"), 2);
         gl.ActiveTexture(GL_TEXTURE3);
         gl.BindTexture(GL_TEXTURE_2D_ARRAY, m_weights.id());
         gl.Uniform1i(location("modelWeights"), 3);
+        if (m_planes->albedo()) {  // lrgb
+            gl.ActiveTexture(GL_TEXTURE5);
+            gl.BindTexture(GL_TEXTURE_2D, m_planes->albedo());
+            gl.Uniform1i(location("albedo"), 5);
+        }
         if (m_planes->labels()) {
             gl.ActiveTexture(GL_TEXTURE4);
             gl.BindTexture(GL_TEXTURE_2D, m_planes->labels());

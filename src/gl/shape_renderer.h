@@ -2,11 +2,12 @@
 // A material on a sphere or a cylinder (shaders/shape.vert, shape.frag): each fragment takes
 // the light and view directions in its own tangent frame and the LUT for them from the bank's
 // grid (one trilinear fetch, as shaders/btflut.glsl does in an engine), so light and view vary
-// across the surface. A directional or a point light. Banks of LUTs, and banks with a light
-// model (ptm, hsh, rbf, bln): per fragment the model's weights are read bilinearly from a grid
-// over the light disk (lightModelWeightGrid), the planes bilinearly at the texel, and the match
-// LUT from the bank's match grid at the light (per region): as the scene renderer relights, with
-// the light varying over the surface. Banks that blend references are refused.
+// across the surface. A directional or a point light. Every kind of bank: for a bank with a
+// predictor (a light model, or references blended) the predictor's weights are read per
+// fragment bilinearly from a grid over the light disk (lightModelWeightGrid,
+// referenceWeightGrid), its planes or references bilinearly at the texel, and the match LUT
+// from the bank's match grid at that light (per region): as the scene renderer relights, with
+// the light varying over the surface.
 //
 //   Result<std::unique_ptr<ShapeRenderer>> r = ShapeRenderer::create("rock.btflut");
 //   (*r)->draw({Shape::Sphere, eye, target, up, 40, light}, 800, 600);   // then read framebuffer()
@@ -57,8 +58,8 @@ private:
     LutBank m_bank;
     GlProgram m_program;
     GlVertexArray m_vertexArray;
-    GlTexture m_reference, m_luts;  ///< a bank with a light model: m_luts is its match grid
-    std::optional<BlendTextures> m_planes;  ///< a bank with a light model: planes, albedo, labels
+    GlTexture m_reference, m_luts;  ///< a bank with a predictor: m_luts is its match grid
+    std::optional<BlendTextures> m_planes;  ///< a bank with a predictor: planes or references, albedo, labels
     GlTexture m_weights;                    ///< ... and its weights over the light disk
     ColourDepthTarget m_target;
     int m_width = 0, m_height = 0;

@@ -182,6 +182,21 @@ void bakeMatchGrid(LutBank& bank, int threads) {
     }
 }
 
+std::vector<float> referenceWeightGrid(const LutBank& bank, int size) {
+    BTFLUT_CHECK(bank.makesLuts() && !bank.predictsWithModel() && size >= 2);
+    const std::size_t k = bank.blend.references.size();
+    std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * k, 0.f);
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i) {
+            const DiskPoint point{-1 + 2.0 * i / (size - 1), -1 + 2.0 * j / (size - 1)};
+            const Weights w = bank.blend.triangulation.weightsAt(toDisk(fromDisk(point)));  // beyond the rim: on it
+            float* node = &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * k];
+            for (int n = 0; n < w.count; ++n)
+                node[static_cast<std::size_t>(w.index[static_cast<std::size_t>(n)])] += static_cast<float>(w.weight[static_cast<std::size_t>(n)]);
+        }
+    return grid;
+}
+
 RelightFrame Relighter::predictionFrame(Direction light) const {
     RelightFrame frame;
     frame.light = light;
