@@ -130,6 +130,8 @@ TEST_SUITE("gl") {
 }
 
 #include "gl/scene_renderer.h"
+#include "gl/shape_renderer.h"
+#include "gl/textures.h"
 
 TEST_SUITE("gl") {
     TEST_CASE("scenes: golden image, culling, and materials no visible quad uses are never loaded") {
@@ -181,6 +183,47 @@ TEST_SUITE("gl") {
         INFO("mean " << mean * 255 << " / 255, worst " << worst * 255 << " / 255");
         CHECK(mean <= 0.5 / 255);
         CHECK(worst <= 16.0 / 255);  // edges may rasterise a pixel differently on another driver
+    }
+
+    TEST_CASE("the sphere and the cylinder of a bank of LUTs: golden images") {
+        // The one-reference path of the shapes (ShapeRenderer) pinned: tests/reference/shape-*.png,
+        // made when banks with a predictor joined it (issue 22) and equal to the viewer's before.
+        TempDir dir;
+        auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {45, 0, 0, 0, 100, 2}, {60, 200, 0, 0, 20, 1},
+                                                          {50, 100, 0, 0, 40, 2}}));
+        REQUIRE(ds.ok());
+        auto bank = bakeBank(*ds, {});
+        REQUIRE(bank.ok());
+        REQUIRE_FALSE(bank->makesLuts());
+        REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        auto shape = ShapeRenderer::create(dir / "m.btflut");
+        if (!shape.ok()) FAIL(shape.error());
+        ShapeFrame sphere{Shape::Sphere, {0, -4, 1.5}, {0, 0, 0}, {0, 0, 1}, 40, {}};
+        sphere.light.direction = {0.6, -0.3, 0.74};
+        ShapeFrame cylinder{Shape::Cylinder, {2, -3.5, 1}, {0, 0, 0}, {0, 0, 1}, 45, {}};
+        cylinder.light = {true, {}, {-2, -2, 1.5}};
+        for (const auto& [name, frame] : {std::pair{"shape-sphere.png", sphere}, {"shape-cylinder.png", cylinder}}) {
+            REQUIRE((*shape)->draw(frame, 160, 120).ok());
+            const Image image = readFramebufferRgb((*shape)->framebuffer(), 160, 120);
+            const std::string golden = std::string(BTFLUT_SOURCE_DIR) + "/tests/reference/" + name;
+            if (const char* update = std::getenv("BTFLUT_UPDATE_REFERENCE"); update && std::string(update) == "1")
+                REQUIRE(savePng(image, golden).ok());
+            auto reference = loadImage(golden);
+            REQUIRE_MESSAGE(reference.ok(), "missing golden image; run with BTFLUT_UPDATE_REFERENCE=1");
+            REQUIRE(reference->samples.size() == image.samples.size());
+            double sum = 0, worst = 0;
+            for (std::size_t i = 0; i < image.samples.size(); ++i) {
+                const double d = std::abs(image.samples[i] - reference->samples[i]);
+                sum += d;
+                worst = std::max(worst, d);
+            }
+            const double mean = sum / static_cast<double>(image.samples.size());
+            INFO(name << ": mean " << mean * 255 << " / 255, worst " << worst * 255 << " / 255");
+            CHECK(mean <= 0.5 / 255);
+            CHECK(worst <= 16.0 / 255);  // edges may rasterise a pixel differently on another driver
+        }
     }
 
     TEST_CASE("btflut render SCENE.json: stats, overrides, and bad scenes refused") {
