@@ -123,6 +123,9 @@ TEST_SUITE("gl") {
                 scene.exactMatch = way.exact;
                 auto renderer = SceneRenderer::create(scene, {.lutPath = way.path});
                 REQUIRE(renderer.ok());
+                // Read with its match grids, not its grid of quantile functions (no path reads it).
+                CHECK_FALSE((*renderer)->bank("m")->layers[0].matchGridLuts.empty());
+                CHECK((*renderer)->bank("m")->layers[0].gridLuts.empty());
                 REQUIRE((*renderer)->draw(toVector(light), RenderMode::Flat).ok());
                 CHECK((*renderer)->stats().textureBytes.blend == 0);  // flat needs the reference only
                 REQUIRE((*renderer)->draw(toVector(light)).ok());

@@ -159,7 +159,7 @@ double perFragmentExtraCost(const LutBank& bank) { return bank.makesLuts() ? 0.9
 // relighting the reference; else in texture space (relight()). A renderer's first frame, and
 // the frame after the light stops, relight: the relit texture is mipmapped from relit texels
 // (a far quad shows the mean of LUT values), and later frames draw it flat.
-Status SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
+void SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
     m_stats.quadsTextureSpace = m_stats.quadsPerFragment = 0;
     std::map<std::pair<std::string, std::array<double, 3>>, std::vector<QuadState*>> groups;
     for (std::size_t i = 0; i < m_quads.size(); ++i) {
@@ -179,10 +179,11 @@ Status SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
             });
             const bool relit = std::any_of(material.relit.begin(), material.relit.end(),
                                            [&](const Relit& r) { return sameVector(r.light, light); });
-            double pixels = 0;
-            for (const QuadState* q : quads) pixels += coveredPixels(m_scene.quads[q->index]);
-            const double relightCost = static_cast<double>(bank.reference.pixelCount()) * relitTexelCost(bank);
-            perFragment = moved && !relit && pixels * perFragmentExtraCost(bank) < relightCost;
+            if (moved && !relit) {
+                double pixels = 0;
+                for (const QuadState* q : quads) pixels += coveredPixels(m_scene.quads[q->index]);
+                perFragment = pixels * perFragmentExtraCost(bank) < static_cast<double>(bank.reference.pixelCount()) * relitTexelCost(bank);
+            }
         }
         for (QuadState* q : quads) {
             q->perFragment = perFragment;
@@ -200,7 +201,6 @@ Status SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
         (perFragment ? m_stats.quadsPerFragment : m_stats.quadsTextureSpace) += quads.size();
     }
     for (QuadState& q : m_quads) q.lastFrameLight = q.unlit ? Vec3{0, 0, -2} : q.light;
-    return success();
 }
 
 double SceneRenderer::coveredPixels(const SceneQuad& quad) const {

@@ -39,9 +39,10 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene,
         const std::string& name = scene.quads[i].material;
         if (!r->m_materials.count(name)) {
             const std::string& path = scene.materials.at(name).bank;
-            // Not the PTM (read when a ptm quad is drawn), nor, for a fixed camera, view layers
-            // that no visible quad looks along. The grids: the per-fragment path reads them.
-            BankReadOptions read{.ptm = false};
+            // Not the PTM (read when a ptm quad is drawn), nor the grids of LUTs (the renderer
+            // blends nodes; a bank with a predictor keeps its match grids, Relighter::gridFrame),
+            // nor, for a fixed camera, view layers that no visible quad looks along.
+            BankReadOptions read{.ptm = false, .grids = false};
             if (options.fixedCamera) read.views = r->viewsOf(name, visible);
             Result<LutBank> bank = loadBank(path, read);
             if (!bank) return Error{bank.error()};
@@ -137,7 +138,7 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
         update(q, light, mode);
         if (Status s = prepare(q, mode, light); !s) return s;
     }
-    if (Status s = choosePaths(modes); !s) return s;
+    choosePaths(modes);
     if (Status s = relight(modes); !s) return s;
     gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
     gl.Viewport(0, 0, m_scene.width, m_scene.height);

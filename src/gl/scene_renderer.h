@@ -63,7 +63,7 @@ struct TextureBytes {
 enum class LutPath {
     Auto,          ///< per quad and frame, whichever costs less (choosePaths)
     TextureSpace,  ///< relit textures only
-    PerFragment,   ///< per fragment only (where the scene allows it)
+    PerFragment,   ///< per fragment only
 };
 
 struct SceneRendererOptions {
@@ -185,7 +185,7 @@ private:
     bool oneLayerLut(const QuadState& q, RenderMode mode) const;
     bool relitInTextureSpace(const QuadState& q, RenderMode mode) const;
     /// Mode lut on banks of one view layer: per fragment or in texture space, per quad.
-    Status choosePaths(const std::vector<RenderMode>& modes);
+    void choosePaths(const std::vector<RenderMode>& modes);
     /// The pixels a quad covers on screen (its projection, clipped to the image; occlusion ignored).
     double coveredPixels(const SceneQuad& quad) const;
     /// A frame of a material's LUTs for a light and view, as the scene asks (grid, exact, nearest).

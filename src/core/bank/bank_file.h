@@ -38,6 +38,9 @@ struct BankWriteOptions {
 struct BankReadOptions {
     bool ptm = true;    ///< decode the PTM chunk, if any (its checksum is checked either way)
     bool grids = true;  ///< copy the layers' resampled grids (a renderer blending nodes needs none)
+    /// copy the layers' match grids (banks with a predictor: the LUTs a renderer reads per
+    /// light change, Relighter::gridFrame; without them it makes them on first use)
+    bool matchGrids = true;
     /// Non-empty: decode the LUTs of only the view layers that lookups at these view
     /// directions use (interpolated or nearest); the others keep their directions and nodes
     /// with ViewLayer::lutsLoaded false. Such a bank cannot be encoded again.

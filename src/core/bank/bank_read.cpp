@@ -491,7 +491,7 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
                 length != cells * bank.matchLength() * sizeof(std::uint16_t))
                 return fail("unexpected MGRD chunk, or one of the wrong size");
             ViewLayer& layer = bank.layers[matchGrids++];
-            if (!options.grids || !layer.lutsLoaded) continue;
+            if (!options.matchGrids || !layer.lutsLoaded) continue;
             layer.matchGridLuts.resize(length / sizeof(std::uint16_t));
             std::memcpy(layer.matchGridLuts.data(), payload, length);
             for (std::size_t at = 0; at < layer.matchGridLuts.size(); at += lutLength)
