@@ -129,10 +129,7 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
     }
     const LutBank& bank = *m_bank;
     const bool model = bank.predictsWithModel();
-    const Image& reference = model ? bank.reference : bank.blend.references.front();
-    const int codes = model ? 255 * (bank.colour == ColourMode::Rgb || (bank.blend.model.albedo.empty() && bank.blend.model.channels == 1) ? 1 : 3)
-                            : reference.maxCode() * (bank.colour == ColourMode::Grey ? reference.channels : 1);
-    gl.Uniform1f(gl.GetUniformLocation(p, "blendCodes"), static_cast<float>(codes));
+    gl.Uniform1f(gl.GetUniformLocation(p, "blendCodes"), static_cast<float>(predictionCodes(bank)));
     gl.Uniform1i(gl.GetUniformLocation(p, "blendEntries"), bank.entries);
     gl.Uniform1i(gl.GetUniformLocation(p, "blendRegions"), bank.blend.regions);
     if (model) {

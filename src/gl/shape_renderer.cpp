@@ -210,10 +210,6 @@ Status ShapeRenderer::draw(const ShapeFrame& frame, int width, int height) {
     gl.BindTexture(GL_TEXTURE_3D, m_luts.id());
     gl.Uniform1i(location("luts"), 1);
     if (m_planes) {  // a predictor: its planes (or references), weights and labels; the codes its LUTs read
-        const LightModel& model = m_bank.blend.model;
-        const bool oneCode = m_bank.predictsWithModel()
-                                 ? m_bank.colour == ColourMode::Rgb || (model.albedo.empty() && model.channels == 1)
-                                 : m_bank.colour != ColourMode::Grey || m_bank.blend.references.front().channels == 1;
         gl.ActiveTexture(GL_TEXTURE2);
         gl.BindTexture(GL_TEXTURE_2D_ARRAY, m_planes->planes());
         gl.Uniform1i(location("planes"), 2);
@@ -231,7 +227,7 @@ Status ShapeRenderer::draw(const ShapeFrame& frame, int width, int height) {
             gl.Uniform1i(location("labels"), 4);
         }
         gl.Uniform2i(location("texels"), m_bank.reference.width, m_bank.reference.height);
-        gl.Uniform1f(location("codes"), oneCode ? 255.f : 765.f);
+        gl.Uniform1f(location("codes"), static_cast<float>(predictionCodes(m_bank)));
     }
     gl.BindVertexArray(m_vertexArray.id());
     gl.DrawArrays(GL_TRIANGLES, 0, 6 * kAround * kAlong);

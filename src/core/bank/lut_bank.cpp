@@ -62,10 +62,7 @@ const char* provenanceName(Provenance p) {
     return "?";
 }
 
-DiskPoint LutBank::gridPoint(int i, int j) const {
-    const double step = 2.0 / (gridSize - 1);
-    return {-1 + step * i, -1 + step * j};
-}
+DiskPoint LutBank::gridPoint(int i, int j) const { return diskGridPoint(i, j, gridSize); }
 
 void LutBank::buildTriangulations() {
     std::vector<DiskPoint> viewPoints;

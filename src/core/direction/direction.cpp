@@ -54,6 +54,11 @@ Direction fromDisk(DiskPoint p) {
     return {2 * std::asin(r / std::numbers::sqrt2), wrapAzimuth(phi)};
 }
 
+DiskPoint diskGridPoint(int i, int j, int size) {
+    const double step = 2.0 / (size - 1);
+    return {-1 + step * i, -1 + step * j};
+}
+
 double angleBetween(Direction a, Direction b) {
     Vec3 u = toVector(a), v = toVector(b);
     // atan2 of |u x v| and u.v stays accurate for tiny and near-opposite angles.

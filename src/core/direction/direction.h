@@ -52,6 +52,10 @@ DiskPoint toDisk(Direction d);
 /// Inverse of toDisk; points outside the unit disk are pulled onto the horizon.
 Direction fromDisk(DiskPoint p);
 
+/// Node (i, j) of a size x size grid over the square around the disk: x = -1 + 2 i / (size - 1),
+/// y likewise with j (the corners lie beyond the horizon).
+DiskPoint diskGridPoint(int i, int j, int size);
+
 /// Great-circle angle between two directions, radians.
 double angleBetween(Direction a, Direction b);
 

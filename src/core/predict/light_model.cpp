@@ -178,22 +178,40 @@ Image LightModel::render(Direction light) const {
     return out;
 }
 
-LightModelFixed lightModelFixed(const LightModel& model, Direction light) {
+namespace {
+
+// A light's weights folded with each plane's scale and bias, so that a texel's value is
+// S_c = O'_c + sum_p code_p W'_pc: W'_pc = scale_p w_pc [p * C + c], O'_c = o_c - sum_p bias_p W'_pc.
+struct FoldedWeights {
+    std::vector<double> weights;
+    std::array<double, 3> offset{};
+};
+
+FoldedWeights foldedWeights(const LightModel& model, Direction light) {
     const LightModel::Weights w = model.weightsAt(light);
     const auto P = static_cast<std::size_t>(model.planes), C = static_cast<std::size_t>(model.channels);
-    // Folded: S_c = O'_c + sum_p byte_p W'_pc with W'_pc = scale_p w_pc, O'_c = o_c - sum_p bias_p W'_pc.
-    std::vector<double> folded(P * C);
-    std::array<double, 3> offset{};
-    double bound = 0;  // the largest |S_c| (bytes at most 255)
+    FoldedWeights f;
+    f.weights.resize(P * C);
     for (std::size_t c = 0; c < C; ++c) {
-        offset[c] = w.offset[c];
-        double sum = 0;
+        f.offset[c] = w.offset[c];
         for (std::size_t p = 0; p < P; ++p) {
-            folded[p * C + c] = double{model.scale[p]} * w.weight[p * C + c];
-            offset[c] -= double{model.bias[p]} * folded[p * C + c];
-            sum += model.maxCode(static_cast<int>(p)) * std::abs(folded[p * C + c]);
+            f.weights[p * C + c] = double{model.scale[p]} * w.weight[p * C + c];
+            f.offset[c] -= double{model.bias[p]} * f.weights[p * C + c];
         }
-        bound = std::max(bound, std::abs(offset[c]) + sum);
+    }
+    return f;
+}
+
+}  // namespace
+
+LightModelFixed lightModelFixed(const LightModel& model, Direction light) {
+    const auto P = static_cast<std::size_t>(model.planes), C = static_cast<std::size_t>(model.channels);
+    const FoldedWeights folded = foldedWeights(model, light);
+    double bound = 0;  // the largest |S_c| (codes at most maxCode)
+    for (std::size_t c = 0; c < C; ++c) {
+        double sum = 0;
+        for (std::size_t p = 0; p < P; ++p) sum += model.maxCode(static_cast<int>(p)) * std::abs(folded.weights[p * C + c]);
+        bound = std::max(bound, std::abs(folded.offset[c]) + sum);
     }
     // The most fraction bits that keep |S_c| below 2^23 (exact in a float, fused or not).
     int shift = -40;
@@ -205,8 +223,8 @@ LightModelFixed lightModelFixed(const LightModel& model, Direction light) {
     };
     LightModelFixed f;
     f.weights.resize(P * C);
-    for (std::size_t k = 0; k < P * C; ++k) f.weights[k] = integer(folded[k]);
-    for (std::size_t c = 0; c < C; ++c) f.offset[c] = integer(offset[c]);
+    for (std::size_t k = 0; k < P * C; ++k) f.weights[k] = integer(folded.weights[k]);
+    for (std::size_t c = 0; c < C; ++c) f.offset[c] = integer(folded.offset[c]);
     static_assert(kWeightUnit == 4096, "the luminance is scaled to 2^12");
     f.scale = static_cast<float>(std::ldexp(1.0, 12 - shift));
     return f;
@@ -219,18 +237,10 @@ std::vector<float> lightModelWeightGrid(const LightModel& model, int size) {
     std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * stride);
     for (int j = 0; j < size; ++j)
         for (int i = 0; i < size; ++i) {
-            const DiskPoint point{-1 + 2.0 * i / (size - 1), -1 + 2.0 * j / (size - 1)};
-            const LightModel::Weights w = model.weightsAt(fromDisk(point));  // beyond the rim: at the horizon
+            const FoldedWeights f = foldedWeights(model, fromDisk(diskGridPoint(i, j, size)));  // beyond the rim: at the horizon
             float* node = &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * stride];
-            for (std::size_t c = 0; c < C; ++c) {
-                double offset = w.offset[c];
-                for (std::size_t p = 0; p < P; ++p) {
-                    const double folded = double{model.scale[p]} * w.weight[p * C + c];
-                    node[p * C + c] = static_cast<float>(folded);
-                    offset -= double{model.bias[p]} * folded;
-                }
-                node[P * C + c] = static_cast<float>(offset);
-            }
+            std::transform(f.weights.begin(), f.weights.end(), node, [](double v) { return static_cast<float>(v); });
+            for (std::size_t c = 0; c < C; ++c) node[P * C + c] = static_cast<float>(f.offset[c]);
         }
     return grid;
 }

@@ -31,7 +31,7 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
         const LightModel& model = bank.blend.model;
         BTFLUT_CHECK(!model.empty());
         m_counted = bank.colour == ColourMode::Rgb ? 3 : 1;  // rgb: each channel matched apart
-        m_codes = 255 * (m_counted == 3 || (model.albedo.empty() && model.channels == 1) ? 1 : 3);
+        m_codes = predictionCodes(bank);
     } else {
         setUpReferenceCodes();
     }
@@ -73,7 +73,7 @@ void Relighter::setUpReferenceCodes() {
     const Image& first = blend.references.front();
     BTFLUT_CHECK(first.bitDepth == 8);  // the blend's codes are 8-bit (bakeBank's blendForm)
     m_counted = m_bank.colour == ColourMode::Rgb ? 3 : 1;
-    m_codes = 255 * (m_counted == 1 ? first.channels : 1);
+    m_codes = predictionCodes(m_bank);
     auto code = [](float v) { return static_cast<std::int32_t>(std::lround(v * 255.f)); };
     for (const Image& reference : blend.references) {
         std::vector<std::int32_t> codes(reference.pixelCount() * static_cast<std::size_t>(m_counted));
@@ -163,6 +163,15 @@ RelightFrame Relighter::gridFrame(Direction light) const {
     return frame;
 }
 
+int predictionCodes(const LutBank& bank) {
+    BTFLUT_CHECK(bank.makesLuts());
+    // rgb matches each channel apart; grey one code, of one channel (grey references, a grey
+    // model without albedo) or the sum of three.
+    if (bank.colour == ColourMode::Rgb) return 255;
+    if (bank.predictsWithModel()) return bank.blend.model.albedo.empty() && bank.blend.model.channels == 1 ? 255 : 765;
+    return 255 * bank.blend.references.front().channels;
+}
+
 void bakeMatchGrid(LutBank& bank, int threads) {
     BTFLUT_CHECK(bank.makesLuts());
     const Relighter relighter(bank);
@@ -188,8 +197,7 @@ std::vector<float> referenceWeightGrid(const LutBank& bank, int size) {
     std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * k, 0.f);
     for (int j = 0; j < size; ++j)
         for (int i = 0; i < size; ++i) {
-            const DiskPoint point{-1 + 2.0 * i / (size - 1), -1 + 2.0 * j / (size - 1)};
-            const Weights w = bank.blend.triangulation.weightsAt(toDisk(fromDisk(point)));  // beyond the rim: on it
+            const Weights w = bank.blend.triangulation.weightsAt(toDisk(fromDisk(diskGridPoint(i, j, size))));  // beyond the rim: on it
             float* node = &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * k];
             for (int n = 0; n < w.count; ++n)
                 node[static_cast<std::size_t>(w.index[static_cast<std::size_t>(n)])] += static_cast<float>(w.weight[static_cast<std::size_t>(n)]);

@@ -101,6 +101,10 @@ private:
     mutable std::shared_ptr<const LutBank> m_gridBank;
 };
 
+/// A bank with a predictor: the codes of a predicted value, 255 (a channel) or 765 (the grey of
+/// RGB8: three channels' codes summed); its match LUTs read code q at (q + 1) / (codes + 1).
+int predictionCodes(const LutBank& bank);
+
 /// Fills every layer's match grid of a bank with a predictor (LutBank::matchGridLuts): at each
 /// grid node the LUT from the prediction at the node's light (beyond the horizon: at the
 /// horizon) to the target there, made as Relighter::frame makes it. Bake calls it; so must
