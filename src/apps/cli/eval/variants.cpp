@@ -34,6 +34,16 @@ std::vector<std::string> split(const std::string& text) {
     return items;
 }
 
+// A comma-separated list of --flag's two choices, at least one.
+Result<std::vector<std::string>> parseChoices(const std::string& text, const std::string& flag, const std::string& a,
+                                              const std::string& b) {
+    std::vector<std::string> items = split(text);
+    if (items.empty()) return Error{"--" + flag + " is empty"};
+    for (const std::string& item : items)
+        if (item != a && item != b) return Error{"--" + flag + " '" + item + "' is not " + a + " or " + b};
+    return items;
+}
+
 }  // namespace
 
 Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
@@ -97,10 +107,9 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
         }
     }
     // Each lut bank clamped, filled from the model, or both.
-    std::vector<std::string> fills = split(o.fills);
-    if (fills.empty()) return Error{"--fill is empty"};
-    for (const std::string& fill : fills)
-        if (fill != "clamp" && fill != "model") return Error{"--fill '" + fill + "' is not clamp or model"};
+    Result<std::vector<std::string>> fillChoices = parseChoices(o.fills, "fill", "clamp", "model");
+    if (!fillChoices) return Error{fillChoices.error()};
+    const std::vector<std::string>& fills = *fillChoices;
     std::vector<Variant> all;
     for (const Variant& v : variants)
         for (const std::string& fill : fills) {
@@ -112,10 +121,9 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
         }
     variants = std::move(all);
     // Lut variants with a predictor: measured targets, the nodes' corrections, or both.
-    const std::vector<std::string> targets = split(o.targets);
-    if (targets.empty()) return Error{"--target is empty"};
-    for (const std::string& t : targets)
-        if (t != "measured" && t != "corrections") return Error{"--target '" + t + "' is not measured or corrections"};
+    Result<std::vector<std::string>> targetChoices = parseChoices(o.targets, "target", "measured", "corrections");
+    if (!targetChoices) return Error{targetChoices.error()};
+    const std::vector<std::string>& targets = *targetChoices;
     all.clear();
     for (const Variant& v : variants)
         for (const std::string& t : targets) {
@@ -129,10 +137,9 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
         }
     variants = std::move(all);
     // Each lut bank at every grid size, its LUTs made at the light, read from the grid, or both.
-    const std::vector<std::string> sources = split(o.lutSources);
-    if (sources.empty()) return Error{"--luts is empty"};
-    for (const std::string& s : sources)
-        if (s != "exact" && s != "grid") return Error{"--luts '" + s + "' is not exact or grid"};
+    Result<std::vector<std::string>> sourceChoices = parseChoices(o.lutSources, "luts", "exact", "grid");
+    if (!sourceChoices) return Error{sourceChoices.error()};
+    const std::vector<std::string>& sources = *sourceChoices;
     all.clear();
     for (const Variant& v : variants)
         for (int g : *gs)
