@@ -37,6 +37,15 @@ std::string colourMaterial(const TempDir& dir) {
     return dir / "m";
 }
 
+// A grey image as RGB (its value in the three channels), as the framebuffer reads it back.
+Image asRgb(const Image& image) {
+    if (image.channels == 3) return image;
+    Image rgb(image.width, image.height, 3);
+    for (std::size_t i = 0; i < image.pixelCount(); ++i)
+        rgb.samples[i * 3] = rgb.samples[i * 3 + 1] = rgb.samples[i * 3 + 2] = image.samples[i];
+    return rgb;
+}
+
 double worstDifference(const Image& a, const Image& b) {
     REQUIRE(a.samples.size() == b.samples.size());
     double worst = 0;
@@ -133,12 +142,7 @@ TEST_SUITE("gl") {
                 CHECK((*renderer)->stats().quadsPerFragment == (way.path == LutPath::PerFragment ? 1u : 0u));
                 const Image gpu = (*renderer)->readBack();
                 // Relit in texture space, or per fragment at 1:1, dithered per texel.
-                const Image cpu = relighter.apply(way.exact ? relighter.frame(light) : relighter.gridFrame(light), true);
-                const Image cpuRgb = cpu.channels == 3 ? cpu : [&] {
-                    Image rgb(cpu.width, cpu.height, 3);
-                    for (std::size_t i = 0; i < cpu.pixelCount(); ++i) rgb.samples[i * 3] = rgb.samples[i * 3 + 1] = rgb.samples[i * 3 + 2] = cpu.samples[i];
-                    return rgb;
-                }();
+                const Image cpuRgb = asRgb(relighter.apply(way.exact ? relighter.frame(light) : relighter.gridFrame(light), true));
                 double mean = 0;
                 for (std::size_t i = 0; i < gpu.samples.size(); ++i) mean += std::abs(gpu.samples[i] - cpuRgb.samples[i]);
                 mean /= static_cast<double>(gpu.samples.size());
@@ -176,12 +180,7 @@ TEST_SUITE("gl") {
             const Image gpu = readFramebufferRgb((*shape)->framebuffer(), size, size);
             const Relighter relighter(bank);
             auto errorAt = [&](Direction light) {
-                const Image cpu = relighter.apply(relighter.gridFrame(light), false);
-                const Image rgb = cpu.channels == 3 ? cpu : [&] {
-                    Image out(cpu.width, cpu.height, 3);
-                    for (std::size_t i = 0; i < cpu.pixelCount(); ++i) out.samples[i * 3] = out.samples[i * 3 + 1] = out.samples[i * 3 + 2] = cpu.samples[i];
-                    return out;
-                }();
+                const Image rgb = asRgb(relighter.apply(relighter.gridFrame(light), false));
                 double sum = 0;
                 int count = 0;
                 for (int y = 0; y < size; ++y) {
