@@ -1,5 +1,7 @@
 // What an engine does with a material from `btflut export M.btflut -o DIR/`: load the
-// reference, the LUT texture and the sidecar, include shaders/btflut.glsl, and draw a lit quad.
+// sidecar and the textures it names, include shaders/btflut.glsl, and draw a lit quad. Every
+// kind: "luts" (the reference and its LUTs), "model" (a light model's planes: ptm, hsh, rbf,
+// bln) and "references" (references blended), the last two with their match LUTs.
 // It depends on nothing of btflut: EGL (headless), OpenGL 3.3 core, stb_image, nlohmann-json.
 //
 //   btflut_example_quad DIR --light THETA,PHI -o out.png [--no-dither]
@@ -14,6 +16,7 @@
 #include <stb/stb_image_write.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -82,7 +85,7 @@ void main() {  // one triangle over the whole target
 }
 )";
 
-// After btflut.glsl: the engine's fragment shader.
+// After btflut.glsl: the engine's fragment shader, for a bank of LUTs.
 const char* const kFragment = R"(
 uniform sampler2D reference;
 uniform sampler3D luts;
@@ -96,9 +99,113 @@ void main() {
 }
 )";
 
+// ... and for a bank with a predictor: the planes sampled at the texel's centre.
+const char* const kPredictorFragment = R"(
+uniform sampler3D luts;
+uniform sampler2DArray planes;
+uniform sampler2DArray weights;
+uniform sampler2D labels;
+uniform BtflutPredictor predictor;
+uniform vec3 light;
+out vec4 colour;
+void main() {
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    vec2 uv = (vec2(texel) + 0.5) / vec2(textureSize(planes, 0).xy);
+    colour = vec4(btflutRelight(luts, planes, weights, labels, predictor, uv, light, uvec2(texel)), 1.0);
+}
+)";
+
+// The version the shader include declares (#define BTFLUT_GLSL_VERSION N); 0 if none.
+int includeVersion(const std::string& text) {
+    const std::string key = "#define BTFLUT_GLSL_VERSION";
+    const std::size_t at = text.find(key);
+    return at == std::string::npos ? 0 : std::atoi(text.c_str() + at + key.size());
+}
+
+// A texture of one value per texel for a sampler the material does not use.
+void bindUnused(GLenum target, GLuint texture) {
+    glBindTexture(target, texture);
+    const float zero[4] = {0, 0, 0, 0};
+    if (target == GL_TEXTURE_2D_ARRAY) glTexImage3D(target, 0, GL_RGBA32F, 1, 1, 1, 0, GL_RGBA, GL_FLOAT, zero);
+    else glTexImage2D(target, 0, GL_R8, 1, 1, 0, GL_RED, GL_FLOAT, zero);
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+
+// The predictor's textures (units 2 .. 4) and uniforms, as material.json describes them;
+// `w` and `h` get the planes' size.
+void setUpPredictor(GLuint program, const std::string& folder, const nlohmann::json& p, const GLuint textures[3], int& w, int& h) {
+    // The planes (or references), then the albedo: layers of one RGBA8 array, linear, repeating.
+    std::vector<std::string> files = p["images"].get<std::vector<std::string>>();
+    if (p.contains("albedo")) files.push_back(p["albedo"]["file"]);
+    std::vector<unsigned char> layers;
+    for (const std::string& name : files) {
+        int iw = 0, ih = 0, ic = 0;
+        stbi_uc* image = stbi_load((folder + "/" + name).c_str(), &iw, &ih, &ic, 4);
+        if (!image) fail(folder + "/" + name + ": cannot decode");
+        if (layers.empty()) w = iw, h = ih;
+        if (iw != w || ih != h) fail(folder + "/" + name + ": not the size of the other planes");
+        layers.insert(layers.end(), image, image + static_cast<std::size_t>(w) * h * 4);
+        stbi_image_free(image);
+    }
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, textures[0]);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, w, h, static_cast<GLsizei>(files.size()), 0, GL_RGBA, GL_UNSIGNED_BYTE, layers.data());
+    for (GLenum f : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTexParameteri(GL_TEXTURE_2D_ARRAY, f, GL_LINEAR);
+    // The weights over the light disk: float32 RGBA layers, read exactly (texelFetch).
+    glActiveTexture(GL_TEXTURE3);
+    if (p["weights"].is_null()) {
+        bindUnused(GL_TEXTURE_2D_ARRAY, textures[1]);
+    } else {
+        const nlohmann::json& weights = p["weights"];
+        const int size = weights["grid_size"], count = weights["layers"];
+        const std::string path = folder + "/" + weights["file"].get<std::string>(), bytes = readText(path);
+        if (bytes.size() != static_cast<std::size_t>(size) * size * count * 4 * sizeof(float))
+            fail(path + ": not the " + std::to_string(size) + "x" + std::to_string(size) + "x" + std::to_string(count) +
+                 " RGBA float32 layers material.json describes");
+        glBindTexture(GL_TEXTURE_2D_ARRAY, textures[1]);
+        glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, size, size, count, 0, GL_RGBA, GL_FLOAT, bytes.data());
+        for (GLenum f : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTexParameteri(GL_TEXTURE_2D_ARRAY, f, GL_NEAREST);
+    }
+    // Each texel's region.
+    glActiveTexture(GL_TEXTURE4);
+    if (!p.contains("labels")) {
+        bindUnused(GL_TEXTURE_2D, textures[2]);
+    } else {
+        int lw = 0, lh = 0, lc = 0;
+        const std::string path = folder + "/" + p["labels"]["file"].get<std::string>();
+        stbi_uc* labels = stbi_load(path.c_str(), &lw, &lh, &lc, 1);
+        if (!labels || lw != w || lh != h) fail(path + ": cannot decode, or not the planes' size");
+        glBindTexture(GL_TEXTURE_2D, textures[2]);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, lw, lh, 0, GL_RED, GL_UNSIGNED_BYTE, labels);
+        for (GLenum f : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTexParameteri(GL_TEXTURE_2D, f, GL_NEAREST);
+        stbi_image_free(labels);
+    }
+    auto uniform = [&](const std::string& name) { return glGetUniformLocation(program, ("predictor." + name).c_str()); };
+    const bool model = p["kind"] == "model";
+    glUniform1i(glGetUniformLocation(program, "planes"), 2);
+    glUniform1i(glGetUniformLocation(program, "weights"), 3);
+    glUniform1i(glGetUniformLocation(program, "labels"), 4);
+    glUniform1i(uniform("kind"), model ? 1 : 2);
+    glUniform1i(uniform("basis"), model ? p["basis_index"].get<int>() : 0);
+    glUniform1i(uniform("order"), p.value("order", 0));
+    glUniform1i(uniform("planes"), p["planes"].get<int>());
+    glUniform1i(uniform("channels"), p["channels"].get<int>());
+    glUniform1i(uniform("albedo"), !p.contains("albedo") ? 0 : p["albedo"]["use"] == "multiplies" ? 1 : 2);
+    if (model)
+        for (std::size_t k = 0; k < p["scale"].size(); ++k) {
+            glUniform1f(uniform("scale[" + std::to_string(k) + "]"), p["scale"][k].get<float>());
+            glUniform1f(uniform("bias[" + std::to_string(k) + "]"), p["bias"][k].get<float>());
+        }
+    glUniform1i(uniform("regions"), p["regions"].get<int>());
+    glUniform1f(uniform("codes"), p["codes"].get<float>());
+    glUniform1i(uniform("greyOutput"), p["output_channels"] == 1);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+    const std::string usage = "usage: btflut_example_quad DIR --light THETA,PHI -o out.png [--no-dither]";
     std::string folder, output, lightText;
     bool dither = true;
     for (int i = 1; i < argc; ++i) {
@@ -107,62 +214,81 @@ int main(int argc, char** argv) {
         else if (a == "-o" && i + 1 < argc) output = argv[++i];
         else if (a == "--no-dither") dither = false;
         else if (folder.empty() && a[0] != '-') folder = a;
-        else fail("usage: btflut_example_quad DIR --light THETA,PHI -o out.png [--no-dither]");
+        else fail(usage);
     }
     double theta = 0, phi = 0;
-    if (folder.empty() || output.empty() || std::sscanf(lightText.c_str(), "%lf,%lf", &theta, &phi) != 2)
-        fail("usage: btflut_example_quad DIR --light THETA,PHI -o out.png [--no-dither]");
+    if (folder.empty() || output.empty() || std::sscanf(lightText.c_str(), "%lf,%lf", &theta, &phi) != 2) fail(usage);
 
-    // The sidecar says what the textures hold.
-    const nlohmann::json material = nlohmann::json::parse(readText(folder + "/material.json"), nullptr, false);
-    if (material.is_discarded() || material.value("format", "") != "btflut-material" || material.value("version", 0) != 1)
-        fail(folder + "/material.json: not a version 1 btflut material");
-    const int entries = material["luts"]["entries"], grid = material["luts"]["grid_size"], layers = material["luts"]["layers"];
-    const bool rgbLuts = material["colour"] == "rgb";
-
-    int w = 0, h = 0, channels = 0;
-    const bool deep = material["reference"]["bit_depth"] == 16;
-    void* reference = deep ? static_cast<void*>(stbi_load_16((folder + "/reference.png").c_str(), &w, &h, &channels, 0))
-                           : static_cast<void*>(stbi_load((folder + "/reference.png").c_str(), &w, &h, &channels, 0));
-    if (!reference) fail(folder + "/reference.png: cannot decode");
+    // The sidecar says what the textures hold; this program reads versions 1 and 2.
+    const std::string sidecar = folder + "/material.json";
+    const nlohmann::json material = nlohmann::json::parse(readText(sidecar), nullptr, false);
+    if (material.is_discarded() || material.value("format", "") != "btflut-material") fail(sidecar + ": not a btflut material");
+    if (const int version = material.value("version", 0); version < 1 || version > 2)
+        fail(sidecar + ": version " + std::to_string(version) + ", this program reads versions 1 and 2");
+    const std::string shaderPath = folder + "/" + material["shader"].get<std::string>(), include = readText(shaderPath);
+    if (const int have = includeVersion(include), need = material.value("shader_version", 1); have < need)
+        fail(shaderPath + ": the shader include is version " + std::to_string(have) + ", older than the version " +
+             std::to_string(need) + " material.json needs (copy the btflut.glsl that export wrote)");
+    const std::string kind = material.value("kind", "luts");
+    const bool predictor = kind != "luts";
+    const int entries = material["luts"]["entries"], grid = material["luts"]["grid_size"];
+    const int blocks = predictor ? material["luts"]["regions"].get<int>() : material["luts"]["layers"].get<int>();
     int lw = 0, lh = 0, lc = 0;
     stbi_us* luts = stbi_load_16((folder + "/luts.png").c_str(), &lw, &lh, &lc, 0);
-    if (!luts || lw != entries || lh != grid * grid * layers) fail(folder + "/luts.png: not the texture material.json describes");
+    if (!luts || lw != entries || lh != grid * grid * blocks) fail(folder + "/luts.png: not the texture material.json describes");
 
     const Context egl = createContext();
     const GLenum format[] = {0, GL_RED, GL_RG, GL_RGB, GL_RGBA};
-    GLuint textures[2];
-    glGenTextures(2, textures);
+    GLuint textures[5];
+    glGenTextures(5, textures);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, textures[0]);
-    const GLint internal = deep ? (channels == 1 ? GL_R16 : GL_RGB16) : (channels == 1 ? GL_R8 : GL_RGB8);
-    glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format[channels], deep ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE, reference);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    // The LUT grid: the PNG's rows are the 3D texture's (entries x G x G * layers) memory.
+    // The LUT grid: the PNG's rows are the 3D texture's (entries x G x G * blocks) memory.
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_3D, textures[1]);
-    glTexImage3D(GL_TEXTURE_3D, 0, lc == 1 ? GL_R16 : GL_RGB16, entries, grid, grid * layers, 0, format[lc], GL_UNSIGNED_SHORT, luts);
+    glTexImage3D(GL_TEXTURE_3D, 0, lc == 1 ? GL_R16 : GL_RGB16, entries, grid, grid * blocks, 0, format[lc], GL_UNSIGNED_SHORT, luts);
     for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTexParameteri(GL_TEXTURE_3D, p, GL_LINEAR);
     for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTexParameteri(GL_TEXTURE_3D, p, GL_CLAMP_TO_EDGE);
+    stbi_image_free(luts);
 
     const GLuint program = glCreateProgram();
     glAttachShader(program, compile(GL_VERTEX_SHADER, kVertex));
-    glAttachShader(program, compile(GL_FRAGMENT_SHADER, "#version 330 core\n" + readText(folder + "/" + material["shader"].get<std::string>()) + kFragment));
+    glAttachShader(program, compile(GL_FRAGMENT_SHADER, "#version 330 core\n" + include + (predictor ? kPredictorFragment : kFragment)));
     glLinkProgram(program);
     glUseProgram(program);
-    glUniform1i(glGetUniformLocation(program, "reference"), 0);
     glUniform1i(glGetUniformLocation(program, "luts"), 1);
     const double t = theta * M_PI / 180, p = phi * M_PI / 180;
     glUniform3f(glGetUniformLocation(program, "light"), static_cast<float>(std::sin(t) * std::cos(p)),
                 static_cast<float>(std::sin(t) * std::sin(p)), static_cast<float>(std::cos(t)));
-    glUniform1i(glGetUniformLocation(program, "material.layer"), 0);
-    glUniform1i(glGetUniformLocation(program, "material.rgbLuts"), rgbLuts);
-    glUniform1i(glGetUniformLocation(program, "material.greyReference"), channels == 1);
-    glUniform1f(glGetUniformLocation(program, "material.inputCode"), material["lut_input_code"].get<float>());
-    glUniform1f(glGetUniformLocation(program, "material.outputCode"), material["lut_output_code"].get<float>());
-    glUniform1i(glGetUniformLocation(program, "material.dither"), dither);
+    const bool rgbLuts = material["colour"] == "rgb";
+    int w = 0, h = 0, channels = 0;
+    if (predictor) {
+        const nlohmann::json& settings = material["predictor"];
+        setUpPredictor(program, folder, settings, textures + 2, w, h);
+        channels = settings["output_channels"];
+        glUniform1i(glGetUniformLocation(program, "predictor.rgbLuts"), rgbLuts);
+        glUniform1f(glGetUniformLocation(program, "predictor.outputCode"), material["lut_output_code"].get<float>());
+        glUniform1i(glGetUniformLocation(program, "predictor.dither"), dither);
+    } else {
+        const bool deep = material["reference"]["bit_depth"] == 16;
+        const std::string path = folder + "/reference.png";
+        void* reference = deep ? static_cast<void*>(stbi_load_16(path.c_str(), &w, &h, &channels, 0))
+                               : static_cast<void*>(stbi_load(path.c_str(), &w, &h, &channels, 0));
+        if (!reference) fail(path + ": cannot decode");
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, textures[0]);
+        const GLint internal = deep ? (channels == 1 ? GL_R16 : GL_RGB16) : (channels == 1 ? GL_R8 : GL_RGB8);
+        glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format[channels], deep ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE, reference);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        stbi_image_free(reference);
+        glUniform1i(glGetUniformLocation(program, "reference"), 0);
+        glUniform1i(glGetUniformLocation(program, "material.layer"), 0);
+        glUniform1i(glGetUniformLocation(program, "material.rgbLuts"), rgbLuts);
+        glUniform1i(glGetUniformLocation(program, "material.greyReference"), channels == 1);
+        glUniform1f(glGetUniformLocation(program, "material.inputCode"), material["lut_input_code"].get<float>());
+        glUniform1f(glGetUniformLocation(program, "material.outputCode"), material["lut_output_code"].get<float>());
+        glUniform1i(glGetUniformLocation(program, "material.dither"), dither);
+    }
 
     GLuint framebuffer, target, vertexArray;
     glGenFramebuffers(1, &framebuffer);
@@ -184,15 +310,13 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < static_cast<std::size_t>(w) * h; ++i)
         for (int c = 0; c < channels; ++c) out[i * channels + c] = rgba[i * 4 + c];
     if (!stbi_write_png(output.c_str(), w, h, channels, out.data(), w * channels)) fail(output + ": cannot write");
-    std::printf("wrote %s (%dx%d)\n", output.c_str(), w, h);
+    std::printf("wrote %s (%dx%d, %s material)\n", output.c_str(), w, h, kind.c_str());
 
     glDeleteVertexArrays(1, &vertexArray);
     glDeleteRenderbuffers(1, &target);
     glDeleteFramebuffers(1, &framebuffer);
     glDeleteProgram(program);
-    glDeleteTextures(2, textures);
-    stbi_image_free(reference);
-    stbi_image_free(luts);
+    glDeleteTextures(5, textures);
     eglMakeCurrent(egl.display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(egl.display, egl.context);
     eglTerminate(egl.display);

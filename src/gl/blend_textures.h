@@ -36,12 +36,6 @@ public:
     /// frame's uniforms.
     void bind(GLuint program, const RelightFrame& frame, const std::vector<GlTexture>& tables, int first) const;
 
-    /// The planes (or references) array and the labels (0 without regions), for shaders that
-    /// read them their own way (the shapes: ShapeRenderer).
-    GLuint planes() const { return m_references.id(); }
-    GLuint labels() const { return m_labels.id(); }
-    GLuint albedo() const { return m_albedo.id(); }
-
 private:
     const LutBank* m_bank = nullptr;
     GlTexture m_references, m_albedo, m_labels;

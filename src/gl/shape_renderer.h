@@ -2,23 +2,23 @@
 // A material on a sphere or a cylinder (shaders/shape.vert, shape.frag): each fragment takes
 // the light and view directions in its own tangent frame and the LUT for them from the bank's
 // grid (one trilinear fetch, as shaders/btflut.glsl does in an engine), so light and view vary
-// across the surface. A directional or a point light. Every kind of bank: for a bank with a
-// predictor (a light model, or references blended) the predictor's weights are read per
-// fragment bilinearly from a grid over the light disk (lightModelWeightGrid,
-// referenceWeightGrid), its planes or references bilinearly at the texel, and the match LUT
-// from the bank's match grid at that light (per region): as the scene renderer relights, with
-// the light varying over the surface.
+// across the surface. A directional or a point light. Every kind of bank, drawn as an engine
+// draws its export (EngineMaterial, EngineTextures, btflut.glsl's btflutRelight): for a bank
+// with a predictor (a light model, or references blended) the predictor's weights at each
+// fragment's light (closed form, or read from a grid over the light disk), its planes or
+// references bilinearly at the texel, and the match LUT from the bank's match grid at that
+// light (per region).
 //
 //   Result<std::unique_ptr<ShapeRenderer>> r = ShapeRenderer::create("rock.btflut");
 //   (*r)->draw({Shape::Sphere, eye, target, up, 40, light}, 800, 600);   // then read framebuffer()
 
 #include <memory>
-#include <optional>
 
 #include "core/bank/lut_bank.h"
 #include "core/data/scene.h"
 #include "core/result.h"
-#include "gl/blend_textures.h"
+#include "core/predict/engine_material.h"
+#include "gl/engine_textures.h"
 #include "gl/objects.h"
 #include "gl/textures.h"
 
@@ -58,9 +58,9 @@ private:
     LutBank m_bank;
     GlProgram m_program;
     GlVertexArray m_vertexArray;
-    GlTexture m_reference, m_luts;  ///< a bank with a predictor: m_luts is its match grid
-    std::optional<BlendTextures> m_planes;  ///< a bank with a predictor: planes or references, albedo, labels
-    GlTexture m_weights;                    ///< ... and its weights over the light disk
+    EngineMaterial m_material;  ///< the bank as btflut.glsl draws it
+    GlTexture m_reference;
+    EngineTextures m_textures;
     ColourDepthTarget m_target;
     int m_width = 0, m_height = 0;
     std::string m_gridNote;

@@ -1,6 +1,9 @@
 // btflut export: a bank for engines (a folder: reference, 3D LUT texture, sidecar, shader
 // include; docs/engines.md), as the older 16-bit PNG atlas, or its PTM as an RTI .ptm file.
+#include <unistd.h>
+
 #include <algorithm>
+#include <bit>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -9,7 +12,10 @@
 #include "cli/cli.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
+#include "core/predict/engine_material.h"
+#include "core/predict/light_model.h"
 #include "core/predict/ptm_file.h"
+#include "core/predict/relighter.h"
 #include "gl/shader.h"
 
 namespace btflut::cli {
@@ -24,22 +30,24 @@ struct ExportOptions {
     bool force = false;
 };
 
-// The grid's LUTs as a 16-bit image: one row per grid node (layer-major, then j, then i) and
-// region, one column per LUT entry (or quantile sample); RGB banks use the three colour
-// channels. For a bank of LUTs (one region) its rows are, in memory, the 3D texture of width
-// entries, height G and depth G x layers that `export -o DIR/` hands to engines.
-Result<Image> gridImage(const ExportOptions& o, const LutBank& b, const std::string& what) {
-    const int cells = b.gridSize * b.gridSize;
-    const int channels = b.channels();
-    const int width = static_cast<int>(b.segmentLength()), regions = b.makesLuts() ? b.blend.regions : 1;
-    const std::uint64_t rows = static_cast<std::uint64_t>(cells) * b.layers.size() * static_cast<std::uint64_t>(regions);
+// 16-bit texels as an image of `rows` rows of `width` (refused beyond what a PNG holds).
+Result<Image> lutRows(const ExportOptions& o, int width, std::uint64_t rows, int channels,
+                      const std::vector<std::uint16_t>& texels, const std::string& what) {
     if (rows > 0x7FFFFFFFu || rows * static_cast<std::uint64_t>(width) > maxImagePixels())
         return Error{o.bank + ": its " + what + " would be " + std::to_string(width) + "x" + std::to_string(rows) +
                      " pixels, more than a PNG (or --max-pixels) allows; bake it with a smaller --grid"};
     Image image(width, static_cast<int>(rows), channels, 16);
-    const std::vector<std::uint16_t> texels = b.gridTexels();  // the same order as the image's samples
     std::transform(texels.begin(), texels.end(), image.samples.begin(), [](std::uint16_t t) { return t / 65535.f; });
     return image;
+}
+
+// The grid's LUTs as a 16-bit image: one row per grid node (layer-major, then j, then i) and
+// region, one column per LUT entry (or quantile sample); RGB banks use the three colour
+// channels (the atlas).
+Result<Image> gridImage(const ExportOptions& o, const LutBank& b, const std::string& what) {
+    const std::uint64_t rows = static_cast<std::uint64_t>(b.gridSize) * static_cast<std::uint64_t>(b.gridSize) * b.layers.size() *
+                               static_cast<std::uint64_t>(b.makesLuts() ? b.blend.regions : 1);
+    return lutRows(o, static_cast<int>(b.segmentLength()), rows, b.channels(), b.gridTexels(), what);  // the same order as the image's samples
 }
 
 Status exportAtlas(const ExportOptions& o, const LutBank& b) {
@@ -148,29 +156,100 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     return success();
 }
 
-// The folder an engine loads: reference.png (its own bit depth), luts.png (the LUT grid as a
-// 3D texture's slices, 16-bit), material.json and btflut.glsl.
+// Writes `files` (names inside `folder`) so that a failure leaves no partial folder: a new
+// folder is filled beside its place and renamed into it; an existing one (empty, or --force)
+// gets every file complete before the first is renamed (writeFilesAtomically).
+Status writeFolder(const std::string& folder, const std::vector<std::pair<std::string, std::string_view>>& files) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const bool exists = fs::exists(folder, ec);
+    fs::path target(folder);
+    if (target.filename().empty()) target = target.parent_path();  // DIR/
+    const fs::path dir = exists ? target : fs::path(target.string() + ".partial-" + std::to_string(::getpid()));
+    if (!exists) {
+        if (!target.parent_path().empty()) fs::create_directories(target.parent_path(), ec);
+        if (ec || !fs::create_directory(dir, ec) || ec)
+            return Error{folder + ": cannot create the folder (" + (ec ? ec.message() : std::string("it exists")) + ")"};
+    }
+    std::vector<FileContents> contents;
+    for (const auto& [name, bytes] : files) contents.push_back({(dir / name).string(), bytes.data(), bytes.size()});
+    Status written = writeFilesAtomically(contents);
+    if (written && !exists) {
+        fs::rename(dir, target, ec);
+        if (ec) written = Error{folder + ": cannot move the finished folder into place (" + ec.message() + ")"};
+    }
+    if (!written && !exists) fs::remove_all(dir, ec);
+    return written;
+}
+
+std::string_view asText(const Bytes& bytes) { return {reinterpret_cast<const char*>(bytes.data()), bytes.size()}; }
+
+// The sidecar's "predictor" (version 2): what btflut.glsl's BtflutPredictor takes, and the
+// files of its textures.
+nlohmann::json predictorJson(const EngineMaterial& m, const std::vector<std::string>& images, bool albedo, bool labels) {
+    const bool model = m.kind == EngineMaterial::Kind::Model;
+    nlohmann::json p{{"kind", model ? "model" : "references"},
+                     {"images", images},
+                     {"images_layout", model ? "RGBA8, planes four to an image (plane p: image p / 4, channel p % 4); "
+                                               "value_p = (code_p - bias[p]) * scale[p], code 0 .. 255"
+                                             : "one reference per image (RGB; a grey one in R, G and B)"},
+                     {"planes", m.planes},
+                     {"channels", m.channels},
+                     {"codes", m.codes},
+                     {"output_channels", m.outputChannels},
+                     {"regions", m.regions}};
+    if (model) {
+        p["basis"] = lightBasisName(m.basis);
+        p["basis_index"] = static_cast<int>(m.basis);
+        if (m.basis == LightBasis::Hsh) p["order"] = m.order;
+        p["scale"] = m.scale;
+        p["bias"] = m.bias;
+    }
+    if (albedo)
+        p["albedo"] = {{"file", "albedo.png"}, {"use", m.albedoMultiplies ? "multiplies" : "chroma"}};
+    if (labels) p["labels"] = {{"file", "labels.png"}, {"texture", "R8, nearest: each texel's region (value = region)"}};
+    if (m.weights > 0)
+        p["weights"] = {{"file", "weights.bin"},
+                        {"format", "float32, little-endian, [layer][j][i][4]: a 2D array texture of RGBA32F layers"},
+                        {"grid_size", m.weightGridSize},
+                        {"count", m.weights},
+                        {"layers", m.weightLayers()},
+                        {"row", model ? "the channels' offsets, then each plane's channel weights ((1 + planes) x channels)"
+                                      : "one weight per reference"},
+                        {"grid_mapping", "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise; read "
+                                         "bilinearly between nodes (btflutWeightLayer)"}};
+    else
+        p["weights"] = nullptr;  // ptm, hsh: closed form in btflut.glsl
+    return p;
+}
+
+// The folder an engine loads (docs/engines.md): reference.png (its own bit depth), luts.png
+// (the LUT grid as a 3D texture's slices, 16-bit), material.json and btflut.glsl; for a bank
+// with a predictor also its planes (or references), albedo, weights and labels.
 Status exportFolder(const ExportOptions& o, const LutBank& b) {
     namespace fs = std::filesystem;
-    if (b.makesLuts())
-        return Error{o.bank + ": this bank makes its LUTs at run time from its predictor (relighter.h), which no "
-                              "single texture holds; export its atlas with -o atlas.png, or bake with --references 1"};
-    if (b.reference.samples.empty()) return Error{o.bank + ": the bank holds no reference image (baked with --no-reference)"};
     std::error_code ec;
     if (fs::exists(o.output, ec)) {
         if (!fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
         if (!fs::is_empty(o.output, ec) && !o.force)
             return Error{o.output + ": the folder is not empty (--force writes over btflut's files in it)"};
     }
-    const int g = b.gridSize, layers = static_cast<int>(b.layers.size()), channels = b.channels();
-    // Row (layer * G + j) * G + i holds node (i, j)'s LUT (a bank of LUTs has one region).
-    Result<Image> luts = gridImage(o, b, "LUT texture");
+    Result<EngineMaterial> made = engineMaterial(b, o.bank);
+    if (!made) return Error{made.error()};
+    const EngineMaterial& m = *made;
+    const bool predictor = m.kind != EngineMaterial::Kind::Luts;
+    const int g = m.gridSize;
+    // Row (block * G + j) * G + i holds node (i, j)'s LUT; a block is a view layer or a region.
+    Result<Image> luts = lutRows(o, m.entries, static_cast<std::uint64_t>(g) * g * static_cast<std::uint64_t>(m.blocks), m.lutChannels,
+                                 m.lutTexels, "LUT texture");
     if (!luts) return Error{luts.error()};
     nlohmann::json side{
+        // Banks of LUTs keep version 1, so that loaders written for it still read them.
         {"format", "btflut-material"},
-        {"version", 1},
+        {"version", predictor ? 2 : 1},
+        {"kind", predictor ? (m.kind == EngineMaterial::Kind::Model ? "model" : "references") : "luts"},
         {"shader", "btflut.glsl"},
-        {"shader_version", 1},
+        {"shader_version", predictor ? 2 : 1},
         {"reference", {{"file", "reference.png"},
                        {"width", b.reference.width},
                        {"height", b.reference.height},
@@ -180,19 +259,20 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
                        {"light", directionJson(b.referenceLight)},
                        {"view", directionJson(b.referenceView)}}},
         {"luts", {{"file", "luts.png"},
-                  {"texture", "3D, width entries, height grid_size, depth grid_size x layers; 16-bit unorm, " +
-                                  std::string(channels == 3 ? "RGB (one LUT per colour channel)" : "one channel")},
-                  {"entries", b.entries},
+                  {"texture", "3D, width entries, height grid_size, depth grid_size x " + std::string(predictor ? "regions" : "layers") +
+                                  "; 16-bit unorm, " + (m.lutChannels == 3 ? "RGB (one LUT per colour channel)" : "one channel")},
+                  {"entries", m.entries},
                   {"grid_size", g},
-                  {"layers", layers},
-                  {"row_of_node", "(layer * grid_size + j) * grid_size + i"}}},
+                  {"layers", predictor ? 1 : m.blocks},
+                  {"row_of_node", predictor ? "(region * grid_size + j) * grid_size + i" : "(layer * grid_size + j) * grid_size + i"}}},
         {"colour", colourName(b.colour)},
-        {"lut_input_code", inputCode(b.reference, b.colour)},
-        {"lut_output_code", b.targetCode()},
+        {"lut_input_code", m.inputCode},
+        {"lut_output_code", m.outputCode},
         {"grid_mapping", "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise with j; a direction "
                          "(theta, phi) maps to sqrt(2) sin(theta / 2) (cos phi, sin phi); z = surface normal, x = "
                          "texture +u (image right), y = texture +v (image up)"},
         {"views", nlohmann::json::array()}};
+    if (predictor) side["luts"]["regions"] = m.regions;
     for (const ViewLayer& layer : b.layers) {
         nlohmann::json provenance = nlohmann::json::array();
         for (Provenance p : layer.gridProvenance) provenance.push_back(provenanceName(p));
@@ -200,20 +280,34 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
     }
     if (!b.modelFill.empty()) side["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
 
-    const Bytes reference = encodePng(b.reference, b.reference.bitDepth), lutPng = encodePng(*luts, 16);
+    std::vector<std::pair<std::string, Bytes>> pngs{{"reference.png", encodePng(b.reference, b.reference.bitDepth)},
+                                                    {"luts.png", encodePng(*luts, 16)}};
+    std::string weights;
+    if (predictor) {
+        std::vector<std::string> images;
+        for (std::size_t k = 0; k < m.images.size(); ++k) {
+            images.push_back("planes-" + std::to_string(k) + ".png");
+            pngs.push_back({images.back(), encodePng(m.images[k], 8)});
+        }
+        const bool albedo = !m.albedo.samples.empty(), labels = !m.labels.samples.empty();
+        if (albedo) pngs.push_back({"albedo.png", encodePng(m.albedo, 8)});
+        if (labels) pngs.push_back({"labels.png", encodePng(m.labels, 8)});
+        side["predictor"] = predictorJson(m, images, albedo, labels);
+        static_assert(std::endian::native == std::endian::little, "weights.bin is little-endian");
+        weights.assign(reinterpret_cast<const char*>(m.weightGrid.data()), m.weightGrid.size() * sizeof(float));
+    }
     const std::string text = jsonText(side);
-    const std::string_view shader = embeddedShader("btflut.glsl");
-    fs::create_directories(o.output, ec);
-    if (ec) return Error{o.output + ": cannot create the folder (" + ec.message() + ")"};
-    const fs::path dir(o.output);
-    std::vector<FileContents> files{{(dir / "reference.png").string(), reference.data(), reference.size()},
-                                    {(dir / "luts.png").string(), lutPng.data(), lutPng.size()},
-                                    {(dir / "material.json").string(), text.data(), text.size()},
-                                    {(dir / "btflut.glsl").string(), shader.data(), shader.size()}};
-    if (Status s = writeFilesAtomically(files); !s) return s;
-    std::cout << "wrote " << o.output << ": reference.png (" << b.reference.width << "x" << b.reference.height << ", "
-              << b.reference.bitDepth << "-bit), luts.png (3D texture " << b.entries << "x" << g << "x" << g * layers
-              << ", 16-bit), material.json, btflut.glsl\n";
+    std::vector<std::pair<std::string, std::string_view>> files;
+    for (const auto& [name, bytes] : pngs) files.push_back({name, asText(bytes)});
+    if (!weights.empty()) files.push_back({"weights.bin", weights});
+    files.push_back({"material.json", text});
+    files.push_back({"btflut.glsl", embeddedShader("btflut.glsl")});
+    if (Status s = writeFolder(o.output, files); !s) return s;
+    std::cout << "wrote " << o.output << ": " << side["kind"].get<std::string>() << " material, luts.png (3D texture "
+              << m.entries << "x" << g << "x" << g * m.blocks << ", 16-bit)";
+    for (const auto& file : files)
+        if (file.first != "luts.png") std::cout << ", " << file.first;
+    std::cout << "\n";
     return success();
 }
 
@@ -233,11 +327,12 @@ Status runExport(const ExportOptions& o) {
         if (Status s = exportPtm(o, *bank); !s) return s;
     if (o.output.empty()) return success();
     if (o.grid > 0 && o.grid != bank->gridSize) {  // resampled from the measured directions
-        if (bank->makesLuts()) return Error{o.bank + ": --grid: this bank makes its LUTs at run time"};
-        const std::uint64_t bytes = static_cast<std::uint64_t>(o.grid) * o.grid * bank->lutLength() * 2 * bank->layers.size();
+        const std::size_t length = bank->makesLuts() ? bank->matchLength() : bank->lutLength();
+        const std::uint64_t bytes = static_cast<std::uint64_t>(o.grid) * o.grid * length * 2 * bank->layers.size();
         if (bytes > (std::uint64_t{1} << 31)) return Error{"--grid " + std::to_string(o.grid) + ": the LUT texture would take " + std::to_string(bytes) + " bytes"};
         bank->gridSize = o.grid;
         bank->fillGrids();
+        if (bank->makesLuts()) bakeMatchGrid(*bank);  // the match LUTs at the new nodes
     }
     return fileExtension(o.output) == "png" ? exportAtlas(o, *bank) : exportFolder(o, *bank);
 }

@@ -321,7 +321,7 @@ Mask fullMask(int width, int height) {
 
 Bytes encodePng(const Image& image, int bitDepth) {
     BTFLUT_CHECK(bitDepth == 8 || bitDepth == 16);
-    BTFLUT_CHECK(image.channels == 1 || image.channels == 3);
+    BTFLUT_CHECK(image.channels == 1 || image.channels == 3 || image.channels == 4);
     const double scale = bitDepth == 16 ? 65535.0 : 255.0;
     auto code = [scale](float v) {
         return std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * scale);
@@ -345,7 +345,9 @@ Bytes encodePng(const Image& image, int bitDepth) {
     ihdr.width = static_cast<std::uint32_t>(image.width);
     ihdr.height = static_cast<std::uint32_t>(image.height);
     ihdr.bit_depth = static_cast<std::uint8_t>(bitDepth);
-    ihdr.color_type = image.channels == 1 ? SPNG_COLOR_TYPE_GRAYSCALE : SPNG_COLOR_TYPE_TRUECOLOR;
+    ihdr.color_type = image.channels == 1   ? SPNG_COLOR_TYPE_GRAYSCALE
+                      : image.channels == 3 ? SPNG_COLOR_TYPE_TRUECOLOR
+                                            : SPNG_COLOR_TYPE_TRUECOLOR_ALPHA;
     BTFLUT_CHECK(spng_set_ihdr(ctx.get(), &ihdr) == 0);
     const void* raw = bitDepth == 8 ? static_cast<const void*>(raw8.data()) : raw16.data();
     std::size_t rawSize = bitDepth == 8 ? raw8.size() : raw16.size() * 2;

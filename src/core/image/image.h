@@ -114,7 +114,7 @@ Mask fullMask(int width, int height);
 /// byte * scale / 255, for files.
 Image byteImage(const std::vector<std::uint8_t>& bytes, int width, int height, int scale);
 
-/// PNG bytes of an image at 8 or 16 bits per sample (values clamped to [0, 1]).
+/// PNG bytes of an image at 8 or 16 bits per sample (values clamped to [0, 1]); grey, RGB or RGBA.
 Bytes encodePng(const Image& image, int bitDepth);
 
 /// Writes a PNG atomically.

@@ -230,21 +230,6 @@ LightModelFixed lightModelFixed(const LightModel& model, Direction light) {
     return f;
 }
 
-std::vector<float> lightModelWeightGrid(const LightModel& model, int size) {
-    BTFLUT_CHECK(size >= 2);
-    const auto P = static_cast<std::size_t>(model.planes), C = static_cast<std::size_t>(model.channels);
-    const std::size_t stride = P * C + C;
-    std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * stride);
-    for (int j = 0; j < size; ++j)
-        for (int i = 0; i < size; ++i) {
-            const FoldedWeights f = foldedWeights(model, fromDisk(diskGridPoint(i, j, size)));  // beyond the rim: at the horizon
-            float* node = &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * stride];
-            std::transform(f.weights.begin(), f.weights.end(), node, [](double v) { return static_cast<float>(v); });
-            for (std::size_t c = 0; c < C; ++c) node[P * C + c] = static_cast<float>(f.offset[c]);
-        }
-    return grid;
-}
-
 std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightModelFixed& fixed, std::size_t texel) {
     const auto P = static_cast<std::size_t>(model.planes), C = static_cast<std::size_t>(model.channels);
     const std::uint8_t* bytes = &model.coefficients[texel * P];

@@ -98,14 +98,6 @@ struct LightModelFixed {
 };
 LightModelFixed lightModelFixed(const LightModel& model, Direction light);
 
-/// The folded weights of lightModelFixed, in floats, over a size x size grid of the equal-area
-/// light disk (node (i, j) at x = -1 + 2 i / (size - 1), y likewise; beyond the horizon, the
-/// horizon's): per node, planes x channels weights [p * channels + c], then the channels'
-/// offsets, so that a texel's value is offset_c + sum_p code_p w_pc (1 = white before the
-/// albedo). For shaders that need the weights per fragment (curved surfaces, point lights)
-/// and read them bilinearly.
-std::vector<float> lightModelWeightGrid(const LightModel& model, int size);
-
 /// A texel's channels times 255 * kWeightUnit (kWeightUnit: relighter.h), clamped: the
 /// fixed-point prediction, channels 1 or 3 (grey models give one).
 std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightModelFixed& fixed, std::size_t texel);

@@ -1,0 +1,161 @@
+#include "core/predict/engine_material.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.h"
+#include "core/predict/light_model.h"
+#include "core/predict/relighter.h"
+
+namespace btflut {
+
+namespace {
+
+// A predictor bank's match grid (LutBank::matchGridLuts, per node [region][channel][entry])
+// in the 3D texture's order, [region][j][i][entry][channel].
+std::vector<std::uint16_t> matchGridTexels(const LutBank& bank, const std::vector<std::uint16_t>& grid) {
+    const auto g = static_cast<std::size_t>(bank.gridSize), entries = static_cast<std::size_t>(bank.entries),
+               channels = static_cast<std::size_t>(bank.channels()), regions = static_cast<std::size_t>(bank.blend.regions);
+    BTFLUT_CHECK(grid.size() == g * g * regions * channels * entries);
+    std::vector<std::uint16_t> texels(grid.size());
+    std::size_t at = 0;
+    for (std::size_t r = 0; r < regions; ++r)
+        for (std::size_t cell = 0; cell < g * g; ++cell)
+            for (std::size_t k = 0; k < entries; ++k)
+                for (std::size_t c = 0; c < channels; ++c) texels[at++] = grid[((cell * regions + r) * channels + c) * entries + k];
+    return texels;
+}
+
+// `count` values per node of a size x size grid as layers of four: [layer][node][4].
+std::vector<float> inLayers(const std::vector<float>& grid, std::size_t count, int size) {
+    const std::size_t nodes = static_cast<std::size_t>(size) * static_cast<std::size_t>(size), layers = (count + 3) / 4;
+    BTFLUT_CHECK(grid.size() == nodes * count);
+    std::vector<float> out(layers * nodes * 4, 0.f);
+    for (std::size_t n = 0; n < nodes; ++n)
+        for (std::size_t k = 0; k < count; ++k) out[((k / 4) * nodes + n) * 4 + k % 4] = grid[n * count + k];
+    return out;
+}
+
+// A light model's rows ((1 + P) x channels: the offsets, then each plane's channel weights)
+// over the engine's weight grid: bln's own nodes (its bilinear read is exact), rbf sampled.
+std::vector<float> modelWeightGrid(const LightModel& m, int& size) {
+    if (m.basis == LightBasis::Bilinear) {
+        size = m.grid;
+        return m.table;
+    }
+    size = kEngineWeightGrid;
+    const auto P = static_cast<std::size_t>(m.planes), C = static_cast<std::size_t>(m.channels), row = (1 + P) * C;
+    std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * row);
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i) {
+            const LightModel::Weights w = m.weightsAt(fromDisk(diskGridPoint(i, j, size)));  // beyond the rim: the horizon's
+            float* node = &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * row];
+            std::copy_n(w.offset.begin(), C, node);
+            std::copy(w.weight.begin(), w.weight.end(), node + C);
+        }
+    return grid;
+}
+
+// RGBA8 images of `count` values per texel, four to an image: value(texel, k) in 0 .. 255.
+template <class Value>
+std::vector<Image> fourToAnImage(int width, int height, std::size_t count, Value value) {
+    std::vector<Image> images;
+    const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    for (std::size_t first = 0; first < count; first += 4) {
+        Image image(width, height, 4);
+        for (std::size_t i = 0; i < texels; ++i)
+            for (std::size_t c = 0; c < 4 && first + c < count; ++c) image.samples[i * 4 + c] = static_cast<float>(value(i, first + c)) / 255.f;
+        images.push_back(std::move(image));
+    }
+    return images;
+}
+
+// An image as RGBA8 (grey in R, G and B; alpha opaque), the layout of the planes' array.
+Image rgba(const Image& image) {
+    Image out(image.width, image.height, 4);
+    const auto channels = static_cast<std::size_t>(image.channels);
+    for (std::size_t i = 0; i < image.pixelCount(); ++i) {
+        for (std::size_t c = 0; c < 3; ++c)
+            out.samples[i * 4 + c] = std::round(image.samples[i * channels + std::min(c, channels - 1)] * 255.f) / 255.f;
+        out.samples[i * 4 + 3] = 1.f;
+    }
+    return out;
+}
+
+void setModel(EngineMaterial& out, const LightModel& m) {
+    out.kind = EngineMaterial::Kind::Model;
+    out.basis = m.basis;
+    out.order = m.order;
+    out.planes = m.planes;
+    out.channels = m.channels;
+    // 4-bit codes n are stored as 17 n (0 .. 255): value = (n - b) s = (17 n - 17 b) s / 17.
+    for (int p = 0; p < m.planes; ++p) {
+        const float widen = m.maxCode(p) == 255 ? 1.f : 17.f;
+        out.scale.push_back(m.scale[static_cast<std::size_t>(p)] / widen);
+        out.bias.push_back(m.bias[static_cast<std::size_t>(p)] * widen);
+    }
+    const auto P = static_cast<std::size_t>(m.planes);
+    out.images = fourToAnImage(m.width, m.height, P, [&](std::size_t i, std::size_t p) {
+        return m.coefficients[i * P + p] * (m.maxCode(static_cast<int>(p)) == 255 ? 1 : 17);
+    });
+    if (!m.albedo.empty()) {
+        out.albedo = Image(m.width, m.height, 3);
+        std::transform(m.albedo.begin(), m.albedo.end(), out.albedo.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
+        out.albedoMultiplies = true;
+    }
+    if (m.basis == LightBasis::Rbf || m.basis == LightBasis::Bilinear) {
+        out.weights = (m.planes + 1) * m.channels;
+        const std::vector<float> rows = modelWeightGrid(m, out.weightGridSize);
+        out.weightGrid = inLayers(rows, static_cast<std::size_t>(out.weights), out.weightGridSize);
+    }
+}
+
+}  // namespace
+
+Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& name) {
+    if (bank.reference.samples.empty()) return Error{name + ": the bank holds no reference image (baked with --no-reference)"};
+    EngineMaterial out;
+    out.colour = bank.colour;
+    out.entries = bank.entries;
+    out.gridSize = bank.gridSize;
+    out.lutChannels = bank.channels();
+    out.outputCode = bank.targetCode();
+    if (!bank.makesLuts()) {
+        out.blocks = static_cast<int>(bank.layers.size());
+        out.lutTexels = bank.gridTexels();
+        out.inputCode = inputCode(bank.reference, bank.colour);
+        out.reference = bank.reference;
+        out.outputChannels = bank.colour == ColourMode::Grey ? bank.reference.channels : 3;
+        return out;
+    }
+    const LutBank::Blend& blend = bank.blend;
+    std::vector<std::uint16_t> grid = bank.layers[0].matchGridLuts;
+    if (grid.empty()) {  // a file older than the match grid
+        LutBank copy = bank;
+        bakeMatchGrid(copy);
+        grid = copy.layers[0].matchGridLuts;
+    }
+    out.blocks = blend.regions;
+    out.lutTexels = matchGridTexels(bank, grid);
+    out.codes = predictionCodes(bank);
+    out.inputCode = 1.f / static_cast<float>(out.codes + 1);  // Relighter::inputCode
+    out.regions = blend.regions;
+    if (!blend.labels.empty()) out.labels = byteImage(blend.labels, bank.reference.width, bank.reference.height, 1);
+    const Image& first = bank.predictsWithModel() ? bank.reference : blend.references.front();  // as Relighter::apply
+    out.outputChannels = bank.colour == ColourMode::Grey ? first.channels : 3;
+    if (bank.predictsWithModel()) {
+        setModel(out, blend.model);
+        return out;
+    }
+    out.kind = EngineMaterial::Kind::References;
+    out.planes = static_cast<int>(blend.references.size());
+    out.channels = blend.references.front().channels;
+    for (const Image& reference : blend.references) out.images.push_back(rgba(reference));
+    if (bank.colour == ColourMode::Lrgb) out.albedo = blend.albedo;
+    out.weights = out.planes;
+    out.weightGridSize = kEngineWeightGrid;
+    out.weightGrid = inLayers(referenceWeightGrid(bank, kEngineWeightGrid), static_cast<std::size_t>(out.weights), kEngineWeightGrid);
+    return out;
+}
+
+}  // namespace btflut

@@ -1,0 +1,71 @@
+#pragma once
+// A bank as an engine draws it, per fragment, with shaders/btflut.glsl: what `btflut export
+// -o DIR/` writes (docs/engines.md) and what the viewer's sphere and cylinder upload, so both
+// run the same shader on the same textures.
+//
+//   luts     every bank: a LUT per grid node of the light disk as one 3D texture of 16-bit
+//            texels, entries x G x (G x blocks); a block is a view layer (banks of LUTs) or a
+//            region (banks with a predictor: their match LUTs, LutBank::matchGridLuts).
+//   model    a light model (ptm, hsh, rbf, bln): its planes as 8-bit codes, four to an RGBA
+//            image (4-bit planes as codes 17 n, their scale and bias adjusted: the same
+//            values), then the albedo; per plane value = (code - bias) scale. The weights:
+//            ptm and hsh in closed form (btflut.glsl), rbf and bln from the weight grid.
+//   references  the references, one to an image (grey ones in every channel), then the
+//            albedo (lrgb); their blend weights from the weight grid.
+// The weight grid: S x S nodes over the equal-area light disk (node (i, j) at x = -1 + 2 i /
+// (S - 1), y likewise), per node `weights` floats, four to a layer: [layer][j][i][4].
+// Model rows hold the offsets, then each plane's channel weights ((1 + P) x channels, as
+// LightModel::table); references rows one weight per reference.
+//
+//   Result<EngineMaterial> m = engineMaterial(bank, "m.btflut");
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/bank/lut_bank.h"
+#include "core/result.h"
+
+namespace btflut {
+
+struct EngineMaterial {
+    enum class Kind { Luts, Model, References } kind = Kind::Luts;
+    ColourMode colour = ColourMode::Grey;
+
+    // The LUT grid (every kind).
+    int entries = 0, gridSize = 0, blocks = 1, lutChannels = 1;
+    std::vector<std::uint16_t> lutTexels;  ///< [block][j][i][entry][channel]
+    float inputCode = 0;   ///< one code of the LUTs' input
+    float outputCode = 0;  ///< one code of the values they map to
+    int outputChannels = 1;  ///< of the relit image: 1 (grey) or 3
+
+    // Luts: the reference, relit by the LUTs directly.
+    Image reference;
+
+    // Model and References.
+    LightBasis basis = LightBasis::Ptm;  ///< Model
+    int order = 0;                       ///< hsh
+    int planes = 0;                      ///< Model: P; References: K
+    int channels = 1;                    ///< the prediction's channels before any albedo: 1 or 3
+    std::vector<float> scale, bias;      ///< Model, per plane, on the exported codes
+    std::vector<Image> images;           ///< RGBA8: the planes four to an image, or one reference each
+    Image albedo;                        ///< RGB8, empty when none
+    bool albedoMultiplies = false;       ///< Model: the albedo times the value; References (lrgb): the chroma after the match
+    int codes = 255;                     ///< codes of a prediction: 255, or 765 (the grey of RGB8)
+    int weightGridSize = 0, weights = 0; ///< 0: the weights in closed form (ptm, hsh)
+    std::vector<float> weightGrid;       ///< [layer][j][i][4], ceil(weights / 4) layers
+    Image labels;                        ///< 8-bit region per texel, empty with one region
+    int regions = 1;
+
+    int weightLayers() const { return (weights + 3) / 4; }
+};
+
+/// The weight grid's nodes a side for rbf and references (bln: its own grid, read exactly).
+constexpr int kEngineWeightGrid = 129;
+
+/// What an engine needs to draw `bank` (its first view layer's match grid for predictors,
+/// made here for files older than it). Refuses banks without a reference; `name` names the
+/// bank in the error.
+Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& name);
+
+}  // namespace btflut
