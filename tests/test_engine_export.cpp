@@ -86,7 +86,7 @@ TEST_SUITE("gl") {
     // a float one, so about 1% of the texels sit one code apart, and where a LUT is steep
     // (a spike of shadowed texels spread over many output codes) that moves them up to 20/255:
     // hence the 99th percentile and the mean, not the largest difference.
-    TEST_CASE("export -o DIR/ of every bank with a predictor: the example matches relight --grid (p99 within 2/255)") {
+    TEST_CASE("export -o DIR/ of every bank with a predictor: the example matches relight --grid (references within 2/255, models p99)") {
         TempDir dir;
         std::vector<std::pair<std::string, std::vector<std::string>>> banks{
             {"ptm", {"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "ptm"}},
@@ -123,7 +123,9 @@ TEST_SUITE("gl") {
             if (!closed) CHECK(fs::file_size(folder + "/weights.bin") == predictor["weights"]["grid_size"].get<std::size_t>() *
                                                                               predictor["weights"]["grid_size"].get<std::size_t>() *
                                                                               predictor["weights"]["layers"].get<std::size_t>() * 16);
-            for (const std::string light : {"40,250", "63,17", "80,300"}) checkExample(dir, bank, folder, light, "p99=2,mean=0.2");
+            // References blend in btflut's own 1/4096 steps: exact. Models: see above.
+            const std::string tolerance = predictor["kind"] == "references" ? "max=2" : "p99=2,mean=0.2";
+            for (const std::string light : {"40,250", "63,17", "80,300"}) checkExample(dir, bank, folder, light, tolerance);
         }
         // The example refuses a shader include older than the sidecar asks for, and a sidecar
         // newer than it reads: one line naming the file and the versions.

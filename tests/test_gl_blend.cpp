@@ -203,7 +203,7 @@ TEST_SUITE("gl") {
                 return sum / count;
             };
             const double right = errorAt(local), wrong = errorAt(Direction::fromDegrees(60, 200));
-            INFO(name << ": mean " << right * 255 << "/255 against the relit column; " << wrong * 255 << "/255 under another light");
+            MESSAGE(name << ": mean " << right * 255 << "/255 against the relit column; " << wrong * 255 << "/255 under another light");
             // 0.4-2.1: bilinear before the LUT against after, the weights' grid (barycentric
             // weights have kinks it smooths), region labels per texel, the dither per pixel.
             CHECK(right < 3.0 / 255);
