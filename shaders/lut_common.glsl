@@ -10,15 +10,6 @@ float btflutApplyLut(sampler1D lut, int entries, float v) {
     return textureLod(lut, (position + 0.5) / float(entries), 0.0).r;
 }
 
-// Dithered application: input moved within its code's cell [v - code, v), output raised
-// half a target code (code 0 stays black). inCode, outCode: one input and one target code.
-float btflutApplyLutDithered(sampler1D lut, int entries, float v, uvec2 pixel, uint channel, float inCode,
-                             float outCode) {
-    float moved = v + (btflutDitherOffset(pixel.x, pixel.y, channel) - 0.5) * inCode;
-    float value = btflutApplyLut(lut, entries, moved);
-    return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
-}
-
 // The frame's LUTs, as RelightPass (native.frag) and the scene's per-fragment path
 // (scene.frag, LUT_FRAGMENT) apply them: MAPS_REFERENCE for banks of LUTs, BLEND for banks that
 // make their LUTs; DITHER; PREDICTION_ONLY leaves the LUTs out (bench render's baseline).
@@ -191,7 +182,7 @@ float btflutBlendLut(int channel, uint region, float v) {
     return textureLod(blendLuts[2], at, 0.0).r;
 }
 
-// The same, dithered as btflutApplyLutDithered (code: 1 / (blendCodes + 1)).
+// The same, dithered as btflutMapValue (code: 1 / (blendCodes + 1)).
 float btflutBlendLutDithered(int channel, uint region, float v, uvec2 pixel, float outCode) {
     float moved = v + (btflutDitherOffset(pixel.x, pixel.y, uint(channel)) - 0.5) / (blendCodes + 1.0);
     float value = btflutBlendLut(channel, region, moved);
@@ -210,23 +201,40 @@ float btflutBlendMap(int channel, uint region, float code, uvec2 pixel) {
 #endif  // BLEND
 
 #if defined(MAPS_REFERENCE)
-// Banks of LUTs: the frame's LUT per channel (grey mode uses lut[0]).
-uniform sampler1D lut[3];
+// Banks of LUTs: the frame's LUT per channel (grey mode uses the first). LUT_UNIFORMS N: the
+// LUTs as N uniform floats, channel after channel (read as an array, they cost a third of a
+// filtered fetch per pixel on llvmpipe); else as 1D textures.
 uniform int entries;
 uniform float inCode;  // one input code of the value a LUT maps
+#if defined(LUT_UNIFORMS)
+uniform float lutValues[LUT_UNIFORMS];
 
-// A channel's LUT applied to v, dithered per `pixel` (DITHER).
+// Lut::applyLut's arithmetic, in the same order.
+float btflutLutAt(int channel, float v) {
+    float position = clamp(v, 0.0, 1.0) * float(entries - 1);
+    int i = min(int(position), entries - 2), at = channel * entries + i;
+    return lutValues[at] + (position - float(i)) * (lutValues[at + 1] - lutValues[at]);
+}
+#else
+uniform sampler1D lut[3];
+
+float btflutLutAt(int channel, float v) {
+    if (channel == 0) return btflutApplyLut(lut[0], entries, v);
+    if (channel == 1) return btflutApplyLut(lut[1], entries, v);
+    return btflutApplyLut(lut[2], entries, v);
+}
+#endif
+
+// A channel's LUT applied to v, dithered per `pixel` (DITHER): the input moved within its
+// code's cell [v - code, v), the output raised half a target code (code 0 stays black).
 float btflutMapValue(int channel, float v, uvec2 pixel) {
 #if defined(PREDICTION_ONLY)
     return v;
 #elif defined(DITHER)
-    if (channel == 0) return btflutApplyLutDithered(lut[0], entries, v, pixel, 0u, inCode, outCode);
-    if (channel == 1) return btflutApplyLutDithered(lut[1], entries, v, pixel, 1u, inCode, outCode);
-    return btflutApplyLutDithered(lut[2], entries, v, pixel, 2u, inCode, outCode);
+    float value = btflutLutAt(channel, v + (btflutDitherOffset(pixel.x, pixel.y, uint(channel)) - 0.5) * inCode);
+    return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
 #else
-    if (channel == 0) return btflutApplyLut(lut[0], entries, v);
-    if (channel == 1) return btflutApplyLut(lut[1], entries, v);
-    return btflutApplyLut(lut[2], entries, v);
+    return btflutLutAt(channel, v);
 #endif
 }
 

@@ -1,9 +1,25 @@
 #include "gl/relight_pass.h"
 
+#include "gl/gl_api.h"
 #include "gl/shader.h"
 #include "gl/textures.h"
 
 namespace btflut {
+
+bool lutsAsUniforms(const LutBank& bank) {
+    const auto floats = static_cast<GLint>(bank.lutLength());
+    GLint components = 0;
+    gl.GetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &components);
+    // A float array may take a vec4 slot per element; the other uniforms need some room too.
+    return !bank.makesLuts() && floats <= 3 * 256 && 4 * floats + 1024 <= components;
+}
+
+std::vector<std::string> mapsReferenceDefines(const LutBank& bank) {
+    std::vector<std::string> defines{"MAPS_REFERENCE"};
+    if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+    if (lutsAsUniforms(bank)) defines.push_back("LUT_UNIFORMS " + std::to_string(bank.lutLength()));
+    return defines;
+}
 
 RelightPass::RelightPass(const LutBank& bank, GLuint reference, const BlendTextures* blend)
     : m_bank(&bank), m_reference(reference), m_blend(blend) {
@@ -28,8 +44,7 @@ Result<GLuint> RelightPass::program(bool dither) {
     auto found = m_programs.find(dither);
     if (found == m_programs.end()) {
         const LutBank& bank = *m_bank;
-        std::vector<std::string> defines = m_blend ? BlendTextures::defines(bank) : std::vector<std::string>{"MAPS_REFERENCE"};
-        if (!m_blend && bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+        std::vector<std::string> defines = m_blend ? BlendTextures::defines(bank) : mapsReferenceDefines(bank);
         if (dither) defines.push_back("DITHER");
         Result<GlProgram> p = buildProgram({"quad.vert"}, {"btflut.glsl", "lut_common.glsl", "native.frag"}, defines);
         if (!p) return Error{p.error()};
@@ -43,6 +58,7 @@ void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlText
         m_blend->updateLuts(luts, frame);
         return;
     }
+    if (lutsAsUniforms(*m_bank)) return;  // bindLuts sets them
     for (std::size_t c = 0; c < luts.size(); ++c) {
         gl.BindTexture(GL_TEXTURE_1D, luts[c].id());
         gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, m_bank->entries, GL_RED, GL_FLOAT, &frame.luts[c * static_cast<std::size_t>(m_bank->entries)]);
@@ -53,6 +69,8 @@ void RelightPass::bindLuts(GLuint p, const RelightFrame& frame, const std::vecto
     const LutBank& bank = *m_bank;
     if (m_blend) {
         m_blend->bind(p, frame, luts, first);
+    } else if (lutsAsUniforms(bank)) {
+        gl.Uniform1fv(gl.GetUniformLocation(p, "lutValues"), static_cast<GLsizei>(bank.lutLength()), frame.luts.data());
     } else {
         for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
             gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + c));
@@ -60,6 +78,8 @@ void RelightPass::bindLuts(GLuint p, const RelightFrame& frame, const std::vecto
             const std::string name = "lut[" + std::to_string(c) + "]";
             gl.Uniform1i(gl.GetUniformLocation(p, name.c_str()), first + c);
         }
+    }
+    if (!m_blend) {
         gl.Uniform1i(gl.GetUniformLocation(p, "entries"), bank.entries);
         gl.Uniform1f(gl.GetUniformLocation(p, "inCode"), inputCode(bank.reference, bank.colour));
     }

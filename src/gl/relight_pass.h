@@ -16,6 +16,7 @@
 // would make the driver wait for it.
 
 #include <map>
+#include <string>
 #include <vector>
 
 #include "core/predict/relighter.h"
@@ -23,6 +24,15 @@
 #include "gl/objects.h"
 
 namespace btflut {
+
+/// True when a bank of LUTs applies its frame's LUTs from uniforms (lut_common.glsl's
+/// LUT_UNIFORMS: at most 3 x 256 floats, and room for them in the current context), else from
+/// 1D textures. Read as an array, uniforms cost a third of a filtered fetch per pixel on
+/// llvmpipe.
+bool lutsAsUniforms(const LutBank& bank);
+
+/// lut_common.glsl's defines for a bank of LUTs: MAPS_REFERENCE, RGB_MODE, LUT_UNIFORMS.
+std::vector<std::string> mapsReferenceDefines(const LutBank& bank);
 
 class RelightPass {
 public:

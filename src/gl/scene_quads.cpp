@@ -146,10 +146,10 @@ namespace {
 // What the paths cost on llvmpipe, in units of one pixel shaded flat (bench render --lut-path
 // texture and fragment, issue 22; bench/RESULTS.md): a texel relit in texture space, its
 // mipmaps and the pass's render targets included, and a pixel shaded per fragment beyond its
-// flat cost: one reference (a filtered fetch, the LUT, the dither), or a predictor (its planes
-// sampled bilinearly, the LUT, the dither).
+// flat cost: one reference (a filtered fetch, the LUT from uniforms, the dither), or a
+// predictor (its planes sampled bilinearly, the LUT fetched, the dither).
 double relitTexelCost(const LutBank& bank) { return bank.makesLuts() ? 4.8 : 4.6; }
-double perFragmentExtraCost(const LutBank& bank) { return bank.makesLuts() ? 0.9 : 0.45; }
+double perFragmentExtraCost(const LutBank& bank) { return bank.makesLuts() ? 0.9 : 0.33; }
 
 }  // namespace
 

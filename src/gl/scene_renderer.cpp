@@ -110,8 +110,8 @@ Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool
                 defines.insert(defines.end(), blend.begin(), blend.end());
                 defines.push_back("BLEND_FILTERED");
             } else {
-                defines.push_back("MAPS_REFERENCE");
-                if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
+                const std::vector<std::string> maps = mapsReferenceDefines(bank);
+                defines.insert(defines.end(), maps.begin(), maps.end());
             }
             if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
             if (m_dither) defines.push_back("DITHER");
