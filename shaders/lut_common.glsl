@@ -15,6 +15,20 @@ float btflutApplyLut(sampler1D lut, int entries, float v) {
 // make their LUTs; DITHER; PREDICTION_ONLY leaves the LUTs out (bench render's baseline).
 uniform float outCode;  // one target code
 
+// LUT_UNIFORMS N: the frame's LUTs as N uniform floats, [region][channel][entry] (read as an
+// array, they cost llvmpipe a third of a filtered fetch per pixel); else as textures.
+#if defined(LUT_UNIFORMS)
+uniform float lutValues[LUT_UNIFORMS];
+
+// LUT `lut` (region * channels + channel) of `count` entries at v: Lut::applyLut's arithmetic,
+// in the same order.
+float btflutUniformLut(int lut, int count, float v) {
+    float position = clamp(v, 0.0, 1.0) * float(count - 1);
+    int i = min(int(position), count - 2), at = lut * count + i;
+    return lutValues[at] + (position - float(i)) * (lutValues[at + 1] - lutValues[at]);
+}
+#endif
+
 // Banks that blend references (src/core/predict/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
 // BLEND_MODEL for a light model, REGIONS). The blend is exact integer arithmetic in float
 // (8-bit codes times integer weights, sums below 2^24), so its code is the CPU's; the LUT
@@ -175,6 +189,11 @@ vec3 btflutBlendColour(uvec2 pixel, bool greyReference) {
 
 // The LUT of a region at v in [0, 1] (linear between entries, as Lut::applyLut).
 float btflutBlendLut(int channel, uint region, float v) {
+#if defined(LUT_UNIFORMS) && defined(RGB_MODE)
+    return btflutUniformLut(int(region) * 3 + channel, blendEntries, v);
+#elif defined(LUT_UNIFORMS)
+    return btflutUniformLut(int(region), blendEntries, v);
+#endif
     vec2 at = vec2((clamp(v, 0.0, 1.0) * float(blendEntries - 1) + 0.5) / float(blendEntries),
                    (float(region) + 0.5) / float(blendRegions));
     if (channel == 0) return textureLod(blendLuts[0], at, 0.0).r;
@@ -201,20 +220,12 @@ float btflutBlendMap(int channel, uint region, float code, uvec2 pixel) {
 #endif  // BLEND
 
 #if defined(MAPS_REFERENCE)
-// Banks of LUTs: the frame's LUT per channel (grey mode uses the first). LUT_UNIFORMS N: the
-// LUTs as N uniform floats, channel after channel (read as an array, they cost a third of a
-// filtered fetch per pixel on llvmpipe); else as 1D textures.
+// Banks of LUTs: the frame's LUT per channel (grey mode uses the first), from uniforms
+// (LUT_UNIFORMS) or 1D textures.
 uniform int entries;
 uniform float inCode;  // one input code of the value a LUT maps
 #if defined(LUT_UNIFORMS)
-uniform float lutValues[LUT_UNIFORMS];
-
-// Lut::applyLut's arithmetic, in the same order.
-float btflutLutAt(int channel, float v) {
-    float position = clamp(v, 0.0, 1.0) * float(entries - 1);
-    int i = min(int(position), entries - 2), at = channel * entries + i;
-    return lutValues[at] + (position - float(i)) * (lutValues[at + 1] - lutValues[at]);
-}
+float btflutLutAt(int channel, float v) { return btflutUniformLut(channel, entries, v); }
 #else
 uniform sampler1D lut[3];
 

@@ -65,6 +65,14 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     return t;
 }
 
+bool lutsAsUniforms(const LutBank& bank) {
+    const auto floats = static_cast<GLint>(bank.makesLuts() ? bank.matchLength() : bank.lutLength());
+    GLint components = 0;
+    gl.GetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &components);
+    // A float array may take a vec4 slot per element; the other uniforms need some room too.
+    return floats <= 3 * 256 && 4 * floats + 1024 <= components;
+}
+
 std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
     BTFLUT_CHECK(bank.makesLuts());
     std::vector<std::string> d{"BLEND"};
@@ -88,6 +96,7 @@ std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
     }
     if (bank.colour == ColourMode::Rgb) d.push_back("RGB_MODE");
     if (bank.blend.regions > 1) d.push_back("REGIONS");
+    if (lutsAsUniforms(bank)) d.push_back("LUT_UNIFORMS " + std::to_string(bank.matchLength()));
     return d;
 }
 
@@ -103,6 +112,7 @@ std::size_t BlendTextures::lutTableBytes() const {
 }
 
 void BlendTextures::updateLuts(const std::vector<GlTexture>& tables, const RelightFrame& frame) const {
+    if (lutsAsUniforms(*m_bank)) return;  // bind sets them
     const auto entries = static_cast<std::size_t>(m_bank->entries), channels = tables.size(),
                regions = static_cast<std::size_t>(m_bank->blend.regions);
     std::vector<float> table(regions * entries);
@@ -132,6 +142,8 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
     gl.Uniform1f(gl.GetUniformLocation(p, "blendCodes"), static_cast<float>(predictionCodes(bank)));
     gl.Uniform1i(gl.GetUniformLocation(p, "blendEntries"), bank.entries);
     gl.Uniform1i(gl.GetUniformLocation(p, "blendRegions"), bank.blend.regions);
+    if (lutsAsUniforms(bank))
+        gl.Uniform1fv(gl.GetUniformLocation(p, "lutValues"), static_cast<GLsizei>(bank.matchLength()), frame.luts.data());
     if (model) {
         // The frame's integers (LightModelFixed; the CPU twin: predictFixed), per layer of three
         // planes and per channel.

@@ -16,6 +16,12 @@
 
 namespace btflut {
 
+/// True when a bank applies its frame's LUTs (RelightFrame::luts) from uniforms
+/// (lut_common.glsl's LUT_UNIFORMS: at most 3 x 256 floats, and room for them in the current
+/// context), else from textures. Read as an array, uniforms cost llvmpipe a third of a filtered
+/// fetch per pixel.
+bool lutsAsUniforms(const LutBank& bank);
+
 class BlendTextures {
 public:
     static constexpr int kUnits = 6;  ///< texture units bind uses from its first: references, albedo, labels, 3 LUTs

@@ -6,14 +6,6 @@
 
 namespace btflut {
 
-bool lutsAsUniforms(const LutBank& bank) {
-    const auto floats = static_cast<GLint>(bank.lutLength());
-    GLint components = 0;
-    gl.GetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &components);
-    // A float array may take a vec4 slot per element; the other uniforms need some room too.
-    return !bank.makesLuts() && floats <= 3 * 256 && 4 * floats + 1024 <= components;
-}
-
 std::vector<std::string> mapsReferenceDefines(const LutBank& bank) {
     std::vector<std::string> defines{"MAPS_REFERENCE"};
     if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");

@@ -25,12 +25,6 @@
 
 namespace btflut {
 
-/// True when a bank of LUTs applies its frame's LUTs from uniforms (lut_common.glsl's
-/// LUT_UNIFORMS: at most 3 x 256 floats, and room for them in the current context), else from
-/// 1D textures. Read as an array, uniforms cost a third of a filtered fetch per pixel on
-/// llvmpipe.
-bool lutsAsUniforms(const LutBank& bank);
-
 /// lut_common.glsl's defines for a bank of LUTs: MAPS_REFERENCE, RGB_MODE, LUT_UNIFORMS.
 std::vector<std::string> mapsReferenceDefines(const LutBank& bank);
 

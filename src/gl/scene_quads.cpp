@@ -147,9 +147,9 @@ namespace {
 // texture and fragment, issue 22; bench/RESULTS.md): a texel relit in texture space, its
 // mipmaps and the pass's render targets included, and a pixel shaded per fragment beyond its
 // flat cost: one reference (a filtered fetch, the LUT from uniforms, the dither), or a
-// predictor (its planes sampled bilinearly, the LUT fetched, the dither).
+// predictor (its planes sampled bilinearly, the LUT from uniforms, the dither).
 double relitTexelCost(const LutBank& bank) { return bank.makesLuts() ? 4.8 : 4.6; }
-double perFragmentExtraCost(const LutBank& bank) { return bank.makesLuts() ? 0.9 : 0.33; }
+double perFragmentExtraCost(const LutBank& bank) { return bank.makesLuts() ? 0.55 : 0.33; }
 
 }  // namespace
 
