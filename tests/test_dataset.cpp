@@ -1,5 +1,8 @@
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <fstream>
+
 #include "core/data/dataset.h"
 #include "helpers.h"
 
@@ -44,6 +47,39 @@ TEST_CASE(".lp files: malformed lines are refused with file and line") {
     }
 }
 
+TEST_CASE(".lp files as RTIBuilder writes them: Windows paths found beside the file, rounded vectors normalised") {
+    TempDir dir;
+    const Image grey = randomGreyImage(8, 8, 3);
+    for (const char* name : {"image01.jpg", "image02.png"}) REQUIRE(savePng(grey, dir / name).ok());
+    // Absolute Windows paths from another machine, CRLF, and a vector 1.0021 long.
+    std::ofstream(dir / "win.lp") << "2\r\nC:\\Users\\me\\capture\\jpeg-exports\\image01.jpg 0 0 1\r\n"
+                                     "D:\\rti\\image02.png 0.21 -0.24 0.95\r\n";
+    Result<Dataset> ds = openDataset(dir / "win.lp");
+    REQUIRE_MESSAGE(ds.ok(), ds.error());
+    CHECK(ds->images[0].path == dir / "image01.jpg");
+    CHECK(ds->images[0].name == "image01");
+    CHECK(ds->images[1].path == dir / "image02.png");
+    const Vec3 l = toVector(ds->images[1].light);
+    CHECK(std::sqrt(l.x * l.x + l.y * l.y + l.z * l.z) == doctest::Approx(1.0));
+    REQUIRE(ds->notes.size() == 2);
+    CHECK(ds->notes[0].find("1 light vector(s) up to 2% from unit length") != std::string::npos);
+    CHECK(ds->notes[1].find("2 image path(s) not found as written") != std::string::npos);
+    // An image found nowhere: the error names its line.
+    std::ofstream(dir / "missing.lp") << "2\nimage01.jpg 0 0 1\nC:\\shots\\gone.jpg 0 0 1\n";
+    Result<Dataset> missing = openDataset(dir / "missing.lp");
+    REQUIRE_FALSE(missing.ok());
+    CHECK(missing.error().find("missing.lp:3: image ") != std::string::npos);
+    CHECK(missing.error().find("nor gone.jpg beside the .lp file") != std::string::npos);
+    // Beyond 2% from unit length: refused as before.
+    Result<Dataset> far = parseLpFile("1\na.png 0 0 1.03\n", "cap.lp", ".");
+    REQUIRE_FALSE(far.ok());
+    CHECK(far.error().find("cap.lp:2: direction (0, 0, 1.03) is not a unit vector") != std::string::npos);
+    // Through the command line: the notes said once on stderr, the bake done.
+    const CliRun run = runCli({"hist", dir / "win.lp", "-o", dir / "h.csv"});
+    CHECK(run.status == 0);
+    CHECK(run.err.find("note: " + (dir / "win.lp") + ": 2 image path(s)") != std::string::npos);
+}
+
 TEST_CASE("lights.txt: count line then one vector per image") {
     auto l = parseLightsTxt("2\n0 0 1\n0.6 0 0.8\n", "lights.txt");
     REQUIRE(l.ok());
@@ -51,6 +87,9 @@ TEST_CASE("lights.txt: count line then one vector per image") {
     CHECK(parseLightsTxt("2\n0 0 1\n", "lights.txt").error() == "lights.txt: declares 2 lights but lists 1");
     CHECK(parseLightsTxt("1\n0 0 1 4\n", "lights.txt").error().find("lights.txt:2: expected 'x y z'") == 0);
     CHECK(parseLightsTxt("1\n0 0 0.5\n", "lights.txt").error().find("not a unit vector") != std::string::npos);
+    std::size_t normalised = 0;
+    CHECK(parseLightsTxt("2\n0 0 1.01\n0.6 0 0.8\n", "lights.txt", &normalised).ok());
+    CHECK(normalised == 1);
 }
 
 TEST_CASE("Bonn UBO2003 names give light and view") {

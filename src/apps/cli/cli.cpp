@@ -55,6 +55,8 @@ Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::strin
 
 Result<Dataset> openDatasetWithMask(const std::string& path, const std::string& mask) {
     Result<Dataset> dataset = openDataset(path);
+    if (dataset)
+        for (const std::string& note : dataset->notes) std::cerr << "btflut: note: " << note << "\n";
     if (dataset && !mask.empty()) {
         if (Result<Bytes> exists = readFile(mask); !exists) return Error{exists.error()};
         dataset->maskPath = mask;

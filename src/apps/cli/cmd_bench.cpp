@@ -36,7 +36,7 @@ struct BenchBakeOptions {
 
 // The bake without decoding: images are decoded once up front and handed to bakeBank.
 Status runBenchBake(const BenchBakeOptions& o) {
-    Result<Dataset> dataset = openDataset(o.dataset);
+    Result<Dataset> dataset = openDatasetWithMask(o.dataset, {});
     if (!dataset) return Error{dataset.error()};
     std::vector<Image> images;
     std::size_t pixels = 0;

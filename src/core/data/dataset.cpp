@@ -27,6 +27,26 @@ const char* const kManifestName = "btflut-dataset.json";
 
 std::string stem(const std::string& path) { return fs::path(path).stem().string(); }
 
+// The file name of a path as written, '/' or '\\' between its folders (RTIBuilder's .lp files
+// hold Windows paths).
+std::string fileNameAsWritten(const std::string& path) {
+    const std::size_t cut = path.find_last_of("/\\");
+    return cut == std::string::npos ? path : path.substr(cut + 1);
+}
+
+// A light vector of an RTI or photometric-stereo file: within kRoundedLightTolerance of unit
+// length, normalised (counted in `normalised`).
+Result<Direction> roundedLight(Vec3 v, const std::string& where, std::size_t& normalised) {
+    Result<Direction> d = directionFromMeasuredVector(v, where, kRoundedLightTolerance);
+    if (d && std::abs(std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z) - 1) > 1e-3) ++normalised;
+    return d;
+}
+
+std::string normalisedNote(const std::string& file, std::size_t count) {
+    return file + ": " + std::to_string(count) + " light vector(s) up to " + std::to_string(static_cast<int>(kRoundedLightTolerance * 100)) +
+           "% from unit length (rounded by another tool), normalised";
+}
+
 std::string joinPath(const std::string& folder, const std::string& relative) {
     return (fs::path(folder) / relative).lexically_normal().string();
 }
@@ -100,8 +120,9 @@ Result<Dataset> openPsmFolder(const std::string& folder) {
     std::string lightsFile = joinPath(folder, "lights.txt");
     Result<Bytes> text = readFile(lightsFile);
     if (!text) return Error{text.error()};
+    std::size_t normalised = 0;
     Result<std::vector<Direction>> lights =
-        parseLightsTxt(std::string(text->begin(), text->end()), lightsFile);
+        parseLightsTxt(std::string(text->begin(), text->end()), lightsFile, &normalised);
     if (!lights) return Error{lights.error()};
 
     // Images are NAME.K.ext; the mask NAME.mask.ext. Exactly one NAME must be present.
@@ -145,6 +166,7 @@ Result<Dataset> openPsmFolder(const std::string& folder) {
     if (files.size() != lights->size())
         return Error{folder + ": " + std::to_string(files.size()) + " images " + name +
                      ".K but lights.txt lists " + std::to_string(lights->size()) + " lights"};
+    if (normalised > 0) ds.notes.push_back(normalisedNote(lightsFile, normalised));
     return ds;
 }
 
@@ -179,9 +201,25 @@ Result<Dataset> openFile(const std::string& path, const std::string& ext) {
     if (folder.empty()) folder = ".";
     if (ext == "json") return parseManifest(text, path, folder);
     Result<Dataset> rti = parseLpFile(text, path, folder);
-    // RTI captures have no place for a mask in the .lp file: a mask.png beside it is the mask.
+    if (!rti) return rti;
+    // RTIBuilder writes absolute paths, often from another machine: an image not found as
+    // written is looked for by its file name beside the .lp file.
     std::error_code ec;
-    if (rti && fs::is_regular_file(fs::path(folder) / "mask.png", ec)) rti->maskPath = joinPath(folder, "mask.png");
+    std::size_t moved = 0;
+    for (DatasetImage& image : rti->images) {
+        if (fs::exists(image.path, ec)) continue;
+        const std::string beside = joinPath(folder, fileNameAsWritten(image.path));
+        if (!fs::exists(beside, ec))
+            return Error{path + ":" + std::to_string(image.line) + ": image " + image.path + " not found, nor " +
+                         fileNameAsWritten(image.path) + " beside the .lp file"};
+        image.path = beside;
+        ++moved;
+    }
+    if (moved > 0)
+        rti->notes.push_back(path + ": " + std::to_string(moved) + " image path(s) not found as written; their file names "
+                             "beside the .lp file used instead");
+    // RTI captures have no place for a mask in the .lp file: a mask.png beside it is the mask.
+    if (fs::is_regular_file(fs::path(folder) / "mask.png", ec)) rti->maskPath = joinPath(folder, "mask.png");
     return rti;
 }
 
@@ -193,7 +231,8 @@ bool Dataset::fixedView() const {
     });
 }
 
-Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std::string& file) {
+Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std::string& file, std::size_t* normalised) {
+    std::size_t rounded = 0;
     std::vector<std::string> lines = splitLines(text);
     std::size_t next = 0;
     Result<std::size_t> count = readCountLine(lines, file, next);
@@ -207,10 +246,11 @@ Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std
                          std::to_string(*count)};
         Result<Vec3> v = parseVector(lines[next], where);
         if (!v) return Error{v.error()};
-        Result<Direction> d = directionFromMeasuredVector(*v, where);
+        Result<Direction> d = roundedLight(*v, where, rounded);
         if (!d) return Error{d.error()};
         lights.push_back(*d);
     }
+    if (normalised) *normalised = rounded;
     if (lights.size() != *count)
         return Error{file + ": declares " + std::to_string(*count) + " lights but lists " +
                      std::to_string(lights.size())};
@@ -226,6 +266,7 @@ Result<Dataset> parseLpFile(const std::string& text, const std::string& file,
     Dataset ds;
     ds.source = file;
     ds.format = "rti";
+    std::size_t rounded = 0;
     for (; next < lines.size(); ++next) {
         if (isBlank(lines[next])) continue;
         std::string where = file + ":" + std::to_string(next + 1);
@@ -248,13 +289,14 @@ Result<Dataset> parseLpFile(const std::string& text, const std::string& file,
         if (path.empty()) return Error{where + ": expected 'path x y z', got '" + line + "'"};
         Result<Vec3> v = parseVector(line.substr(cut), where);
         if (!v) return Error{v.error()};
-        Result<Direction> light = directionFromMeasuredVector(*v, where);
+        Result<Direction> light = roundedLight(*v, where, rounded);
         if (!light) return Error{light.error()};
-        ds.images.push_back({stem(path), joinPath(folder, path), *light, Direction{}});
+        ds.images.push_back({stem(fileNameAsWritten(path)), joinPath(folder, path), *light, Direction{}, static_cast<int>(next + 1)});
     }
     if (ds.images.size() != *count)
         return Error{file + ": declares " + std::to_string(*count) + " images but lists " +
                      std::to_string(ds.images.size())};
+    if (rounded > 0) ds.notes.push_back(normalisedNote(file, rounded));
     return ds;
 }
 

@@ -29,6 +29,7 @@ struct DatasetImage {
     std::string path;  ///< file to decode
     Direction light;   ///< direction to the light, sample frame
     Direction view;    ///< direction to the camera, sample frame
+    int line = 0;      ///< the line of the description that lists it (.lp files; 0: none)
 };
 
 struct Dataset {
@@ -36,6 +37,10 @@ struct Dataset {
     std::string format;    ///< "manifest", "rti", "psm" or "bonn"
     std::string maskPath;  ///< empty when the whole image is the sample
     std::vector<DatasetImage> images;
+    /// What opening adjusted, one line each, for the command line to say once: light vectors
+    /// normalised (within kRoundedLightTolerance of unit length), image paths not found as
+    /// written and found by their file name beside the .lp file.
+    std::vector<std::string> notes;
 
     /// True when every image shares one view direction (a fixed camera).
     bool fixedView() const;
@@ -66,9 +71,12 @@ Status requireSameSize(const Image& image, const std::string& path, int width, i
 // `folder` is where relative image paths start.
 Result<Dataset> parseManifest(const std::string& text, const std::string& file,
                               const std::string& folder);
+/// Light vectors within kRoundedLightTolerance of unit length are normalised (.lp: noted in
+/// Dataset::notes; lights.txt: counted in `normalised`).
 Result<Dataset> parseLpFile(const std::string& text, const std::string& file,
                             const std::string& folder);
-Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std::string& file);
+Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std::string& file,
+                                              std::size_t* normalised = nullptr);
 
 /// Light and view of a Bonn UBO2003 file name ("tl015 pl000 tv000 pv000.jpg"); also
 /// accepts "_" between the fields. Returns an error for any other name.

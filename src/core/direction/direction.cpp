@@ -67,13 +67,14 @@ double angleBetween(Direction a, Direction b) {
                       u.x * v.x + u.y * v.y + u.z * v.z);
 }
 
-Result<Direction> directionFromMeasuredVector(Vec3 v, const std::string& what) {
+Result<Direction> directionFromMeasuredVector(Vec3 v, const std::string& what, double lengthTolerance) {
     if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
         return Error{what + ": direction " + formatVector(v) + " is not a finite vector"};
     double len = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
-    if (std::abs(len - 1) > 1e-3)
+    if (std::abs(len - 1) > lengthTolerance)
         return Error{what + ": direction " + formatVector(v) + " is not a unit vector (length " +
-                     std::to_string(len) + ")"};
+                     std::to_string(len) + ", more than " + std::to_string(lengthTolerance * 100).substr(0, 4) +
+                     "% from 1)"};
     if (v.z / len <= 1e-9)
         return Error{what + ": direction " + formatVector(v) + " is at or below the horizon"};
     return fromVector(v);

@@ -60,9 +60,14 @@ DiskPoint diskGridPoint(int i, int j, int size);
 double angleBetween(Direction a, Direction b);
 
 /// A light or view direction from a measured unit vector (z towards the camera / normal).
-/// Refuses NaN, vectors whose length is off 1 by more than 1e-3 (they are renormalised
-/// otherwise) and directions at or below the horizon. `what` names the source in the error.
-Result<Direction> directionFromMeasuredVector(Vec3 v, const std::string& what);
+/// Refuses NaN, vectors whose length is off 1 by more than `lengthTolerance` (they are
+/// renormalised otherwise) and directions at or below the horizon. `what` names the source in
+/// the error.
+Result<Direction> directionFromMeasuredVector(Vec3 v, const std::string& what, double lengthTolerance = 1e-3);
+
+/// How far the light vectors of RTI and photometric-stereo files may be from unit length:
+/// other tools round them (0.21 -0.24 0.95 is 1.0021 long); within 2% they are normalised.
+constexpr double kRoundedLightTolerance = 0.02;
 
 /// A direction from degrees as written in files and flags: theta in [0, 90) (the horizon
 /// itself is refused, nothing is lit or seen from there), phi any finite value.
