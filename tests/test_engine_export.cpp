@@ -36,7 +36,7 @@ void checkExample(const TempDir& dir, const std::string& bank, const std::string
     MESSAGE(fs::path(bank).filename().string() << " at " << light << ": example against relight --grid: max "
                                                << sameJson["max_255"].get<double>() << "/255, p99 " << sameJson["p99_255"].get<double>()
                                                << "/255, mean " << sameJson["mean_255"].get<double>()
-                                               << "/255; against the exact relight: " << nodes["psnr"].get<double>() << " dB");
+                                               << "/255; against the exact relight: " << (nodes["psnr"].is_null() ? 99.0 : nodes["psnr"].get<double>()) << " dB");
     INFO(bank << " at " << light << ": " << same.out << same.err);
     CHECK(same.status == 0);
 }
@@ -229,7 +229,7 @@ TEST_CASE("compare: exit 0 within the tolerance, 1 outside, 2 on bad input; the 
     REQUIRE(savePng(colour, dir / "colour.png").ok());
     CliRun same = runCli({"compare", dir / "a.png", dir / "a.png"});
     CHECK(same.status == 0);
-    CHECK(same.out.find("psnr 99.00") != std::string::npos);
+    CHECK(same.out.find("psnr inf (identical)") != std::string::npos);
     CliRun off = runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "max=2,psnr=40", "--diff", dir / "d.png"});
     CHECK(off.status == 1);
     CHECK(off.out.find("max 3") != std::string::npos);
@@ -267,4 +267,60 @@ TEST_CASE("compare: exit 0 within the tolerance, 1 outside, 2 on bad input; the 
     CHECK(updated.status == 0);
     CHECK(updated.out.find("updated") != std::string::npos);
     CHECK(readText(dir / "golden.png") == readText(dir / "b.png"));
+}
+
+TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folders, folders of images, JUnit") {
+    TempDir dir;
+    Image a = randomGreyImage(64, 48, 1), b = a;
+    for (std::size_t i = 0; i < 31; ++i) b.samples[i * 97] = std::min(1.f, b.samples[i * 97] + 3 / 255.f);  // 1% of the pixels
+    REQUIRE(savePng(a, dir / "a.png").ok());
+    REQUIRE(savePng(b, dir / "b.png").ok());
+    // pixels: the share (per cent) of pixels more than `threshold` off.
+    const nlohmann::json j = nlohmann::json::parse(runCli({"compare", dir / "a.png", dir / "b.png", "--json", "--tolerance", "pixels=2%, threshold=1"}).out);
+    CHECK(j["within"].get<bool>());
+    CHECK(j["pixels_percent"].get<double>() > 0.9);
+    CHECK(j["pixels_percent"].get<double>() < 1.1);
+    CHECK(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "pixels=0.5,threshold=2"}).status == 1);
+    CHECK(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "pixels=0.5,threshold=3"}).status == 0);
+    // Identical images: psnr inf, not a capped figure.
+    const CliRun same = runCli({"compare", dir / "a.png", dir / "a.png", "--json"});
+    CHECK(nlohmann::json::parse(same.out)["psnr"].is_null());
+    CHECK(nlohmann::json::parse(same.out)["identical"].get<bool>());
+    // A name given twice: one line, exit 2.
+    const CliRun twice = runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "max=20,max=10"});
+    CHECK(twice.status == 2);
+    CHECK(twice.err.find("max is given twice") != std::string::npos);
+    // Outputs into folders that do not exist yet; the side-by-side image is three panes wide.
+    CHECK(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "max=3", "--diff", dir / "new/d.png",
+                  "--side-by-side", dir / "new2/s.png"}).status == 0);
+    Result<Image> side = loadImage(dir / "new2/s.png");
+    REQUIRE(side.ok());
+    CHECK(side->width == 3 * 64);
+    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "1", "-o", dir / "m.btflut", "-q"}).status == 0);
+    CHECK(runCli({"relight", dir / "m.btflut", "--light", "30,0", "-o", dir / "made/x.png", "-q"}).status == 0);
+    CHECK(fs::exists(dir / "made/x.png"));
+    // Folders: every image of either by name, one line each, every failure listed, JUnit.
+    fs::create_directories(dir / "out");
+    fs::create_directories(dir / "golden");
+    REQUIRE(savePng(a, dir / "out/one.png").ok());
+    REQUIRE(savePng(a, dir / "golden/one.png").ok());
+    REQUIRE(savePng(b, dir / "out/two.png").ok());
+    REQUIRE(savePng(a, dir / "golden/two.png").ok());
+    REQUIRE(savePng(a, dir / "golden/three.png").ok());
+    const CliRun folders = runCli({"compare", dir / "out", dir / "golden", "--junit", dir / "reports/compare.xml", "--diff", dir / "diffs"});
+    CHECK(folders.status == 1);
+    CHECK(folders.out.find("one.png: psnr inf") != std::string::npos);
+    CHECK(folders.out.find("two.png: psnr") != std::string::npos);
+    CHECK(folders.out.find("three.png: no three.png in") != std::string::npos);
+    CHECK(folders.out.find("compared 3 image(s): 2 failed") != std::string::npos);
+    CHECK(fs::exists(dir / "diffs/two.diff.png"));
+    const std::string junit = readText(dir / "reports/compare.xml");
+    CHECK(junit.find("tests=\"3\" failures=\"2\"") != std::string::npos);
+    CHECK(junit.find("<testcase classname=\"btflut.compare\" name=\"one.png\"/>") != std::string::npos);
+    // --update creates the missing golden images and replaces those outside the tolerance.
+    REQUIRE(savePng(a, dir / "out/three.png").ok());
+    REQUIRE(savePng(a, dir / "out/four.png").ok());
+    CHECK(runCli({"compare", dir / "out", dir / "golden", "--update"}).status == 0);
+    CHECK(fs::exists(dir / "golden/four.png"));
+    CHECK(runCli({"compare", dir / "out", dir / "golden"}).status == 0);
 }

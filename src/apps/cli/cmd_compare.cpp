@@ -1,15 +1,19 @@
-// btflut compare: two images side by side for screenshot tests, with a tolerance and exit status.
+// btflut compare: two images (or two folders of them) for screenshot tests, with a tolerance
+// and an exit status; a JUnit report for CI dashboards.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "cli/cli.h"
+#include "core/data/dataset.h"
 #include "core/eval/metrics.h"
 #include "core/io/file_io.h"
 #include "core/io/json_text.h"
@@ -19,69 +23,108 @@ namespace btflut::cli {
 
 namespace {
 
+namespace fs = std::filesystem;
+
 struct CompareOptions {
     std::string actual;
     std::string expected;
     std::string mask;
     std::string tolerance = "max=1";
     std::string diff;
+    std::string sideBySide;
+    std::string junit;
+    double diffFull = 0;  // the difference drawn full red, 1/255; 0: the tolerance's max, else 8
     bool json = false;
     bool update = false;
     bool outside = false;  // set by the run: exit status 1
 };
 
-// A bound on one figure: psnr and ssim from below, the rest from above; max, mean and p99 in 1/255.
+// A bound on one figure: psnr and ssim from below, the rest from above; max, mean and p99 in
+// 1/255, pixels in per cent. `threshold` is no bound: the difference (1/255) beyond which a
+// pixel counts in `pixels`.
 struct Bound {
     std::string name;
     double limit = 0;
 };
 
-const char* const kFigures[] = {"psnr", "ssim", "max", "mean", "p99", "l1", "emd"};
-
-Result<std::vector<Bound>> parseTolerance(const std::string& text) {
+struct Tolerance {
     std::vector<Bound> bounds;
+    double threshold = 0;
+};
+
+const char* const kFigures[] = {"psnr", "ssim", "max", "mean", "p99", "pixels", "l1", "emd", "threshold"};
+
+std::string trimmed(std::string s) {
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.erase(0, 1);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+    return s;
+}
+
+Result<Tolerance> parseTolerance(const std::string& text) {
+    Tolerance t;
+    std::set<std::string> seen;
     std::istringstream in(text);
     std::string item;
     while (std::getline(in, item, ',')) {
+        item = trimmed(item);
         const auto equals = item.find('=');
-        const std::string name = item.substr(0, equals);
+        const std::string name = trimmed(item.substr(0, equals));
         if (equals == std::string::npos || std::find(std::begin(kFigures), std::end(kFigures), name) == std::end(kFigures))
-            return Error{"--tolerance '" + text + "': expected NAME=VALUE,... with NAME one of psnr, ssim, max, mean, p99, l1, emd"};
-        const std::string value = item.substr(equals + 1);
+            return Error{"--tolerance '" + text +
+                         "': expected NAME=VALUE,... with NAME one of psnr, ssim, max, mean, p99, pixels, l1, emd, threshold"};
+        if (!seen.insert(name).second) return Error{"--tolerance '" + text + "': " + name + " is given twice"};
+        std::string value = trimmed(item.substr(equals + 1));
+        if (name == "pixels" && !value.empty() && value.back() == '%') value.pop_back();
         char* end = nullptr;
         const double limit = std::strtod(value.c_str(), &end);
         if (value.empty() || *end != '\0' || !std::isfinite(limit) || limit < 0)
             return Error{"--tolerance '" + text + "': '" + value + "' is not a non-negative number"};
-        bounds.push_back({name, limit});
+        if (name == "threshold") t.threshold = limit;
+        else t.bounds.push_back({name, limit});
     }
-    if (bounds.empty()) return Error{"--tolerance is empty"};
-    return bounds;
+    if (t.bounds.empty()) return Error{"--tolerance '" + text + "': no bound (psnr, ssim, max, mean, p99, pixels, l1, emd)"};
+    return t;
 }
 
-// The errors, and the 99th percentile of the samples' absolute difference over the mask (in
-// 1/255): a bound that lets a few samples be far off, as two renderers that round a value
-// differently leave them where a LUT is steep, and still catches a wrong image.
+// The errors; the 99th percentile of the samples' absolute difference over the mask (1/255),
+// a bound that lets a few samples be far off, as two renderers that round a value differently
+// leave them where a LUT is steep; and the share of pixels (per cent) whose largest channel
+// difference exceeds the threshold, as pixelmatch and ImageMagick's `compare -metric AE -fuzz`
+// count them.
 struct Figures {
     ImageErrors e;
     double p99 = 0;
+    double pixels = 0;
+    bool identical() const { return e.maxDifference == 0; }
 };
 
-double percentile99(const Image& a, const Image& b, const Mask& mask) {
+void countPixels(const Image& a, const Image& b, const Mask& mask, double threshold, Figures& f) {
     std::vector<float> differences;
+    std::size_t pixels = 0, over = 0;
     const auto channels = static_cast<std::size_t>(b.channels);
-    for (std::size_t i = 0; i < b.pixelCount(); ++i)
-        if (mask.inside[i])
-            for (std::size_t c = 0; c < channels; ++c) differences.push_back(std::abs(a.samples[i * channels + c] - b.samples[i * channels + c]));
-    if (differences.empty()) return 0;
+    for (std::size_t i = 0; i < b.pixelCount(); ++i) {
+        if (!mask.inside[i]) continue;
+        float worst = 0;
+        for (std::size_t c = 0; c < channels; ++c) {
+            const float d = std::abs(a.samples[i * channels + c] - b.samples[i * channels + c]);
+            differences.push_back(d);
+            worst = std::max(worst, d);
+        }
+        ++pixels;
+        over += worst * 255.0 > threshold + 1e-6;
+    }
+    if (differences.empty()) return;
     auto at = differences.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(differences.size() - 1));
     std::nth_element(differences.begin(), at, differences.end());
-    return *at * 255.0;
+    f.p99 = *at * 255.0;
+    f.pixels = 100.0 * static_cast<double>(over) / static_cast<double>(pixels);
 }
 
 double figure(const Figures& f, const std::string& name) {
     const ImageErrors& e = f.e;
     if (name == "p99") return f.p99;
-    if (name == "psnr") return e.psnr;
+    if (name == "pixels") return f.pixels;
+    if (name == "psnr") return f.identical() ? INFINITY : e.psnr;
     if (name == "ssim") return e.ssim;
     if (name == "max") return e.maxDifference * 255;
     if (name == "mean") return e.meanDifference * 255;
@@ -95,9 +138,9 @@ bool within(const Figures& f, const Bound& b) {
 }
 
 // Where the images differ: the expected image dimmed, each differing pixel red by its largest
-// channel difference (8/255 and more: full red; any difference at least a quarter), outside
-// the mask dark blue.
-Image differenceImage(const Image& a, const Image& b, const Mask& mask) {
+// channel difference (`full` /255 and more: full red; any difference at least a quarter),
+// outside the mask dark blue.
+Image differenceImage(const Image& a, const Image& b, const Mask& mask, double full) {
     Image out(b.width, b.height, 3);
     for (std::size_t i = 0; i < b.pixelCount(); ++i) {
         float* rgb = &out.samples[i * 3];
@@ -111,10 +154,24 @@ Image differenceImage(const Image& a, const Image& b, const Mask& mask) {
         const float base = 0.3f * b.grey(i);
         rgb[0] = rgb[1] = rgb[2] = base;
         if (worst > 0.5 / 65535) {
-            rgb[0] = static_cast<float>(std::clamp(worst * 255 / 8, 0.25, 1.0));
+            rgb[0] = static_cast<float>(std::clamp(worst * 255 / full, 0.25, 1.0));
             rgb[1] = rgb[2] = 0;
         }
     }
+    return out;
+}
+
+// Expected | actual | difference, side by side, RGB.
+Image sideBySide(const Image& actual, const Image& expected, const Image& difference) {
+    const int w = expected.width, h = expected.height;
+    Image out(3 * w, h, 3);
+    const Image* panes[3] = {&expected, &actual, &difference};
+    for (int k = 0; k < 3; ++k)
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x)
+                for (int c = 0; c < 3; ++c)
+                    out.samples[(static_cast<std::size_t>(y) * 3 * w + k * w + x) * 3 + c] =
+                        panes[k]->at(x, y, std::min(c, panes[k]->channels - 1));
     return out;
 }
 
@@ -124,30 +181,86 @@ Status copyFile(const std::string& from, const std::string& to) {
     return writeFileAtomically(to, *bytes);
 }
 
-Status runCompare(CompareOptions& o) {
-    Result<std::vector<Bound>> bounds = parseTolerance(o.tolerance);
-    if (!bounds) return Error{bounds.error()};
-    if (!o.diff.empty())
-        if (Status s = requireExtension(o.diff, {"png"}, "--diff"); !s) return s;
+// One comparison's outcome, for the printed line, the JSON and the JUnit report.
+struct Outcome {
+    std::string name;     // the file name (folders) or the actual image's path
+    std::string problem;  // set when the images could not be compared (missing, unreadable, another size)
+    std::string note;     // "created ...", "updated ..."
+    bool created = false; // a new golden image: nothing compared
+    Figures f;
+    std::vector<std::string> failed;
+    bool ok() const { return problem.empty() && failed.empty(); }
+};
+
+std::string psnrText(const Figures& f) {
+    char text[32];
+    if (f.identical()) return "inf (identical)";
+    std::snprintf(text, sizeof text, "%.2f dB", f.e.psnr);
+    return text;
+}
+
+std::string line(const Outcome& r, const Tolerance& t, const std::string& tolerance) {
+    if (!r.problem.empty()) return r.problem;
+    if (r.created) return r.note;
+    const ImageErrors& e = r.f.e;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "psnr %s, ssim %.4f, max %.2f/255, mean %.3f/255, p99 %.2f/255, pixels %.3f%% over %g/255, histogram l1 "
+                  "%.4f, emd %.5f: %s",
+                  psnrText(r.f).c_str(), e.ssim, e.maxDifference * 255, e.meanDifference * 255, r.f.p99, r.f.pixels,
+                  t.threshold, e.l1, e.emd, r.failed.empty() ? ("within " + tolerance).c_str() : "OUTSIDE the tolerance");
+    std::string out = text;
+    for (const std::string& name : r.failed)
+        for (const Bound& bound : t.bounds)
+            if (bound.name == name) {
+                std::ostringstream s;
+                s << "\n  " << name << " " << figure(r.f, name) << (name == "psnr" || name == "ssim" ? " < " : " > ") << bound.limit;
+                out += s.str();
+            }
+    if (!r.note.empty()) out += "\n" + r.note;
+    return out;
+}
+
+nlohmann::json outcomeJson(const Outcome& r, const CompareOptions& o, const std::string& a, const std::string& b) {
+    nlohmann::json out{{"a", a}, {"b", b}, {"tolerance", o.tolerance}, {"within", r.ok()}, {"failed", r.failed}};
+    if (!r.problem.empty() || r.created) {
+        out[r.created ? "created" : "problem"] = r.created ? r.note : r.problem;
+        return out;
+    }
+    const ImageErrors& e = r.f.e;
+    out.update({{"psnr", r.f.identical() ? nlohmann::json(nullptr) : nlohmann::json(e.psnr)},
+                {"identical", r.f.identical()}, {"ssim", e.ssim}, {"max_255", e.maxDifference * 255},
+                {"mean_255", e.meanDifference * 255}, {"p99_255", r.f.p99}, {"pixels_percent", r.f.pixels},
+                {"l1", e.l1}, {"emd", e.emd}});
+    return out;
+}
+
+// Compares one pair; a problem that stops the pair (unreadable, another size) is an error for a
+// pair and a failed row in folders. Writes the diff and side-by-side images it is asked for.
+Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const std::string& actual,
+                              const std::string& expected, const std::string& diff, const std::string& side) {
+    Outcome r;
+    r.name = actual;
     std::error_code ec;
-    if (o.update && !std::filesystem::exists(o.expected, ec)) {  // a new golden image
-        if (Result<ImageCodes> a = loadImageCodes(o.actual); !a) return Error{a.error()};  // a readable image
-        if (Status s = copyFile(o.actual, o.expected); !s) return s;
-        std::cout << "created " << o.expected << " from " << o.actual << "\n";
-        return success();
+    if (o.update && !fs::exists(expected, ec)) {  // a new golden image
+        if (Result<ImageCodes> a = loadImageCodes(actual); !a) return Error{a.error()};  // a readable image
+        if (Status s = copyFile(actual, expected); !s) return Error{s.error()};
+        r.note = "created " + expected + " from " + actual;
+        r.created = true;
+        return r;
     }
     // Both decoded at once, to their codes (decoding is most of the time).
     std::optional<Result<ImageCodes>> images[2];
-    parallelFor(2, 0, [&](std::size_t k) { images[k] = loadImageCodes(k == 0 ? o.actual : o.expected); });
+    parallelFor(2, 0, [&](std::size_t k) { images[k] = loadImageCodes(k == 0 ? actual : expected); });
     Result<ImageCodes>& a = *images[0];
     Result<ImageCodes>& b = *images[1];
     if (!a) return Error{a.error()};
     if (!b) return Error{b.error()};
     if (a->width != b->width || a->height != b->height)
-        return Error{o.actual + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + ", " + o.expected +
-                     " is " + std::to_string(b->width) + "x" + std::to_string(b->height) + ": images of different sizes"};
+        return Error{actual + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + ", " + expected + " is " +
+                     std::to_string(b->width) + "x" + std::to_string(b->height) + ": images of different sizes"};
     if (a->channels != b->channels)
-        return Error{o.actual + " has " + std::to_string(a->channels) + " channel(s), " + o.expected + " has " +
+        return Error{actual + " has " + std::to_string(a->channels) + " channel(s), " + expected + " has " +
                      std::to_string(b->channels) + ": images of different channel counts"};
     Mask mask = fullMask(b->width, b->height);
     if (!o.mask.empty()) {
@@ -156,43 +269,136 @@ Status runCompare(CompareOptions& o) {
         mask = std::move(*loaded);
         if (mask.count() == 0) return Error{o.mask + ": the mask has no pixels to compare"};
     }
-    Figures f{compareCodes(*a, *b, mask)};
-    const ImageErrors& e = f.e;
-    const bool wantsP99 = o.json || std::any_of(bounds->begin(), bounds->end(), [](const Bound& bound) { return bound.name == "p99"; });
-    if (wantsP99) f.p99 = percentile99(quantised(toImage(*a), b->bitDepth), toImage(*b), mask);
-    std::vector<std::string> failed;
-    for (const Bound& bound : *bounds)
-        if (!within(f, bound)) failed.push_back(bound.name);
-    o.outside = !failed.empty();
-    if (!o.diff.empty()) {
-        const Bytes png = encodePng(differenceImage(quantised(toImage(*a), b->bitDepth), toImage(*b), mask), 8);
-        if (Status s = writeFileAtomically(o.diff, png); !s) return s;
+    r.f.e = compareCodes(*a, *b, mask);
+    const Image actualImage = quantised(toImage(*a), b->bitDepth), expectedImage = toImage(*b);
+    countPixels(actualImage, expectedImage, mask, t.threshold, r.f);
+    for (const Bound& bound : t.bounds)
+        if (!within(r.f, bound)) r.failed.push_back(bound.name);
+    if (!diff.empty() || !side.empty()) {
+        double full = o.diffFull;
+        for (const Bound& bound : t.bounds)
+            if (full == 0 && bound.name == "max" && bound.limit > 0) full = bound.limit;
+        const Image difference = differenceImage(actualImage, expectedImage, mask, full > 0 ? full : 8);
+        if (!diff.empty())
+            if (Status s = writeFileAtomically(diff, encodePng(difference, 8)); !s) return Error{s.error()};
+        if (!side.empty())
+            if (Status s = writeFileAtomically(side, encodePng(sideBySide(actualImage, expectedImage, difference), 8)); !s)
+                return Error{s.error()};
     }
-    if (o.json) {
-        nlohmann::json out{{"a", o.actual}, {"b", o.expected}, {"psnr", e.psnr}, {"ssim", e.ssim},
-                           {"max_255", e.maxDifference * 255}, {"mean_255", e.meanDifference * 255}, {"p99_255", f.p99},
-                           {"l1", e.l1}, {"emd", e.emd}, {"tolerance", o.tolerance}, {"within", failed.empty()},
-                           {"failed", failed}};
-        std::cout << jsonText(out);
+    if (!r.failed.empty() && o.update) {
+        if (Status s = copyFile(actual, expected); !s) return Error{s.error()};
+        r.note = "updated " + expected + " from " + actual;
+        r.failed.clear();
+    }
+    return r;
+}
+
+// <testsuite> of one <testcase> per image, a <failure> for each outside the tolerance.
+std::string junitReport(const std::vector<Outcome>& rows, const Tolerance& t, const std::string& tolerance) {
+    auto escaped = [](const std::string& s) {
+        std::string out;
+        for (char c : s) {
+            if (c == '&') out += "&amp;";
+            else if (c == '<') out += "&lt;";
+            else if (c == '>') out += "&gt;";
+            else if (c == '"') out += "&quot;";
+            else out += c;
+        }
+        return out;
+    };
+    std::size_t failures = 0;
+    for (const Outcome& r : rows) failures += !r.ok();
+    std::ostringstream x;
+    x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"btflut compare\" tests=\"" << rows.size()
+      << "\" failures=\"" << failures << "\">\n";
+    for (const Outcome& r : rows) {
+        x << "  <testcase classname=\"btflut.compare\" name=\"" << escaped(r.name) << "\"";
+        if (r.ok()) {
+            x << "/>\n";
+            continue;
+        }
+        x << ">\n    <failure message=\"" << escaped(r.problem.empty() ? "outside " + tolerance : r.problem) << "\">"
+          << escaped(line(r, t, tolerance)) << "</failure>\n  </testcase>\n";
+    }
+    x << "</testsuite>\n";
+    return x.str();
+}
+
+// The image files of a folder, by name.
+Result<std::set<std::string>> imageFiles(const std::string& folder) {
+    std::set<std::string> names;
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+        if (it->is_regular_file(ec) && isImageExtension(fileExtension(it->path().string()))) names.insert(it->path().filename().string());
+    if (ec) return Error{folder + ": cannot list the folder (" + ec.message() + ")"};
+    return names;
+}
+
+Status runCompare(CompareOptions& o) {
+    Result<Tolerance> t = parseTolerance(o.tolerance);
+    if (!t) return Error{t.error()};
+    std::error_code ec;
+    const bool folders = fs::is_directory(o.actual, ec) && fs::is_directory(o.expected, ec);
+    if (!folders) {
+        for (const auto& [path, option] : {std::pair{o.diff, "--diff"}, std::pair{o.sideBySide, "--side-by-side"}})
+            if (!path.empty())
+                if (Status s = requireExtension(path, {"png"}, option); !s) return s;
+    }
+    std::vector<Outcome> rows;
+    std::vector<nlohmann::json> json;
+    if (!folders) {
+        Result<Outcome> r = compareImages(o, *t, o.actual, o.expected, o.diff, o.sideBySide);
+        if (!r) return Error{r.error()};
+        if (r->created) {
+            std::cout << r->note << "\n";
+            return success();
+        }
+        rows.push_back(*r);
+        json.push_back(outcomeJson(*r, o, o.actual, o.expected));
+        if (o.json) std::cout << jsonText(json.front());
+        else std::cout << line(*r, *t, o.tolerance) << "\n";
     } else {
-        char line[320];
-        std::snprintf(line, sizeof line,
-                      "psnr %.2f dB, ssim %.4f, max %.2f/255, mean %.3f/255, histogram l1 %.4f, emd %.5f: %s\n", e.psnr,
-                      e.ssim, e.maxDifference * 255, e.meanDifference * 255, e.l1, e.emd,
-                      failed.empty() ? ("within " + o.tolerance).c_str() : "OUTSIDE the tolerance");
-        std::cout << line;
-        if (wantsP99) std::printf("  p99 %.2f/255\n", f.p99);
-        for (const std::string& name : failed)
-            for (const Bound& bound : *bounds)
-                if (bound.name == name)
-                    std::cout << "  " << name << " " << figure(f, name) << (name == "psnr" || name == "ssim" ? " < " : " > ")
-                              << bound.limit << "\n";
+        // Folders: every image of either, by file name; one line each, every failure listed.
+        Result<std::set<std::string>> actual = imageFiles(o.actual), expected = imageFiles(o.expected);
+        if (!actual) return Error{actual.error()};
+        if (!expected) return Error{expected.error()};
+        std::set<std::string> names = *actual;
+        names.insert(expected->begin(), expected->end());
+        if (names.empty()) return Error{o.actual + ", " + o.expected + ": no images in either folder"};
+        for (const std::string& name : names) {
+            const std::string a = (fs::path(o.actual) / name).string(), b = (fs::path(o.expected) / name).string();
+            Outcome r;
+            r.name = name;
+            if (!actual->count(name)) {
+                r.problem = "no " + name + " in " + o.actual + " (expected " + b + ")";
+            } else if (!expected->count(name) && !o.update) {
+                r.problem = "no golden image " + b + " (compare --update creates it)";
+            } else {
+                const std::string stem = fs::path(name).stem().string();
+                const std::string diff = o.diff.empty() ? "" : (fs::path(o.diff) / (stem + ".diff.png")).string();
+                const std::string side = o.sideBySide.empty() ? "" : (fs::path(o.sideBySide) / (stem + ".side.png")).string();
+                Result<Outcome> compared = compareImages(o, *t, a, b, diff, side);
+                if (compared) {
+                    r = std::move(*compared);
+                    r.name = name;
+                } else {
+                    r.problem = compared.error();
+                }
+            }
+            if (!o.json) std::cout << name << ": " << line(r, *t, o.tolerance) << "\n";
+            json.push_back(outcomeJson(r, o, a, b));
+            rows.push_back(std::move(r));
+        }
+        std::size_t failed = 0;
+        for (const Outcome& r : rows) failed += !r.ok();
+        if (o.json) std::cout << jsonText(nlohmann::json{{"images", json}, {"failed", failed}, {"compared", rows.size()}});
+        else std::cout << "compared " << rows.size() << " image(s): " << failed << " failed\n";
     }
-    if (o.outside && o.update) {
-        if (Status s = copyFile(o.actual, o.expected); !s) return s;
-        std::cout << "updated " << o.expected << " from " << o.actual << "\n";
-        o.outside = false;
+    if (!o.junit.empty()) {
+        const std::string report = junitReport(rows, *t, o.tolerance);
+        if (Status s = writeFileAtomically(o.junit, report.data(), report.size()); !s) return s;
     }
+    o.outside = std::any_of(rows.begin(), rows.end(), [](const Outcome& r) { return !r.ok(); });
     return success();
 }
 
@@ -201,15 +407,23 @@ Status runCompare(CompareOptions& o) {
 void addCompareCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<CompareOptions>();
     CLI::App* app = root.add_subcommand(
-        "compare", "Compare two images for screenshot tests: exit 0 within the tolerance, 1 outside it, 2 on bad input");
-    app->add_option("A", o->actual, "the image to check (a render)")->required();
-    app->add_option("B", o->expected, "the expected image (the golden file)")->required();
+        "compare", "Compare two images, or two folders of images by file name, for screenshot tests: exit 0 within the "
+                   "tolerance, 1 outside it (any image, for folders), 2 on bad input");
+    app->add_option("A", o->actual, "the image to check (a render), or a folder of them")->required();
+    app->add_option("B", o->expected, "the expected image (the golden file), or a folder of them")->required();
     app->add_option("--mask", o->mask, "compare only where the mask is non-zero");
     app->add_option("--tolerance", o->tolerance,
-                    "NAME=VALUE,...: psnr (dB) and ssim at least, max, mean and p99 (absolute difference in 1/255; p99 "
-                    "the 99th percentile of the samples'), l1 and emd (masked 64-bin grey histograms) at most")
+                    "NAME=VALUE,...: psnr (dB) and ssim at least; max, mean and p99 (absolute difference in 1/255; p99 "
+                    "the 99th percentile of the samples'), pixels (per cent of the pixels whose largest channel "
+                    "difference exceeds threshold=T/255, default 0), l1 and emd (masked 64-bin grey histograms) at most")
         ->capture_default_str();
-    app->add_option("--diff", o->diff, "diff.png: where they differ (red, full at 8/255), over the expected image dimmed");
+    app->add_option("--diff", o->diff,
+                    "diff.png (folders: a folder of NAME.diff.png): where they differ, red in full at the tolerance's max "
+                    "(or --diff-full; else 8/255), over the expected image dimmed");
+    app->add_option("--diff-full", o->diffFull, "the difference (1/255) drawn full red in --diff")->check(CLI::PositiveNumber);
+    app->add_option("--side-by-side", o->sideBySide,
+                    "side.png (folders: a folder of NAME.side.png): expected | actual | diff in one image");
+    app->add_option("--junit", o->junit, "report.xml: a JUnit report, one test case per image, for CI dashboards");
     app->add_flag("--json", o->json, "print JSON");
     app->add_flag("--update", o->update,
                   "golden-file update: write A over B when B is missing or outside the tolerance (exit 0)");

@@ -75,6 +75,16 @@ Status writeFilesAtomically(const std::vector<FileContents>& files) {
         for (const std::string& t : temps) std::remove(t.c_str());
     };
     for (const FileContents& file : files) {
+        // A folder the path names but that does not exist yet is made (-o new/x.png).
+        const std::filesystem::path parent = std::filesystem::path(file.path).parent_path();
+        std::error_code ec;
+        if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+            std::filesystem::create_directories(parent, ec);
+            if (ec) {
+                discard();
+                return Error{file.path + ": cannot create the folder " + parent.string() + " (" + ec.message() + ")"};
+            }
+        }
         Result<TempFile> tmp = createTempBeside(file.path);
         if (!tmp) {
             discard();

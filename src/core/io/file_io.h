@@ -18,7 +18,7 @@ Result<Bytes> readFile(const std::string& path);
 
 /// Writes bytes to `path` through a temporary file and a rename. The temporary file is
 /// created exclusively under a random name beside `path` (nothing planted there is
-/// followed) and removed on failure.
+/// followed) and removed on failure. Folders of `path` that do not exist are made.
 Status writeFileAtomically(const std::string& path, const void* data, std::size_t size);
 
 /// One output of writeFilesAtomically.
