@@ -86,7 +86,8 @@ TEST_CASE("saving is atomic: a failed save leaves the old file untouched") {
     LutBank bank = smallBank(dir);
     REQUIRE(saveBank(bank, dir / "m.btflut").ok());
     std::string before = readText(dir / "m.btflut");
-    CHECK_FALSE(saveBank(bank, dir / "no-such-dir/m.btflut").ok());
+    std::ofstream(dir / "a-file") << "x";
+    CHECK_FALSE(saveBank(bank, dir / "a-file/m.btflut").ok());  // a folder cannot be made where a file is
     CHECK(readText(dir / "m.btflut") == before);
     for (const auto& entry : fs::directory_iterator(dir.path()))
         CHECK(entry.path().string().find(".tmp.") == std::string::npos);

@@ -22,8 +22,18 @@ TEST_CASE("btflut --help and every subcommand's --help succeed") {
         CHECK(r.out.find("Usage") != std::string::npos);
     }
     CHECK(runCli({"bench", "bake", "--help"}).status == 0);
-    requireOneLineError(runCli({}), "error");
+    const CliRun bare = runCli({});  // no command: the help
+    CHECK(bare.status == 0);
+    CHECK(bare.out.find("Usage") != std::string::npos);
     requireOneLineError(runCli({"frobnicate"}), "frobnicate");
+    // Misspellings: the nearest name, and the help to read.
+    requireOneLineError(runCli({"bak"}), "unknown command 'bak' (did you mean bake?); see btflut --help");
+    requireOneLineError(runCli({"relight", "m.btflut", "--ligth", "30,0", "-o", "x.png"}),
+                        "btflut relight: error: unknown option --ligth (did you mean --light?); see btflut relight --help");
+    requireOneLineError(runCli({"compare", "a.png", "b.png", "--tolerence=max=2"}), "did you mean --tolerance?");
+    requireOneLineError(runCli({"relight", "m.btflut", "-o", "x.png"}), "see btflut relight --help");
+    // Negative numbers are values, not options.
+    CHECK(runCli({"relight", "m.btflut", "--light", "30,-20", "-o", "x.png"}).err.find("unknown option") == std::string::npos);
 }
 
 TEST_CASE("hist writes the documented CSV and JSON") {

@@ -159,6 +159,7 @@ TEST_CASE("openDataset recognises each form from one path") {
     // An RTI folder with one .lp file, and the .lp file itself.
     fs::create_directories(dir.path() / "rti");
     std::ofstream(dir / "rti/cap.lp") << "1\nx.png 0 0 1\n";
+    REQUIRE(savePng(randomGreyImage(4, 4, 1), dir / "rti/x.png").ok());
     CHECK(openDataset(dir / "rti")->format == "rti");
     CHECK(openDataset(dir / "rti/cap.lp")->format == "rti");
 

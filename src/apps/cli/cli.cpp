@@ -122,6 +122,51 @@ std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string
     };
 }
 
+namespace {
+
+// Edit distance (insertions, deletions, substitutions, adjacent swaps).
+std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+    for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i)
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+}  // namespace
+
+std::string closestName(const std::string& word, const std::vector<std::string>& names) {
+    std::string best;
+    std::size_t bestDistance = std::max<std::size_t>(2, word.size() / 3) + 1;
+    for (const std::string& name : names) {
+        const std::size_t d = name.rfind(word, 0) == 0 && word.size() >= 3 ? 1 : editDistance(word, name);
+        if (d < bestDistance) bestDistance = d, best = name;
+    }
+    return best;
+}
+
+std::string unknownOption(const CLI::App& root, const CLI::App& sub, const std::vector<std::string>& args) {
+    std::vector<std::string> known;
+    for (const CLI::App* app : {&root, &sub})
+        for (const CLI::Option* option : app->get_options()) {
+            for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+            for (const std::string& name : option->get_snames()) known.push_back("-" + name);
+        }
+    for (std::size_t k = 1; k < args.size(); ++k) {
+        const std::string word = args[k].substr(0, args[k].find('='));
+        if (word == "--") break;  // what follows is positional
+        const bool option = word.size() > 1 && word[0] == '-' && !std::isdigit(static_cast<unsigned char>(word[1])) && word[1] != '.';
+        if (!option || std::find(known.begin(), known.end(), word) != known.end()) continue;
+        const std::string guess = closestName(word, known);
+        return "unknown option " + word + (guess.empty() ? "" : " (did you mean " + guess + "?)");
+    }
+    return {};
+}
+
 int run(const std::vector<std::string>& args) {
     CLI::App root{
         "btflut: 3D textures in real time with histogram-matched look-up tables\n"
@@ -157,15 +202,28 @@ int run(const std::vector<std::string>& args) {
     addEvalCommand(root, commands);
     addCompareCommand(root, commands);
 
-    if (!args.empty() && !args.front().empty() && args.front()[0] != '-') {
-        bool known = false;
-        for (const CLI::App* sub : root.get_subcommands([](const CLI::App*) { return true; }))
-            known = known || sub->get_name() == args.front();
-        if (!known) {
-            std::cerr << "btflut: error: unknown command '" << args.front() << "' (see btflut --help)\n";
+    if (args.empty()) {  // no command: what there is to run
+        std::cout << root.help();
+        return 0;
+    }
+    CLI::App* sub = nullptr;
+    std::vector<std::string> names;
+    for (CLI::App* candidate : root.get_subcommands([](const CLI::App*) { return true; })) {
+        names.push_back(candidate->get_name());
+        if (candidate->get_name() == args.front()) sub = candidate;
+    }
+    if (!sub && !args.front().empty() && args.front()[0] != '-') {
+        const std::string guess = closestName(args.front(), names);
+        std::cerr << "btflut: error: unknown command '" << args.front() << "'"
+                  << (guess.empty() ? "" : " (did you mean " + guess + "?)") << "; see btflut --help\n";
+        return 2;
+    }
+    const std::string help = sub ? "btflut " + sub->get_name() + " --help" : "btflut --help";
+    if (sub)  // a misspelt option, before CLI11 reports the required option it hides
+        if (const std::string unknown = unknownOption(root, *sub, args); !unknown.empty()) {
+            std::cerr << "btflut " << sub->get_name() << ": error: " << unknown << "; see " << help << "\n";
             return 2;
         }
-    }
     std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 pops from the back
     try {
         root.parse(reversed);
@@ -175,7 +233,7 @@ int run(const std::vector<std::string>& args) {
         return root.exit(e);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return root.exit(e);
-        std::cerr << "btflut: error: " << e.what() << " (see btflut --help)\n";
+        std::cerr << "btflut: error: " << e.what() << " (see " << help << ")\n";
         return 2;
     }
     setMaxImagePixels(maxPixels);

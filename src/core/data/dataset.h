@@ -11,8 +11,8 @@
 //   Result<Dataset> ds = openDataset("../shared/data/psm-rock");
 //   for (const DatasetImage& im : ds->images) { ... loadImage(im.path) ... }
 //
-// Opening parses and validates the description only; images are decoded by whoever streams
-// through them (a Bonn BTF holds thousands of large images).
+// Opening parses and validates the description (and finds an .lp file's images); images are
+// decoded by whoever streams through them (a Bonn BTF holds thousands of large images).
 
 #include <string>
 #include <vector>
