@@ -159,6 +159,16 @@ TEST_CASE("export: the folder refused when not empty (unless --force); a failed 
     CHECK_FALSE(fs::exists(dir / "busy/luts.png"));
     CHECK(runCli({"export", bank, "-o", dir / "busy", "--force"}).status == 0);
     CHECK(readText(dir / "busy/notes.txt") == "mine");
+    // A folder that holds a previous export and nothing else is exported into again without
+    // --force (an asset pipeline), and what the new export does not write goes.
+    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "rbf9", "-o", dir / "rbf.btflut", "-q"}).status == 0);
+    REQUIRE(runCli({"export", dir / "rbf.btflut", "-o", dir / "asset"}).status == 0);
+    CHECK(fs::exists(dir / "asset/weights.bin"));
+    CliRun again = runCli({"export", bank, "-o", dir / "asset"});
+    REQUIRE_MESSAGE(again.status == 0, again.err);
+    CHECK(readJson(dir / "asset/material.json")["kind"] == "luts");
+    CHECK_FALSE(fs::exists(dir / "asset/weights.bin"));
+    CHECK_FALSE(fs::exists(dir / "asset/planes-0.png"));
     requireOneLineError(runCli({"export", bank, "--ptm", dir / "m.ptm"}), "the bank holds no PTM (bake it with --ptm)");
     requireOneLineError(runCli({"export", bank}), "give -o DIR");
     // An existing file where the folder goes, and a folder that cannot be made under a file:

@@ -151,11 +151,23 @@ std::string closestName(const std::string& word, const std::vector<std::string>&
 
 std::string unknownOption(const CLI::App& root, const CLI::App& sub, const std::vector<std::string>& args) {
     std::vector<std::string> known;
-    for (const CLI::App* app : {&root, &sub})
-        for (const CLI::Option* option : app->get_options()) {
+    auto learn = [&](const CLI::App& app) {
+        for (const CLI::Option* option : app.get_options()) {
             for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
             for (const std::string& name : option->get_snames()) known.push_back("-" + name);
         }
+    };
+    learn(root);
+    learn(sub);
+    // Nested commands (bench render): their options too.
+    const CLI::App* at = &sub;
+    for (std::size_t k = 1; k < args.size(); ++k)
+        for (const CLI::App* nested : at->get_subcommands([](const CLI::App*) { return true; }))
+            if (nested->get_name() == args[k]) {
+                learn(*nested);
+                at = nested;
+                break;
+            }
     for (std::size_t k = 1; k < args.size(); ++k) {
         const std::string word = args[k].substr(0, args[k].find('='));
         if (word == "--") break;  // what follows is positional

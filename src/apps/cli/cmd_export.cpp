@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <regex>
 #include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
@@ -21,6 +22,8 @@
 namespace btflut::cli {
 
 namespace {
+
+namespace fs = std::filesystem;
 
 struct ExportOptions {
     std::string bank;
@@ -160,7 +163,6 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
 // folder is filled beside its place and renamed into it; an existing one (empty, or --force)
 // gets every file complete before the first is renamed (writeFilesAtomically).
 Status writeFolder(const std::string& folder, const std::vector<std::pair<std::string, std::string_view>>& files) {
-    namespace fs = std::filesystem;
     std::error_code ec;
     const bool exists = fs::exists(folder, ec);
     fs::path target(folder);
@@ -223,16 +225,43 @@ nlohmann::json predictorJson(const EngineMaterial& m, const std::vector<std::str
     return p;
 }
 
+// A file name an export writes (material.json, luts.png, planes-N.png, ...).
+bool exportFileName(const std::string& name) {
+    static const std::regex planes(R"(planes-\d+\.png)");
+    for (const char* file : {"reference.png", "luts.png", "material.json", "btflut.glsl", "albedo.png", "labels.png", "weights.bin"})
+        if (name == file) return true;
+    return std::regex_match(name, planes);
+}
+
+// True for a folder that holds a previous export and nothing else: an asset pipeline
+// re-exports into it without --force.
+bool holdsOnlyAnExport(const std::string& folder) {
+    std::error_code ec;
+    bool sidecar = false;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (!it->is_regular_file(ec) || !exportFileName(name)) return false;
+        sidecar = sidecar || name == "material.json";
+    }
+    if (ec || !sidecar) return false;
+    Result<Bytes> text = readFile((fs::path(folder) / "material.json").string());
+    if (!text) return false;
+    const nlohmann::json material = nlohmann::json::parse(text->begin(), text->end(), nullptr, false);
+    return !material.is_discarded() && material.is_object() && material.value("format", "") == "btflut-material";
+}
+
 // The folder an engine loads (docs/engines.md): reference.png (its own bit depth), luts.png
 // (the LUT grid as a 3D texture's slices, 16-bit), material.json and btflut.glsl; for a bank
 // with a predictor also its planes (or references), albedo, weights and labels.
 Status exportFolder(const ExportOptions& o, const LutBank& b) {
-    namespace fs = std::filesystem;
     std::error_code ec;
+    bool reexport = false;
     if (fs::exists(o.output, ec)) {
         if (!fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
-        if (!fs::is_empty(o.output, ec) && !o.force)
-            return Error{o.output + ": the folder is not empty (--force writes over btflut's files in it)"};
+        reexport = holdsOnlyAnExport(o.output);
+        if (!fs::is_empty(o.output, ec) && !o.force && !reexport)
+            return Error{o.output + ": the folder is not empty and holds more than a btflut export (--force writes over "
+                                    "btflut's files in it)"};
     }
     Result<EngineMaterial> made = engineMaterial(b, o.bank);
     if (!made) return Error{made.error()};
@@ -303,6 +332,12 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
     files.push_back({"material.json", text});
     files.push_back({"btflut.glsl", embeddedShader("btflut.glsl")});
     if (Status s = writeFolder(o.output, files); !s) return s;
+    // What a previous export wrote and this one did not (planes of a bigger model, weights).
+    for (fs::directory_iterator it(o.output, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        const bool written = std::any_of(files.begin(), files.end(), [&](const auto& f) { return f.first == name; });
+        if (!written && exportFileName(name)) fs::remove(it->path(), ec);
+    }
     std::cout << "wrote " << o.output << ": " << side["kind"].get<std::string>() << " material, luts.png (3D texture "
               << m.entries << "x" << g << "x" << g * m.blocks << ", 16-bit)";
     for (const auto& file : files)
