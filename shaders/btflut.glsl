@@ -80,7 +80,9 @@ float btflutMap(sampler3D luts, BtflutMaterial m, vec2 disk, float v, uvec2 pixe
 
 // The reference texel `reference` (its stored values) relit for a light direction in the
 // tangent frame; `pixel`: the texel's integer coordinate (or the screen pixel) for the dither.
+// A light at or below the horizon lights nothing: black, as btflut's renderer draws it.
 vec3 btflutRelight(sampler3D luts, BtflutMaterial m, vec3 reference, vec3 lightTangent, uvec2 pixel) {
+    if (lightTangent.z <= 0.0) return vec3(0.0);
     vec2 disk = btflutDiskPoint(lightTangent);
     if (m.rgbLuts)
         return vec3(btflutMap(luts, m, disk, reference.r, pixel, 0), btflutMap(luts, m, disk, reference.g, pixel, 1),
@@ -213,8 +215,10 @@ float btflutMatch(sampler3D luts, BtflutPredictor p, vec2 disk, int region, floa
 }
 
 // A bank with a predictor relit at `uv` for a light in the tangent frame; `pixel` for the dither.
+// A light at or below the horizon: black.
 vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights, sampler2D labels, BtflutPredictor p,
                    vec2 uv, vec3 lightTangent, uvec2 pixel) {
+    if (lightTangent.z <= 0.0) return vec3(0.0);
     vec2 disk = btflutDiskPoint(lightTangent);
     int region = 0;
     if (p.regions > 1) {

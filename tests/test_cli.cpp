@@ -32,6 +32,9 @@ TEST_CASE("btflut --help and every subcommand's --help succeed") {
                         "btflut relight: error: unknown option --ligth (did you mean --light?); see btflut relight --help");
     requireOneLineError(runCli({"compare", "a.png", "b.png", "--tolerence=max=2"}), "did you mean --tolerance?");
     requireOneLineError(runCli({"relight", "m.btflut", "-o", "x.png"}), "see btflut relight --help");
+    CHECK(runCli({"view", "--help"}).out.find("{false}") == std::string::npos);
+    // Angles as people write them.
+    requireOneLineError(runCli({"relight", "m.btflut", "--light", "95,0", "-o", "x.png"}), "theta 95 degrees");
     // Negative numbers are values, not options.
     CHECK(runCli({"relight", "m.btflut", "--light", "30,-20", "-o", "x.png"}).err.find("unknown option") == std::string::npos);
 }

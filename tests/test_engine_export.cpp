@@ -2,6 +2,7 @@
 // files (examples/relight_quad.cpp), `export --ptm` (the RTI .ptm format), `compare`.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -75,6 +76,13 @@ TEST_SUITE("gl") {
             for (const std::string& light : {std::string(at), std::string("41.40962,90"), std::string("40,250"),
                                              std::string("63,17"), std::string("80,300")})
                 checkExample(dir, bank, folder, light);
+            // Below the horizon the include draws black, as btflut's renderer does.
+            const std::string below = dir / "below.png";
+            REQUIRE(std::system(("ASAN_OPTIONS=detect_leaks=0 " + std::string(BTFLUT_EXAMPLE_QUAD) + " " + folder +
+                                 " --light 95,30 -o " + below + " > /dev/null").c_str()) == 0);
+            Result<Image> black = loadImage(below);
+            REQUIRE(black.ok());
+            CHECK(*std::max_element(black->samples.begin(), black->samples.end()) == 0.f);
         }
     }
 }

@@ -44,7 +44,7 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--inject-key", o->injectKeys, "scripted (tests): tab or f1, pressed at frame 1")
         ->check(CLI::IsMember({"tab", "f1"}));
     app->add_option("--inject-cursor", o->injectCursor, "scripted (tests): X,Y, the mouse's place in the window");
-    app->add_flag("!--no-vsync", o->vsync, "draw as fast as possible");
+    app->add_flag_callback("--no-vsync", [o] { o->vsync = false; }, "draw as fast as possible");
     app->add_option("--frames", o->frames, "scripted: draw N frames, then exit")->check(CLI::Range(1, 100000));
     app->add_flag("--light-sweep", o->lightSweep, "scripted: the light spirals from theta 10 to 80 over the frames");
     app->add_option("--screenshot", o->screenshot, "PNG of the last scripted frame; interactively the S key's file");

@@ -17,6 +17,13 @@ std::string formatVector(Vec3 v) {
     std::snprintf(buf, sizeof buf, "(%g, %g, %g)", v.x, v.y, v.z);
     return buf;
 }
+
+// A number as people write it: 95, 1.0021, 2 (not 95.000000).
+std::string formatNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
 }  // namespace
 
 Direction Direction::fromDegrees(double thetaDeg, double phiDeg) {
@@ -72,9 +79,8 @@ Result<Direction> directionFromMeasuredVector(Vec3 v, const std::string& what, d
         return Error{what + ": direction " + formatVector(v) + " is not a finite vector"};
     double len = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
     if (std::abs(len - 1) > lengthTolerance)
-        return Error{what + ": direction " + formatVector(v) + " is not a unit vector (length " +
-                     std::to_string(len) + ", more than " + std::to_string(lengthTolerance * 100).substr(0, 4) +
-                     "% from 1)"};
+        return Error{what + ": direction " + formatVector(v) + " is not a unit vector (length " + formatNumber(len) +
+                     ", more than " + formatNumber(lengthTolerance * 100) + "% from 1)"};
     if (v.z / len <= 1e-9)
         return Error{what + ": direction " + formatVector(v) + " is at or below the horizon"};
     return fromVector(v);
@@ -84,7 +90,7 @@ Result<Direction> directionFromDegrees(double thetaDeg, double phiDeg, const std
     if (!std::isfinite(thetaDeg) || !std::isfinite(phiDeg))
         return Error{what + ": angle is not a finite number"};
     if (thetaDeg < 0 || thetaDeg >= 90)
-        return Error{what + ": theta " + std::to_string(thetaDeg) +
+        return Error{what + ": theta " + formatNumber(thetaDeg) +
                      " degrees is outside [0, 90) (90 and beyond is at or below the horizon)"};
     return Direction::fromDegrees(thetaDeg, phiDeg);
 }
