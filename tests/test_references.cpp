@@ -350,6 +350,12 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
         CHECK(byName[name]["psnr"].get<double>() > 10);
     }
     CHECK(json["rows"].size() == json["modes"].size() * 3);
+    CHECK(json["rows"][0]["theta"].get<double>() > 0);  // each row says its light
+    // --no-gl: the GL figures are "-" in the table, not nan.
+    const CliRun table = runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "lut", "--no-gl"});
+    REQUIRE(table.status == 0);
+    CHECK(table.out.find("nan") == std::string::npos);
+    CHECK(table.out.find(" - ") != std::string::npos);
     // Several references put the shading where it is: better pixels than one reference.
     CHECK(byName["lut K3 R1 grey"]["psnr"].get<double>() > byName["lut K1 R1 grey"]["psnr"].get<double>() + 1);
     CHECK(byName["lut K3 R1 lrgb"]["bytes_per_texel"] == 6);

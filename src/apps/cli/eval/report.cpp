@@ -1,5 +1,7 @@
 // btflut eval: the report (a table, JSON, per-image rows and a contact sheet).
+#include <cmath>
 #include <cstdio>
+#include <map>
 
 #include "cli/cli.h"
 #include "cli/eval/eval.h"
@@ -22,6 +24,8 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                   "btflut eval %s: %zu images, hold-out %s (%zu fold(s), %zu predictions per mode), %zu sample pixels\n",
                   dataset.source.c_str(), dataset.images.size(), o.holdout.c_str(), folds.size(), tests, maskPixels);
     std::string text = line;
+    std::map<std::string, Direction> lights;  // each held-out image's light, for the rows
+    for (const DatasetImage& image : dataset.images) lights[image.name] = image.light;
     std::snprintf(line, sizeof line, "%-30s %7s %7s %7s %6s %9s %9s %8s %9s %8s %8s\n", "mode", "L1", "EMD", "PSNR", "SSIM",
                   "bytes/tx", "GPU B/tx", "bake s", "relight", "frame ms", "GPU-CPU");
     text += line;
@@ -39,9 +43,18 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         const double l1 = mean(&ImageErrors::l1), emd = mean(&ImageErrors::emd), psnr = mean(&ImageErrors::psnr),
                      ssim = mean(&ImageErrors::ssim), bake = meanOf(v.bakeSeconds),
                      relight = v.relightSeconds.empty() ? std::nan("") : median(v.relightSeconds) * 1e3;
-        std::snprintf(line, sizeof line, "%-30s %7.4f %7.4f %7.2f %6.3f %9.2f %9.2f %8.3f %6.2f ms %8.2f %8.1f\n", v.name.c_str(),
-                      l1, emd, psnr, ssim, v.bytesPerTexel, v.gpuBytesPerTexel, bake, relight, v.frameMs, v.gpuMaxDiff);
-        text += line;
+        // A figure a mode has none of (no GL, no bake) is "-", not nan.
+        auto cell = [](double x, int width, int decimals, const char* unit = "") {
+            char c[64];
+            if (std::isfinite(x)) std::snprintf(c, sizeof c, "%*.*f%s", width, decimals, x, unit);
+            else std::snprintf(c, sizeof c, "%*s%*s", width, "-", static_cast<int>(std::string(unit).size()), "");
+            return std::string(c);
+        };
+        char name[64];
+        std::snprintf(name, sizeof name, "%-30s", v.name.c_str());
+        text += std::string(name) + " " + cell(l1, 7, 4) + " " + cell(emd, 7, 4) + " " + cell(psnr, 7, 2) + " " + cell(ssim, 6, 3) +
+                " " + cell(v.bytesPerTexel, 9, 2) + " " + cell(v.gpuBytesPerTexel, 9, 2) + " " + cell(bake, 8, 3) + " " +
+                cell(relight, 6, 2, " ms") + " " + cell(v.frameMs, 8, 2) + " " + cell(v.gpuMaxDiff, 8, 1) + "\n";
         auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
         json["modes"].push_back({{"name", v.name}, {"mode", v.modeName()}, {"references", v.references},
                                  {"regions", v.regions}, {"colour", colourName(v.colour)}, {"luts_blended", v.blendedLuts}, {"fill", v.filled ? "model" : "clamp"},
@@ -49,9 +62,12 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                                  {"bytes_per_texel", v.bytesPerTexel}, {"gpu_bytes_per_texel", number(v.gpuBytesPerTexel)},
                                  {"bake_seconds", number(bake)}, {"relight_ms", number(relight)},
                                  {"frame_ms", number(v.frameMs)}, {"gpu_max_diff_255", number(v.gpuMaxDiff)}});
-        for (std::size_t i = 0; i < v.errors.size(); ++i)
-            json["rows"].push_back({{"image", v.images[i]}, {"mode", v.name}, {"l1", v.errors[i].l1}, {"emd", v.errors[i].emd},
+        for (std::size_t i = 0; i < v.errors.size(); ++i) {
+            const Direction light = lights.count(v.images[i]) ? lights.at(v.images[i]) : Direction{};
+            json["rows"].push_back({{"image", v.images[i]}, {"mode", v.name}, {"theta", light.thetaDegrees()},
+                                    {"phi", light.phiDegrees()}, {"l1", v.errors[i].l1}, {"emd", v.errors[i].emd},
                                     {"psnr", v.errors[i].psnr}, {"ssim", v.errors[i].ssim}});
+        }
     }
     text += "L1, EMD: masked 64-bin grey histograms against the photograph's; PSNR (dB, RGB) and SSIM (grey) over the mask;\n"
             "bytes/tx: data per texel a mode draws from (GPU B/tx: as allocated, padding and mipmaps included); bake s per\n"
@@ -65,12 +81,12 @@ Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& s
     std::error_code ec;
     fs::create_directories(o.output, ec);
     if (ec) return Error{o.output + ": cannot create the folder (" + ec.message() + ")"};
-    std::string csv = "image,mode,l1,emd,psnr,ssim\n";
+    std::string csv = "image,mode,theta,phi,l1,emd,psnr,ssim\n";
     for (const nlohmann::json& row : r.json["rows"]) {
         char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%.6f,%.6f,%.4f,%.5f\n", row["image"].get<std::string>().c_str(),
-                      row["mode"].get<std::string>().c_str(), row["l1"].get<double>(), row["emd"].get<double>(),
-                      row["psnr"].get<double>(), row["ssim"].get<double>());
+        std::snprintf(line, sizeof line, "%s,%s,%.2f,%.2f,%.6f,%.6f,%.4f,%.5f\n", row["image"].get<std::string>().c_str(),
+                      row["mode"].get<std::string>().c_str(), row["theta"].get<double>(), row["phi"].get<double>(),
+                      row["l1"].get<double>(), row["emd"].get<double>(), row["psnr"].get<double>(), row["ssim"].get<double>());
         csv += line;
     }
     const std::string jsonText_ = jsonText(r.json);
