@@ -1,5 +1,7 @@
 #include <doctest/doctest.h>
 
+#include <nlohmann/json.hpp>
+
 #include "core/data/scene.h"
 
 using namespace btflut;
@@ -138,6 +140,16 @@ TEST_CASE("an orthographic camera: the same view direction everywhere, written a
     CHECK(high->distance < low->distance);
     CHECK(low->distance - high->distance == doctest::Approx(1));
     CHECK(back->distance < 0);
+    {
+        // Saved into a folder: banks inside it relative, banks elsewhere absolute (not ../../..).
+        Scene placed = s;
+        placed.materials.clear();
+        placed.materials["in"] = {"/data/scenes/banks/in.btflut", {}};
+        placed.materials["out"] = {"/other/place/out.btflut", {}};
+        const nlohmann::json saved = nlohmann::json::parse(sceneToJson(placed, "/data/scenes"));
+        CHECK(saved["materials"]["in"] == "banks/in.btflut");
+        CHECK(saved["materials"]["out"] == "/other/place/out.btflut");
+    }
     auto written = parseScene(sceneToJson(s), "s.json", ".");
     REQUIRE(written.ok());
     CHECK(written->orthographicHeight == 2);

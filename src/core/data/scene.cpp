@@ -207,11 +207,15 @@ std::string sceneToJson(const Scene& scene, const std::string& folder) {
              {"materials", json::object()},
              {"quads", json::array()}};
     if (scene.orthographicHeight > 0) doc["camera"]["orthographic_height"] = scene.orthographicHeight;
-    // Absolute, or relative to the folder the file will be in (parseScene resolves them there).
+    // Inside the folder the file will be in: relative to it (parseScene resolves them there),
+    // so the folder moves with its files; outside it: absolute, which a move does not break
+    // (a ../../.. path would).
     auto path = [&](const std::string& p) {
         const std::filesystem::path absolute = std::filesystem::absolute(p).lexically_normal();
-        return folder.empty() ? absolute.string()
-                              : absolute.lexically_relative(std::filesystem::absolute(folder).lexically_normal()).string();
+        if (folder.empty()) return absolute.string();
+        const std::filesystem::path relative = absolute.lexically_relative(std::filesystem::absolute(folder).lexically_normal());
+        const bool inside = !relative.empty() && *relative.begin() != "..";
+        return inside ? relative.string() : absolute.string();
     };
     for (const auto& [name, m] : scene.materials) {
         if (m.images.empty())

@@ -66,7 +66,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
 Result<Scene> loadScene(const std::string& path);
 
 /// The scene as a scene file, which parseScene reads back: material paths absolute, or, with
-/// `folder` (where the file will be), relative to it, so the folder can move with them.
+/// `folder` (where the file will be), relative to it for those inside it, so the folder can
+/// move with them (those outside stay absolute).
 std::string sceneToJson(const Scene& scene, const std::string& folder = {});
 
 /// 4x4 column-major view-projection matrix of the scene's camera (OpenGL clip space).
