@@ -33,6 +33,8 @@ TEST_CASE("btflut --help and every subcommand's --help succeed") {
     requireOneLineError(runCli({"compare", "a.png", "b.png", "--tolerence=max=2"}), "did you mean --tolerance?");
     requireOneLineError(runCli({"relight", "m.btflut", "-o", "x.png"}), "see btflut relight --help");
     CHECK(runCli({"view", "--help"}).out.find("{false}") == std::string::npos);
+    requireOneLineError(runCli({"bench", "render", "m.btflut", "--sise", "8x8"}),
+                        "btflut bench render: error: unknown option --sise (did you mean --size?); see btflut bench render --help");
     // Angles as people write them.
     requireOneLineError(runCli({"relight", "m.btflut", "--light", "95,0", "-o", "x.png"}), "theta 95 degrees");
     // Negative numbers are values, not options.

@@ -230,10 +230,18 @@ int run(const std::vector<std::string>& args) {
                   << (guess.empty() ? "" : " (did you mean " + guess + "?)") << "; see btflut --help\n";
         return 2;
     }
-    const std::string help = sub ? "btflut " + sub->get_name() + " --help" : "btflut --help";
+    std::string commandPath = sub ? sub->get_name() : "";  // with a nested command: "bench render"
+    for (const CLI::App* at = sub; at;) {
+        const CLI::App* next = nullptr;
+        for (const CLI::App* nested : at->get_subcommands([](const CLI::App*) { return true; }))
+            if (std::find(args.begin(), args.end(), nested->get_name()) != args.end()) next = nested;
+        if (next) commandPath += " " + next->get_name();
+        at = next;
+    }
+    const std::string help = sub ? "btflut " + commandPath + " --help" : "btflut --help";
     if (sub)  // a misspelt option, before CLI11 reports the required option it hides
         if (const std::string unknown = unknownOption(root, *sub, args); !unknown.empty()) {
-            std::cerr << "btflut " << sub->get_name() << ": error: " << unknown << "; see " << help << "\n";
+            std::cerr << "btflut " << commandPath << ": error: " << unknown << "; see " << help << "\n";
             return 2;
         }
     std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 pops from the back
