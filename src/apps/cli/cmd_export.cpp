@@ -332,8 +332,9 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
     files.push_back({"material.json", text});
     files.push_back({"btflut.glsl", embeddedShader("btflut.glsl")});
     if (Status s = writeFolder(o.output, files); !s) return s;
-    // What a previous export wrote and this one did not (planes of a bigger model, weights).
-    for (fs::directory_iterator it(o.output, ec), end; !ec && it != end; it.increment(ec)) {
+    // What a previous export wrote and this one did not (planes of a bigger model, weights);
+    // only in a folder that held nothing else (with --force, other files may be the user's).
+    for (fs::directory_iterator it(o.output, ec), end; reexport && !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
         const bool written = std::any_of(files.begin(), files.end(), [&](const auto& f) { return f.first == name; });
         if (!written && exportFileName(name)) fs::remove(it->path(), ec);
