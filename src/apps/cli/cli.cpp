@@ -186,7 +186,7 @@ int run(const std::vector<std::string>& args) {
         "is THETA,PHI in the sample frame (z = surface normal, x = image right)."};
     root.name("btflut");
     root.set_version_flag("--version", std::string("btflut ") + BTFLUT_VERSION + " (.btflut format up to version " +
-                                           std::to_string(kBankFormatVersion) + ", btflut.glsl version 1)");
+                                           std::to_string(kBankFormatVersion) + ", btflut.glsl version 2)");
     root.require_subcommand(1);
     root.fallthrough();  // root options may also follow the subcommand
     std::uint64_t maxPixels = kDefaultMaxImagePixels;
