@@ -41,6 +41,23 @@ TEST_CASE("btflut --help and every subcommand's --help succeed") {
     CHECK(runCli({"relight", "m.btflut", "--light", "30,-20", "-o", "x.png"}).err.find("unknown option") == std::string::npos);
 }
 
+TEST_CASE("docs/eval.md's usage lists every option of eval") {
+    const std::string doc = readText(std::string(BTFLUT_SOURCE_DIR) + "/docs/eval.md");
+    const std::string usage = doc.substr(0, doc.find("```", doc.find("```") + 3));
+    const std::string help = runCli({"eval", "--help"}).out;
+    std::size_t options = 0;
+    for (std::size_t at = help.find("\n  -"); at != std::string::npos; at = help.find("\n  -", at + 1)) {
+        std::string name = help.substr(at + 3, help.find_first_of(" \n", at + 3) - at - 3);
+        name = name.substr(name.rfind(',') == std::string::npos ? 0 : name.rfind(',') + 1);  // -o,--output: --output
+        if (name == "--help" || name == "-h") continue;
+        if (name == "--output") name = "-o";
+        ++options;
+        INFO(name);
+        CHECK(usage.find(name) != std::string::npos);
+    }
+    CHECK(options > 10);
+}
+
 TEST_CASE("hist writes the documented CSV and JSON") {
     TempDir dir;
     std::string manifest = writeSyntheticDataset(dir, kShots);
