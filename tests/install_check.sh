@@ -8,7 +8,7 @@ prefix=$(mktemp -d)
 trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" >/dev/null
 "$prefix/bin/btflut" --version | grep -q "^btflut [0-9]"
-test -f "$prefix/share/btflut/shaders/btflut.glsl"
+for include in btflut.glsl btflut_es.glsl btflut.hlsl btflut.gdshaderinc; do test -f "$prefix/share/btflut/shaders/$include"; done
 test -f "$prefix/share/btflut/default/btflut-dataset.json"
 test -f "$prefix/share/doc/btflut/LICENSE"
 # Away from the build tree, so nothing but the installed layout can be found.

@@ -18,6 +18,8 @@ packages=(
   libopengl-dev         # libOpenGL (glvnd): the example engine program links it, not btflut
   python3 python3-numpy python3-skimage python3-pil  # reference checks in tools/
   xvfb xauth
+  glslang-tools spirv-cross  # the include's HLSL and GLSL ES forms (tools/shader-forms.sh)
+  chromium libjs-three  # WebGL2 tests in headless Chromium: the three.js recipe
   parallel              # GNU parallel: tools/bake-library.sh bakes materials side by side
   clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (tools/fuzz.sh)
 )

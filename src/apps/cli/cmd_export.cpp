@@ -25,6 +25,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The shader include in each shading language (tools/shader-forms.sh makes all but the first).
+constexpr const char* kShaderIncludes[] = {"btflut.glsl", "btflut_es.glsl", "btflut.hlsl", "btflut.gdshaderinc"};
+
 struct ExportOptions {
     std::string bank;
     std::string output;
@@ -228,7 +231,9 @@ nlohmann::json predictorJson(const EngineMaterial& m, const std::vector<std::str
 // A file name an export writes (material.json, luts.png, planes-N.png, ...).
 bool exportFileName(const std::string& name) {
     static const std::regex planes(R"(planes-\d+\.png)");
-    for (const char* file : {"reference.png", "luts.png", "material.json", "btflut.glsl", "albedo.png", "labels.png", "weights.bin"})
+    for (const char* file : {"reference.png", "luts.png", "material.json", "albedo.png", "labels.png", "weights.bin"})
+        if (name == file) return true;
+    for (const char* file : kShaderIncludes)
         if (name == file) return true;
     return std::regex_match(name, planes);
 }
@@ -330,7 +335,7 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
     for (const auto& [name, bytes] : pngs) files.push_back({name, asText(bytes)});
     if (!weights.empty()) files.push_back({"weights.bin", weights});
     files.push_back({"material.json", text});
-    files.push_back({"btflut.glsl", embeddedShader("btflut.glsl")});
+    for (const char* include : kShaderIncludes) files.push_back({include, embeddedShader(include)});
     if (Status s = writeFolder(o.output, files); !s) return s;
     // What a previous export wrote and this one did not (planes of a bigger model, weights);
     // only in a folder that held nothing else (with --force, other files may be the user's).
@@ -382,7 +387,7 @@ void addExportCommand(CLI::App& root, Commands& commands) {
                   "and the shader include (docs/engines.md); or the older atlas; or its PTM as an RTI .ptm file");
     app->add_option("BANK", o->bank, "M.btflut")->required();
     app->add_option("-o,--output", o->output,
-                    "DIR: reference.png, luts.png, material.json, btflut.glsl; or atlas.png: the LUT grid as rows of a "
+                    "DIR: reference.png, luts.png, material.json, btflut.glsl (and its GLSL ES, HLSL and Godot forms); or atlas.png: the LUT grid as rows of a "
                     "16-bit PNG with atlas.json (banks that blend references: with their textures)");
     app->add_option("--ptm", o->ptm, "FILE.ptm: the bank's PTM (bake --ptm) as a PTM 1.2 LRGB file for RTI viewers");
     app->add_option("--grid", o->grid,
