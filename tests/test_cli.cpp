@@ -41,6 +41,42 @@ TEST_CASE("btflut --help and every subcommand's --help succeed") {
     CHECK(runCli({"relight", "m.btflut", "--light", "30,-20", "-o", "x.png"}).err.find("unknown option") == std::string::npos);
 }
 
+TEST_CASE("-q, --json and --force mean one thing on every command") {
+    // -q on every command that prints progress or what it wrote; --force where the output is a
+    // folder that may hold other files; --json where the printed figures are the result.
+    for (const char* cmd : {"hist", "fit", "bake", "relight", "export", "match", "simulate", "plot", "synth", "render", "eval", "compare"}) {
+        INFO(cmd);
+        CHECK(runCli({cmd, "--help"}).out.find("-q,--quiet") != std::string::npos);
+    }
+    for (const char* cmd : {"fit", "orient", "classify", "info", "render", "eval", "compare"}) {
+        INFO(cmd);
+        CHECK(runCli({cmd, "--help"}).out.find("--json") != std::string::npos);
+    }
+    for (const char* cmd : {"export", "synth"}) CHECK(runCli({cmd, "--help"}).out.find("--force") != std::string::npos);
+
+    TempDir dir;
+    const std::string manifest = writeSyntheticDataset(dir, kShots);
+    auto quiet = [&](std::vector<std::string> args) {
+        args.push_back("-q");
+        const CliRun r = runCli(args);
+        INFO(args.front() << ": " << r.err);
+        CHECK(r.status == 0);
+        CHECK(r.out.empty());
+    };
+    quiet({"hist", manifest, "-o", dir / "h.csv"});
+    quiet({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "8", "-o", dir / "s.csv"});
+    quiet({"plot", dir / "h.csv", "-o", dir / "h.png"});
+    quiet({"match", dir / "shot0.png", dir / "shot1.png", "-o", dir / "m.png"});
+    quiet({"bake", manifest, "-o", dir / "m.btflut", "--grid", "5"});
+    quiet({"export", dir / "m.btflut", "-o", dir / "export"});
+    quiet({"compare", dir / "shot0.png", dir / "shot0.png"});
+    // compare -q still says what is outside the tolerance.
+    const CliRun differs = runCli({"compare", dir / "shot0.png", dir / "shot1.png", "-q"});
+    CHECK(differs.status == 1);
+    CHECK(differs.out.find("OUTSIDE the tolerance") != std::string::npos);
+    requireOneLineError(runCli({"eval", manifest, "-q"}), "-q leaves eval's figures only in -o DIR's files: give -o");
+}
+
 TEST_CASE("docs/eval.md's usage lists every option of eval") {
     const std::string doc = readText(std::string(BTFLUT_SOURCE_DIR) + "/docs/eval.md");
     const std::string usage = doc.substr(0, doc.find("```", doc.find("```") + 3));

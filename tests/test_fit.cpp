@@ -81,6 +81,13 @@ TEST_CASE("btflut fit: parameters file that bake --model reads, the plot, and ba
     CHECK(params["fit"]["residuals"].size() == 11);
     CHECK(params["fit"]["parameters"][0]["standard_error"].get<double>() > 0);
     CHECK(loadImage(dir / "fit.png").ok());
+    // --json prints what the file holds; -q nothing.
+    CliRun json = runCli({"fit", dir / "h.csv", "-o", dir / "p2.json", "--json"});
+    REQUIRE(json.status == 0);
+    CHECK(nlohmann::json::parse(json.out) == nlohmann::json::parse(readText(dir / "p2.json")));
+    CliRun quiet = runCli({"fit", dir / "h.csv", "-o", dir / "p3.json", "-q"});
+    CHECK(quiet.status == 0);
+    CHECK(quiet.out.empty());
     // What bake --model reads.
     Image reference(32, 24, 1);
     for (std::size_t i = 0; i < reference.samples.size(); ++i) reference.samples[i] = static_cast<float>(i % 97) / 96.f;

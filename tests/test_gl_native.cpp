@@ -237,6 +237,14 @@ TEST_SUITE("gl") {
         REQUIRE(ok.status == 0);
         CHECK(ok.out.find("materials skipped (no visible quad uses them): x") != std::string::npos);
         CHECK(loadImage(dir / "s.png")->width == 96);
+        // --json: what was written and the same statistics; -q: nothing.
+        CliRun json = runCli({"render", dir / "s.json", "--size", "96x64", "--mode", "flat", "--json", "-o", dir / "j.png"});
+        REQUIRE(json.status == 0);
+        const nlohmann::json stats = nlohmann::json::parse(json.out);
+        CHECK(stats["width"] == 96);
+        CHECK(stats["stats"]["materials_skipped"] == nlohmann::json::array({"x"}));
+        CHECK(stats["stats"]["quads_drawn"] == 1);
+        CHECK(runCli({"render", dir / "s.json", "--size", "96x64", "-q", "-o", dir / "q.png"}).out.empty());
         REQUIRE(runCli({"render", dir / "s.json", "--size", "96x64", "--mode", "brdf", "-o", dir / "b.png"}).status == 0);
         requireOneLineError(runCli({"render", dir / "s.json", "--mode", "shiny", "-o", dir / "x.png"}), "--mode 'shiny'");
         requireOneLineError(runCli({"render", dir / "s.json", "--mode", "ptm", "-o", dir / "x.png"}),

@@ -64,6 +64,8 @@ Result<Dataset> openDatasetWithMask(const std::string& path, const std::string& 
     return dataset;
 }
 
+void addQuietFlag(CLI::App& app, bool& quiet, const std::string& what) { app.add_flag("-q,--quiet", quiet, what); }
+
 void addLutImageOptions(CLI::App& app, int& depth, bool& noDither) {
     app.add_option("--depth", depth, "bits per sample of the PNG")
         ->check(CLI::IsMember({8, 16}))

@@ -64,6 +64,10 @@ Result<SampleImage> loadSampleImage(const std::string& path, const std::string& 
 Status requireExtension(const std::string& path, const std::vector<std::string>& extensions,
                         const std::string& what);
 
+/// -q,--quiet, alike on every command that prints progress or what it wrote: only errors
+/// (on stderr) remain, and the exit status. `what`: what it leaves out, where that is more.
+void addQuietFlag(CLI::App& app, bool& quiet, const std::string& what = "print nothing but errors");
+
 /// The options of commands that write a LUT-mapped image: --depth 8|16 and --no-dither.
 void addLutImageOptions(CLI::App& app, int& depth, bool& noDither);
 

@@ -318,7 +318,7 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
                   "to the images of the reference's view, the baseline of `btflut render --mode ptm`");
     app->add_flag("--no-reference", o->noReference,
                   "do not embed the reference image (relight then needs --reference-image)");
-    app->add_flag("-q,--quiet", o->quiet, "no progress bar or summary");
+    addQuietFlag(*app, o->quiet, "no progress bar or summary");
     commands.push_back({app, [o, app] { return runBake(*o, *app); }});
 }
 

@@ -36,6 +36,7 @@ struct CompareOptions {
     std::string junit;
     double diffFull = 0;  // the difference drawn full red, 1/255; 0: the tolerance's max, else 8
     bool json = false;
+    bool quiet = false;
     bool update = false;
     bool outside = false;  // set by the run: exit status 1
 };
@@ -393,13 +394,13 @@ Status runCompare(CompareOptions& o) {
         Result<Outcome> r = compareImages(o, *t, o.actual, o.expected, o.diff, o.sideBySide);
         if (!r) return Error{r.error()};
         if (r->created) {
-            std::cout << r->note << "\n";
+            if (!o.quiet) std::cout << r->note << "\n";
             return success();
         }
         rows.push_back(*r);
         json.push_back(outcomeJson(*r, o, o.actual, o.expected));
         if (o.json) std::cout << jsonText(json.front());
-        else std::cout << line(*r, *t, o.tolerance) << "\n";
+        else if (!o.quiet || !r->ok()) std::cout << line(*r, *t, o.tolerance) << "\n";
     } else {
         // Folders: every image of either, by file name; one line each, every failure listed.
         Result<std::set<std::string>> actual = imageFiles(o.actual), expected = imageFiles(o.expected);
@@ -428,14 +429,14 @@ Status runCompare(CompareOptions& o) {
                     r.problem = compared.error();
                 }
             }
-            if (!o.json) std::cout << name << ": " << line(r, *t, o.tolerance) << "\n";
+            if (!o.json && (!o.quiet || !r.ok())) std::cout << name << ": " << line(r, *t, o.tolerance) << "\n";
             json.push_back(outcomeJson(r, o, a, b));
             rows.push_back(std::move(r));
         }
         std::size_t failed = 0;
         for (const Outcome& r : rows) failed += !r.ok();
         if (o.json) std::cout << jsonText(nlohmann::json{{"images", json}, {"failed", failed}, {"compared", rows.size()}});
-        else std::cout << "compared " << rows.size() << " image(s): " << failed << " failed\n";
+        else if (!o.quiet || failed > 0) std::cout << "compared " << rows.size() << " image(s): " << failed << " failed\n";
     }
     if (!o.junit.empty()) {
         const std::string report = junitReport(rows, *t, o.tolerance);
@@ -470,6 +471,7 @@ void addCompareCommand(CLI::App& root, Commands& commands) {
     app->add_flag("--json", o->json, "print JSON");
     app->add_flag("--update", o->update,
                   "golden-file update: write A over B when B is missing or outside the tolerance (exit 0)");
+    addQuietFlag(*app, o->quiet, "print only what is outside the tolerance (nothing when all is within)");
     commands.push_back({app, [o] { return runCompare(*o); }, 2, [o] { return o->outside ? 1 : 0; }});
 }
 

@@ -27,6 +27,7 @@ Status runEval(const EvalOptions& o) {
         std::error_code ec;
         if (fs::exists(o.output, ec) && !fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
     }
+    if (o.quiet && o.output.empty()) return Error{"-q leaves eval's figures only in -o DIR's files: give -o"};
     Result<std::vector<Variant>> parsed = variantsOf(o);
     if (!parsed) return Error{parsed.error()};
     std::vector<Variant>& variants = *parsed;
@@ -71,7 +72,7 @@ Status runEval(const EvalOptions& o) {
     const Report r = report(variants, *dataset, o, *folds, mask->count(), context);
     if (!o.output.empty())
         if (Status s = writeReport(r, sheet, o); !s) return s;
-    std::cout << (o.json ? jsonText(r.json) : r.text);
+    if (!o.quiet) std::cout << (o.json ? jsonText(r.json) : r.text);
     return success();
 }
 
@@ -120,6 +121,7 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
     app->add_option("--contact", o->sheetLights, "held-out lights on the contact sheet")->check(CLI::Range(1, 64))->capture_default_str();
     app->add_flag("--json", o->json, "print JSON instead of the table");
     app->add_option("-o,--output", o->output, "folder for eval.txt, eval.json, rows.csv and contact.png");
+    addQuietFlag(*app, o->quiet, "print nothing (the figures go to -o DIR's files only)");
     commands.push_back({app, [o] { return runEval(*o); }});
 }
 

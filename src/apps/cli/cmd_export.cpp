@@ -34,6 +34,7 @@ struct ExportOptions {
     std::string ptm;
     int grid = 0;
     bool force = false;
+    bool quiet = false;
 };
 
 // 16-bit texels as an image of `rows` rows of `width` (refused beyond what a PNG holds).
@@ -156,6 +157,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     std::vector<FileContents> files{{o.output, png.data(), png.size()}, {sidecar.string(), text.data(), text.size()}};
     for (const auto& [path, bytes] : textures) files.push_back({path, bytes.data(), bytes.size()});
     if (Status s = writeFilesAtomically(files); !s) return s;
+    if (o.quiet) return success();
     std::cout << "wrote " << o.output << " (" << atlas.width << "x" << atlas.height << ", 16-bit), " << sidecar.string();
     if (!textures.empty()) std::cout << " and " << textures.size() << " textures beside them";
     std::cout << "\n";
@@ -344,6 +346,7 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
         const bool written = std::any_of(files.begin(), files.end(), [&](const auto& f) { return f.first == name; });
         if (!written && exportFileName(name)) fs::remove(it->path(), ec);
     }
+    if (o.quiet) return success();
     std::cout << "wrote " << o.output << ": " << side["kind"].get<std::string>() << " material, luts.png (3D texture "
               << m.entries << "x" << g << "x" << g * m.blocks << ", 16-bit)";
     for (const auto& file : files)
@@ -356,7 +359,7 @@ Status exportPtm(const ExportOptions& o, const LutBank& b) {
     if (Status s = requireExtension(o.ptm, {"ptm"}, "--ptm"); !s) return s;
     if (b.ptm.empty()) return Error{o.bank + ": the bank holds no PTM (bake it with --ptm)"};
     if (Status s = writeFileAtomically(o.ptm, encodePtmFile(b.ptm)); !s) return s;
-    std::cout << "wrote " << o.ptm << " (PTM 1.2, LRGB, " << b.ptm.width << "x" << b.ptm.height << ")\n";
+    if (!o.quiet) std::cout << "wrote " << o.ptm << " (PTM 1.2, LRGB, " << b.ptm.width << "x" << b.ptm.height << ")\n";
     return success();
 }
 
@@ -395,6 +398,7 @@ void addExportCommand(CLI::App& root, Commands& commands) {
                     "follows the measured interpolation more closely, at N^2 x entries x 2 bytes per view)")
         ->check(CLI::Range(2, 257));
     app->add_flag("--force", o->force, "write into a folder that is not empty");
+    addQuietFlag(*app, o->quiet);
     commands.push_back({app, [o] { return runExport(*o); }});
 }
 

@@ -17,6 +17,8 @@ namespace btflut::cli {
 namespace {
 
 struct FitCommandOptions {
+    bool quiet = false;
+    bool json = false;
     std::string input;
     std::string brdf = "lambert";
     std::string output;
@@ -76,6 +78,11 @@ Status runFit(const FitCommandOptions& o) {
     }
     if (Status s = writeFilesAtomically(files); !s) return s;
 
+    if (o.quiet) return success();
+    if (o.json) {
+        std::cout << json;  // what PARAMS.json holds: the parameters, their errors, the residuals
+        return success();
+    }
     char line[160];
     std::cout << "fitted " << fitBrdfName(*brdf) << " to " << rows->size() << " histograms of " << rows->front().bins.size()
               << " bins in " << fit->iterations << " iterations (" << fit->seconds << " s)\n";
@@ -111,6 +118,8 @@ void addFitCommand(CLI::App& root, Commands& commands) {
     app->add_option("--plot", o->plot, "fit.png: measured and fitted histograms in the paper's layout");
     app->add_option("--bins", o->bins, "bins of a dataset's histograms")->check(CLI::Range(8, 1024))->capture_default_str();
     app->add_option("--mask", o->mask, "a dataset's sample mask instead of its own");
+    addQuietFlag(*app, o->quiet);
+    app->add_flag("--json", o->json, "print the fit's report as JSON (what PARAMS.json holds)");
     commands.push_back({app, [o] { return runFit(*o); }});
 }
 

@@ -13,6 +13,7 @@ namespace btflut::cli {
 namespace {
 
 struct HistOptions {
+    bool quiet = false;
     std::string dataset;
     std::string output;
     int bins = 64;
@@ -36,7 +37,7 @@ Status runHist(const HistOptions& o) {
                                                  : datasetHistograms(o.dataset, o.mask, o.bins, o.channels == "rgb");
     if (!rows) return Error{rows.error()};
     if (Status s = saveHistograms(*rows, o.output); !s) return s;
-    std::cout << "wrote " << o.output << ": " << rows->size() << " histogram(s) of " << o.bins << " bins\n";
+    if (!o.quiet) std::cout << "wrote " << o.output << ": " << rows->size() << " histogram(s) of " << o.bins << " bins\n";
     return success();
 }
 
@@ -67,6 +68,7 @@ void addHistCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::IsMember({"grey", "rgb"}))
         ->capture_default_str();
     app->add_option("--mask", o->mask, "sample mask instead of the dataset's own (non-zero = sample)");
+    addQuietFlag(*app, o->quiet);
     commands.push_back({app, [o] { return runHist(*o); }});
 }
 

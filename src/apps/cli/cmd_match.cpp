@@ -10,6 +10,7 @@ namespace btflut::cli {
 namespace {
 
 struct MatchOptions {
+    bool quiet = false;
     std::string source;
     std::string target;
     std::string output;
@@ -36,7 +37,7 @@ Status runMatch(const MatchOptions& o) {
     const float targetCode = 1.f / static_cast<float>(to.counts.size() - 1);
     Image out = applyLuts(source->image, ColourMode::Grey, lut.values, entries, o.noDither ? 0.f : targetCode);
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
-    std::cout << "wrote " << o.output << "\n";
+    if (!o.quiet) std::cout << "wrote " << o.output << "\n";
     return success();
 }
 
@@ -54,6 +55,7 @@ void addMatchCommand(CLI::App& root, Commands& commands) {
     app->add_option("--entries", o->entries, "LUT entries (default 256, 4096 for 16-bit)")
         ->check(CLI::Range(2, 65536));
     addLutImageOptions(*app, o->depth, o->noDither);
+    addQuietFlag(*app, o->quiet);
     commands.push_back({app, [o] { return runMatch(*o); }});
 }
 

@@ -11,6 +11,7 @@ namespace btflut::cli {
 namespace {
 
 struct PlotOptions {
+    bool quiet = false;
     std::vector<std::string> inputs;
     std::string output;
     bool overlay = false;
@@ -29,7 +30,7 @@ Status runPlot(const PlotOptions& o) {
     }
     Image figure = plotHistograms(columns, o.overlay);
     if (Status s = savePng(figure, o.output); !s) return s;
-    std::cout << "wrote " << o.output << " (" << figure.width << "x" << figure.height << ")\n";
+    if (!o.quiet) std::cout << "wrote " << o.output << " (" << figure.width << "x" << figure.height << ")\n";
     return success();
 }
 
@@ -44,6 +45,7 @@ void addPlotCommand(CLI::App& root, Commands& commands) {
     app->add_option("-o,--output", o->output, "fig.png")->required();
     app->add_flag("--overlay", o->overlay,
                   "all files in one panel per position (the first as bars, the others as outlines, with a legend)");
+    addQuietFlag(*app, o->quiet);
     commands.push_back({app, [o] { return runPlot(*o); }});
 }
 

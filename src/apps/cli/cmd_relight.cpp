@@ -88,7 +88,7 @@ void addRelightCommand(CLI::App& root, Commands& commands) {
                   "the LUT as an engine reads it from the exported grid (bilinear between grid nodes, as "
                   "shaders/btflut.glsl's one filtered fetch), not interpolated over the measured directions; for a bank "
                   "with a predictor, the LUT baked over the grid (no counting of the prediction per light)");
-    app->add_flag("-q,--quiet", o->quiet, "do not say what was written");
+    addQuietFlag(*app, o->quiet, "do not say what was written");
     commands.push_back({app, [o] { return runRelight(*o); }});
 }
 

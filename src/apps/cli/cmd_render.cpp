@@ -1,9 +1,11 @@
 // btflut render: the GL renderer, headless (OSMesa or EGL).
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
 #include "core/bank/bank_file.h"
+#include "core/io/json_text.h"
 #include "gl/context.h"
 #include "gl/native_renderer.h"
 #include "gl/scene_renderer.h"
@@ -18,6 +20,8 @@ struct RenderOptions {
     std::string mode;
     std::string interpolation;
     bool stats = false;
+    bool quiet = false;
+    bool json = false;
     std::string light;
     std::string view;
     std::string output;
@@ -28,11 +32,34 @@ struct RenderOptions {
     bool noDither = false;
 };
 
+// What was written, as --json prints it (a scene's statistics with it).
+void printWritten(const RenderOptions& o, const Image& image, const RenderStats* stats) {
+    if (o.json) {
+        nlohmann::json out{{"output", o.output}, {"width", image.width}, {"height", image.height}};
+        if (stats) {
+            const RenderStats& s = *stats;
+            out["stats"] = {{"materials_loaded", s.loadedMaterials}, {"materials_skipped", s.skippedMaterials},
+                            {"ptms_loaded", s.loadedPtms}, {"images_loaded", s.imagesLoaded},
+                            {"view_layers", s.viewLayers}, {"view_layers_loaded", s.viewLayersLoaded},
+                            {"quads_drawn", s.quadsDrawn}, {"quads_unlit", s.quadsUnlit}, {"quads_culled", s.quadsCulled},
+                            {"relit_textures", s.relitTextures}, {"quads_texture_space", s.quadsTextureSpace},
+                            {"quads_per_fragment", s.quadsPerFragment},
+                            {"texture_bytes", {{"total", s.textureBytes.total()}, {"references", s.textureBytes.reference},
+                                               {"blended_references", s.textureBytes.blend}, {"relit", s.textureBytes.relit},
+                                               {"luts", s.textureBytes.luts}, {"ptms", s.textureBytes.ptm},
+                                               {"images", s.textureBytes.images}}}};
+        }
+        std::cout << jsonText(out);
+    } else if (!o.quiet) {
+        std::cout << "wrote " << o.output << " (" << image.width << "x" << image.height << ")\n";
+    }
+}
+
 Result<std::unique_ptr<HeadlessContext>> makeContext(const RenderOptions& o) {
     Result<GlBackend> backend = parseGlBackend(o.backend);
     if (!backend) return Error{backend.error()};
     Result<std::unique_ptr<HeadlessContext>> context = createHeadlessContext(*backend);
-    if (context && o.verbose) std::cout << "context: " << (*context)->description() << "\n";
+    if (context && o.verbose) (o.json ? std::cerr : std::cout) << "context: " << (*context)->description() << "\n";
     return context;
 }
 
@@ -70,7 +97,7 @@ Status runSceneRender(const RenderOptions& o) {
     Result<Image> image = renderScene(*scene, stats);
     if (!image) return Error{image.error()};
     if (Status s = savePng(*image, o.output, o.depth); !s) return s;
-    if (o.stats) {
+    if (o.stats && !o.json) {
         auto list = [](const std::vector<std::string>& names) {
             std::string s;
             for (const std::string& n : names) s += (s.empty() ? "" : ", ") + n;
@@ -90,7 +117,7 @@ Status runSceneRender(const RenderOptions& o) {
                   << ", relit " << stats.textureBytes.relit << ", LUTs " << stats.textureBytes.luts << ", PTMs "
                   << stats.textureBytes.ptm << ", measured images " << stats.textureBytes.images << ")\n";
     }
-    std::cout << "wrote " << o.output << " (" << image->width << "x" << image->height << ")\n";
+    printWritten(o, *image, &stats);
     return success();
 }
 
@@ -119,7 +146,7 @@ Status runRender(const RenderOptions& o) {
     Result<Image> image = renderNative(bank, query->light, query->view, !o.noDither, o.interpolation != "nearest");
     if (!image) return Error{o.input + ": " + image.error()};
     if (Status s = savePng(*image, o.output, o.depth); !s) return s;
-    std::cout << "wrote " << o.output << " (" << image->width << "x" << image->height << ")\n";
+    printWritten(o, *image, nullptr);
     return success();
 }
 
@@ -150,6 +177,8 @@ void addRenderCommand(CLI::App& root, Commands& commands) {
     app->add_option("--backend", o->backend, "auto (EGL, then OSMesa), osmesa or egl")->capture_default_str();
     app->add_flag("-v,--verbose", o->verbose, "print the context's backend and driver");
     addLutImageOptions(*app, o->depth, o->noDither);
+    addQuietFlag(*app, o->quiet);
+    app->add_flag("--json", o->json, "print what was written as JSON (a scene's: with the statistics of --stats)");
     commands.push_back({app, [o] { return runRender(*o); }});
 }
 

@@ -13,6 +13,7 @@ namespace btflut::cli {
 namespace {
 
 struct SimulateOptions {
+    bool quiet = false;
     ModelFlags model;
     std::string geometry;
     std::string method = "quadrature";
@@ -40,7 +41,7 @@ Status runSimulate(const SimulateOptions& o) {
     for (const Geometry& g : *geometry)
         rows.push_back({g.name, g.light, g.view, simulateHistogram(*model, g.light, g.view, options)});
     if (Status s = saveHistograms(rows, o.output); !s) return s;
-    std::cout << "wrote " << o.output << ": " << rows.size() << " histogram(s) of " << o.bins << " bins ("
+    if (!o.quiet) std::cout << "wrote " << o.output << ": " << rows.size() << " histogram(s) of " << o.bins << " bins ("
               << simulationMethodName(*method) << ")\n";
     return success();
 }
@@ -64,6 +65,7 @@ void addSimulateCommand(CLI::App& root, Commands& commands) {
     app->add_option("--smooth", o->smooth, "Gaussian smoothing width in bins")->capture_default_str();
     app->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
     app->add_option("-o,--output", o->output, "FILE.csv (as btflut hist writes) or FILE.json")->required();
+    addQuietFlag(*app, o->quiet);
     commands.push_back({app, [o] { return runSimulate(*o); }});
 }
 

@@ -86,7 +86,7 @@ void addSynthCommand(CLI::App& root, Commands& commands) {
     app->add_option("--depth", o->depth, "bits per sample")->check(CLI::IsMember({8, 16}))->capture_default_str();
     app->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
     app->add_flag("--force", o->force, "replace an existing, non-empty output folder");
-    app->add_flag("-q,--quiet", o->quiet, "no progress or summary");
+    addQuietFlag(*app, o->quiet, "no progress or summary");
     commands.push_back({app, [o, app] { return runSynth(*o, *app); }});
 }
 

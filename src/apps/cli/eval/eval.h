@@ -43,6 +43,7 @@ struct EvalOptions {
     std::string backend = "auto";
     bool blendedLuts = false;
     bool json = false;
+    bool quiet = false;
     bool noGl = false;
     int frames = 6;
     std::string grids = "17";    ///< banks' grid sizes, a list
