@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/eval/charts.h"
 #include "core/eval/metrics.h"
 #include "core/histogram/histogram.h"
 #include "core/random.h"
@@ -152,4 +153,25 @@ TEST_CASE("metrics: identical images") {
     CHECK(e.meanDifference == 0.0);
     CHECK(e.l1 == 0.0);
     CHECK(e.emd == 0.0);
+}
+
+TEST_CASE("charts: the Pareto front, and panels drawn with missing figures") {
+    // cost, value: (1, 10) (2, 9) (2, 12) (3, 12) (4, 15) (NaN, 99)
+    const std::vector<double> cost{1, 2, 2, 3, 4, std::nan("")}, value{10, 9, 12, 12, 15, 99};
+    CHECK(paretoFront(cost, value, Better::Higher) == std::vector<std::size_t>{0, 2, 4});
+    CHECK(paretoFront(cost, value, Better::Lower) == std::vector<std::size_t>{0, 1});
+    CHECK(paretoFront({}, {}, Better::Higher).empty());
+    ChartPanel points{.title = "t", .xLabel = "x", .yLabel = "y", .logX = true, .pareto = Better::Higher};
+    for (std::size_t i = 0; i < cost.size(); ++i) points.series.push_back({"p" + std::to_string(i), {cost[i]}, {value[i]}});
+    ChartPanel empty{.title = "nothing", .xLabel = "x", .yLabel = "y"};
+    empty.series.push_back({"nan", {std::nan("")}, {1.0}});
+    ChartPanel lines{.title = "lines", .xLabel = "theta", .yLabel = "dB", .lines = true};
+    lines.series.push_back({"a", {5, 15, 25}, {30, 28, 20}});
+    const Image chart = drawCharts({points, empty, lines}, 2);
+    CHECK(chart.width > 2 * 400);
+    CHECK(chart.height > 2 * 300);
+    std::size_t coloured = 0;  // the points and lines are drawn in colour, the axes and text grey
+    for (int y = 0; y < chart.height; ++y)
+        for (int x = 0; x < chart.width; ++x) coloured += std::abs(chart.at(x, y, 0) - chart.at(x, y, 2)) > 0.2f;
+    CHECK(coloured > 100);
 }

@@ -360,8 +360,36 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     CHECK(byName["lut K3 R1 grey"]["psnr"].get<double>() > byName["lut K1 R1 grey"]["psnr"].get<double>() + 1);
     CHECK(byName["lut K3 R1 lrgb"]["bytes_per_texel"] == 6);
     CHECK(byName["ptm"]["bytes_per_texel"] == 9);
-    for (const char* file : {"eval.txt", "eval.json", "rows.csv", "contact.png"}) CHECK(fs::exists(dir / ("eval/" + std::string(file))));
+    for (const char* file : {"eval.txt", "eval.json", "rows.csv", "contact.png", "tradeoff.png", "error_theta.png"})
+        CHECK(fs::exists(dir / ("eval/" + std::string(file))));
     CHECK(loadImage(dir / "eval/contact.png")->width > 192 * 8);
+    // The contact sheet: --contact lights (default 4) spread over the held-out images; here 3 are held out.
+    CHECK(json["contact_sheet"].size() == 3);
+    // Run time against error: the Pareto fronts of each figure and cost, cheapest first. On
+    // PSNR against bytes per texel the front rises; nothing off it is cheaper and better.
+    const nlohmann::json& front = json["pareto_fronts"]["psnr_bytes_per_texel"];
+    REQUIRE(front.size() >= 1);
+    for (std::size_t i = 1; i < front.size(); ++i) {
+        CHECK(byName[front[i]]["psnr"].get<double>() > byName[front[i - 1]]["psnr"].get<double>());
+        CHECK(byName[front[i]]["bytes_per_texel"].get<double>() >= byName[front[i - 1]]["bytes_per_texel"].get<double>());
+    }
+    for (const auto& [name, mode] : byName)
+        for (const auto& on : front) {
+            INFO(name << " against " << on);
+            const bool dominates = mode["bytes_per_texel"].get<double>() <= byName[on]["bytes_per_texel"].get<double>() &&
+                                   mode["psnr"].get<double>() > byName[on]["psnr"].get<double>();
+            CHECK_FALSE(dominates);
+        }
+    CHECK(json["pareto_fronts"]["psnr_frame_ms"].empty());  // --no-gl: no frame times
+    // Where each mode fails: mean figures in bands of the light's theta, over every row.
+    std::size_t counted = 0;
+    for (const auto& mode : json["by_theta"]["modes"])
+        for (const auto& n : mode["count"]) counted += n.get<std::size_t>();
+    CHECK(counted == json["rows"].size());
+    CHECK(loadImage(dir / "eval/tradeoff.png")->width > 3 * 400);
+    CliRun two = runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "lut", "--no-gl", "--json", "--contact", "2"});
+    REQUIRE(two.status == 0);
+    CHECK(nlohmann::json::parse(two.out)["contact_sheet"].size() == 2);
 
     requireOneLineError(runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "ptm", "--no-gl"}), "the PTM fits six terms");
     requireOneLineError(runCli({"eval", m.grey, "--modes", "lut,shiny", "--no-gl"}), "mode 'shiny'");

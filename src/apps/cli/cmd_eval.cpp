@@ -69,7 +69,9 @@ Status runEval(const EvalOptions& o) {
     std::string context;
     if (!o.noGl)
         if (Status s = measureGl(variants, bankFiles, *dataset, o, context); !s) return s;
-    const Report r = report(variants, *dataset, o, *folds, mask->count(), context);
+    Report r = report(variants, *dataset, o, *folds, mask->count(), context);
+    r.json["contact_sheet"] = nlohmann::json::array();  // the held-out images on contact.png, top to bottom
+    for (const std::vector<SheetCell>& row : sheet) r.json["contact_sheet"].push_back(row.front().label.substr(0, row.front().label.rfind(" (photo)")));
     if (!o.output.empty())
         if (Status s = writeReport(r, sheet, o); !s) return s;
     if (!o.quiet) std::cout << (o.json ? jsonText(r.json) : r.text);
@@ -120,7 +122,7 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
     app->add_flag("--no-gl", o->noGl, "skip the GL figures (frame time, GPU bytes, GPU against CPU)");
     app->add_option("--contact", o->sheetLights, "held-out lights on the contact sheet")->check(CLI::Range(1, 64))->capture_default_str();
     app->add_flag("--json", o->json, "print JSON instead of the table");
-    app->add_option("-o,--output", o->output, "folder for eval.txt, eval.json, rows.csv and contact.png");
+    app->add_option("-o,--output", o->output, "folder for eval.txt, eval.json, rows.csv, contact.png, tradeoff.png and error_theta.png");
     addQuietFlag(*app, o->quiet, "print nothing (the figures go to -o DIR's files only)");
     commands.push_back({app, [o] { return runEval(*o); }});
 }

@@ -3,14 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wold-style-cast"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#include <stb/stb_easy_font.h>
-#pragma GCC diagnostic pop
+#include "core/image/canvas.h"
 
 namespace btflut {
 
@@ -18,56 +11,8 @@ namespace {
 
 constexpr int kPanelW = 256, kPanelH = 60, kGapX = 36, kGapY = 10;
 constexpr int kLeft = 96, kTop = 44, kBottom = 44;
-constexpr int kTextScale = 2;
 
-struct Rgb {
-    float r, g, b;
-};
-const Rgb kInk{0.1f, 0.1f, 0.1f}, kBar{0.25f, 0.4f, 0.7f}, kAxis{0.55f, 0.55f, 0.55f},
-    kMark{0.75f, 0.15f, 0.1f};
-
-class Canvas {
-public:
-    Canvas(int w, int h) : m_image(w, h, 3) { std::fill(m_image.samples.begin(), m_image.samples.end(), 1.f); }
-    void fill(int x0, int y0, int x1, int y1, Rgb c) {
-        x0 = std::max(x0, 0), y0 = std::max(y0, 0);
-        x1 = std::min(x1, m_image.width), y1 = std::min(y1, m_image.height);
-        for (int y = y0; y < y1; ++y)
-            for (int x = x0; x < x1; ++x) {
-                m_image.at(x, y, 0) = c.r;
-                m_image.at(x, y, 1) = c.g;
-                m_image.at(x, y, 2) = c.b;
-            }
-    }
-    // Text with its top-left corner at (x, y), stb_easy_font's quads scaled up.
-    void text(int x, int y, const std::string& s, Rgb c) {
-        std::vector<char> buffer(s.size() * 300 + 64);
-        std::string copy = s;
-        unsigned char colour[4] = {0, 0, 0, 255};
-        const int quads = stb_easy_font_print(0, 0, copy.data(), colour, buffer.data(), static_cast<int>(buffer.size()));
-        const auto* v = reinterpret_cast<const float*>(buffer.data());
-        for (int q = 0; q < quads; ++q) {
-            const float* a = v + q * 16;  // 4 vertices of (x, y, z, rgba) = 4 floats each
-            const float* d = a + 8;
-            fill(x + static_cast<int>(a[0] * kTextScale), y + static_cast<int>(a[1] * kTextScale),
-                 x + static_cast<int>(d[0] * kTextScale), y + static_cast<int>(d[1] * kTextScale), c);
-        }
-    }
-    static int textWidth(const std::string& s) {
-        std::string copy = s;
-        return stb_easy_font_width(copy.data()) * kTextScale;
-    }
-    // An RGB image with its top-left corner at (x, y).
-    void blit(int x, int y, const Image& image) {
-        for (int v = 0; v < image.height; ++v)
-            for (int u = 0; u < image.width; ++u)
-                for (int c = 0; c < 3; ++c) m_image.at(x + u, y + v, c) = image.at(u, v, c);
-    }
-    Image take() { return std::move(m_image); }
-
-private:
-    Image m_image;
-};
+const Rgb kBar = paletteColour(0), kAxis = kAxisGrey, kMark{0.75f, 0.15f, 0.1f};
 
 std::string positionLabel(const std::string& name) {
     if (name == "c2-4") return name + " L";
@@ -101,13 +46,8 @@ Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay) {
     const int width = left + panels * (kPanelW + kGapX);
     const int height = top + static_cast<int>(rows) * (kPanelH + kGapY) + kBottom;
     Canvas canvas(width, height);
-    static const Rgb kLines[] = {{0.85f, 0.3f, 0.1f}, {0.1f, 0.6f, 0.3f}, {0.6f, 0.2f, 0.7f}, {0.9f, 0.6f, 0.0f}};
-    auto colourOf = [&](std::size_t c) { return c == 0 ? kBar : kLines[(c - 1) % 4]; };
-    auto fitted = [](std::string title) {  // shortened to the panel's width
-        if (Canvas::textWidth(title) <= kPanelW) return title;
-        while (!title.empty() && Canvas::textWidth(title + "..") > kPanelW) title.pop_back();
-        return title + "..";
-    };
+    auto colourOf = [](std::size_t c) { return paletteColour(c); };  // the first: the bars
+    auto fitted = [](const std::string& title) { return Canvas::fitted(title, kPanelW); };
     if (overlay) {  // the legend
         for (std::size_t c = 0; c < columns.size(); ++c) {
             const int y = 8 + 18 * static_cast<int>(c);
@@ -218,12 +158,7 @@ Image contactSheet(const std::vector<std::vector<SheetCell>>& rows, int cellWidt
         for (std::size_t c = 0; c < rows[r].size(); ++c) {
             const int x = kGap + static_cast<int>(c) * (cellWidth + kGap);
             const int y = kGap + static_cast<int>(r) * (cellHeight + kLabel + kGap);
-            std::string label = rows[r][c].label;  // clipped to its cell
-            if (Canvas::textWidth(label) > cellWidth) {
-                while (!label.empty() && Canvas::textWidth(label + "..") > cellWidth) label.pop_back();
-                label += "..";
-            }
-            canvas.text(x, y + 2, label, kInk);
+            canvas.text(x, y + 2, Canvas::fitted(rows[r][c].label, cellWidth), kInk);  // clipped to its cell
             canvas.blit(x, y + kLabel, scaled[r][c]);
         }
     return canvas.take();

@@ -19,6 +19,7 @@
 #include "core/data/dataset.h"
 #include "core/data/scene.h"
 #include "core/eval/holdout.h"
+#include "core/eval/charts.h"
 #include "core/eval/metrics.h"
 #include "core/histogram/plot.h"
 #include "core/predict/light_model.h"
@@ -107,12 +108,15 @@ Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std
 struct Report {
     std::string text;
     nlohmann::json json;
+    std::vector<ChartPanel> tradeoff;  ///< error against bytes per texel, relight and frame time
+    std::vector<ChartPanel> byTheta;   ///< error against the held-out light's theta
 };
 
 /// The table and its JSON.
 Report report(const std::vector<Variant>& variants, const Dataset& dataset, const EvalOptions& o,
               const std::vector<Fold>& folds, std::size_t maskPixels, const std::string& context);
-/// eval.txt, eval.json, rows.csv and contact.png into the folder `o.output`, all or none.
+/// eval.txt, eval.json, rows.csv, contact.png, tradeoff.png and error_theta.png into the
+/// folder `o.output`, all or none.
 Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& sheet, const EvalOptions& o);
 
 }  // namespace btflut::cli::eval

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "cli/eval/eval.h"
 #include "core/bank/auto_bake.h"
@@ -17,7 +18,12 @@ namespace btflut::cli::eval {
 Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds, const Image& first,
                     const Mask& mask, bool ptm, const EvalOptions& o, const std::filesystem::path& scratch,
                     std::map<std::string, std::string>& bankFiles, std::vector<std::vector<SheetCell>>& sheet) {
-    const std::size_t sheetEvery = std::max<std::size_t>(1, dataset.images.size() / std::max(o.sheetLights, 1));
+    // The contact sheet's --contact lights: spread evenly over every held-out image.
+    std::set<std::size_t> heldOut, onSheet;
+    for (const Fold& fold : folds) heldOut.insert(fold.test.begin(), fold.test.end());
+    const std::vector<std::size_t> tests(heldOut.begin(), heldOut.end());
+    const std::size_t sheetLights = std::min<std::size_t>(tests.size(), static_cast<std::size_t>(o.sheetLights));
+    for (std::size_t k = 0; k < sheetLights; ++k) onSheet.insert(tests[k * tests.size() / sheetLights]);
     for (std::size_t f = 0; f < folds.size(); ++f) {
         const Fold& fold = folds[f];
         const Dataset train = subset(dataset, fold.train);
@@ -94,8 +100,8 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
             if (!photo) return Error{photo.error()};
             if (Status s = requireSameSize(*photo, info.path, first.width, first.height, dataset.images.front().path); !s)
                 return Error{s.error()};
-            const bool onSheet = t % sheetEvery == 0 && sheet.size() < static_cast<std::size_t>(o.sheetLights);
-            if (onSheet) sheet.push_back({{info.name + " (photo)", *photo}});
+            const bool sheetRow = onSheet.count(t) > 0;
+            if (sheetRow) sheet.push_back({{info.name + " (photo)", *photo}});
             for (Variant& v : variants) {
                 Result<LutBank*> found = bankFor(v);
                 if (!found) return Error{found.error()};
@@ -136,7 +142,7 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 }
                 v.errors.push_back(compareImages(predicted, *photo, mask));
                 v.images.push_back(info.name);
-                if (onSheet) sheet.back().push_back({v.name, std::move(predicted)});
+                if (sheetRow) sheet.back().push_back({v.name, std::move(predicted)});
             }
         }
     }

@@ -12,6 +12,87 @@ namespace btflut::cli::eval {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Each mode's mean PSNR and L1 against what it costs (bytes per texel, relight and frame time),
+// one labelled point per mode and setting, the Pareto fronts drawn and listed in the JSON.
+void addTradeoff(Report& r) {
+    struct Cost {
+        const char* key;
+        const char* label;
+        const char* axis;
+    };
+    static const Cost kCosts[] = {{"bytes_per_texel", "bytes per texel", "bytes per texel"},
+                                  {"relight_ms", "relight time", "relight ms (CPU, one light change)"},
+                                  {"frame_ms", "frame time", "frame ms (GL, the light moving)"}};
+    struct Figure {
+        const char* key;
+        const char* label;
+        Better better;
+    };
+    static const Figure kFigures[] = {{"psnr", "PSNR", Better::Higher}, {"l1", "histogram L1", Better::Lower}};
+    auto value = [](const nlohmann::json& m, const char* key) {
+        return m[key].is_number() ? m[key].get<double>() : std::nan("");
+    };
+    nlohmann::json fronts = nlohmann::json::object();
+    for (const Figure& f : kFigures)
+        for (const Cost& c : kCosts) {
+            ChartPanel panel{.title = std::string(f.label) + " against " + c.label, .xLabel = c.axis,
+                             .yLabel = f.better == Better::Higher ? "dB, higher is better" : "lower is better",
+                             .logX = true, .pareto = f.better};
+            std::vector<double> cost, figure;
+            for (const nlohmann::json& m : r.json["modes"]) {
+                cost.push_back(value(m, c.key));
+                figure.push_back(value(m, f.key));
+                panel.series.push_back({m["name"].get<std::string>(), {cost.back()}, {figure.back()}});
+            }
+            nlohmann::json names = nlohmann::json::array();
+            for (std::size_t i : paretoFront(cost, figure, f.better)) names.push_back(r.json["modes"][i]["name"]);
+            fronts[std::string(f.key) + "_" + c.key] = names;
+            r.tradeoff.push_back(std::move(panel));
+        }
+    r.json["pareto_fronts"] = fronts;  // per figure and cost: the modes on the front, cheapest first
+}
+
+// Each mode's mean PSNR and L1 over the held-out lights in 10-degree bands of theta: where
+// each mode fails.
+void addByTheta(Report& r) {
+    constexpr double kBand = 10;
+    std::map<std::string, std::map<int, std::vector<const nlohmann::json*>>> rows;  // mode, band
+    std::vector<std::string> modes;
+    for (const nlohmann::json& m : r.json["modes"]) modes.push_back(m["name"]);
+    for (const nlohmann::json& row : r.json["rows"])
+        rows[row["mode"]][static_cast<int>(row["theta"].get<double>() / kBand)].push_back(&row);
+    nlohmann::json out{{"band_degrees", kBand}, {"modes", nlohmann::json::array()}};
+    ChartPanel psnr{.title = "PSNR against the held-out light's theta", .xLabel = "theta (degrees), 10-degree bands",
+                    .yLabel = "dB", .lines = true};
+    ChartPanel l1{.title = "histogram L1 against the held-out light's theta", .xLabel = "theta (degrees), 10-degree bands",
+                  .yLabel = "L1", .lines = true};
+    for (const std::string& name : modes) {
+        nlohmann::json mode{{"name", name}, {"theta", nlohmann::json::array()}, {"psnr", nlohmann::json::array()},
+                            {"l1", nlohmann::json::array()}, {"count", nlohmann::json::array()}};
+        ChartSeries p{name, {}, {}}, l{name, {}, {}};
+        for (const auto& [band, members] : rows[name]) {
+            double sumPsnr = 0, sumL1 = 0;
+            for (const nlohmann::json* row : members) sumPsnr += (*row)["psnr"].get<double>(), sumL1 += (*row)["l1"].get<double>();
+            const double n = static_cast<double>(members.size()), centre = (band + 0.5) * kBand;
+            mode["theta"].push_back(centre);
+            mode["psnr"].push_back(sumPsnr / n);
+            mode["l1"].push_back(sumL1 / n);
+            mode["count"].push_back(members.size());
+            p.x.push_back(centre), p.y.push_back(sumPsnr / n);
+            l.x.push_back(centre), l.y.push_back(sumL1 / n);
+        }
+        out["modes"].push_back(mode);
+        psnr.series.push_back(std::move(p));
+        l1.series.push_back(std::move(l));
+    }
+    r.json["by_theta"] = out;
+    r.byTheta = {std::move(psnr), std::move(l1)};
+}
+
+}  // namespace
+
 Report report(const std::vector<Variant>& variants, const Dataset& dataset, const EvalOptions& o,
               const std::vector<Fold>& folds, std::size_t maskPixels, const std::string& context) {
     std::size_t tests = 0;
@@ -74,7 +155,10 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
             "bank; relight: CPU, one light change (LUTs and image); frame ms: GL, 4 quads at 1024x1024, the light moving;\n"
             "GPU-CPU: the largest difference of render --native from relight, in 1/255.\n";
     if (!context.empty()) text += "GL: " + context + "\n";
-    return {text, json};
+    Report r{text, json, {}, {}};
+    addTradeoff(r);
+    addByTheta(r);
+    return r;
 }
 
 Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& sheet, const EvalOptions& o) {
@@ -90,12 +174,15 @@ Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& s
         csv += line;
     }
     const std::string jsonText_ = jsonText(r.json);
-    const Bytes png = encodePng(contactSheet(sheet, 192), 8);
+    const Bytes png = encodePng(contactSheet(sheet, 192), 8), tradeoff = encodePng(drawCharts(r.tradeoff, 3), 8),
+                byTheta = encodePng(drawCharts(r.byTheta, 1), 8);
     const std::string dir = o.output;
     if (Status s = writeFilesAtomically({{dir + "/eval.txt", r.text.data(), r.text.size()},
                                          {dir + "/eval.json", jsonText_.data(), jsonText_.size()},
                                          {dir + "/rows.csv", csv.data(), csv.size()},
-                                         {dir + "/contact.png", png.data(), png.size()}});
+                                         {dir + "/contact.png", png.data(), png.size()},
+                                         {dir + "/tradeoff.png", tradeoff.data(), tradeoff.size()},
+                                         {dir + "/error_theta.png", byTheta.data(), byTheta.size()}});
         !s)
         return s;
     return success();

@@ -1,0 +1,158 @@
+#include "core/eval/charts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/check.h"
+#include "core/image/canvas.h"
+
+namespace btflut {
+
+namespace {
+
+constexpr int kPanelW = 420, kPanelH = 300;           // the plot area
+constexpr int kLeft = 76, kRight = 24, kTop = 40, kBottom = 52;  // around it: ticks, labels, title
+constexpr int kLegendW = 180;  // line panels: the legend, right of the plot
+constexpr int kCellW = kLeft + kPanelW + kRight, kCellH = kTop + kPanelH + kBottom;
+
+std::string tickText(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
+// An axis: [lo, hi] padded, linear or logarithmic, onto [0, length] pixels.
+struct Axis {
+    double lo = 0, hi = 1;
+    bool log = false;
+    static Axis of(const std::vector<double>& values, bool log) {
+        Axis a;
+        a.log = log && std::all_of(values.begin(), values.end(), [](double v) { return !std::isfinite(v) || v > 0; });
+        double lo = INFINITY, hi = -INFINITY;
+        for (double v : values)
+            if (std::isfinite(v)) lo = std::min(lo, a.log ? std::log10(v) : v), hi = std::max(hi, a.log ? std::log10(v) : v);
+        if (!std::isfinite(lo)) lo = 0, hi = 1;
+        const double pad = hi > lo ? 0.08 * (hi - lo) : std::max(0.5, std::abs(lo) * 0.1);
+        a.lo = lo - pad, a.hi = hi + pad;
+        return a;
+    }
+    double at(double v, double length) const { return ((log ? std::log10(v) : v) - lo) / (hi - lo) * length; }
+    std::vector<double> ticks() const {
+        std::vector<double> out;
+        if (log) {
+            for (double e = std::floor(lo); e <= hi; e += 1) {
+                for (double m : {1.0, 2.0, 5.0}) {
+                    const double t = std::log10(m) + e;
+                    if (t >= lo && t <= hi) out.push_back(std::pow(10.0, t));
+                }
+            }
+            return out;
+        }
+        const double raw = (hi - lo) / 5, step = std::pow(10.0, std::floor(std::log10(raw)));
+        const double nice = raw / step < 2 ? step : raw / step < 5 ? 2 * step : 5 * step;
+        for (double t = std::ceil(lo / nice) * nice; t <= hi; t += nice) out.push_back(std::abs(t) < nice * 1e-9 ? 0 : t);
+        return out;
+    }
+};
+
+void drawPanel(Canvas& canvas, int left, int top, const ChartPanel& p) {
+    std::vector<double> xs, ys;
+    for (const ChartSeries& s : p.series) {
+        BTFLUT_CHECK(s.x.size() == s.y.size());
+        for (std::size_t i = 0; i < s.x.size(); ++i)
+            if (std::isfinite(s.x[i]) && std::isfinite(s.y[i])) xs.push_back(s.x[i]), ys.push_back(s.y[i]);
+    }
+    const Axis ax = Axis::of(xs, p.logX), ay = Axis::of(ys, false);
+    const int x0 = left + kLeft, y0 = top + kTop;
+    auto px = [&](double x) { return x0 + ax.at(x, kPanelW); };
+    auto py = [&](double y) { return y0 + kPanelH - ay.at(y, kPanelH); };
+    const std::string title = Canvas::fitted(p.title, kPanelW + kLeft - 8);
+    canvas.text(std::max(left + 4, x0 + (kPanelW - Canvas::textWidth(title)) / 2), top + 2, title, kInk);
+    canvas.fill(x0, y0 + kPanelH, x0 + kPanelW, y0 + kPanelH + 1, kAxisGrey);
+    canvas.fill(x0, y0, x0 + 1, y0 + kPanelH, kAxisGrey);
+    if (xs.empty()) {
+        canvas.text(x0 + 20, y0 + kPanelH / 2, "no figures", kAxisGrey);
+        return;
+    }
+    for (double t : ax.ticks()) {
+        const int x = static_cast<int>(px(t));
+        canvas.fill(x, y0 + kPanelH, x + 1, y0 + kPanelH + 6, kAxisGrey);
+        canvas.text(x - Canvas::textWidth(tickText(t)) / 2, y0 + kPanelH + 8, tickText(t), kInk);
+    }
+    for (double t : ay.ticks()) {
+        const int y = static_cast<int>(py(t));
+        canvas.fill(x0 - 6, y, x0, y + 1, kAxisGrey);
+        canvas.text(x0 - 10 - Canvas::textWidth(tickText(t)), y - Canvas::kTextHeight / 2, tickText(t), kInk);
+    }
+    canvas.text(x0 + (kPanelW - Canvas::textWidth(p.xLabel)) / 2, y0 + kPanelH + 30, p.xLabel, kAxisGrey);
+    canvas.text(left + 4, top + 20, p.yLabel, kAxisGrey);
+    if (p.pareto != Better::None && !p.lines) {  // the front first, under the points
+        std::vector<double> cost, value;
+        for (const ChartSeries& s : p.series)
+            for (std::size_t i = 0; i < s.x.size(); ++i) cost.push_back(s.x[i]), value.push_back(s.y[i]);
+        const std::vector<std::size_t> front = paretoFront(cost, value, p.pareto);
+        for (std::size_t k = 1; k < front.size(); ++k) {  // a staircase: each point is best up to the next's cost
+            const double xa = px(cost[front[k - 1]]), ya = py(value[front[k - 1]]), xb = px(cost[front[k]]), yb = py(value[front[k]]);
+            canvas.line(xa, ya, xb, ya, {0.8f, 0.8f, 0.8f}, 3);
+            canvas.line(xb, ya, xb, yb, {0.8f, 0.8f, 0.8f}, 3);
+        }
+        for (std::size_t k : front) canvas.dot(px(cost[k]), py(value[k]), 13, {0.85f, 0.85f, 0.85f});
+    }
+    int legendY = y0 + 4;
+    for (std::size_t s = 0; s < p.series.size(); ++s) {
+        const ChartSeries& series = p.series[s];
+        const Rgb colour = paletteColour(s);
+        double lastX = NAN, lastY = NAN;
+        for (std::size_t i = 0; i < series.x.size(); ++i) {
+            if (!std::isfinite(series.x[i]) || !std::isfinite(series.y[i])) continue;
+            const double x = px(series.x[i]), y = py(series.y[i]);
+            if (p.lines && std::isfinite(lastX)) canvas.line(lastX, lastY, x, y, colour, 2);
+            canvas.dot(x, y, p.lines ? 5 : 7, colour);
+            if (!p.lines) {  // the label beside the point, kept inside the panel
+                const std::string label = Canvas::fitted(series.label, 160);
+                const int tx = std::min(static_cast<int>(x) + 8, x0 + kPanelW - Canvas::textWidth(label));
+                canvas.text(tx, static_cast<int>(y) - Canvas::kTextHeight - 2, label, colour);
+            }
+            lastX = x, lastY = y;
+        }
+        if (p.lines) {  // the legend, right of the plot
+            const std::string label = Canvas::fitted(series.label, kLegendW - 30);
+            const int tx = x0 + kPanelW + kRight + 22;
+            canvas.fill(tx - 22, legendY + 5, tx - 6, legendY + 8, colour);
+            canvas.text(tx, legendY, label, colour);
+            legendY += Canvas::kTextHeight + 4;
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<std::size_t> paretoFront(const std::vector<double>& cost, const std::vector<double>& value, Better better) {
+    BTFLUT_CHECK(cost.size() == value.size() && better != Better::None);
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < cost.size(); ++i)
+        if (std::isfinite(cost[i]) && std::isfinite(value[i])) order.push_back(i);
+    const double sign = better == Better::Higher ? 1 : -1;  // larger `sign * value` is better
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return cost[a] != cost[b] ? cost[a] < cost[b] : sign * value[a] > sign * value[b];
+    });
+    std::vector<std::size_t> front;
+    for (std::size_t i : order)
+        if (front.empty() || sign * value[i] > sign * value[front.back()]) front.push_back(i);
+    return front;
+}
+
+Image drawCharts(const std::vector<ChartPanel>& panels, int columns) {
+    BTFLUT_CHECK(!panels.empty() && columns > 0);
+    const int rows = (static_cast<int>(panels.size()) + columns - 1) / columns;
+    const int across = std::min(columns, static_cast<int>(panels.size()));
+    const bool legends = std::any_of(panels.begin(), panels.end(), [](const ChartPanel& p) { return p.lines; });
+    const int cellW = kCellW + (legends ? kLegendW : 0);
+    Canvas canvas(across * cellW, rows * kCellH);
+    for (std::size_t i = 0; i < panels.size(); ++i)
+        drawPanel(canvas, static_cast<int>(i) % columns * cellW, static_cast<int>(i) / columns * kCellH, panels[i]);
+    return canvas.take();
+}
+
+}  // namespace btflut
