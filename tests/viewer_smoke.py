@@ -271,6 +271,16 @@ def main():
             got = after[field][2] if field == "panel" else after[field]
             was = before[field][2] if field == "panel" else before[field]
             check(got == expected and was != expected, f"{key}: {field} {was!r} -> {got!r}")
+        # The wipe line stays at the middle of the panes when Tab hides the panel.
+        shots = os.path.join(tmp, "wipe-tab")
+        run(XVFB + [btflut, "view", "--frames", "3", "--compare", "wipe", "--compare-mode", "brdf", "--inject-key", "tab",
+                    "--screenshot-dir", shots])
+        before = json.load(open(os.path.join(shots, "frame-0000.json")))
+        after = json.load(open(os.path.join(shots, "frame-0002.json")))
+        centres = [s["panel"][0] / 2 for s in (before, after)]  # the panes end where the panel starts
+        lines = [s["compare"]["wipe_x"] for s in (before, after)]
+        check(all(abs(a - b) < 1 for a, b in zip(lines, centres)) and centres[1] > centres[0],
+              f"wipe line {lines} follows the panes' middle {centres} when Tab hides the panel")
         for bad, needle in ((["--camera", "30"], "--camera"), (["--size", "10x10"], "--size"), (["--zoom", "0"], "--zoom"),
                             (["--projection", "4d"], "--projection"), (["--compare", "blink"], "--compare"),
                             (["--compare", "wipe", "--compare-mode", "nearest", os.path.join(tmp, "blend", "material.btflut")],

@@ -129,6 +129,7 @@ private:
     PresentSettings m_present;
     PresentPass m_presentPass;
     bool m_draggingWipe = false;
+    float m_wipeAt = 0.5f;  ///< the wipe line, a fraction of the panes' width: it stays put when Tab or a resize changes them
 
     GlTexture m_compositeColour, m_compositeColourB;  ///< A: the panes; B: the compare mode's
     GlFramebuffer m_composite, m_compositeB;

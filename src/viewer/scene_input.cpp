@@ -29,7 +29,7 @@ bool Viewer::sceneInput(int width, int height) {
         std::abs(mouseX - m_present.wipeX) < 8)
         m_draggingWipe = true;  // grabbed the wipe line
     if (m_draggingWipe) {
-        m_present.wipeX = std::clamp(mouseX, 0.f, static_cast<float>(width - panelWidth()));
+        m_wipeAt = std::clamp(mouseX / static_cast<float>(std::max(1, width - panelWidth())), 0.f, 1.f);
     } else if (overScene) {
         if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0)) {
             const ImVec2 d = io.MouseDelta;

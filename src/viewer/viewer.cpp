@@ -277,7 +277,6 @@ Status Viewer::run(int& frame) {
         glfwGetFramebufferSize(window, &width, &height);
         resetCamera(width, height);
         if (m_flat && !m_options.zoom.empty() && m_options.zoom != "fit") m_flatView.zoom = std::stod(m_options.zoom);  // validated
-        m_present.wipeX = static_cast<float>(width - panelWidth()) / 2;
         m_pointLight = m_options.pointLight;
         if (m_options.geometry != "quad" &&
             !setGeometry(m_options.geometry == "sphere" ? Geometry::Sphere : Geometry::Cylinder, width, height))
@@ -332,6 +331,7 @@ Status Viewer::run(int& frame) {
         ImGui::NewFrame();
         dirty |= width != m_compositeWidth || height != m_compositeHeight;
         dirty |= sceneInput(width, height);
+        m_present.wipeX = m_wipeAt * static_cast<float>(width - panelWidth());  // after Tab, or a resize
         // The scene first, so the panel shows its plots; what the panel changes is drawn in the
         // next frame (which follows at once: `dirty` polls instead of waiting).
         if (dirty) {
