@@ -201,6 +201,38 @@ TEST_CASE("export: the folder refused when not empty (unless --force); a failed 
     CHECK(luts->height == 9 * 9);
 }
 
+TEST_CASE("export --web: one page holding the export's files; bad outputs refused (the browser test: tests/browser_check.sh)") {
+    TempDir dir;
+    const std::string bank = dir / "m.btflut";
+    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "3", "-o", bank, "-q"}).status == 0);
+    CliRun run = runCli({"export", bank, "--web", dir / "m.html", "-o", dir / "m"});
+    REQUIRE_MESSAGE(run.status == 0, run.err);
+    CHECK(run.out.find("wrote " + std::string(dir / "m.html")) != std::string::npos);
+    const std::string page = readText(dir / "m.html");
+    const std::string tag = "id=\"btflut-data\">";
+    const std::size_t open = page.find(tag) + tag.size(), close = page.find("</script>", open);
+    REQUIRE(open > tag.size());
+    const nlohmann::json data = nlohmann::json::parse(page.substr(open, close - open));
+    CHECK(data["material"] == readJson(dir / "m/material.json"));  // the same sidecar
+    CHECK(data["name"] == "m");
+    for (const char* file : {"luts.png", "planes-0.png", "planes-2.png", "weights.bin"}) {
+        INFO(file);
+        REQUIRE(data["files"].contains(file));
+        CHECK(data["files"][file].get<std::string>().rfind("data:", 0) == 0);
+    }
+    CHECK(data["material"]["views"][0]["lights"].size() == 25);  // the disk's measured directions
+    std::size_t exported = 0;
+    for (const auto& entry : fs::directory_iterator(dir / "m")) exported += fs::file_size(entry.path());
+    CHECK(page.size() <= 1.4 * static_cast<double>(exported));
+    // Bad outputs: one line, nothing written.
+    requireOneLineError(runCli({"export", bank, "--web", dir / "m.txt"}), "--web");
+    fs::create_directories(dir / "taken.html");
+    requireOneLineError(runCli({"export", bank, "--web", dir / "taken.html"}), "taken.html");
+    CHECK(fs::is_directory(dir / "taken.html"));
+    CHECK(runCli({"export", bank, "--web", dir / "new/deeper/m.html", "-q"}).status == 0);  // folders made, as for every output
+    CHECK(fs::exists(dir / "new/deeper/m.html"));
+}
+
 TEST_CASE("export --ptm: a PTM 1.2 LRGB file, rows bottom first, that reads back to the same relighting") {
     TempDir dir;
     const std::string bank = dir / "m.btflut", file = dir / "m.ptm";

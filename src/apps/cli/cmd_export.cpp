@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <bit>
 #include <filesystem>
 #include <iostream>
@@ -17,6 +18,7 @@
 #include "core/predict/light_model.h"
 #include "core/predict/ptm_file.h"
 #include "core/predict/relighter.h"
+#include "cli/web_page.h"
 #include "gl/shader.h"
 
 namespace btflut::cli {
@@ -32,16 +34,17 @@ struct ExportOptions {
     std::string bank;
     std::string output;
     std::string ptm;
+    std::string web;
     int grid = 0;
     bool force = false;
     bool quiet = false;
 };
 
 // 16-bit texels as an image of `rows` rows of `width` (refused beyond what a PNG holds).
-Result<Image> lutRows(const ExportOptions& o, int width, std::uint64_t rows, int channels,
+Result<Image> lutRows(const std::string& bankPath, int width, std::uint64_t rows, int channels,
                       const std::vector<std::uint16_t>& texels, const std::string& what) {
     if (rows > 0x7FFFFFFFu || rows * static_cast<std::uint64_t>(width) > maxImagePixels())
-        return Error{o.bank + ": its " + what + " would be " + std::to_string(width) + "x" + std::to_string(rows) +
+        return Error{bankPath + ": its " + what + " would be " + std::to_string(width) + "x" + std::to_string(rows) +
                      " pixels, more than a PNG (or --max-pixels) allows; bake it with a smaller --grid"};
     Image image(width, static_cast<int>(rows), channels, 16);
     std::transform(texels.begin(), texels.end(), image.samples.begin(), [](std::uint16_t t) { return t / 65535.f; });
@@ -54,7 +57,7 @@ Result<Image> lutRows(const ExportOptions& o, int width, std::uint64_t rows, int
 Result<Image> gridImage(const ExportOptions& o, const LutBank& b, const std::string& what) {
     const std::uint64_t rows = static_cast<std::uint64_t>(b.gridSize) * static_cast<std::uint64_t>(b.gridSize) * b.layers.size() *
                                static_cast<std::uint64_t>(b.makesLuts() ? b.blend.regions : 1);
-    return lutRows(o, static_cast<int>(b.segmentLength()), rows, b.channels(), b.gridTexels(), what);  // the same order as the image's samples
+    return lutRows(o.bank, static_cast<int>(b.segmentLength()), rows, b.channels(), b.gridTexels(), what);  // the same order as the image's samples
 }
 
 Status exportAtlas(const ExportOptions& o, const LutBank& b) {
@@ -257,29 +260,29 @@ bool holdsOnlyAnExport(const std::string& folder) {
     return !material.is_discarded() && material.is_object() && material.value("format", "") == "btflut-material";
 }
 
-// The folder an engine loads (docs/engines.md): reference.png (its own bit depth), luts.png
-// (the LUT grid as a 3D texture's slices, 16-bit), material.json and btflut.glsl; for a bank
-// with a predictor also its planes (or references), albedo, weights and labels.
-Status exportFolder(const ExportOptions& o, const LutBank& b) {
-    std::error_code ec;
-    bool reexport = false;
-    if (fs::exists(o.output, ec)) {
-        if (!fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
-        reexport = holdsOnlyAnExport(o.output);
-        if (!fs::is_empty(o.output, ec) && !o.force && !reexport)
-            return Error{o.output + ": the folder is not empty and holds more than a btflut export (--force writes over "
-                                    "btflut's files in it)"};
-    }
-    Result<EngineMaterial> made = engineMaterial(b, o.bank);
+// An engine export's files in memory (docs/engines.md): reference.png (its own bit depth),
+// luts.png (the LUT grid as a 3D texture's slices, 16-bit), material.json and the shader
+// includes; for a bank with a predictor also its planes (or references), albedo, weights and
+// labels. What `-o DIR/` writes and `--web` puts in its page.
+struct EngineExport {
+    nlohmann::json side;  ///< material.json
+    std::vector<std::pair<std::string, std::string>> files;  ///< name, bytes; material.json and the includes last
+    std::string summary;  ///< "model material, luts.png (3D texture 256x17x17, 16-bit)"
+};
+
+Result<EngineExport> engineExport(const LutBank& b, const std::string& bankPath) {
+    Result<EngineMaterial> made = engineMaterial(b, bankPath);
     if (!made) return Error{made.error()};
     const EngineMaterial& m = *made;
     const bool predictor = m.kind != EngineMaterial::Kind::Luts;
     const int g = m.gridSize;
     // Row (block * G + j) * G + i holds node (i, j)'s LUT; a block is a view layer or a region.
-    Result<Image> luts = lutRows(o, m.entries, static_cast<std::uint64_t>(g) * g * static_cast<std::uint64_t>(m.blocks), m.lutChannels,
-                                 m.lutTexels, "LUT texture");
+    Result<Image> luts = lutRows(bankPath, m.entries, static_cast<std::uint64_t>(g) * g * static_cast<std::uint64_t>(m.blocks),
+                                 m.lutChannels, m.lutTexels, "LUT texture");
     if (!luts) return Error{luts.error()};
-    nlohmann::json side{
+    EngineExport out;
+    nlohmann::json& side = out.side;
+    side = nlohmann::json{
         // Banks of LUTs keep version 1, so that loaders written for it still read them.
         {"format", "btflut-material"},
         {"version", predictor ? 2 : 1},
@@ -312,7 +315,13 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
     for (const ViewLayer& layer : b.layers) {
         nlohmann::json provenance = nlohmann::json::array();
         for (Provenance p : layer.gridProvenance) provenance.push_back(provenanceName(p));
-        side["views"].push_back({{"view", directionJson(layer.view)}, {"node_provenance", provenance}});
+        nlohmann::json lights = nlohmann::json::array();  // the measured (or modelled) directions
+        for (const LightNode& node : layer.nodes) {
+            nlohmann::json light = directionJson(node.light);
+            light["modelled"] = node.modelled;
+            lights.push_back(light);
+        }
+        side["views"].push_back({{"view", directionJson(layer.view)}, {"node_provenance", provenance}, {"lights", lights}});
     }
     if (!b.modelFill.empty()) side["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
 
@@ -332,12 +341,30 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
         static_assert(std::endian::native == std::endian::little, "weights.bin is little-endian");
         weights.assign(reinterpret_cast<const char*>(m.weightGrid.data()), m.weightGrid.size() * sizeof(float));
     }
-    const std::string text = jsonText(side);
+    for (auto& [name, bytes] : pngs) out.files.push_back({name, std::string(asText(bytes))});
+    if (!weights.empty()) out.files.push_back({"weights.bin", weights});
+    out.files.push_back({"material.json", jsonText(side)});
+    for (const char* include : kShaderIncludes) out.files.push_back({include, std::string(embeddedShader(include))});
+    out.summary = side["kind"].get<std::string>() + " material, luts.png (3D texture " + std::to_string(m.entries) + "x" +
+                  std::to_string(g) + "x" + std::to_string(g * m.blocks) + ", 16-bit)";
+    return out;
+}
+
+// -o DIR/: the export's files in a folder.
+Status exportFolder(const ExportOptions& o, const LutBank& b) {
+    std::error_code ec;
+    bool reexport = false;
+    if (fs::exists(o.output, ec)) {
+        if (!fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
+        reexport = holdsOnlyAnExport(o.output);
+        if (!fs::is_empty(o.output, ec) && !o.force && !reexport)
+            return Error{o.output + ": the folder is not empty and holds more than a btflut export (--force writes over "
+                                    "btflut's files in it)"};
+    }
+    Result<EngineExport> made = engineExport(b, o.bank);
+    if (!made) return Error{made.error()};
     std::vector<std::pair<std::string, std::string_view>> files;
-    for (const auto& [name, bytes] : pngs) files.push_back({name, asText(bytes)});
-    if (!weights.empty()) files.push_back({"weights.bin", weights});
-    files.push_back({"material.json", text});
-    for (const char* include : kShaderIncludes) files.push_back({include, embeddedShader(include)});
+    for (const auto& [name, bytes] : made->files) files.push_back({name, bytes});
     if (Status s = writeFolder(o.output, files); !s) return s;
     // What a previous export wrote and this one did not (planes of a bigger model, weights);
     // only in a folder that held nothing else (with --force, other files may be the user's).
@@ -347,11 +374,28 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
         if (!written && exportFileName(name)) fs::remove(it->path(), ec);
     }
     if (o.quiet) return success();
-    std::cout << "wrote " << o.output << ": " << side["kind"].get<std::string>() << " material, luts.png (3D texture "
-              << m.entries << "x" << g << "x" << g * m.blocks << ", 16-bit)";
+    std::cout << "wrote " << o.output << ": " << made->summary;
     for (const auto& file : files)
         if (file.first != "luts.png") std::cout << ", " << file.first;
     std::cout << "\n";
+    return success();
+}
+
+// --web M.html: one page that opens from disk and relights the material with WebGL2.
+Status exportWeb(const ExportOptions& o, const LutBank& b) {
+    if (Status s = requireExtension(o.web, {"html", "htm"}, "--web"); !s) return s;
+    Result<EngineExport> made = engineExport(b, o.bank);
+    if (!made) return Error{made.error()};
+    const std::string page = webPage(fs::path(o.bank).stem().string(), made->side, made->files);
+    if (Status s = writeFileAtomically(o.web, page.data(), page.size()); !s) return s;
+    std::size_t exported = 0;
+    for (const auto& file : made->files) exported += file.second.size();
+    if (!o.quiet) {
+        char ratio[32];
+        std::snprintf(ratio, sizeof ratio, "%.2f", static_cast<double>(page.size()) / static_cast<double>(exported));
+        std::cout << "wrote " << o.web << ": " << made->summary << ", one page of " << page.size() << " bytes (" << ratio
+                  << " x the export's files); open it in a browser\n";
+    }
     return success();
 }
 
@@ -364,12 +408,13 @@ Status exportPtm(const ExportOptions& o, const LutBank& b) {
 }
 
 Status runExport(const ExportOptions& o) {
-    if (o.output.empty() && o.ptm.empty()) return Error{"give -o DIR (or -o atlas.png) and/or --ptm FILE.ptm"};
+    if (o.output.empty() && o.ptm.empty() && o.web.empty())
+        return Error{"give -o DIR (or -o atlas.png), --web PAGE.html and/or --ptm FILE.ptm"};
     Result<LutBank> bank = loadBank(o.bank);
     if (!bank) return Error{bank.error()};
     if (!o.ptm.empty())
         if (Status s = exportPtm(o, *bank); !s) return s;
-    if (o.output.empty()) return success();
+    if (o.output.empty() && o.web.empty()) return success();
     if (o.grid > 0 && o.grid != bank->gridSize) {  // resampled from the measured directions
         const std::size_t length = bank->makesLuts() ? bank->matchLength() : bank->lutLength();
         const std::uint64_t bytes = static_cast<std::uint64_t>(o.grid) * o.grid * length * 2 * bank->layers.size();
@@ -378,6 +423,9 @@ Status runExport(const ExportOptions& o) {
         bank->fillGrids();
         if (bank->makesLuts()) bakeMatchGrid(*bank);  // the match LUTs at the new nodes
     }
+    if (!o.web.empty())
+        if (Status s = exportWeb(o, *bank); !s) return s;
+    if (o.output.empty()) return success();
     return fileExtension(o.output) == "png" ? exportAtlas(o, *bank) : exportFolder(o, *bank);
 }
 
@@ -392,6 +440,9 @@ void addExportCommand(CLI::App& root, Commands& commands) {
     app->add_option("-o,--output", o->output,
                     "DIR: reference.png, luts.png, material.json, btflut.glsl (and its GLSL ES, HLSL and Godot forms); or atlas.png: the LUT grid as rows of a "
                     "16-bit PNG with atlas.json (banks that blend references: with their textures)");
+    app->add_option("--web", o->web,
+                    "PAGE.html: one page that opens from disk (no network) and relights the material with WebGL2: the "
+                    "export's files inside it, the light on a disk, 2D and a sphere; #light=THETA,PHI&zoom=1&view=2d|sphere&ui=0");
     app->add_option("--ptm", o->ptm, "FILE.ptm: the bank's PTM (bake --ptm) as a PTM 1.2 LRGB file for RTI viewers");
     app->add_option("--grid", o->grid,
                     "resample the LUT grid at N x N light directions from the measured ones (default: the bank's; finer "

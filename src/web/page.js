@@ -1,0 +1,354 @@
+// page.js: the viewer of the page `btflut export --web` writes. The material's files are in
+// the page (data: URLs); btflut_material.js reads them, WebGL2 draws them through the engine
+// include's GLSL ES form. A 2D view (pan, zoom, 1:1) and a sphere under a point light; the
+// light dragged on the disk of directions, by keys or by touch. State in the address's hash.
+(function () {
+  'use strict';
+  const data = window.btflutPage;  // set by the page's first script
+  const json = data.material;
+  const view = document.getElementById('view'), panel = document.getElementById('panel');
+  const diskCanvas = document.getElementById('disk');
+
+  function showMessage(text) {
+    const box = document.getElementById('message');
+    box.textContent = text;
+    box.style.display = 'flex';
+    panel.style.display = 'none';
+  }
+
+  // --- State, and the address's hash -------------------------------------------------------
+  const state = {theta: 30, phi: 45, zoom: null, centre: null, view: '2d', ui: true, exposure: 1, anchored: false};
+  function readHash() {
+    const fields = Object.fromEntries(location.hash.slice(1).split('&').filter(Boolean).map((p) => p.split('=').map(decodeURIComponent)));
+    if (fields.light) {
+      const [theta, phi] = fields.light.split(',').map(Number);
+      if (Number.isFinite(theta) && Number.isFinite(phi)) state.theta = Math.min(89.9, Math.max(0, theta)), state.phi = phi;
+    }
+    if (fields.zoom) state.zoom = fields.zoom === 'fit' ? null : Math.min(64, Math.max(1 / 64, Number(fields.zoom) || 1));
+    if (fields.view === 'sphere' || fields.view === '2d') state.view = fields.view;
+    if (fields.ui !== undefined) state.ui = fields.ui !== '0';
+    if (fields.exposure && Number(fields.exposure) > 0) state.exposure = Number(fields.exposure);
+    state.anchored = !state.ui;  // ui=0: the material at the top left, as a screenshot wants it
+  }
+  function writeHash() {
+    const zoom = state.zoom === null ? 'fit' : +state.zoom.toFixed(4);
+    const hash = '#light=' + (+state.theta.toFixed(2)) + ',' + (+state.phi.toFixed(2)) + '&zoom=' + zoom + '&view=' + state.view +
+                 (state.ui ? '' : '&ui=0') + (state.exposure === 1 ? '' : '&exposure=' + (+state.exposure.toFixed(3)));
+    try { history.replaceState(null, '', hash); } catch (e) { /* some file:// pages refuse: the state still works */ }
+  }
+
+  // --- WebGL2 ----------------------------------------------------------------------------------
+  const gl = view.getContext('webgl2', {antialias: false, preserveDrawingBuffer: true});
+  if (!gl) {
+    showMessage('This page needs WebGL2 to relight the material, and this browser does not offer it ' +
+                '(it may be switched off, or the graphics driver blocked). Try another browser, or enable hardware acceleration.');
+    return;
+  }
+  const vertexSource = `#version 300 es
+void main() {
+    vec2 corner = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);  // one triangle covers the view
+    gl_Position = vec4(corner, 0.0, 1.0);
+}`;
+  const fragmentMain = btflutMaterial.fragmentHead + `
+uniform int mode;            // 0: 2D, 1: sphere
+uniform vec2 origin;         // 2D: the view pixel of texel (0, 0)'s corner, GL's y up
+uniform float zoom;          // 2D: view pixels per texel
+uniform vec3 sphere;         // centre (view pixels) and radius
+uniform vec2 tiles;          // sphere: the texture's repeats around and up
+uniform vec3 light;          // 2D: the direction; sphere: towards the point light (from the centre)
+uniform float lightDistance; // sphere: the point light's distance from the centre, in radii
+uniform float exposure;
+out vec4 colour;
+
+void main() {
+    colour = vec4(0.0, 0.0, 0.0, 1.0);
+    if (mode == 0) {
+        vec2 t = (gl_FragCoord.xy - origin) / zoom;  // texture texels, rows bottom first
+        if (any(lessThan(t, vec2(0.0))) || any(greaterThanEqual(t, size))) return;
+        vec2 texel = floor(t);
+        uvec2 pixel = uvec2(texel.x, size.y - 1.0 - texel.y);  // image rows top first: btflut's dither
+        colour.rgb = min(relight(t / size, light, pixel) * exposure, 1.0);
+        return;
+    }
+    vec2 p = (gl_FragCoord.xy - sphere.xy) / sphere.z;
+    float rr = dot(p, p);
+    if (rr >= 1.0) return;
+    vec3 n = vec3(p, sqrt(1.0 - rr));
+    float longitude = atan(n.x, n.z), latitude = asin(clamp(n.y, -1.0, 1.0));
+    vec2 uv = vec2(longitude / 6.2831853 * tiles.x, (latitude / 3.1415927 + 0.5) * tiles.y);
+    vec3 u = vec3(cos(longitude), 0.0, -sin(longitude)), v = cross(n, u);  // the tangent frame: +u, +v, the normal
+    vec3 towards = light * lightDistance - n;
+    float d = length(towards);
+    vec3 l = towards / d;
+    float falloff = pow((lightDistance - 1.0) / d, 2.0);  // 1 at the surface point nearest the light
+    colour.rgb = min(relight(uv, vec3(dot(l, u), dot(l, v), dot(l, n)), uvec2(gl_FragCoord.xy)) * falloff * exposure, 1.0);
+}`;
+
+  function compile(type, source) {
+    const shader = gl.createShader(type);
+    gl.shaderSource(shader, source);
+    gl.compileShader(shader);
+    if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) throw new Error('shader: ' + gl.getShaderInfoLog(shader));
+    return shader;
+  }
+  let program = null, uniforms = {};
+  const textures = [];
+
+  function texture(target, unit, setup) {
+    const t = gl.createTexture();
+    gl.activeTexture(gl.TEXTURE0 + unit);
+    gl.bindTexture(target, t);
+    setup();
+    textures.push(t);
+    return t;
+  }
+  function parameters(target, filter, wrap) {
+    gl.texParameteri(target, gl.TEXTURE_MIN_FILTER, filter);
+    gl.texParameteri(target, gl.TEXTURE_MAG_FILTER, filter);
+    for (const p of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T, gl.TEXTURE_WRAP_R]) gl.texParameteri(target, p, wrap);
+  }
+  function image2D(unit, image, filter) {
+    texture(gl.TEXTURE_2D, unit, () => {
+      gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+      const half = image.rgba instanceof Uint16Array;
+      gl.texImage2D(gl.TEXTURE_2D, 0, half ? gl.RGBA16F : gl.RGBA8, image.width, image.height, 0, gl.RGBA,
+                    half ? gl.HALF_FLOAT : gl.UNSIGNED_BYTE, image.rgba);
+      parameters(gl.TEXTURE_2D, filter, gl.REPEAT);
+    });
+  }
+  function array2D(unit, width, height, layers, internal, type, pixels, filter) {
+    texture(gl.TEXTURE_2D_ARRAY, unit, () => {
+      gl.texImage3D(gl.TEXTURE_2D_ARRAY, 0, internal, width, height, layers, 0, gl.RGBA, type, pixels);
+      parameters(gl.TEXTURE_2D_ARRAY, filter, gl.REPEAT);
+    });
+  }
+
+  async function load() {
+    const read = async (file) => {
+      const url = data.files[file];
+      if (!url) throw new Error(file + ': not in this page');
+      const text = atob(url.slice(url.indexOf(',') + 1)), bytes = new Uint8Array(text.length);
+      for (let i = 0; i < text.length; ++i) bytes[i] = text.charCodeAt(i);
+      return bytes;
+    };
+    const m = await btflutMaterial.prepare(json, read);
+    program = gl.createProgram();
+    gl.attachShader(program, compile(gl.VERTEX_SHADER, vertexSource));
+    gl.attachShader(program, compile(gl.FRAGMENT_SHADER, '#version 300 es\n' + data.include + fragmentMain));
+    gl.linkProgram(program);
+    if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error('program: ' + gl.getProgramInfoLog(program));
+    gl.useProgram(program);
+    const at = (name) => gl.getUniformLocation(program, name);
+    // Units: 0 luts, 1 reference, 2 planes, 3 weights, 4 labels; a 1-texel stand-in where unused.
+    texture(gl.TEXTURE_3D, 0, () => {
+      gl.pixelStorei(gl.UNPACK_ALIGNMENT, 2);
+      const one = m.luts.channels === 1;
+      gl.texImage3D(gl.TEXTURE_3D, 0, one ? gl.R16F : gl.RGBA16F, m.luts.width, m.luts.height, m.luts.depth, 0,
+                    one ? gl.RED : gl.RGBA, gl.HALF_FLOAT, m.luts.halves);
+      parameters(gl.TEXTURE_3D, gl.LINEAR, gl.CLAMP_TO_EDGE);
+    });
+    const none = {width: 1, height: 1, rgba: new Uint8Array(4)};
+    image2D(1, m.reference || none, gl.LINEAR);
+    if (m.planes) array2D(2, m.planes.width, m.planes.height, m.planes.layers, gl.RGBA8, gl.UNSIGNED_BYTE, m.planes.rgba, gl.LINEAR);
+    else array2D(2, 1, 1, 1, gl.RGBA8, gl.UNSIGNED_BYTE, new Uint8Array(4), gl.NEAREST);
+    if (m.weights) array2D(3, m.weights.size, m.weights.size, m.weights.layers, gl.RGBA32F, gl.FLOAT, m.weights.data, gl.NEAREST);
+    else array2D(3, 1, 1, 1, gl.RGBA32F, gl.FLOAT, new Float32Array(4), gl.NEAREST);
+    image2D(4, m.labels || none, gl.NEAREST);
+    ['luts', 'reference', 'planes', 'weights', 'labels'].forEach((name, unit) => gl.uniform1i(at(name), unit));
+    const floats = ['inputCode', 'outputCode', 'codes'];  // the structs' other fields are ints and bools
+    for (const [struct, values] of [['material', m.material], ['predictor', m.predictor]])
+      for (const [key, value] of Object.entries(values)) {
+        const location = at(struct + '.' + key + (Array.isArray(value) ? '[0]' : ''));
+        if (Array.isArray(value)) gl.uniform1fv(location, value);
+        else if (floats.includes(key)) gl.uniform1f(location, value);
+        else gl.uniform1i(location, Number(value));
+      }
+    gl.uniform1i(at('hasPredictor'), m.kind !== 'luts');
+    gl.uniform2f(at('size'), m.size[0], m.size[1]);
+    for (const name of ['mode', 'origin', 'zoom', 'sphere', 'tiles', 'light', 'lightDistance', 'exposure']) uniforms[name] = at(name);
+    state.size = m.size;
+    const error = gl.getError();
+    if (error !== gl.NO_ERROR) throw new Error('WebGL error ' + error + ' while uploading the material');
+  }
+
+  // --- Drawing ---------------------------------------------------------------------------------
+  function lightVector() {
+    const t = state.theta * Math.PI / 180, p = state.phi * Math.PI / 180;
+    return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)];
+  }
+  function fitZoom() {
+    const [w, h] = state.size;
+    return Math.min(view.width / w, view.height / h) * 0.95;
+  }
+  let pending = false;
+  function redraw() {
+    if (pending) return;
+    pending = true;
+    requestAnimationFrame(() => { pending = false; draw(); });
+  }
+  function draw() {
+    const dpr = window.devicePixelRatio || 1;
+    const width = Math.max(1, Math.round(view.clientWidth * dpr)), height = Math.max(1, Math.round(view.clientHeight * dpr));
+    if (view.width !== width || view.height !== height) view.width = width, view.height = height;
+    gl.viewport(0, 0, width, height);
+    const [w, h] = state.size;
+    const zoom = state.zoom === null ? fitZoom() : state.zoom;
+    if (!state.centre) state.centre = [w / 2, h / 2];
+    let origin = [width / 2 - state.centre[0] * zoom, height / 2 - state.centre[1] * zoom];
+    if (state.anchored) origin = [0, height - h * zoom];  // the image's top left at the view's
+    if (Number.isInteger(zoom)) origin = origin.map(Math.round);  // texel centres on pixel centres
+    const radius = Math.min(width, height) * 0.42;
+    gl.uniform1i(uniforms.mode, state.view === 'sphere' ? 1 : 0);
+    gl.uniform2f(uniforms.origin, origin[0], origin[1]);
+    gl.uniform1f(uniforms.zoom, zoom);
+    gl.uniform3f(uniforms.sphere, width / 2, height / 2, radius);
+    gl.uniform2f(uniforms.tiles, Math.max(1, Math.round(2 * Math.PI * radius / w)), Math.max(1, Math.round(Math.PI * radius / h)));
+    gl.uniform3f(uniforms.light, ...lightVector());
+    gl.uniform1f(uniforms.lightDistance, 4);
+    gl.uniform1f(uniforms.exposure, state.exposure);
+    gl.drawArrays(gl.TRIANGLES, 0, 3);
+    const error = gl.getError();
+    if (error !== gl.NO_ERROR) console.error('WebGL error ' + error + ' while drawing');
+    updatePanel();
+    drawDisk();
+    writeHash();
+  }
+
+  // --- The panel and the light disk ---------------------------------------------------------
+  const layer = (json.views || [])[0] || {};
+  function updatePanel() {
+    panel.style.display = state.ui ? 'block' : 'none';
+    document.getElementById('light').textContent = 'theta ' + state.theta.toFixed(1) + ', phi ' + state.phi.toFixed(1);
+    document.getElementById('exposure-value').textContent = state.exposure.toFixed(2);
+    document.getElementById('exposure').value = Math.log2(state.exposure);
+    document.getElementById('view-2d').classList.toggle('on', state.view === '2d');
+    document.getElementById('view-sphere').classList.toggle('on', state.view === 'sphere');
+  }
+  // The equal-area disk (as btflut's grid): r = sqrt(2) sin(theta / 2), the horizon at r = 1.
+  const diskRadius = 88, diskCentre = 96;
+  function diskPoint(theta, phi) {
+    const r = Math.SQRT2 * Math.sin(theta * Math.PI / 360) * diskRadius;
+    return [diskCentre + r * Math.cos(phi * Math.PI / 180), diskCentre - r * Math.sin(phi * Math.PI / 180)];
+  }
+  function drawDisk() {
+    if (!state.ui) return;
+    const c = diskCanvas.getContext('2d');
+    c.clearRect(0, 0, 192, 192);
+    c.fillStyle = '#1c2230';
+    c.beginPath(); c.arc(diskCentre, diskCentre, diskRadius, 0, 2 * Math.PI); c.fill();
+    // Grid nodes the engine export draws from something other than measurements.
+    const g = json.luts.grid_size, provenance = layer.node_provenance || [];
+    const cell = 2 * diskRadius / (g - 1);
+    c.save();
+    c.beginPath(); c.arc(diskCentre, diskCentre, diskRadius, 0, 2 * Math.PI); c.clip();
+    provenance.forEach((kind, k) => {
+      if (kind !== 'modelled' && kind !== 'extrapolated') return;
+      const i = k % g, j = Math.floor(k / g), x = -1 + 2 * i / (g - 1), y = -1 + 2 * j / (g - 1);
+      c.fillStyle = kind === 'modelled' ? 'rgba(230, 140, 40, 0.45)' : 'rgba(150, 150, 150, 0.35)';
+      c.fillRect(diskCentre + x * diskRadius - cell / 2, diskCentre - y * diskRadius - cell / 2, cell, cell);
+    });
+    c.restore();
+    for (const node of layer.lights || []) {
+      const [x, y] = diskPoint(node.theta, node.phi);
+      c.fillStyle = node.modelled ? '#e68c28' : '#fff';
+      c.beginPath(); c.arc(x, y, 2.5, 0, 2 * Math.PI); c.fill();
+    }
+    c.strokeStyle = '#667'; c.lineWidth = 1;
+    c.beginPath(); c.arc(diskCentre, diskCentre, diskRadius, 0, 2 * Math.PI); c.stroke();
+    const [lx, ly] = diskPoint(state.theta, state.phi);
+    c.strokeStyle = '#ffd54a'; c.lineWidth = 2;
+    c.beginPath(); c.arc(lx, ly, 6, 0, 2 * Math.PI); c.stroke();
+  }
+  function setLightFromDisk(event) {
+    const rect = diskCanvas.getBoundingClientRect();
+    const x = ((event.clientX - rect.left) * 192 / rect.width - diskCentre) / diskRadius;
+    const y = -((event.clientY - rect.top) * 192 / rect.height - diskCentre) / diskRadius;
+    const r = Math.min(1, Math.hypot(x, y));
+    state.theta = Math.min(89.9, 2 * Math.asin(r / Math.SQRT2) * 180 / Math.PI);
+    state.phi = (Math.atan2(y, x) * 180 / Math.PI + 360) % 360;
+    redraw();
+  }
+
+  // --- Input: pointer (mouse, touch, pen), wheel, keys, buttons ---------------------------
+  const pointers = new Map();
+  let pinch = null;
+  diskCanvas.addEventListener('pointerdown', (e) => { diskCanvas.setPointerCapture(e.pointerId); setLightFromDisk(e); });
+  diskCanvas.addEventListener('pointermove', (e) => { if (diskCanvas.hasPointerCapture(e.pointerId)) setLightFromDisk(e); });
+  function zoomAt(factor, clientX, clientY) {
+    if (state.view !== '2d') return;
+    const dpr = window.devicePixelRatio || 1, zoom = state.zoom === null ? fitZoom() : state.zoom;
+    const next = Math.min(64, Math.max(1 / 64, zoom * factor));
+    if (clientX !== undefined) {  // the texel under the cursor stays there
+      const px = clientX * dpr - view.width / 2, py = (view.clientHeight - clientY) * dpr - view.height / 2;
+      state.centre = [state.centre[0] + px / zoom - px / next, state.centre[1] + py / zoom - py / next];
+    }
+    state.zoom = next;
+    state.anchored = false;
+    redraw();
+  }
+  view.addEventListener('pointerdown', (e) => { view.setPointerCapture(e.pointerId); pointers.set(e.pointerId, [e.clientX, e.clientY]); });
+  view.addEventListener('pointerup', (e) => { pointers.delete(e.pointerId); pinch = null; });
+  view.addEventListener('pointercancel', (e) => { pointers.delete(e.pointerId); pinch = null; });
+  view.addEventListener('pointermove', (e) => {
+    if (!pointers.has(e.pointerId)) return;
+    const [x0, y0] = pointers.get(e.pointerId);
+    pointers.set(e.pointerId, [e.clientX, e.clientY]);
+    if (pointers.size === 2) {  // pinch: zoom about the fingers' midpoint
+      const [a, b] = [...pointers.values()];
+      const spread = Math.hypot(a[0] - b[0], a[1] - b[1]);
+      if (pinch) zoomAt(spread / pinch, (a[0] + b[0]) / 2, (a[1] + b[1]) / 2);
+      pinch = spread;
+      return;
+    }
+    const dpr = window.devicePixelRatio || 1;
+    if (state.view === 'sphere') {  // drag the point light across the sphere's front
+      const v = lightVector(), speed = 0.01;
+      const x = v[0] + (e.clientX - x0) * speed, y = v[1] - (e.clientY - y0) * speed;
+      const r = Math.min(0.9998, Math.hypot(x, y));
+      state.theta = Math.asin(r) * 180 / Math.PI;
+      state.phi = (Math.atan2(y, x) * 180 / Math.PI + 360) % 360;
+    } else {
+      const zoom = state.zoom === null ? fitZoom() : state.zoom;
+      if (state.anchored) state.centre = [view.width / 2 / zoom, state.size[1] - view.height / 2 / zoom], state.anchored = false;
+      state.centre = [state.centre[0] - (e.clientX - x0) * dpr / zoom, state.centre[1] + (e.clientY - y0) * dpr / zoom];
+    }
+    redraw();
+  });
+  view.addEventListener('wheel', (e) => { e.preventDefault(); zoomAt(Math.pow(1.0015, -e.deltaY), e.clientX, e.clientY); }, {passive: false});
+  window.addEventListener('keydown', (e) => {
+    const step = e.shiftKey ? 1 : 5;
+    const actions = {
+      ArrowLeft: () => { state.phi = (state.phi + step) % 360; }, ArrowRight: () => { state.phi = (state.phi - step + 360) % 360; },
+      ArrowUp: () => { state.theta = Math.max(0, state.theta - step); }, ArrowDown: () => { state.theta = Math.min(89.9, state.theta + step); },
+      '+': () => zoomAt(1.25), '=': () => zoomAt(1.25), '-': () => zoomAt(0.8),
+      '1': () => { state.zoom = 1; state.anchored = false; }, f: () => { state.zoom = null; state.centre = null; state.anchored = false; },
+      s: () => { state.view = state.view === 'sphere' ? '2d' : 'sphere'; }, u: () => { state.ui = !state.ui; },
+      e: () => { state.exposure = Math.min(4, state.exposure * 1.25); }, E: () => { state.exposure = Math.max(0.25, state.exposure / 1.25); }};
+    const action = actions[e.key];
+    if (!action || e.ctrlKey || e.metaKey || e.altKey) return;
+    e.preventDefault();
+    action();
+    redraw();
+  });
+  const click = (id, action) => document.getElementById(id).addEventListener('click', () => { action(); redraw(); });
+  click('view-2d', () => { state.view = '2d'; });
+  click('view-sphere', () => { state.view = 'sphere'; });
+  click('one', () => { state.zoom = 1; state.view = '2d'; state.anchored = false; });
+  click('fit', () => { state.zoom = null; state.centre = null; state.view = '2d'; state.anchored = false; });
+  document.getElementById('exposure').addEventListener('input', (e) => { state.exposure = Math.pow(2, Number(e.target.value)); redraw(); });
+  window.addEventListener('resize', redraw);
+  window.addEventListener('hashchange', () => { readHash(); redraw(); });
+
+  // --- Start -----------------------------------------------------------------------------------
+  const name = data.name || json.reference.name || 'material';
+  document.title = name + ' (btflut)';
+  document.getElementById('name').textContent = name;
+  document.getElementById('facts').textContent = json.reference.width + ' x ' + json.reference.height + ' texels, ' + json.kind +
+    (json.predictor ? ' (' + (json.predictor.basis || 'references') + ')' : '') + ', ' + json.luts.grid_size + ' x ' +
+    json.luts.grid_size + ' light grid' + (data.bytes ? ', ' + (data.bytes / 1024).toFixed(0) + ' KB exported' : '');
+  readHash();
+  load().then(draw).catch((e) => {
+    console.error(String(e && e.message || e));
+    showMessage('This material could not be drawn: ' + String(e && e.message || e));
+  });
+})();

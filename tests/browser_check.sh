@@ -1,0 +1,91 @@
+#!/usr/bin/env bash
+# btflut in a real browser (headless Chromium, WebGL2 on SwiftShader), against
+# `btflut relight --grid` at the same light, for one reference, a light model and blended
+# references (and, with the shared capture, RGB banks):
+#  - the page `export --web` writes, opened at #light=30,40&zoom=1&ui=0 and cropped to the
+#    material; it is at most 1.4 times the engine export's files; its 2D view with the panel and
+#    its sphere draw with no console message; without WebGL2 it says so;
+#  - the three.js recipe (examples/three/, docs/engines.md) on the engine export.
+#
+#   bash tests/browser_check.sh BTFLUT DEFAULT_MATERIAL [SHARED_DATA]
+set -euo pipefail
+btflut=$1 default=$2 data=${BTFLUT_DATA:-${3:-}}
+repo="$(cd "$(dirname "$0")/.." && pwd)"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+light=30,40
+# name | bake options | tolerance (as the engine example's: docs/engines.md, "Accuracy")
+banks=("one|$default --references 1|max=2" "hsh2|$default --predictor hsh2|p99=2,mean=0.2"
+       "references|$default --references 3|max=2")
+if [ ! -d "$data/psm-rock" ] && [ "${BTFLUT_REQUIRE_DATA:-0}" = 1 ]; then
+  echo "browser_check: $data/psm-rock is missing (set BTFLUT_DATA)" >&2
+  exit 1
+fi
+if [ -d "$data/psm-rock" ]; then
+  banks+=("rock-rgb|$data/psm-rock --colour rgb|max=2" "rock-ptm-albedo|$data/psm-rock --predictor ptm|p99=2,mean=0.2"
+          "rock-lrgb-regions|$data/psm-rock --references 4 --colour lrgb --regions 2|max=2")
+fi
+
+# The shot's top-left WIDTH x HEIGHT in the material's channels (a grey one is drawn R = G = B).
+crop() {
+  /usr/bin/python3 - "$@" <<'PY'
+import sys
+from PIL import Image
+shot, w, h, channels, out = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4]), sys.argv[5]
+image = Image.open(shot).convert("RGB").crop((0, 0, w, h))
+if channels == 1:
+    r, g, b = image.split()
+    assert r.tobytes() == g.tobytes() == b.tobytes(), "a grey material drawn with colour"
+    image = r
+image.save(out)
+PY
+}
+check() {  # what, image, expected, tolerance
+  local figures
+  if ! figures=$("$btflut" compare "$2" "$3" --tolerance "$4"); then
+    echo "$1: $figures" >&2
+    exit 1
+  fi
+  echo "$1: $figures"
+}
+
+for entry in "${banks[@]}"; do
+  IFS='|' read -r name bake tolerance <<<"$entry"
+  # shellcheck disable=SC2086
+  "$btflut" bake $bake -o "$work/$name.btflut" -q
+  "$btflut" export "$work/$name.btflut" -o "$work/$name" --web "$work/$name.html" -q
+  "$btflut" relight "$work/$name.btflut" --grid --light "$light" -o "$work/$name-grid.png" -q
+  read -r width height channels < <(/usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['reference']; print(r['width'], r['height'], r['channels'])" "$work/$name/material.json")
+
+  page=$(stat -c %s "$work/$name.html")
+  files=$(du -cb "$work/$name"/* | tail -1 | cut -f1)
+  ratio=$(/usr/bin/python3 -c "print(f'{$page / $files:.2f}')")
+  echo "export --web, $name: $page bytes, $ratio x the engine export's $files"
+  /usr/bin/python3 -c "import sys; sys.exit(0 if $page <= 1.4 * $files else 1)" || { echo "the page is over 1.4 x the export" >&2; exit 1; }
+  bash "$repo/tools/browser-shot.sh" "file://$work/$name.html#light=$light&zoom=1&ui=0" "$width" "$height" "$work/$name-web.png"
+  crop "$work/$name-web.png" "$width" "$height" "$channels" "$work/$name-web-crop.png"
+  check "export --web, $name at $light" "$work/$name-web-crop.png" "$work/$name-grid.png" "$tolerance"
+
+  bash "$repo/tools/browser-shot.sh" "file://$repo/examples/three/relight.html#material=file://$work/$name/&light=$light" \
+    "$width" "$height" "$work/$name-three.png"
+  crop "$work/$name-three.png" "$width" "$height" "$channels" "$work/$name-three-crop.png"
+  check "three.js, $name at $light" "$work/$name-three-crop.png" "$work/$name-grid.png" "$tolerance"
+done
+
+# The page with its panel, and the sphere under the point light: drawn, no console message.
+bash "$repo/tools/browser-shot.sh" "file://$work/hsh2.html#light=50,120&zoom=fit" 900 600 "$work/panel.png"
+bash "$repo/tools/browser-shot.sh" "file://$work/references.html#light=50,120&view=sphere" 900 600 "$work/sphere.png"
+/usr/bin/python3 - "$work/sphere.png" <<'PY'
+import sys
+from PIL import Image
+image = Image.open(sys.argv[1]).convert("L")
+centre = image.crop((400, 250, 500, 350))  # the sphere's middle, lit from the upper left
+corner = image.crop((850, 550, 900, 600))  # off the sphere: black
+assert max(centre.getdata()) > 40 and max(corner.getdata()) == 0, "the sphere view is not drawn"
+PY
+echo "export --web: the panel and the sphere view draw"
+# Without WebGL2: a message, not a blank canvas.
+dom=$(timeout 120 chromium --headless --no-sandbox --user-data-dir="$work/profile" --disable-webgl --disable-3d-apis \
+      --virtual-time-budget=10000 --dump-dom "file://$work/one.html" 2>/dev/null)
+grep -q 'This page needs WebGL2' <<<"$dom" || { echo "export --web: no message where WebGL2 is missing" >&2; exit 1; }
+echo "export --web: without WebGL2 the page says so"
