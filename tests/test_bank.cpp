@@ -234,3 +234,28 @@ TEST_CASE("lookups say how the light and the view were obtained; coverage is the
     REQUIRE(full.ok());
     CHECK(full->lightCoverage(0) > 0.95);  // a 24-gon at theta 89 covers 97% of the disk
 }
+
+TEST_CASE("layers domain: a light beyond one view's measured lights takes the nearest view that measured it") {
+    TempDir dir;
+    // View A measured lights up to 30 degrees; view B also at 70 degrees (a brighter offset).
+    auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 10, 1}, {30, 120, 0, 0, 10, 1},
+                                                      {30, 240, 0, 0, 10, 1}, {0, 0, 40, 0, 0, 1}, {70, 0, 40, 0, 60, 1},
+                                                      {70, 120, 40, 0, 60, 1}, {70, 240, 40, 0, 60, 1}}));
+    REQUIRE(ds.ok());
+    auto bank = bakeBank(*ds, {.gridSize = 9, .domain = BankDomain::Layers});
+    REQUIRE(bank.ok());
+    const Direction grazing = Direction::fromDegrees(70, 0), viewA{}, viewB = Direction::fromDegrees(40, 0);
+    const BankLookup a = bank->lookup(grazing, viewA), b = bank->lookup(grazing, viewB);
+    CHECK(a.lightProvenance == Provenance::Interpolated);  // from view B's measurements, not clamped
+    REQUIRE(a.values.size() == b.values.size());
+    for (std::size_t k = 0; k < a.values.size(); ++k) CHECK(a.values[k] == doctest::Approx(b.values[k]).epsilon(1e-5));
+    // Within view A's lights nothing changes: its own measurement.
+    const BankLookup own = bank->lookup(Direction::fromDegrees(30, 0), viewA);
+    CHECK(own.provenance == Provenance::Measured);
+    // A bank of one view clamps as before: nothing else measured that light.
+    auto single = bakeBank(*openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 10, 1},
+                                                                   {30, 120, 0, 0, 10, 1}, {30, 240, 0, 0, 10, 1}})),
+                           {.gridSize = 9});
+    REQUIRE(single.ok());
+    CHECK(single->lookup(grazing).lightProvenance == Provenance::Extrapolated);
+}

@@ -22,18 +22,20 @@ namespace {
 namespace fs = std::filesystem;
 using namespace eval;
 
-Status runEval(const EvalOptions& o) {
+Status runEval(EvalOptions o) {
     if (!o.output.empty()) {
         std::error_code ec;
         if (fs::exists(o.output, ec) && !fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
     }
     if (o.quiet && o.output.empty()) return Error{"-q leaves eval's figures only in -o DIR's files: give -o"};
+    Result<Dataset> dataset = openDatasetWithMask(o.dataset, o.mask);
+    if (!dataset) return Error{dataset.error()};
+    if (Status s = adaptToViews(o, *dataset); !s) return s;  // several views: lut, nearest, brdf
+    const bool views = !dataset->fixedView();
+    if (views) o.noGl = true;  // the GL figures draw a fixed camera's scene
     Result<std::vector<Variant>> parsed = variantsOf(o);
     if (!parsed) return Error{parsed.error()};
     std::vector<Variant>& variants = *parsed;
-    Result<Dataset> dataset = openDatasetWithMask(o.dataset, o.mask);
-    if (!dataset) return Error{dataset.error()};
-    if (!dataset->fixedView()) return Error{o.dataset + ": eval needs a fixed camera (one view); this dataset has several"};
     std::size_t minimumTraining = 2;
     bool ptm = false;
     for (const Variant& v : variants) {
@@ -64,16 +66,19 @@ Status runEval(const EvalOptions& o) {
     std::map<std::string, std::string> bankFiles;
 
     std::vector<std::vector<SheetCell>> sheet;
-    if (Status s = predictFolds(variants, *dataset, *folds, *first, *mask, ptm, o, scratch, bankFiles, sheet); !s) return s;
+    std::vector<PlotColumn> sheetHistograms;
+    if (Status s = predictFolds(variants, *dataset, *folds, *first, *mask, ptm, o, scratch, bankFiles, sheet, sheetHistograms); !s)
+        return s;
 
     std::string context;
     if (!o.noGl)
         if (Status s = measureGl(variants, bankFiles, *dataset, o, context); !s) return s;
+    if (views) context = "not measured: the GL figures draw a fixed camera's scene";
     Report r = report(variants, *dataset, o, *folds, mask->count(), context);
     r.json["contact_sheet"] = nlohmann::json::array();  // the held-out images on contact.png, top to bottom
     for (const std::vector<SheetCell>& row : sheet) r.json["contact_sheet"].push_back(row.front().label.substr(0, row.front().label.rfind(" (photo)")));
     if (!o.output.empty())
-        if (Status s = writeReport(r, sheet, o); !s) return s;
+        if (Status s = writeReport(r, sheet, sheetHistograms, o); !s) return s;
     if (!o.quiet) std::cout << (o.json ? jsonText(r.json) : r.text);
     return success();
 }
@@ -84,9 +89,12 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<EvalOptions>();
     CLI::App* app = root.add_subcommand(
         "eval", "Predict held-out photographs of a dataset in every mode and compare: histograms, pixels, memory, time");
-    app->add_option("DATASET", o->dataset, "a dataset with a fixed camera (see btflut hist --help)")->required();
+    app->add_option("DATASET", o->dataset,
+                    "a dataset (see btflut hist --help); with several views (a BTF, CUReT): held-out (light, view) "
+                    "pairs, modes lut, nearest, brdf and flat")
+        ->required();
     app->add_option("--holdout", o->holdout,
-                    "every:K (every K-th image; one fold), loo (each image in turn), or a file of image names")
+                    "every:K (every K-th image, a light-view pair; one fold), loo (each image in turn), or a file of image names")
         ->capture_default_str();
     app->add_option("--modes", o->modes,
                     "comma-separated: lut, brdf, ptm, nearest, flat, and the RTI bases unmatched: hsh (hsh2, hsh3), rbf "
@@ -117,12 +125,17 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
                     "engine reads the export: for a bank with a predictor, the match LUTs baked over the grid), or "
                     "both: exact,grid")
         ->capture_default_str();
+    app->add_option("--domain", o->domains,
+                    "the banks' domain: layers (a LUT grid per view, blended between views), isotropic (light and view "
+                    "as one point of (theta_i, theta_r, phi_i - phi_r)), or both: layers,isotropic; nearest measures there too")
+        ->capture_default_str();
     app->add_option("--frames", o->frames, "GL frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();
     app->add_option("--backend", o->backend, "GL: auto, osmesa or egl")->capture_default_str();
     app->add_flag("--no-gl", o->noGl, "skip the GL figures (frame time, GPU bytes, GPU against CPU)");
     app->add_option("--contact", o->sheetLights, "held-out lights on the contact sheet")->check(CLI::Range(1, 64))->capture_default_str();
     app->add_flag("--json", o->json, "print JSON instead of the table");
-    app->add_option("-o,--output", o->output, "folder for eval.txt, eval.json, rows.csv, contact.png, tradeoff.png and error_theta.png");
+    app->add_option("-o,--output", o->output,
+                    "folder for eval.txt, eval.json, rows.csv, contact.png, histograms.png, tradeoff.png and error_theta.png");
     addQuietFlag(*app, o->quiet, "print nothing (the figures go to -o DIR's files only)");
     commands.push_back({app, [o] { return runEval(*o); }});
 }

@@ -79,7 +79,7 @@ void addSynthCommand(CLI::App& root, Commands& commands) {
     app->add_option("--albedo-variation", o->albedoVariation, "0..1: smooth random albedo 1 - v u")->capture_default_str();
     app->add_option("--ambient", o->ambient, "constant diffuse irradiance (interreflection)")->capture_default_str();
     app->add_option("--noise", o->noise, "sensor noise standard deviation")->capture_default_str();
-    app->add_option("--geometry", o->geometry, "curet-c2, curet-specular, rti-N, a list or a dataset")->capture_default_str();
+    app->add_option("--geometry", o->geometry, "curet-c2, curet-specular, rti-N (N lights, frontal camera), btf-N (N views x N lights, rendered rectified), a list or a dataset")->capture_default_str();
     app->add_option("--size", o->size, "field and image size in pixels (any size FFTW takes)")->capture_default_str();
     app->add_option("--samples", o->samples, "rays per pixel along each axis")->check(CLI::Range(1, 16))->capture_default_str();
     app->add_option("--seed", o->seed, "surface seed")->capture_default_str();

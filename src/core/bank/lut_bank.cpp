@@ -229,6 +229,19 @@ std::vector<float> LutBank::matchGridLookup(Direction light, std::size_t layer) 
     return bilinearOnGrid(l.matchGridLuts, gridSize, matchLength(), light);
 }
 
+std::optional<std::size_t> LutBank::nearestLayerMeasuring(DiskPoint light, std::size_t except) const {
+    std::optional<std::size_t> best;
+    double bestAngle = 0;
+    for (std::size_t k = 0; k < layers.size(); ++k) {
+        if (k == except || layers[k].measuredNodes < 3) continue;
+        const double angle = angleBetween(layers[k].view, layers[except].view);
+        if (best && angle >= bestAngle) continue;
+        if (!layers[k].lights.weightsAt(light).inside) continue;
+        best = k, bestAngle = angle;
+    }
+    return best;
+}
+
 BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) const {
     const std::size_t length = nodeLength();
     BankLookup out;
@@ -275,22 +288,37 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
         const auto layer = static_cast<std::size_t>(vw.index[v]);
         const ViewLayer& lights = layers[layer];
         Weights lw = lights.lights.weightsAt(lightPoint);
-        double measured = 1;  // the measured nodes' share; the rest is the model's
-        if (!lw.inside && lights.measuredNodes < lights.nodes.size()) {
-            // Beyond the measured hull: from the measurements clamped to it to the model,
-            // over one grid step, so a LUT never jumps at the hull (model_fill.h).
+        // Beyond the measured hull the measurements clamped to it give way to other data over
+        // one grid step, so a LUT never jumps at the hull: their share of the blend.
+        auto clampedShare = [&] {
             DiskPoint onHull{0, 0};
             for (int l = 0; l < lw.count; ++l) {
                 const DiskPoint q = lights.lights.points()[static_cast<std::size_t>(lw.index[l])];
                 onHull = {onHull.x + lw.weight[l] * q.x, onHull.y + lw.weight[l] * q.y};
             }
             const double distance = std::hypot(lightPoint.x - onHull.x, lightPoint.y - onHull.y);
-            measured = std::max(0.0, 1 - distance * (gridSize - 1) / 2.0);
+            return std::max(0.0, 1 - distance * (gridSize - 1) / 2.0);
+        };
+        double measured = 1;  // the share of this layer's measured nodes
+        std::optional<std::size_t> borrowed;
+        if (!lw.inside && lights.measuredNodes == lights.nodes.size()) borrowed = nearestLayerMeasuring(lightPoint, layer);
+        if (!lw.inside && lights.measuredNodes < lights.nodes.size()) {
+            // Beyond the measured hull: towards the fitted model (model_fill.h).
+            measured = clampedShare();
             const Weights mw = lights.modelLights.weightsAt(lightPoint);
             for (int m = 0; m < mw.count; ++m)
                 add({layer, lights.measuredNodes + static_cast<std::size_t>(mw.index[m])},
                     vw.weight[v] * mw.weight[m] * (1 - measured));
             out.lightProvenance = combine(out.lightProvenance, Provenance::Modelled);
+        } else if (borrowed) {
+            // Beyond this view's lights, within another view's: the nearest such view's
+            // measurements at this light (shadows and highlights follow the light more than
+            // the view), rather than this view's clamped to its hull.
+            measured = clampedShare();
+            const Weights ow = layers[*borrowed].lights.weightsAt(lightPoint);
+            for (int o = 0; o < ow.count; ++o)
+                add({*borrowed, static_cast<std::size_t>(ow.index[o])}, vw.weight[v] * ow.weight[o] * (1 - measured));
+            out.lightProvenance = combine(out.lightProvenance, Provenance::Interpolated);
         } else {
             out.lightProvenance = combine(out.lightProvenance, provenanceOf(lw));
         }

@@ -15,7 +15,9 @@
 // Queries use the nodes: Delaunay interpolation over the measured directions, so a measured
 // direction reproduces its measurement exactly, and directions outside the measured hull
 // are clamped to its boundary, or, in banks filled from the model (model_fill.h), move from
-// the clamped LUT to the model's within one grid step. Blending LUTs blends quantile
+// the clamped LUT to the model's within one grid step; in the layers domain, a light beyond
+// one view's measured lights but within another's moves likewise to the nearest such view's
+// LUT at that light (its measurements, not the clamp). Blending LUTs blends quantile
 // functions (lut.h). Two domains:
 //   - layers: within a layer over the light disk, then across the layers' view directions.
 //     Any material, when each layer's lights span the disk (a fixed camera, Bonn BTFs).
@@ -186,6 +188,9 @@ struct LutBank {
     /// The LUT for a light and view direction (any direction in the upper hemisphere);
     /// with `interpolate` false, the LUT of the nearest measured node (for comparisons).
     BankLookup lookup(Direction light, Direction view = {}, bool interpolate = true) const;
+    /// The layer nearest `except` by view whose measured lights' hull holds `light` (layers
+    /// domain: where a view's own lights do not reach, lookup() takes that view's).
+    std::optional<std::size_t> nearestLayerMeasuring(DiskPoint light, std::size_t except) const;
 
     /// The LUT an engine reads from the resampled grid (layer `layer`): bilinear between the
     /// four grid nodes around the light's disk point, from their unorm16 values, as one

@@ -174,6 +174,7 @@ Result<Dataset> openBonnFolder(const std::string& folder) {
     Dataset ds;
     ds.source = folder;
     ds.format = "bonn";
+    ds.rectified = true;  // UBO2003's images are rectified to the sample's frame
     Result<std::vector<fs::path>> entries = listFolder(folder);
     if (!entries) return Error{entries.error()};
     std::vector<std::string> names;
@@ -313,6 +314,10 @@ Result<Dataset> parseManifest(const std::string& text, const std::string& file,
     Dataset ds;
     ds.source = file;
     ds.format = "manifest";
+    if (doc.contains("rectified")) {
+        if (!doc["rectified"].is_boolean()) return Error{file + ": \"rectified\" must be true or false"};
+        ds.rectified = doc["rectified"].get<bool>();
+    }
     if (doc.contains("mask")) {
         if (!doc["mask"].is_string()) return Error{file + ": \"mask\" must be a file name"};
         ds.maskPath = joinPath(folder, doc["mask"].get<std::string>());

@@ -41,6 +41,10 @@ struct Dataset {
     /// normalised (within kRoundedLightTolerance of unit length), image paths not found as
     /// written and found by their file name beside the .lp file.
     std::vector<std::string> notes;
+    /// True when every image shows the sample in one frame, whatever its view (rectified BTFs:
+    /// UBO2003, and btflut synth's images, rendered in the frontal frame): pixels compare
+    /// across views. Manifests say so with "rectified": true.
+    bool rectified = false;
 
     /// True when every image shares one view direction (a fixed camera).
     bool fixedView() const;

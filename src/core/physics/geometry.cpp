@@ -1,6 +1,7 @@
 #include "core/physics/geometry.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <numbers>
 #include <sstream>
@@ -44,6 +45,18 @@ std::vector<Geometry> rtiDome(int lights) {
     return g;
 }
 
+std::vector<Geometry> btfDome(int n) {
+    const std::vector<Geometry> dome = rtiDome(n);
+    std::vector<Geometry> g;
+    char name[32];
+    for (int v = 0; v < n; ++v)
+        for (int l = 0; l < n; ++l) {
+            std::snprintf(name, sizeof name, "v%02d-l%02d", v + 1, l + 1);
+            g.push_back({name, dome[static_cast<std::size_t>(l)].light, dome[static_cast<std::size_t>(v)].light});
+        }
+    return g;
+}
+
 Result<std::vector<Geometry>> parseGeometry(const std::string& spec) {
     if (spec == "curet-c2") return curetC2();
     if (spec == "curet-specular") return curetSpecular();
@@ -52,6 +65,12 @@ Result<std::vector<Geometry>> parseGeometry(const std::string& spec) {
         const long n = std::strtol(spec.c_str() + 4, &end, 10);
         if (*end != '\0' || n < 1 || n > 10000) return Error{"--geometry " + spec + ": expected rti-N with N in 1..10000"};
         return rtiDome(static_cast<int>(n));
+    }
+    if (spec.rfind("btf-", 0) == 0) {
+        char* end = nullptr;
+        const long n = std::strtol(spec.c_str() + 4, &end, 10);
+        if (*end != '\0' || n < 1 || n > 100) return Error{"--geometry " + spec + ": expected btf-N with N in 1..100 (N views x N lights)"};
+        return btfDome(static_cast<int>(n));
     }
     if (spec.find(',') != std::string::npos && spec.find('/') == std::string::npos) {
         std::vector<Geometry> g;
@@ -75,7 +94,7 @@ Result<std::vector<Geometry>> parseGeometry(const std::string& spec) {
         return g;
     }
     Result<Dataset> ds = openDataset(spec);
-    if (!ds) return Error{"--geometry '" + spec + "' is not curet-c2, curet-specular, a list or a dataset (" +
+    if (!ds) return Error{"--geometry '" + spec + "' is not curet-c2, curet-specular, rti-N, btf-N, a list or a dataset (" +
                           ds.error() + ")"};
     std::vector<Geometry> g;
     for (const DatasetImage& im : ds->images) g.push_back({im.name, im.light, im.view});

@@ -28,6 +28,9 @@ struct Geometry {
 std::vector<Geometry> curetC2();
 std::vector<Geometry> curetSpecular();
 std::vector<Geometry> rtiDome(int lights);
+/// A BTF: `n` view directions times `n` light directions, each set rtiDome(n)'s (names
+/// vVV-lLL, view-major, as UBO2003 orders them).
+std::vector<Geometry> btfDome(int n);
 
 /// A named geometry, a list, or a dataset path. Errors name the problem. Angles may be 90
 /// degrees here (the simulator handles the horizon); beyond is refused.

@@ -140,7 +140,8 @@ Status writeSynthDataset(const SynthMaterial& m, const std::vector<Geometry>& ge
         fs::remove_all(tmp, ec);
         return Error{message};
     };
-    nlohmann::json manifest{{"btflut_dataset", 1}, {"mask", "mask.png"}, {"images", nlohmann::json::array()}};
+    // Every image is rendered in the frontal frame (the mean plane's grid), whatever its view.
+    nlohmann::json manifest{{"btflut_dataset", 1}, {"mask", "mask.png"}, {"rectified", true}, {"images", nlohmann::json::array()}};
     manifest["synth"] = {{"size", m.surface.size},          {"roughness", m.surface.roughness},
                          {"roughness_across", m.surface.roughnessAcross}, {"angle_degrees", m.surface.angle / kDegree},
                          {"correlation_length", m.surface.correlationLength}, {"seed", m.surface.seed},

@@ -49,8 +49,13 @@ struct EvalOptions {
     int frames = 6;
     std::string grids = "17";    ///< banks' grid sizes, a list
     std::string lutSources = "exact";  ///< lut: exact (made at the light), grid (read from the bank's grid), a list
+    std::string domains = "auto";      ///< the banks' domains: auto (bake's choice), layers, isotropic, a list
     int sheetLights = 4;
 };
+
+/// Options a dataset with several views changes: the modes that predict another view (lut,
+/// nearest, brdf, flat; one reference per bank). Errors name what cannot be evaluated there.
+Status adaptToViews(EvalOptions& o, const Dataset& dataset);
 
 // One column of the report: a mode, and for lut the bank's setting.
 struct Variant {
@@ -66,6 +71,8 @@ struct Variant {
     bool fromGrid = false;     // lut: the LUT read from the bank's grid (as an engine does), not made at the light
     bool corrections = false;     // lut with a predictor: the nodes' corrections blended (LutBank::Blend::Target)
     bool blendedLuts = false;  // the alternative: per-reference LUTs blended
+    std::optional<BankDomain> domain;  // the bank's domain (and nearest's distance); empty: bake's choice
+    BankDomain bankDomain = BankDomain::Layers;  // what the bank has: `domain`, or bake's choice
     /// An RTI basis on its own, unmatched (modes hsh, rbf, bln; a number after the name is
     /// the hsh order or the planes): fitted to the fold's training images.
     std::optional<LightModelOptions> basis;
@@ -75,11 +82,14 @@ struct Variant {
         return predictor == "references" && references == 1 && regions == 1 && colour == ColourMode::Grey && !filled &&
                !corrections;
     }
-    using Setting = std::tuple<std::string, int, int, ColourMode, bool, bool, int>;
-    Setting setting() const { return {predictor, references, regions, colour, filled, corrections, grid}; }
+    using Setting = std::tuple<std::string, int, int, ColourMode, bool, bool, int, std::optional<BankDomain>>;
+    Setting setting() const { return {predictor, references, regions, colour, filled, corrections, grid, domain}; }
 
     std::vector<ImageErrors> errors;
     std::vector<std::string> images;
+    /// Per prediction: the (light, view) bin lies outside the measured hull of the bank's
+    /// domain (its lookup extrapolated, or modelled), so the bank clamped (or modelled) it.
+    std::vector<bool> outside;
     std::vector<double> bakeSeconds, relightSeconds;
     double bytesPerTexel = 0;
     double gpuBytesPerTexel = std::nan(""), frameMs = std::nan(""), gpuMaxDiff = std::nan("");
@@ -97,7 +107,8 @@ double bytesPerTexel(const Variant& v, const LutBank& bank);
 /// are saved into `scratch` for the GL figures (bankFiles: variant name to path).
 Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds, const Image& first,
                     const Mask& mask, bool ptm, const EvalOptions& o, const std::filesystem::path& scratch,
-                    std::map<std::string, std::string>& bankFiles, std::vector<std::vector<SheetCell>>& sheet);
+                    std::map<std::string, std::string>& bankFiles, std::vector<std::vector<SheetCell>>& sheet,
+                    std::vector<PlotColumn>& sheetHistograms);
 
 /// GL figures per variant: frame times (interleaved rounds, the light moving every frame),
 /// texture bytes per texel, and for lut the largest difference of the native renderer from
@@ -115,8 +126,9 @@ struct Report {
 /// The table and its JSON.
 Report report(const std::vector<Variant>& variants, const Dataset& dataset, const EvalOptions& o,
               const std::vector<Fold>& folds, std::size_t maskPixels, const std::string& context);
-/// eval.txt, eval.json, rows.csv, contact.png, tradeoff.png and error_theta.png into the
-/// folder `o.output`, all or none.
-Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& sheet, const EvalOptions& o);
+/// eval.txt, eval.json, rows.csv, contact.png, histograms.png, tradeoff.png and
+/// error_theta.png into the folder `o.output`, all or none.
+Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& sheet,
+                   const std::vector<PlotColumn>& sheetHistograms, const EvalOptions& o);
 
 }  // namespace btflut::cli::eval

@@ -2,6 +2,8 @@
 // and every held-out image is predicted through the code users run (the Relighter behind
 // `relight`, the PTM, the nearest training image, the 2D texture mapping).
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <set>
@@ -17,7 +19,17 @@ namespace btflut::cli::eval {
 
 Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds, const Image& first,
                     const Mask& mask, bool ptm, const EvalOptions& o, const std::filesystem::path& scratch,
-                    std::map<std::string, std::string>& bankFiles, std::vector<std::vector<SheetCell>>& sheet) {
+                    std::map<std::string, std::string>& bankFiles, std::vector<std::vector<SheetCell>>& sheet,
+                    std::vector<PlotColumn>& sheetHistograms) {
+    // Histograms of the contact sheet's bins: the photograph's, then each variant's prediction.
+    sheetHistograms.assign(1, {"measured", {}});
+    for (const Variant& v : variants) sheetHistograms.push_back({v.name, {}});
+    auto histogramOf = [&](const Image& image, const DatasetImage& info) {
+        char label[96];
+        std::snprintf(label, sizeof label, "%s l%.0f,%.0f v%.0f,%.0f", info.name.c_str(), info.light.thetaDegrees(),
+                      info.light.phiDegrees(), info.view.thetaDegrees(), info.view.phiDegrees());
+        return imageHistograms(image, mask, label, info.light, info.view, 64, false).front();
+    };
     // The contact sheet's --contact lights: spread evenly over every held-out image.
     std::set<std::size_t> heldOut, onSheet;
     for (const Fold& fold : folds) heldOut.insert(fold.test.begin(), fold.test.end());
@@ -31,11 +43,12 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
         std::map<Variant::Setting, std::unique_ptr<LutBank>> banks;
         std::map<Variant::Setting, std::unique_ptr<Relighter>> relighters;
         auto bankFor = [&](Variant& v) -> Result<LutBank*> {
-            const auto key = v.mode == RenderMode::Lut ? v.setting() : Variant::Setting{"references", 1, 1, ColourMode::Grey, false, false, v.grid};
+            const auto key = v.mode == RenderMode::Lut ? v.setting()
+                                                       : Variant::Setting{"references", 1, 1, ColourMode::Grey, false, false, v.grid, v.domain};
             if (!banks.count(key)) {
                 Variant setting = v;
                 std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled, setting.corrections,
-                         setting.grid) = key;
+                         setting.grid, setting.domain) = key;
                 const auto start = Clock::now();
                 const BakeOptions options = bakeOptionsOf(setting, ptm && setting.base());
                 // lut auto: bake's validated choice, from the fold's training images alone
@@ -101,11 +114,15 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
             if (Status s = requireSameSize(*photo, info.path, first.width, first.height, dataset.images.front().path); !s)
                 return Error{s.error()};
             const bool sheetRow = onSheet.count(t) > 0;
-            if (sheetRow) sheet.push_back({{info.name + " (photo)", *photo}});
+            if (sheetRow) {
+                sheet.push_back({{info.name + " (photo)", *photo}});
+                sheetHistograms.front().rows.push_back(histogramOf(*photo, info));
+            }
             for (Variant& v : variants) {
                 Result<LutBank*> found = bankFor(v);
                 if (!found) return Error{found.error()};
                 const LutBank& bank = **found;
+                v.bankDomain = bank.domain;
                 Image predicted;
                 if (v.basis) {
                     predicted = models.at(v.name).render(info.light);
@@ -122,11 +139,17 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                     v.relightSeconds.push_back(seconds(start));
                 } else if (v.mode == RenderMode::Ptm) {
                     predicted = bank.ptm.render(info.light);
-                } else if (v.mode == RenderMode::Nearest) {
+                } else if (v.mode == RenderMode::Nearest) {  // the nearest measured light-view pair in the domain
+                    auto distance = [&](const DatasetImage& m) {
+                        if (bank.domain == BankDomain::Isotropic) {
+                            const Point3 a = isotropicPoint(m.light, m.view), b = isotropicPoint(info.light, info.view);
+                            return std::hypot(a.x - b.x, a.y - b.y, a.z - b.z);
+                        }
+                        return std::hypot(angleBetween(m.light, info.light), angleBetween(m.view, info.view));
+                    };
                     std::size_t nearest = fold.train.front();
                     for (std::size_t i : fold.train)
-                        if (angleBetween(dataset.images[i].light, info.light) < angleBetween(dataset.images[nearest].light, info.light))
-                            nearest = i;
+                        if (distance(dataset.images[i]) < distance(dataset.images[nearest])) nearest = i;
                     if (!trainImages.count(nearest)) {
                         Result<Image> image = loadImage(dataset.images[nearest].path);
                         if (!image) return Error{image.error()};
@@ -142,7 +165,13 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 }
                 v.errors.push_back(compareImages(predicted, *photo, mask));
                 v.images.push_back(info.name);
-                if (sheetRow) sheet.back().push_back({v.name, std::move(predicted)});
+                const BankLookup at = bank.lookup(info.light, info.view);
+                auto beyond = [](Provenance p) { return p == Provenance::Extrapolated || p == Provenance::Modelled; };
+                v.outside.push_back(beyond(at.lightProvenance) || beyond(at.viewProvenance));
+                if (sheetRow) {
+                    sheetHistograms[static_cast<std::size_t>(&v - variants.data()) + 1].rows.push_back(histogramOf(predicted, info));
+                    sheet.back().push_back({v.name, std::move(predicted)});
+                }
             }
         }
     }

@@ -74,10 +74,11 @@ void addByTheta(Report& r) {
         ChartSeries p{name, {}, {}}, l{name, {}, {}};
         for (const auto& [band, members] : rows[name]) {
             double sumPsnr = 0, sumL1 = 0;
-            for (const nlohmann::json* row : members) sumPsnr += (*row)["psnr"].get<double>(), sumL1 += (*row)["l1"].get<double>();
+            for (const nlohmann::json* row : members)
+                sumPsnr += (*row)["psnr"].is_number() ? (*row)["psnr"].get<double>() : std::nan(""), sumL1 += (*row)["l1"].get<double>();
             const double n = static_cast<double>(members.size()), centre = (band + 0.5) * kBand;
             mode["theta"].push_back(centre);
-            mode["psnr"].push_back(sumPsnr / n);
+            mode["psnr"].push_back(std::isfinite(sumPsnr) ? nlohmann::json(sumPsnr / n) : nlohmann::json(nullptr));
             mode["l1"].push_back(sumL1 / n);
             mode["count"].push_back(members.size());
             p.x.push_back(centre), p.y.push_back(sumPsnr / n);
@@ -99,22 +100,30 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
     for (const Fold& f : folds) tests += f.test.size();
     nlohmann::json json{{"dataset", dataset.source}, {"images", dataset.images.size()}, {"holdout", o.holdout},
                         {"folds", folds.size()}, {"held_out", tests}, {"mask_pixels", maskPixels}, {"context", context},
-                        {"modes", nlohmann::json::array()}, {"rows", nlohmann::json::array()}};
+                        {"modes", nlohmann::json::array()}, {"rows", nlohmann::json::array()},
+                        {"fixed_view", dataset.fixedView()}, {"rectified", dataset.rectified}};
+    // Pixels compare where every image shares one frame: a fixed camera, or a rectified BTF.
+    const bool pixels = dataset.fixedView() || dataset.rectified;
+    if (!pixels) json["pixels"] = "not compared: the views' images are not rectified to one frame (PSNR, SSIM null)";
     char line[512];
     std::snprintf(line, sizeof line,
                   "btflut eval %s: %zu images, hold-out %s (%zu fold(s), %zu predictions per mode), %zu sample pixels\n",
                   dataset.source.c_str(), dataset.images.size(), o.holdout.c_str(), folds.size(), tests, maskPixels);
     std::string text = line;
-    std::map<std::string, Direction> lights;  // each held-out image's light, for the rows
-    for (const DatasetImage& image : dataset.images) lights[image.name] = image.light;
+    std::map<std::string, const DatasetImage*> byName;  // each held-out image's light and view, for the rows
+    for (const DatasetImage& image : dataset.images) byName[image.name] = &image;
     std::snprintf(line, sizeof line, "%-30s %7s %7s %7s %6s %9s %9s %8s %9s %8s %8s\n", "mode", "L1", "EMD", "PSNR", "SSIM",
                   "bytes/tx", "GPU B/tx", "bake s", "relight", "frame ms", "GPU-CPU");
     text += line;
     for (const Variant& v : variants) {
-        auto mean = [&](double ImageErrors::*field) {
+        // The mean over the predictions inside (0), outside (1) the hull, or all (-1).
+        auto mean = [&](double ImageErrors::*field, int where = -1) {
             double sum = 0;
-            for (const ImageErrors& e : v.errors) sum += e.*field;
-            return v.errors.empty() ? std::nan("") : sum / static_cast<double>(v.errors.size());
+            std::size_t n = 0;
+            for (std::size_t i = 0; i < v.errors.size(); ++i)
+                if (where < 0 || static_cast<int>(v.outside[i]) == where) sum += v.errors[i].*field, ++n;
+            const bool pixel = field == &ImageErrors::psnr || field == &ImageErrors::ssim;
+            return n == 0 || (pixel && !pixels) ? std::nan("") : sum / static_cast<double>(n);
         };
         auto meanOf = [](const std::vector<double>& x) {
             double sum = 0;
@@ -137,18 +146,50 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                 " " + cell(v.bytesPerTexel, 9, 2) + " " + cell(v.gpuBytesPerTexel, 9, 2) + " " + cell(bake, 8, 3) + " " +
                 cell(relight, 6, 2, " ms") + " " + cell(v.frameMs, 8, 2) + " " + cell(v.gpuMaxDiff, 8, 1) + "\n";
         auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-        json["modes"].push_back({{"name", v.name}, {"mode", v.modeName()}, {"references", v.references},
+        json["modes"].push_back({{"name", v.name}, {"mode", v.modeName()}, {"domain", domainName(v.bankDomain)}, {"references", v.references},
                                  {"regions", v.regions}, {"colour", colourName(v.colour)}, {"luts_blended", v.blendedLuts}, {"fill", v.filled ? "model" : "clamp"},
                                  {"l1", number(l1)}, {"emd", number(emd)}, {"psnr", number(psnr)}, {"ssim", number(ssim)},
                                  {"bytes_per_texel", v.bytesPerTexel}, {"gpu_bytes_per_texel", number(v.gpuBytesPerTexel)},
                                  {"bake_seconds", number(bake)}, {"relight_ms", number(relight)},
                                  {"frame_ms", number(v.frameMs)}, {"gpu_max_diff_255", number(v.gpuMaxDiff)}});
+        const auto outside = static_cast<std::size_t>(std::count(v.outside.begin(), v.outside.end(), true));
+        nlohmann::json& mode = json["modes"].back();
+        for (int where : {0, 1})
+            mode[where ? "outside_hull" : "inside_hull"] = {
+                {"count", where ? outside : v.errors.size() - outside},
+                {"l1", number(mean(&ImageErrors::l1, where))}, {"emd", number(mean(&ImageErrors::emd, where))},
+                {"psnr", number(mean(&ImageErrors::psnr, where))}};
         for (std::size_t i = 0; i < v.errors.size(); ++i) {
-            const Direction light = lights.count(v.images[i]) ? lights.at(v.images[i]) : Direction{};
-            json["rows"].push_back({{"image", v.images[i]}, {"mode", v.name}, {"theta", light.thetaDegrees()},
-                                    {"phi", light.phiDegrees()}, {"l1", v.errors[i].l1}, {"emd", v.errors[i].emd},
-                                    {"psnr", v.errors[i].psnr}, {"ssim", v.errors[i].ssim}});
+            const DatasetImage& image = *byName.at(v.images[i]);
+            json["rows"].push_back({{"image", v.images[i]}, {"mode", v.name}, {"theta", image.light.thetaDegrees()},
+                                    {"phi", image.light.phiDegrees()}, {"view_theta", image.view.thetaDegrees()},
+                                    {"view_phi", image.view.phiDegrees()}, {"outside_hull", static_cast<bool>(v.outside[i])},
+                                    {"l1", v.errors[i].l1}, {"emd", v.errors[i].emd},
+                                    {"psnr", pixels ? nlohmann::json(v.errors[i].psnr) : nlohmann::json(nullptr)},
+                                    {"ssim", pixels ? nlohmann::json(v.errors[i].ssim) : nlohmann::json(nullptr)}});
         }
+    }
+    // Bins outside the measured hull (the bank clamped or modelled them) apart from those inside.
+    const bool anyOutside = std::any_of(json["modes"].begin(), json["modes"].end(),
+                                        [](const nlohmann::json& m) { return m["outside_hull"]["count"] > 0; });
+    if (anyOutside || !dataset.fixedView()) {
+        text += "\ninside and outside the measured hull of each bank's domain: L1, EMD (predictions)\n";
+        for (const nlohmann::json& m : json["modes"]) {
+            auto figure = [](const nlohmann::json& x) { return x.is_number() ? x.get<double>() : std::nan(""); };
+            char row[256];
+            std::string cells;
+            for (const char* where : {"inside_hull", "outside_hull"}) {
+                const nlohmann::json& part = m[where];
+                char c[96];
+                if (part["count"] == 0) std::snprintf(c, sizeof c, "  %-8s %7s %7s (0)", where[0] == 'i' ? "inside" : "outside", "-", "-");
+                else std::snprintf(c, sizeof c, "  %-8s %7.4f %7.4f (%zu)", where[0] == 'i' ? "inside" : "outside",
+                                   figure(part["l1"]), figure(part["emd"]), part["count"].get<std::size_t>());
+                cells += c;
+            }
+            std::snprintf(row, sizeof row, "%-30s%s\n", m["name"].get<std::string>().c_str(), cells.c_str());
+            text += row;
+        }
+        text += "\n";
     }
     text += "L1, EMD: masked 64-bin grey histograms against the photograph's; PSNR (dB, RGB) and SSIM (grey) over the mask;\n"
             "bytes/tx: data per texel a mode draws from (GPU B/tx: as allocated, padding and mipmaps included); bake s per\n"
@@ -161,26 +202,32 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
     return r;
 }
 
-Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& sheet, const EvalOptions& o) {
+Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& sheet,
+                   const std::vector<PlotColumn>& sheetHistograms, const EvalOptions& o) {
     std::error_code ec;
     fs::create_directories(o.output, ec);
     if (ec) return Error{o.output + ": cannot create the folder (" + ec.message() + ")"};
-    std::string csv = "image,mode,theta,phi,l1,emd,psnr,ssim\n";
-    for (const nlohmann::json& row : r.json["rows"]) {
-        char line[512];
-        std::snprintf(line, sizeof line, "%s,%s,%.2f,%.2f,%.6f,%.6f,%.4f,%.5f\n", row["image"].get<std::string>().c_str(),
-                      row["mode"].get<std::string>().c_str(), row["theta"].get<double>(), row["phi"].get<double>(),
-                      row["l1"].get<double>(), row["emd"].get<double>(), row["psnr"].get<double>(), row["ssim"].get<double>());
-        csv += line;
-    }
+    // A figure the rows have none of (PSNR and SSIM of unrectified views) is an empty field.
+    auto field = [](const nlohmann::json& x, const char* format) {
+        char c[32] = "";
+        if (x.is_number()) std::snprintf(c, sizeof c, format, x.get<double>());
+        return std::string(c);
+    };
+    std::string csv = "image,mode,theta,phi,view_theta,view_phi,outside_hull,l1,emd,psnr,ssim\n";
+    for (const nlohmann::json& row : r.json["rows"])
+        csv += row["image"].get<std::string>() + "," + row["mode"].get<std::string>() + "," + field(row["theta"], "%.2f") + "," +
+               field(row["phi"], "%.2f") + "," + field(row["view_theta"], "%.2f") + "," + field(row["view_phi"], "%.2f") + "," +
+               (row["outside_hull"].get<bool>() ? "1" : "0") + "," + field(row["l1"], "%.6f") + "," + field(row["emd"], "%.6f") +
+               "," + field(row["psnr"], "%.4f") + "," + field(row["ssim"], "%.5f") + "\n";
     const std::string jsonText_ = jsonText(r.json);
     const Bytes png = encodePng(contactSheet(sheet, 192), 8), tradeoff = encodePng(drawCharts(r.tradeoff, 3), 8),
-                byTheta = encodePng(drawCharts(r.byTheta, 1), 8);
+                byTheta = encodePng(drawCharts(r.byTheta, 1), 8), histograms = encodePng(plotHistograms(sheetHistograms), 8);
     const std::string dir = o.output;
     if (Status s = writeFilesAtomically({{dir + "/eval.txt", r.text.data(), r.text.size()},
                                          {dir + "/eval.json", jsonText_.data(), jsonText_.size()},
                                          {dir + "/rows.csv", csv.data(), csv.size()},
                                          {dir + "/contact.png", png.data(), png.size()},
+                                         {dir + "/histograms.png", histograms.data(), histograms.size()},
                                          {dir + "/tradeoff.png", tradeoff.data(), tradeoff.size()},
                                          {dir + "/error_theta.png", byTheta.data(), byTheta.size()}});
         !s)

@@ -153,14 +153,54 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
                 all.push_back(r);
             }
     variants = std::move(all);
+    // Each bank in every domain asked (nearest measures its distance there too).
+    const std::vector<std::string> domains = split(o.domains);
+    if (domains.empty()) return Error{"--domain is empty"};
+    for (const std::string& d : domains)
+        if (d != "auto" && d != "layers" && d != "isotropic") return Error{"--domain '" + d + "' is not auto, layers or isotropic"};
+    all.clear();
+    for (const Variant& v : variants)
+        for (const std::string& d : domains) {
+            const bool perDomain = v.mode == RenderMode::Lut || v.mode == RenderMode::Nearest;
+            if (!perDomain && d != domains.front()) continue;
+            Variant r = v;
+            if (d != "auto") r.domain = d == "isotropic" ? BankDomain::Isotropic : BankDomain::Layers;
+            if (perDomain && d != "auto") r.name += " " + d;
+            all.push_back(r);
+        }
+    variants = std::move(all);
     // Lut variants first, then the baselines in the order asked.
     std::stable_partition(variants.begin(), variants.end(), [](const Variant& v) { return v.mode == RenderMode::Lut; });
     return variants;
 }
 
+Status adaptToViews(EvalOptions& o, const Dataset& dataset) {
+    if (dataset.fixedView()) return success();
+    std::size_t views = 0;
+    for (std::size_t i = 0; i < dataset.images.size(); ++i) {
+        bool seen = false;
+        for (std::size_t j = 0; j < i && !seen; ++j) seen = angleBetween(dataset.images[i].view, dataset.images[j].view) < 1e-9;
+        views += !seen;
+    }
+    const std::string where = dataset.source + " has " + std::to_string(views) + " views";
+    const EvalOptions defaults;
+    if (o.modes == defaults.modes) o.modes = "lut,nearest,brdf";
+    if (o.predictors == defaults.predictors) o.predictors = "references";
+    for (const std::string& mode : split(o.modes))
+        if (mode != "lut" && mode != "nearest" && mode != "brdf" && mode != "flat")
+            return Error{"--modes " + mode + ": predicts a fixed camera's images only; " + where +
+                         " (eval's modes there: lut, nearest, brdf, flat)"};
+    if (o.predictors != "references" || o.references != "1" || o.regions != "1" || o.colours == "lrgb" || o.blendedLuts ||
+        o.targets != defaults.targets)
+        return Error{"lut across views is the paper's bank of one reference (--references 1, no predictor); " + where};
+    if (o.lutSources != defaults.lutSources) return Error{"--luts grid reads a fixed camera's grid; " + where};
+    return success();
+}
+
 BakeOptions bakeOptionsOf(const Variant& v, bool ptm) {
     BakeOptions b;
     b.gridSize = v.grid;
+    b.domain = v.domain;
     b.references = v.references;
     if (std::optional<Result<LightModelOptions>> model = lightModelNamed(v.predictor)) b.model = **model;
     if (v.corrections) b.target = LutBank::Blend::Target::Corrections;

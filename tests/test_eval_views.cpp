@@ -1,0 +1,91 @@
+// The view half of eval: held-out (light, view) pairs of BTF-like datasets (synth --geometry
+// btf-N, rectified; CUReT-like curet-c2), per domain, with the bins outside the measured
+// hull reported apart.
+#include <doctest/doctest.h>
+
+#include "core/data/dataset.h"
+#include "helpers.h"
+
+using namespace btflut;
+using namespace btflut::test;
+
+namespace {
+
+nlohmann::json evalJson(const std::vector<std::string>& args) {
+    CliRun run = runCli(args);
+    INFO(run.err);
+    REQUIRE(run.status == 0);
+    return nlohmann::json::parse(run.out);
+}
+
+}  // namespace
+
+TEST_CASE("synth --geometry btf-N: N views x N lights, rectified, named view-major") {
+    TempDir dir;
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "btf-3", "--size", "16", "--correlation-length", "4", "--samples", "1", "-q", "-o",
+                    dir / "btf"})
+                .status == 0);
+    Result<Dataset> ds = openDataset(dir / "btf");
+    REQUIRE(ds.ok());
+    REQUIRE(ds->images.size() == 9);
+    CHECK(ds->rectified);
+    CHECK_FALSE(ds->fixedView());
+    CHECK(ds->images[0].name == "v01-l01");
+    CHECK(ds->images[5].name == "v02-l03");
+    CHECK(angleBetween(ds->images[3].view, ds->images[5].view) < 1e-9);   // one view, lights l01..l03
+    CHECK(angleBetween(ds->images[3].light, ds->images[0].light) < 1e-9);  // the same lights in every view
+    requireOneLineError(runCli({"synth", "--geometry", "btf-0", "-o", dir / "x"}), "btf-N with N in 1..100");
+}
+
+TEST_CASE("eval across views: lut, nearest and brdf per domain, inside and outside the hull, rectified pixels") {
+    TempDir dir;
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "btf-5", "--size", "48", "--correlation-length", "4", "--samples", "1", "-q", "-o",
+                    dir / "btf"})
+                .status == 0);
+    const nlohmann::json json = evalJson({"eval", dir / "btf", "--domain", "layers,isotropic", "--json", "-o", dir / "out"});
+    CHECK(json["fixed_view"] == false);
+    CHECK(json["rectified"] == true);
+    std::map<std::string, nlohmann::json> modes;
+    for (const auto& m : json["modes"]) modes[m["name"]] = m;
+    for (const char* name : {"lut K1 R1 grey layers", "lut K1 R1 grey isotropic", "nearest layers", "nearest isotropic", "brdf"}) {
+        INFO(name);
+        REQUIRE(modes.count(name));
+        CHECK(modes[name]["psnr"].is_number());  // rectified: pixels compare
+        const std::size_t in = modes[name]["inside_hull"]["count"], out = modes[name]["outside_hull"]["count"];
+        CHECK(in + out == json["held_out"].get<std::size_t>());
+    }
+    CHECK(modes["lut K1 R1 grey isotropic"]["domain"] == "isotropic");
+    CHECK(modes["lut K1 R1 grey layers"]["domain"] == "layers");
+    const nlohmann::json& row = json["rows"][0];
+    for (const char* key : {"view_theta", "view_phi", "outside_hull", "theta", "phi"}) CHECK(row.contains(key));
+    for (const char* file : {"eval.txt", "histograms.png", "contact.png", "rows.csv"}) CHECK(fs::exists(dir / ("out/" + std::string(file))));
+    CHECK(readText(dir / "out/eval.txt").find("inside and outside the measured hull") != std::string::npos);
+    CHECK(readText(dir / "out/rows.csv").rfind("image,mode,theta,phi,view_theta,view_phi,outside_hull,", 0) == 0);
+
+    // Not rectified: histograms only (PSNR and SSIM null).
+    nlohmann::json manifest = nlohmann::json::parse(readText(dir / "btf/btflut-dataset.json"));
+    manifest["rectified"] = false;
+    std::ofstream(dir / "btf/btflut-dataset.json") << manifest.dump();
+    const nlohmann::json plain = evalJson({"eval", dir / "btf", "--json", "--no-gl"});
+    CHECK(plain["modes"][0]["psnr"].is_null());
+    CHECK(plain["rows"][0]["ssim"].is_null());
+    CHECK(plain["modes"][0]["l1"].is_number());
+
+    // Bad input: modes that predict one camera's images, a held-out pair not in the dataset.
+    requireOneLineError(runCli({"eval", dir / "btf", "--modes", "lut,ptm"}), "--modes ptm: predicts a fixed camera's images only");
+    requireOneLineError(runCli({"eval", dir / "btf", "--references", "3"}), "one reference");
+    std::ofstream(dir / "held.txt") << "v01-l02\nv09-l01\n";
+    requireOneLineError(runCli({"eval", dir / "btf", "--holdout", dir / "held.txt"}), "held.txt:2: no image named 'v09-l01'");
+}
+
+TEST_CASE("eval: a dataset whose views all coincide is a fixed camera") {
+    TempDir dir;
+    const std::string manifest = writeSyntheticDataset(dir, {{0, 0, 20, 90, 0, 1}, {30, 0, 20, 90, 40, 1}, {30, 120, 20, 90, 0, 2},
+                                                             {30, 240, 20, 90, 100, 1}, {50, 60, 20, 90, 20, 1},
+                                                             {50, 180, 20, 90, 30, 1}, {50, 300, 20, 90, 10, 1},
+                                                             {60, 30, 20, 90, 5, 1}});
+    const nlohmann::json json = evalJson({"eval", manifest, "--modes", "lut,ptm,nearest", "--predictor", "references",
+                                          "--no-gl", "--json", "--holdout", "every:4"});
+    CHECK(json["fixed_view"] == true);
+    CHECK(json["modes"].size() == 3);
+}
