@@ -18,6 +18,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     const auto k = static_cast<int>(blend.references.size());
     BlendTextures t;
     t.m_bank = &bank;
+    t.m_lutsAsUniforms = lutsAsUniforms(bank);
     std::vector<std::uint8_t> data;
     if (bank.predictsWithModel()) {
         // The light model's 8-bit planes three to an RGB layer, its 4-bit planes six (two to a
@@ -112,7 +113,7 @@ std::size_t BlendTextures::lutTableBytes() const {
 }
 
 void BlendTextures::updateLuts(const std::vector<GlTexture>& tables, const RelightFrame& frame) const {
-    if (lutsAsUniforms(*m_bank)) return;  // bind sets them
+    if (m_lutsAsUniforms) return;  // bind sets them
     const auto entries = static_cast<std::size_t>(m_bank->entries), channels = tables.size(),
                regions = static_cast<std::size_t>(m_bank->blend.regions);
     std::vector<float> table(regions * entries);
@@ -142,7 +143,7 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
     gl.Uniform1f(gl.GetUniformLocation(p, "blendCodes"), static_cast<float>(predictionCodes(bank)));
     gl.Uniform1i(gl.GetUniformLocation(p, "blendEntries"), bank.entries);
     gl.Uniform1i(gl.GetUniformLocation(p, "blendRegions"), bank.blend.regions);
-    if (lutsAsUniforms(bank))
+    if (m_lutsAsUniforms)
         gl.Uniform1fv(gl.GetUniformLocation(p, "lutValues"), static_cast<GLsizei>(bank.matchLength()), frame.luts.data());
     if (model) {
         // The frame's integers (LightModelFixed; the CPU twin: predictFixed), per layer of three

@@ -44,6 +44,7 @@ public:
 
 private:
     const LutBank* m_bank = nullptr;
+    bool m_lutsAsUniforms = false;  ///< lutsAsUniforms(bank), asked of GL once
     GlTexture m_references, m_albedo, m_labels;
     int m_layers = 0;        ///< reference layers, or a light model's 8-bit plane layers
     int m_nibbleLayers = 0;  ///< a light model's 4-bit plane layers

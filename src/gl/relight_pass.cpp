@@ -14,7 +14,7 @@ std::vector<std::string> mapsReferenceDefines(const LutBank& bank) {
 }
 
 RelightPass::RelightPass(const LutBank& bank, GLuint reference, const BlendTextures* blend)
-    : m_bank(&bank), m_reference(reference), m_blend(blend) {
+    : m_bank(&bank), m_lutsAsUniforms(lutsAsUniforms(bank)), m_reference(reference), m_blend(blend) {
     BTFLUT_CHECK(bank.makesLuts() == (blend != nullptr));
     m_framebuffer = makeFramebuffer();
     m_vertexArray = makeVertexArray();
@@ -50,7 +50,7 @@ void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlText
         m_blend->updateLuts(luts, frame);
         return;
     }
-    if (lutsAsUniforms(*m_bank)) return;  // bindLuts sets them
+    if (m_lutsAsUniforms) return;  // bindLuts sets them
     for (std::size_t c = 0; c < luts.size(); ++c) {
         gl.BindTexture(GL_TEXTURE_1D, luts[c].id());
         gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, m_bank->entries, GL_RED, GL_FLOAT, &frame.luts[c * static_cast<std::size_t>(m_bank->entries)]);
@@ -61,7 +61,7 @@ void RelightPass::bindLuts(GLuint p, const RelightFrame& frame, const std::vecto
     const LutBank& bank = *m_bank;
     if (m_blend) {
         m_blend->bind(p, frame, luts, first);
-    } else if (lutsAsUniforms(bank)) {
+    } else if (m_lutsAsUniforms) {
         gl.Uniform1fv(gl.GetUniformLocation(p, "lutValues"), static_cast<GLsizei>(bank.lutLength()), frame.luts.data());
     } else {
         for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones

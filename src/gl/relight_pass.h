@@ -55,6 +55,7 @@ private:
     Result<GLuint> program(bool dither);
 
     const LutBank* m_bank;
+    bool m_lutsAsUniforms;  ///< lutsAsUniforms(bank), asked of GL once
     GLuint m_reference;
     const BlendTextures* m_blend;
     std::map<bool, GlProgram> m_programs;  // by dither
