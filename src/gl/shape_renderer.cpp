@@ -60,6 +60,13 @@ Result<std::unique_ptr<ShapeRenderer>> ShapeRenderer::create(const std::string& 
     r->m_textures = EngineTextures::upload(*material, bytes);
     r->m_gridNote = gridNoteOf(bank);
     r->m_bank = std::move(*loaded);
+    // The textures are on the GPU now: keep what bind() reads (the scalars, and whether there is
+    // an albedo), not a second copy of the images.
+    material->lutTexels = {};
+    material->reference = Image();
+    material->images = {};
+    material->weightGrid = {};
+    material->labels = Image();
     r->m_material = std::move(*material);
     return r;
 }

@@ -58,7 +58,7 @@ private:
     LutBank m_bank;
     GlProgram m_program;
     GlVertexArray m_vertexArray;
-    EngineMaterial m_material;  ///< the bank as btflut.glsl draws it
+    EngineMaterial m_material;  ///< the bank as btflut.glsl draws it (its images dropped once uploaded)
     GlTexture m_reference;
     EngineTextures m_textures;
     ColourDepthTarget m_target;
