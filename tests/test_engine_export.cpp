@@ -226,6 +226,11 @@ TEST_CASE("export --web: one page holding the export's files; bad outputs refuse
     CHECK(page.size() <= 1.4 * static_cast<double>(exported));
     // Bad outputs: one line, nothing written.
     requireOneLineError(runCli({"export", bank, "--web", dir / "m.txt"}), "--web");
+    // -o and --web in one run: the files are made once; a folder refused leaves no page either.
+    fs::create_directories(dir / "busy");
+    std::ofstream(dir / "busy/notes.txt") << "mine";
+    requireOneLineError(runCli({"export", bank, "-o", dir / "busy", "--web", dir / "both.html"}), "the folder is not empty");
+    CHECK_FALSE(fs::exists(dir / "both.html"));
     fs::create_directories(dir / "taken.html");
     requireOneLineError(runCli({"export", bank, "--web", dir / "taken.html"}), "taken.html");
     CHECK(fs::is_directory(dir / "taken.html"));

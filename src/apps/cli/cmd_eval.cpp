@@ -126,8 +126,9 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
                     "both: exact,grid")
         ->capture_default_str();
     app->add_option("--domain", o->domains,
-                    "the banks' domain: layers (a LUT grid per view, blended between views), isotropic (light and view "
-                    "as one point of (theta_i, theta_r, phi_i - phi_r)), or both: layers,isotropic; nearest measures there too")
+                    "the banks' domain: auto (bake's choice), layers (a LUT grid per view, blended between views), isotropic "
+                    "(light and view as one point of (theta_i, theta_r, phi_i - phi_r)), or a list: layers,isotropic; nearest "
+                    "measures there too")
         ->capture_default_str();
     app->add_option("--frames", o->frames, "GL frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();
     app->add_option("--backend", o->backend, "GL: auto, osmesa or egl")->capture_default_str();

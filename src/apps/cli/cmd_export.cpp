@@ -350,21 +350,24 @@ Result<EngineExport> engineExport(const LutBank& b, const std::string& bankPath)
     return out;
 }
 
-// -o DIR/: the export's files in a folder.
-Status exportFolder(const ExportOptions& o, const LutBank& b) {
+// -o DIR/: whether the folder may be written (before anything is made), and whether it holds
+// a previous export and nothing else (a re-export: its stale files go).
+Result<bool> folderReady(const ExportOptions& o) {
     std::error_code ec;
-    bool reexport = false;
-    if (fs::exists(o.output, ec)) {
-        if (!fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
-        reexport = holdsOnlyAnExport(o.output);
-        if (!fs::is_empty(o.output, ec) && !o.force && !reexport)
-            return Error{o.output + ": the folder is not empty and holds more than a btflut export (--force writes over "
-                                    "btflut's files in it)"};
-    }
-    Result<EngineExport> made = engineExport(b, o.bank);
-    if (!made) return Error{made.error()};
+    if (!fs::exists(o.output, ec)) return false;
+    if (!fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
+    const bool reexport = holdsOnlyAnExport(o.output);
+    if (!fs::is_empty(o.output, ec) && !o.force && !reexport)
+        return Error{o.output + ": the folder is not empty and holds more than a btflut export (--force writes over "
+                                "btflut's files in it)"};
+    return reexport;
+}
+
+// -o DIR/: the export's files in a folder.
+Status exportFolder(const ExportOptions& o, const EngineExport& made, bool reexport) {
+    std::error_code ec;
     std::vector<std::pair<std::string, std::string_view>> files;
-    for (const auto& [name, bytes] : made->files) files.push_back({name, bytes});
+    for (const auto& [name, bytes] : made.files) files.push_back({name, bytes});
     if (Status s = writeFolder(o.output, files); !s) return s;
     // What a previous export wrote and this one did not (planes of a bigger model, weights);
     // only in a folder that held nothing else (with --force, other files may be the user's).
@@ -374,7 +377,7 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
         if (!written && exportFileName(name)) fs::remove(it->path(), ec);
     }
     if (o.quiet) return success();
-    std::cout << "wrote " << o.output << ": " << made->summary;
+    std::cout << "wrote " << o.output << ": " << made.summary;
     for (const auto& file : files)
         if (file.first != "luts.png") std::cout << ", " << file.first;
     std::cout << "\n";
@@ -382,18 +385,15 @@ Status exportFolder(const ExportOptions& o, const LutBank& b) {
 }
 
 // --web M.html: one page that opens from disk and relights the material with WebGL2.
-Status exportWeb(const ExportOptions& o, const LutBank& b) {
-    if (Status s = requireExtension(o.web, {"html", "htm"}, "--web"); !s) return s;
-    Result<EngineExport> made = engineExport(b, o.bank);
-    if (!made) return Error{made.error()};
-    const std::string page = webPage(fs::path(o.bank).stem().string(), made->side, made->files);
+Status exportWeb(const ExportOptions& o, const EngineExport& made) {
+    const std::string page = webPage(fs::path(o.bank).stem().string(), made.side, made.files);
     if (Status s = writeFileAtomically(o.web, page.data(), page.size()); !s) return s;
     std::size_t exported = 0;
-    for (const auto& file : made->files) exported += file.second.size();
+    for (const auto& file : made.files) exported += file.second.size();
     if (!o.quiet) {
         char ratio[32];
         std::snprintf(ratio, sizeof ratio, "%.2f", static_cast<double>(page.size()) / static_cast<double>(exported));
-        std::cout << "wrote " << o.web << ": " << made->summary << ", one page of " << page.size() << " bytes (" << ratio
+        std::cout << "wrote " << o.web << ": " << made.summary << ", one page of " << page.size() << " bytes (" << ratio
                   << " x the export's files); open it in a browser\n";
     }
     return success();
@@ -410,6 +410,8 @@ Status exportPtm(const ExportOptions& o, const LutBank& b) {
 Status runExport(const ExportOptions& o) {
     if (o.output.empty() && o.ptm.empty() && o.web.empty())
         return Error{"give -o DIR (or -o atlas.png), --web PAGE.html and/or --ptm FILE.ptm"};
+    if (!o.web.empty())
+        if (Status s = requireExtension(o.web, {"html", "htm"}, "--web"); !s) return s;
     Result<LutBank> bank = loadBank(o.bank);
     if (!bank) return Error{bank.error()};
     if (!o.ptm.empty())
@@ -423,10 +425,22 @@ Status runExport(const ExportOptions& o) {
         bank->fillGrids();
         if (bank->makesLuts()) bakeMatchGrid(*bank);  // the match LUTs at the new nodes
     }
-    if (!o.web.empty())
-        if (Status s = exportWeb(o, *bank); !s) return s;
-    if (o.output.empty()) return success();
-    return fileExtension(o.output) == "png" ? exportAtlas(o, *bank) : exportFolder(o, *bank);
+    const bool folder = !o.output.empty() && fileExtension(o.output) != "png";
+    bool reexport = false;
+    if (folder) {  // refused before anything is made or written
+        Result<bool> ready = folderReady(o);
+        if (!ready) return Error{ready.error()};
+        reexport = *ready;
+    }
+    if (folder || !o.web.empty()) {
+        // The folder and the page hold the same files: made once.
+        Result<EngineExport> made = engineExport(*bank, o.bank);
+        if (!made) return Error{made.error()};
+        if (!o.web.empty())
+            if (Status s = exportWeb(o, *made); !s) return s;
+        if (folder) return exportFolder(o, *made, reexport);
+    }
+    return o.output.empty() ? success() : exportAtlas(o, *bank);
 }
 
 }  // namespace

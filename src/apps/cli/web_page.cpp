@@ -42,7 +42,6 @@ std::string replaced(std::string text, std::string_view marker, std::string_view
     return text.replace(at, marker.size(), value);
 }
 
-
 }  // namespace
 
 std::string webPage(const std::string& name, const nlohmann::json& material,
