@@ -3,6 +3,7 @@
 #include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/bank/lut_bank.h"
+#include "core/physics/geometry.h"
 #include "helpers.h"
 
 using namespace btflut;
@@ -120,9 +121,18 @@ TEST_CASE("bad datasets are refused with the file and the problem") {
         Image flat(40, 30, 1);
         std::fill(flat.samples.begin(), flat.samples.end(), 0.5f);
         REQUIRE(savePng(flat, ds.images[0].path).ok());
-        auto r = bakeBank(ds, {});
+        auto r = bakeBank(ds, BakeOptions{.referenceName = "shot0"});
         REQUIRE_FALSE(r.ok());
         CHECK(r.error().find("shot0.png: reference image is constant") != std::string::npos);
+        // The default passes over it (one grey level holds the whole sample) to the next
+        // image nearest frontal; where every image is constant, it is refused all the same.
+        auto chosen = bakeBank(ds, {});
+        REQUIRE(chosen.ok());
+        CHECK(chosen->referenceName != "shot0");
+        for (const DatasetImage& im : ds.images) REQUIRE(savePng(flat, im.path).ok());
+        auto none = bakeBank(ds, {});
+        REQUIRE_FALSE(none.ok());
+        CHECK(none.error().find("reference image is constant") != std::string::npos);
     }
     SUBCASE("an empty mask, a mask of another size") {
         REQUIRE(savePng(Image(40, 30, 1), dir / "empty.png").ok());
@@ -258,4 +268,53 @@ TEST_CASE("layers domain: a light beyond one view's measured lights takes the ne
                            {.gridSize = 9});
     REQUIRE(single.ok());
     CHECK(single->lookup(grazing).lightProvenance == Provenance::Extrapolated);
+}
+
+TEST_CASE("isotropic domain: a pair beyond the hull takes the nearest measured pair, not a face bridging far pairs") {
+    // CUReT's light and view move together: the pairs lie on two arms of a path, and the
+    // hull's faces join the arms' ends. Without c2-1 (the end of one arm), its pair lies
+    // beyond the face joining c2-2 to c2-11, a grazing pair measured far away.
+    TempDir dir;
+    std::vector<SyntheticShot> shots;
+    const std::vector<Geometry> path = curetC2();
+    for (std::size_t k = 1; k < path.size(); ++k)
+        shots.push_back({path[k].light.theta * 180 / M_PI, path[k].light.phi * 180 / M_PI, path[k].view.theta * 180 / M_PI,
+                         path[k].view.phi * 180 / M_PI, static_cast<int>(10 * k), 1});
+    auto ds = openDataset(writeSyntheticDataset(dir, shots));
+    REQUIRE(ds.ok());
+    auto bank = bakeBank(*ds, {.referenceName = "shot6", .domain = BankDomain::Isotropic});  // c2-8: frontal camera
+    REQUIRE(bank.ok());
+    const BankLookup held = bank->lookup(path[0].light, path[0].view);
+    const BankLookup nearest = bank->lookup(path[1].light, path[1].view);  // c2-2, measured
+    CHECK(held.provenance == Provenance::Extrapolated);
+    CHECK(nearest.provenance == Provenance::Measured);
+    for (std::size_t k = 0; k < held.values.size(); ++k) CHECK(held.values[k] == doctest::Approx(nearest.values[k]).epsilon(1e-5));
+    // Between the hull and one grid step out, the clamped blend gives way gradually: no jump.
+    const Direction nearLight = Direction::fromDegrees(23, 0), nearView = Direction::fromDegrees(68, 0);
+    const BankLookup close = bank->lookup(nearLight, nearView);
+    double largest = 0;
+    for (std::size_t k = 0; k < close.values.size(); ++k)
+        largest = std::max(largest, static_cast<double>(std::abs(close.values[k] - nearest.values[k])));
+    CHECK(largest < 0.02);
+}
+
+TEST_CASE("the default reference passes over a frontal image whose sample is mostly one grey level") {
+    TempDir dir;
+    Dataset ds = openSynthetic(dir);
+    // shot0 (frontal light) more than half black: a LUT cannot spread that tie.
+    Image tied = *loadImage(ds.images[0].path);
+    for (std::size_t i = 0; i < tied.samples.size() * 6 / 10; ++i) tied.samples[i] = 0;
+    REQUIRE(savePng(tied, ds.images[0].path).ok());
+    auto bank = bakeBank(ds, {});
+    REQUIRE(bank.ok());
+    CHECK(bank->referenceName == "shot1");  // the next nearest to frontal light
+    // A frontal image with a tie of a fifth is kept: frontal light shows the least shadow.
+    TempDir other;
+    Dataset fifth = openSynthetic(other);
+    tied = *loadImage(fifth.images[0].path);
+    for (std::size_t i = 0; i < tied.samples.size() * 2 / 10; ++i) tied.samples[i] = 0;
+    REQUIRE(savePng(tied, fifth.images[0].path).ok());
+    auto kept = bakeBank(fifth, {});
+    REQUIRE(kept.ok());
+    CHECK(kept->referenceName == "shot0");
 }

@@ -194,7 +194,7 @@ TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched
         Image flat(40, 30, 1);
         std::fill(flat.samples.begin(), flat.samples.end(), 0.25f);
         REQUIRE(savePng(flat, dir / "shot0.png").ok());
-        requireOneLineError(runCli({"bake", manifest, "--references", "1", "-o", dir / "keep.btflut"}),
+        requireOneLineError(runCli({"bake", manifest, "--references", "1", "--reference", "shot0", "-o", dir / "keep.btflut"}),
                             "reference image is constant");
         // The default bakes it all the same: a light model carries the brightness.
         CliRun automatic = runCli({"bake", manifest, "-o", dir / "auto.btflut", "-q"});

@@ -236,8 +236,10 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
     app->add_option("DATASET", o->dataset, "dataset folder or file (see btflut hist --help)");
     app->add_option("-o,--output", o->output, "the bank, M.btflut")->required();
     app->add_option("--reference", o->reference,
-                    "with a DATASET: name of the reference image (default: nearest to frontal light "
-                    "and view); with --model: the reference image file");
+                    "with a DATASET: name of the reference image (default: nearest to frontal view, then "
+                    "light, among the images whose most common grey level holds at most a quarter of the "
+                    "sample, as a LUT cannot spread such a tie; else the least tied); with --model: the "
+                    "reference image file");
     app->add_option("--model", o->model,
                     "PARAMS.json: bake from the rough-surface model instead (docs/model-params.md)");
     app->add_option("--mask", o->mask,

@@ -25,17 +25,54 @@ std::vector<LevelCounts> countLevels(const Image& image, const Mask& mask, Colou
             countChannelLevels(image, mask, 2)};
 }
 
-std::size_t chooseReference(const Dataset& dataset) {
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < dataset.images.size(); ++i) {
-        const DatasetImage& a = dataset.images[i];
-        const DatasetImage& b = dataset.images[best];
-        // Nearest to a frontal camera first, then nearest to frontal light.
-        if (a.view.theta < b.view.theta - 1e-12 ||
-            (std::abs(a.view.theta - b.view.theta) <= 1e-12 && a.light.theta < b.light.theta - 1e-12))
-            best = i;
+// A reference whose most common grey level holds more of the sample than this is passed
+// over by default: a LUT gives all texels of one level one value, so it cannot spread such
+// a tie over the target's quantiles (a foil more than half black under a frontal camera).
+constexpr double kLargestTie = 0.25;
+
+// The default reference and its image (decoded into `storage`, or the provider's): the image nearest to a frontal camera, then
+// nearest to frontal light, whose most common grey level holds at most kLargestTie of the
+// sample; where none does, the one whose most common level holds least. Images are decoded
+// in that order until one qualifies, so a well-exposed frontal image costs nothing extra.
+Result<std::pair<std::size_t, const Image*>> chooseReference(const Dataset& dataset, const ImageProvider& images,
+                                                             Image& storage) {
+    std::vector<std::size_t> order(dataset.images.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    auto frontal = [&](std::size_t i) {
+        const DatasetImage& im = dataset.images[i];
+        // Angles equal within 1e-12 rad count as one, so the dataset's order settles them.
+        return std::pair{std::llround(im.view.theta * 1e12), std::llround(im.light.theta * 1e12)};
+    };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return frontal(a) < frontal(b); });
+    std::optional<std::pair<std::size_t, const Image*>> best;
+    double bestTie = 2;
+    std::optional<Mask> mask;
+    for (std::size_t i : order) {
+        Image decoded;
+        Result<const Image*> image = images(i, decoded);
+        if (!image) return Error{image.error()};
+        if (!mask) {
+            Result<Mask> loaded = loadDatasetMask(dataset, (*image)->width, (*image)->height);
+            if (!loaded) return Error{loaded.error()};
+            mask = std::move(*loaded);
+        }
+        if ((*image)->width != mask->width || (*image)->height != mask->height) continue;  // bake names the size
+        const LevelCounts levels = countGreyLevels(**image, *mask);
+        const double tie = static_cast<double>(*std::max_element(levels.counts.begin(), levels.counts.end())) /
+                           static_cast<double>(std::max<std::uint64_t>(levels.total(), 1));
+        if (tie < bestTie) {
+            bestTie = tie;
+            if (*image == &decoded) storage = std::move(decoded);
+            best = {i, *image == &decoded ? &storage : *image};
+        }
+        if (tie <= kLargestTie) break;
     }
-    return best;
+    if (!best) {  // no image of the mask's size: bake names the sizes
+        Result<const Image*> first = images(0, storage);
+        if (!first) return Error{first.error()};
+        return std::pair{std::size_t{0}, *first};
+    }
+    return *best;
 }
 
 // What a bank that makes its LUTs at run time is baked with besides the classic reference:
@@ -181,8 +218,14 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     if (options.quantiles < 2 || options.quantiles > 65536)
         return Error{"--quantiles " + std::to_string(options.quantiles) + " is outside [2, 65536]"};
 
-    std::size_t refIndex = chooseReference(dataset);
-    if (!options.referenceName.empty()) {
+    std::size_t refIndex = 0;
+    Image referenceStorage;
+    const Image* reference = nullptr;
+    if (options.referenceName.empty()) {
+        Result<std::pair<std::size_t, const Image*>> chosen = chooseReference(dataset, images, referenceStorage);
+        if (!chosen) return Error{chosen.error()};
+        std::tie(refIndex, reference) = *chosen;
+    } else {
         auto it = std::find_if(dataset.images.begin(), dataset.images.end(),
                                [&](const DatasetImage& im) {
                                    return im.name == options.referenceName ||
@@ -192,12 +235,12 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
             return Error{dataset.source + ": no image named '" + options.referenceName +
                          "' for --reference"};
         refIndex = static_cast<std::size_t>(it - dataset.images.begin());
+        Result<const Image*> decoded = images(refIndex, referenceStorage);
+        if (!decoded) return Error{decoded.error()};
+        reference = *decoded;
     }
     const DatasetImage& refInfo = dataset.images[refIndex];
-    Image referenceStorage;
-    Result<const Image*> reference = images(refIndex, referenceStorage);
-    if (!reference) return Error{reference.error()};
-    const Image& ref = **reference;
+    const Image& ref = *reference;
     if (options.colour != ColourMode::Grey && ref.channels != 3)
         return Error{refInfo.path + ": --colour " + colourName(options.colour) + " needs colour images, this one is grey"};
     Result<Mask> loadedMask = loadDatasetMask(dataset, ref.width, ref.height);

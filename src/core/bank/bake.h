@@ -16,7 +16,9 @@
 namespace btflut {
 
 struct BakeOptions {
-    std::string referenceName;  ///< empty: the image nearest to frontal light and view
+    /// Empty: the image nearest to frontal view, then light, among those whose most common
+    /// grey level holds at most a quarter of the sample (else the least tied; bake.cpp).
+    std::string referenceName;
     int gridSize = 17;
     int entries = 0;  ///< 0: 256 for an 8-bit reference, 1024 for a 16-bit one
     ColourMode colour = ColourMode::Grey;

@@ -162,6 +162,18 @@ bool LutBank::followsLight() const {
     return std::any_of(layers.begin(), layers.end(), [](const ViewLayer& l) { return l.nodes.size() > 1; });
 }
 
+std::size_t LutBank::nearestPair(Point3 q) const {
+    std::size_t best = 0;
+    const std::vector<Point3>& points = pairs.points();
+    for (std::size_t i = 1; i < points.size(); ++i)
+        if (std::hypot(points[i].x - q.x, points[i].y - q.y, points[i].z - q.z) <
+            std::hypot(points[best].x - q.x, points[best].y - q.y, points[best].z - q.z))
+            best = i;
+    return best;
+}
+
+double LutBank::hullRamp(double distance) const { return std::max(0.0, 1 - distance * (gridSize - 1) / 2.0); }
+
 LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
     auto nearest = [](const auto& items, auto angleTo) {
         std::size_t best = 0;
@@ -169,13 +181,7 @@ LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
             if (angleTo(items[i]) < angleTo(items[best])) best = i;
         return best;
     };
-    if (domain == BankDomain::Isotropic) {
-        const Point3 q = isotropicPoint(light, view);
-        const std::size_t point = nearest(pairs.points(), [&](const Point3& p) {
-            return std::hypot(p.x - q.x, p.y - q.y, p.z - q.z);
-        });
-        return pairNodes[point].front();
-    }
+    if (domain == BankDomain::Isotropic) return pairNodes[nearestPair(isotropicPoint(light, view))].front();
     NodeRef ref;
     ref.layer = nearest(layers, [&](const ViewLayer& l) { return angleBetween(l.view, view); });
     ref.node = nearest(layers[ref.layer].nodes, [&](const LightNode& n) { return angleBetween(n.light, light); });
@@ -271,11 +277,27 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
         return out;
     };
     if (domain == BankDomain::Isotropic) {
-        const Weights w = pairs.weightsAt(isotropicPoint(light, view));
-        for (int p = 0; p < w.count; ++p) {
-            const std::vector<NodeRef>& nodes = pairNodes[static_cast<std::size_t>(w.index[p])];
-            for (NodeRef n : nodes) add(n, w.weight[p] / static_cast<double>(nodes.size()));
+        const Point3 q = isotropicPoint(light, view);
+        const Weights w = pairs.weightsAt(q);
+        auto addPoint = [&](std::size_t point, double weight) {
+            const std::vector<NodeRef>& nodes = pairNodes[point];
+            for (NodeRef n : nodes) add(n, weight / static_cast<double>(nodes.size()));
+        };
+        // Beyond the hull, the clamp to its boundary gives way to the nearest measured pair
+        // over one grid step. Measurements along a path (CUReT's light and view moving
+        // together) make a hull whose faces bridge far-apart pairs; the point on such a face
+        // blends the two, while the nearest pair is what was measured closest.
+        double clamped = 1;
+        if (!w.inside) {
+            Point3 onHull{0, 0, 0};
+            for (int p = 0; p < w.count; ++p) {
+                const Point3& v = pairs.points()[static_cast<std::size_t>(w.index[p])];
+                onHull = {onHull.x + w.weight[p] * v.x, onHull.y + w.weight[p] * v.y, onHull.z + w.weight[p] * v.z};
+            }
+            clamped = hullRamp(std::hypot(q.x - onHull.x, q.y - onHull.y, q.z - onHull.z));
+            addPoint(nearestPair(q), 1 - clamped);
         }
+        for (int p = 0; p < w.count; ++p) addPoint(static_cast<std::size_t>(w.index[p]), w.weight[p] * clamped);
         // One domain point carries both: measured only where light and view are.
         out.lightProvenance = out.viewProvenance = provenanceOf(w);
         return finish();
@@ -296,8 +318,7 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
                 const DiskPoint q = lights.lights.points()[static_cast<std::size_t>(lw.index[l])];
                 onHull = {onHull.x + lw.weight[l] * q.x, onHull.y + lw.weight[l] * q.y};
             }
-            const double distance = std::hypot(lightPoint.x - onHull.x, lightPoint.y - onHull.y);
-            return std::max(0.0, 1 - distance * (gridSize - 1) / 2.0);
+            return hullRamp(std::hypot(lightPoint.x - onHull.x, lightPoint.y - onHull.y));
         };
         double measured = 1;  // the share of this layer's measured nodes
         std::optional<std::size_t> borrowed;

@@ -17,7 +17,8 @@
 // are clamped to its boundary, or, in banks filled from the model (model_fill.h), move from
 // the clamped LUT to the model's within one grid step; in the layers domain, a light beyond
 // one view's measured lights but within another's moves likewise to the nearest such view's
-// LUT at that light (its measurements, not the clamp). Blending LUTs blends quantile
+// LUT at that light (its measurements, not the clamp); in the isotropic domain, a pair
+// beyond the hull moves likewise to the nearest measured pair. Blending LUTs blends quantile
 // functions (lut.h). Two domains:
 //   - layers: within a layer over the light disk, then across the layers' view directions.
 //     Any material, when each layer's lights span the disk (a fixed camera, Bonn BTFs).
@@ -214,6 +215,11 @@ struct LutBank {
     /// The measured node nearest to a light direction in the layer nearest to a view
     /// direction (nearest by angle); in the isotropic domain, the node nearest in it.
     NodeRef nearestNode(Direction light, Direction view = {}) const;
+    /// Isotropic domain: the point of `pairs` nearest q.
+    std::size_t nearestPair(Point3 q) const;
+    /// The share a LUT clamped to a measured hull keeps at `distance` (disk units) beyond it:
+    /// 1 on the hull, 0 one grid step out; other data take the rest.
+    double hullRamp(double distance) const;
 
     /// Disk point of grid node (i, j): x = -1 + 2 i / (gridSize - 1), likewise y.
     DiskPoint gridPoint(int i, int j) const;
