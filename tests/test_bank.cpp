@@ -3,6 +3,7 @@
 #include "core/bank/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/bank/lut_bank.h"
+#include "core/inverse/model_fill.h"
 #include "core/physics/geometry.h"
 #include "helpers.h"
 
@@ -259,6 +260,13 @@ TEST_CASE("layers domain: a light beyond one view's measured lights takes the ne
     CHECK(a.lightProvenance == Provenance::Interpolated);  // from view B's measurements, not clamped
     REQUIRE(a.values.size() == b.values.size());
     for (std::size_t k = 0; k < a.values.size(); ++k) CHECK(a.values[k] == doctest::Approx(b.values[k]).epsilon(1e-5));
+    // Measurements come before the model: filled from it, the bank still takes view B's.
+    LutBank filled = *bank;
+    REQUIRE(fillFromModel(filled, {}, "{}").ok());
+    REQUIRE(filled.layers[0].nodes.size() > filled.layers[0].measuredNodes);  // view A has modelled lights
+    const BankLookup fromB = filled.lookup(grazing, viewA);
+    CHECK(fromB.lightProvenance == Provenance::Interpolated);
+    for (std::size_t k = 0; k < a.values.size(); ++k) CHECK(fromB.values[k] == doctest::Approx(b.values[k]).epsilon(1e-5));
     // Within view A's lights nothing changes: its own measurement.
     const BankLookup own = bank->lookup(Direction::fromDegrees(30, 0), viewA);
     CHECK(own.provenance == Provenance::Measured);

@@ -322,16 +322,9 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
         };
         double measured = 1;  // the share of this layer's measured nodes
         std::optional<std::size_t> borrowed;
-        if (!lw.inside && lights.measuredNodes == lights.nodes.size()) borrowed = nearestLayerMeasuring(lightPoint, layer);
-        if (!lw.inside && lights.measuredNodes < lights.nodes.size()) {
-            // Beyond the measured hull: towards the fitted model (model_fill.h).
-            measured = clampedShare();
-            const Weights mw = lights.modelLights.weightsAt(lightPoint);
-            for (int m = 0; m < mw.count; ++m)
-                add({layer, lights.measuredNodes + static_cast<std::size_t>(mw.index[m])},
-                    vw.weight[v] * mw.weight[m] * (1 - measured));
-            out.lightProvenance = combine(out.lightProvenance, Provenance::Modelled);
-        } else if (borrowed) {
+        // Another view's measurements at the light come before the model's.
+        if (!lw.inside) borrowed = nearestLayerMeasuring(lightPoint, layer);
+        if (borrowed) {
             // Beyond this view's lights, within another view's: the nearest such view's
             // measurements at this light (shadows and highlights follow the light more than
             // the view), rather than this view's clamped to its hull.
@@ -340,6 +333,14 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
             for (int o = 0; o < ow.count; ++o)
                 add({*borrowed, static_cast<std::size_t>(ow.index[o])}, vw.weight[v] * ow.weight[o] * (1 - measured));
             out.lightProvenance = combine(out.lightProvenance, Provenance::Interpolated);
+        } else if (!lw.inside && lights.measuredNodes < lights.nodes.size()) {
+            // Beyond every view's measured lights: towards the fitted model (model_fill.h).
+            measured = clampedShare();
+            const Weights mw = lights.modelLights.weightsAt(lightPoint);
+            for (int m = 0; m < mw.count; ++m)
+                add({layer, lights.measuredNodes + static_cast<std::size_t>(mw.index[m])},
+                    vw.weight[v] * mw.weight[m] * (1 - measured));
+            out.lightProvenance = combine(out.lightProvenance, Provenance::Modelled);
         } else {
             out.lightProvenance = combine(out.lightProvenance, provenanceOf(lw));
         }

@@ -17,9 +17,9 @@
 // are clamped to its boundary, or, in banks filled from the model (model_fill.h), move from
 // the clamped LUT to the model's within one grid step; in the layers domain, a light beyond
 // one view's measured lights but within another's moves likewise to the nearest such view's
-// LUT at that light (its measurements, not the clamp); in the isotropic domain, a pair
-// beyond the hull moves likewise to the nearest measured pair. Blending LUTs blends quantile
-// functions (lut.h). Two domains:
+// LUT at that light (measurements come before the clamp and the model); in the isotropic
+// domain, a pair beyond the hull moves likewise to the nearest measured pair. Blending LUTs
+// blends quantile functions (lut.h). Two domains:
 //   - layers: within a layer over the light disk, then across the layers' view directions.
 //     Any material, when each layer's lights span the disk (a fixed camera, Bonn BTFs).
 //   - isotropic: over (theta_i, theta_r, phi_i - phi_r) in 3-D (isotropicPoint), for
