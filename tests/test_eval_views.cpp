@@ -78,6 +78,20 @@ TEST_CASE("eval across views: lut, nearest and brdf per domain, inside and outsi
     requireOneLineError(runCli({"eval", dir / "btf", "--references", "3"}), "one reference");
     std::ofstream(dir / "held.txt") << "v01-l02\nv09-l01\n";
     requireOneLineError(runCli({"eval", dir / "btf", "--holdout", dir / "held.txt"}), "held.txt:2: no image named 'v09-l01'");
+
+    // A held-out file may name a pair by its light and view, as rows.csv prints them.
+    char pair[128];
+    std::snprintf(pair, sizeof pair, "%.2f,%.2f,%.2f,%.2f", row["theta"].get<double>(), row["phi"].get<double>(),
+                  row["view_theta"].get<double>(), row["view_phi"].get<double>());
+    std::ofstream(dir / "pairs.txt") << pair << "\nv02-l03\n";
+    const nlohmann::json byPair = evalJson({"eval", dir / "btf", "--holdout", dir / "pairs.txt", "--json", "--no-gl"});
+    CHECK(byPair["held_out"] == 2);
+    CHECK(byPair["rows"][0]["image"] == row["image"]);
+    std::ofstream(dir / "pairs.txt") << "v02-l03\n" << pair << "\n10,0,89,0\n";
+    requireOneLineError(runCli({"eval", dir / "btf", "--holdout", dir / "pairs.txt"}),
+                        "pairs.txt:3: no image at light (10,0) and view (89,0)");
+    std::ofstream(dir / "pairs.txt") << "10,0,95,0\n";
+    requireOneLineError(runCli({"eval", dir / "btf", "--holdout", dir / "pairs.txt"}), "pairs.txt:1: the view of '10,0,95,0'");
 }
 
 TEST_CASE("eval: a dataset whose views all coincide is a fixed camera") {

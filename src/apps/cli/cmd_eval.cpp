@@ -94,7 +94,8 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
                     "pairs, modes lut, nearest, brdf and flat")
         ->required();
     app->add_option("--holdout", o->holdout,
-                    "every:K (every K-th image, a light-view pair; one fold), loo (each image in turn), or a file of image names")
+                    "every:K (every K-th image, a light-view pair; one fold), loo (each image in turn), or a file naming one "
+                    "image per line: its name, or its light and view as THETA_I,PHI_I,THETA_R,PHI_R in degrees")
         ->capture_default_str();
     app->add_option("--modes", o->modes,
                     "comma-separated: lut, brdf, ptm, nearest, flat, and the RTI bases unmatched: hsh (hsh2, hsh3), rbf "

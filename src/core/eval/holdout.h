@@ -6,8 +6,9 @@
 //   Dataset train = subset(dataset, folds->front().train);
 //
 // Specs: "every:K" holds out every K-th image (indices 0, K, 2K, ...; one fold); "loo" holds
-// out each image in turn (one fold per image); any other text names a file listing the names
-// of the images to hold out, one per line (one fold).
+// out each image in turn (one fold per image); any other text names a file listing the images
+// to hold out, one per line (one fold): each by its name, or by its light and view as
+// THETA_I,PHI_I,THETA_R,PHI_R in degrees (as rows.csv prints them, to 0.01 degrees).
 
 #include <string>
 #include <vector>
