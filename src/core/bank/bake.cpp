@@ -56,7 +56,8 @@ Result<std::pair<std::size_t, const Image*>> chooseReference(const Dataset& data
             if (!loaded) return Error{loaded.error()};
             mask = std::move(*loaded);
         }
-        if ((*image)->width != mask->width || (*image)->height != mask->height) continue;  // bake names the size
+        // The mask has the first candidate's size; another size is refused by bake itself.
+        if ((*image)->width != mask->width || (*image)->height != mask->height) continue;
         const LevelCounts levels = countGreyLevels(**image, *mask);
         const double tie = static_cast<double>(*std::max_element(levels.counts.begin(), levels.counts.end())) /
                            static_cast<double>(std::max<std::uint64_t>(levels.total(), 1));
@@ -67,11 +68,7 @@ Result<std::pair<std::size_t, const Image*>> chooseReference(const Dataset& data
         }
         if (tie <= kLargestTie) break;
     }
-    if (!best) {  // no image of the mask's size: bake names the sizes
-        Result<const Image*> first = images(0, storage);
-        if (!first) return Error{first.error()};
-        return std::pair{std::size_t{0}, *first};
-    }
+    BTFLUT_CHECK(best);  // the first candidate always has the mask's size
     return *best;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -164,11 +165,11 @@ bool LutBank::followsLight() const {
 
 std::size_t LutBank::nearestPair(Point3 q) const {
     std::size_t best = 0;
+    double bestDistance = std::numeric_limits<double>::infinity();
     const std::vector<Point3>& points = pairs.points();
-    for (std::size_t i = 1; i < points.size(); ++i)
-        if (std::hypot(points[i].x - q.x, points[i].y - q.y, points[i].z - q.z) <
-            std::hypot(points[best].x - q.x, points[best].y - q.y, points[best].z - q.z))
-            best = i;
+    for (std::size_t i = 0; i < points.size(); ++i)
+        if (const double d = std::hypot(points[i].x - q.x, points[i].y - q.y, points[i].z - q.z); d < bestDistance)
+            best = i, bestDistance = d;
     return best;
 }
 
