@@ -52,7 +52,7 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene,
             Material& m = r->m_materials[name];
             m.bank = std::move(*bank);
             m.relighter.emplace(m.bank);
-            m.referenceGrey = countGreyLevels(m.bank.reference, fullMask(m.bank.reference.width, m.bank.reference.height));
+            m.referenceGrey = brdfReferenceGrey(m.bank);
             r->m_stats.loadedMaterials.push_back(name);
         }
         QuadState q{i, {}};

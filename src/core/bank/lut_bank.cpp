@@ -443,6 +443,14 @@ Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>&
     return out;
 }
 
+LevelCounts brdfReferenceGrey(const LutBank& bank) {
+    const Image& reference = bank.reference;
+    // The target's mean is the sample's (brdfScale): the reference's must be too, or a
+    // capture whose sample covers 42% of the image is drawn 2.4x too bright.
+    if (bank.makesLuts() && !bank.blend.mask.inside.empty()) return countGreyLevels(reference, bank.blend.mask);
+    return countGreyLevels(reference, fullMask(reference.width, reference.height));
+}
+
 float brdfScale(const LutBank& bank, const LevelCounts& referenceGrey, const BankLookup& lookup) {
     double reference = 0, total = 0, target = 0;
     for (std::size_t k = 0; k < referenceGrey.counts.size(); ++k) {

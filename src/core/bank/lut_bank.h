@@ -277,9 +277,14 @@ float inputCode(const Image& image, ColourMode colour);
 Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
                 int entries, float targetCode);
 
+/// The reference's grey levels over the texels the bank's targets describe: a bank that
+/// makes its LUTs at run time, its sample mask (its targets are the sample's distributions);
+/// a bank of LUTs, every texel (its LUTs map every texel). brdfScale's input, counted once.
+LevelCounts brdfReferenceGrey(const LutBank& bank);
+
 /// The paper's "2D texture mapping" (renderer mode brdf): the factor that brings the mean
-/// grey of the reference (its grey counts over all texels) to the target's at a lookup's
-/// direction; 1 for a black reference.
+/// grey of the reference (`referenceGrey`: brdfReferenceGrey(bank)) to the target's at a
+/// lookup's direction, over the same texels; 1 for a black reference.
 float brdfScale(const LutBank& bank, const LevelCounts& referenceGrey, const BankLookup& lookup);
 
 /// Grey mode's colour step: an RGB pixel of grey value `grey` (the mean of its channels)

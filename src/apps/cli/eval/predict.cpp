@@ -102,10 +102,6 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
             }
         }
 
-        const LevelCounts referenceGrey = [&] {
-            const LutBank& base = *banks.begin()->second;
-            return countGreyLevels(base.reference, fullMask(base.reference.width, base.reference.height));
-        }();
         std::map<std::size_t, Image> trainImages;  // nearest: decoded once per fold
         for (std::size_t t : fold.test) {
             const DatasetImage& info = dataset.images[t];
@@ -159,7 +155,7 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 } else {
                     predicted = bank.reference;
                     if (v.mode == RenderMode::Brdf) {
-                        const float scale = brdfScale(bank, referenceGrey, bank.lookup(info.light, info.view));
+                        const float scale = brdfScale(bank, brdfReferenceGrey(bank), bank.lookup(info.light, info.view));
                         for (float& s : predicted.samples) s = std::min(1.f, s * scale);
                     }
                 }
