@@ -318,10 +318,20 @@ TEST_CASE("compare: exit 0 within the tolerance, 1 outside, 2 on bad input; the 
     // Golden files: --update creates a missing one and replaces one outside the tolerance.
     CHECK(runCli({"compare", dir / "a.png", dir / "golden.png", "--update"}).status == 0);
     CHECK(readText(dir / "golden.png") == readText(dir / "a.png"));
-    CliRun updated = runCli({"compare", dir / "b.png", dir / "golden.png", "--update"});
+    CliRun updated = runCli({"compare", dir / "b.png", dir / "golden.png", "--update", "--tolerance", "max=2"});
     CHECK(updated.status == 0);
     CHECK(updated.out.find("updated") != std::string::npos);
+    // It was outside the tolerance, and says so: not "within".
+    CHECK(updated.out.find("OUTSIDE the tolerance") != std::string::npos);
+    CHECK(updated.out.find("within") == std::string::npos);
     CHECK(readText(dir / "golden.png") == readText(dir / "b.png"));
+    REQUIRE(savePng(a, dir / "golden2.png").ok());
+    const nlohmann::json u =
+        nlohmann::json::parse(runCli({"compare", dir / "b.png", dir / "golden2.png", "--update", "--json"}).out);
+    CHECK_FALSE(u["within"].get<bool>());
+    CHECK(u["updated"].get<bool>());
+    CHECK(u["failed"][0] == "max");
+    CHECK(runCli({"compare", dir / "b.png", dir / "golden2.png", "-q", "--update"}).out.empty());  // now within
 }
 
 TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folders, folders of images, JUnit") {
@@ -375,7 +385,21 @@ TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folder
     // --update creates the missing golden images and replaces those outside the tolerance.
     REQUIRE(savePng(a, dir / "out/three.png").ok());
     REQUIRE(savePng(a, dir / "out/four.png").ok());
-    CHECK(runCli({"compare", dir / "out", dir / "golden", "--update"}).status == 0);
+    const CliRun update = runCli({"compare", dir / "out", dir / "golden", "--update"});
+    CHECK(update.status == 0);
+    CHECK(update.out.find("compared 4 image(s): 0 failed, 2 updated") != std::string::npos);  // two.png and four.png
     CHECK(fs::exists(dir / "golden/four.png"));
     CHECK(runCli({"compare", dir / "out", dir / "golden"}).status == 0);
+    // Subfolders are compared by their path, as golden-image suites lay them out.
+    fs::create_directories(dir / "out/sub");
+    fs::create_directories(dir / "golden/sub");
+    REQUIRE(savePng(b, dir / "out/sub/x.png").ok());
+    REQUIRE(savePng(a, dir / "golden/sub/x.png").ok());
+    const CliRun nested = runCli({"compare", dir / "out", dir / "golden", "--diff", dir / "nested-diffs"});
+    CHECK(nested.status == 1);
+    CHECK(nested.out.find("sub/x.png: psnr") != std::string::npos);
+    CHECK(nested.out.find("compared 5 image(s): 1 failed") != std::string::npos);
+    CHECK(fs::exists(dir / "nested-diffs/sub/x.diff.png"));
+    fs::remove(dir / "golden/sub/x.png");
+    CHECK(runCli({"compare", dir / "out", dir / "golden"}).out.find("sub/x.png: no golden image") != std::string::npos);
 }

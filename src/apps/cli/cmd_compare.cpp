@@ -230,9 +230,10 @@ struct Outcome {
     std::string problem;  // set when the images could not be compared (missing, unreadable, another size)
     std::string note;     // "created ...", "updated ..."
     bool created = false; // a new golden image: nothing compared
+    bool updated = false; // outside the tolerance, and the golden image replaced (--update)
     Figures f;
-    std::vector<std::string> failed;
-    bool ok() const { return problem.empty() && failed.empty(); }
+    std::vector<std::string> failed;  // the bounds it is outside of (kept when updated)
+    bool ok() const { return problem.empty() && (failed.empty() || updated); }
 };
 
 std::string psnrText(const Figures& f) {
@@ -265,7 +266,12 @@ std::string line(const Outcome& r, const Tolerance& t, const std::string& tolera
 }
 
 nlohmann::json outcomeJson(const Outcome& r, const CompareOptions& o, const std::string& a, const std::string& b) {
-    nlohmann::json out{{"a", a}, {"b", b}, {"tolerance", o.tolerance}, {"within", r.ok()}, {"failed", r.failed}};
+    nlohmann::json out{{"a", a},
+                       {"b", b},
+                       {"tolerance", o.tolerance},
+                       {"within", r.problem.empty() && r.failed.empty()},
+                       {"failed", r.failed},
+                       {"updated", r.updated || r.created}};
     if (!r.problem.empty() || r.created) {
         out[r.created ? "created" : "problem"] = r.created ? r.note : r.problem;
         return out;
@@ -332,7 +338,7 @@ Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const
     if (!r.failed.empty() && o.update) {
         if (Status s = copyFile(actual, expected); !s) return Error{s.error()};
         r.note = "updated " + expected + " from " + actual;
-        r.failed.clear();
+        r.updated = true;
     }
     return r;
 }
@@ -368,14 +374,24 @@ std::string junitReport(const std::vector<Outcome>& rows, const Tolerance& t, co
     return x.str();
 }
 
-// The image files of a folder, by name.
+// The image files of a folder and its subfolders, by their paths relative to it (with '/'),
+// as golden-image suites lay them out.
 Result<std::set<std::string>> imageFiles(const std::string& folder) {
     std::set<std::string> names;
     std::error_code ec;
-    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
-        if (it->is_regular_file(ec) && isImageExtension(fileExtension(it->path().string()))) names.insert(it->path().filename().string());
+    for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+        if (it->is_regular_file(ec) && isImageExtension(fileExtension(it->path().string())))
+            names.insert(it->path().lexically_relative(folder).generic_string());
     if (ec) return Error{folder + ": cannot list the folder (" + ec.message() + ")"};
     return names;
+}
+
+// Where a folder comparison writes an image's diff or side-by-side picture: the image's
+// relative path in `folder`, its extension replaced by `suffix` (sub/x.png: sub/x.diff.png).
+std::string besideIn(const std::string& folder, const std::string& name, const std::string& suffix) {
+    if (folder.empty()) return "";
+    const fs::path relative(name);
+    return (fs::path(folder) / relative.parent_path() / (relative.stem().string() + suffix)).string();
 }
 
 Status runCompare(CompareOptions& o) {
@@ -390,6 +406,8 @@ Status runCompare(CompareOptions& o) {
     }
     std::vector<Outcome> rows;
     std::vector<nlohmann::json> json;
+    // -q prints what is outside the tolerance, updated golden images included.
+    auto shown = [&](const Outcome& r) { return !o.quiet || !r.ok() || r.updated; };
     if (!folders) {
         Result<Outcome> r = compareImages(o, *t, o.actual, o.expected, o.diff, o.sideBySide);
         if (!r) return Error{r.error()};
@@ -400,7 +418,7 @@ Status runCompare(CompareOptions& o) {
         rows.push_back(*r);
         json.push_back(outcomeJson(*r, o, o.actual, o.expected));
         if (o.json) std::cout << jsonText(json.front());
-        else if (!o.quiet || !r->ok()) std::cout << line(*r, *t, o.tolerance) << "\n";
+        else if (shown(*r)) std::cout << line(*r, *t, o.tolerance) << "\n";
     } else {
         // Folders: every image of either, by file name; one line each, every failure listed.
         Result<std::set<std::string>> actual = imageFiles(o.actual), expected = imageFiles(o.expected);
@@ -418,10 +436,8 @@ Status runCompare(CompareOptions& o) {
             } else if (!expected->count(name) && !o.update) {
                 r.problem = "no golden image " + b + " (compare --update creates it)";
             } else {
-                const std::string stem = fs::path(name).stem().string();
-                const std::string diff = o.diff.empty() ? "" : (fs::path(o.diff) / (stem + ".diff.png")).string();
-                const std::string side = o.sideBySide.empty() ? "" : (fs::path(o.sideBySide) / (stem + ".side.png")).string();
-                Result<Outcome> compared = compareImages(o, *t, a, b, diff, side);
+                Result<Outcome> compared = compareImages(o, *t, a, b, besideIn(o.diff, name, ".diff.png"),
+                                                         besideIn(o.sideBySide, name, ".side.png"));
                 if (compared) {
                     r = std::move(*compared);
                     r.name = name;
@@ -429,14 +445,22 @@ Status runCompare(CompareOptions& o) {
                     r.problem = compared.error();
                 }
             }
-            if (!o.json && (!o.quiet || !r.ok())) std::cout << name << ": " << line(r, *t, o.tolerance) << "\n";
+            if (!o.json && shown(r)) std::cout << name << ": " << line(r, *t, o.tolerance) << "\n";
             json.push_back(outcomeJson(r, o, a, b));
             rows.push_back(std::move(r));
         }
-        std::size_t failed = 0;
-        for (const Outcome& r : rows) failed += !r.ok();
-        if (o.json) std::cout << jsonText(nlohmann::json{{"images", json}, {"failed", failed}, {"compared", rows.size()}});
-        else if (!o.quiet || failed > 0) std::cout << "compared " << rows.size() << " image(s): " << failed << " failed\n";
+        std::size_t failed = 0, updated = 0;
+        for (const Outcome& r : rows) {
+            failed += !r.ok();
+            updated += r.updated || r.created;
+        }
+        if (o.json) {
+            std::cout << jsonText(nlohmann::json{{"images", json}, {"failed", failed}, {"compared", rows.size()}, {"updated", updated}});
+        } else if (!o.quiet || failed > 0 || updated > 0) {
+            std::cout << "compared " << rows.size() << " image(s): " << failed << " failed";
+            if (o.update) std::cout << ", " << updated << " updated";
+            std::cout << "\n";
+        }
     }
     if (!o.junit.empty()) {
         const std::string report = junitReport(rows, *t, o.tolerance);
@@ -451,7 +475,7 @@ Status runCompare(CompareOptions& o) {
 void addCompareCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<CompareOptions>();
     CLI::App* app = root.add_subcommand(
-        "compare", "Compare two images, or two folders of images by file name, for screenshot tests: exit 0 within the "
+        "compare", "Compare two images, or two folders of images by path (subfolders included), for screenshot tests: exit 0 within the "
                    "tolerance, 1 outside it (any image, for folders), 2 on bad input");
     app->add_option("A", o->actual, "the image to check (a render), or a folder of them")->required();
     app->add_option("B", o->expected, "the expected image (the golden file), or a folder of them")->required();
@@ -462,7 +486,7 @@ void addCompareCommand(CLI::App& root, Commands& commands) {
                     "difference exceeds threshold=T/255, default 0), l1 and emd (masked 64-bin grey histograms) at most")
         ->capture_default_str();
     app->add_option("--diff", o->diff,
-                    "diff.png (folders: a folder of NAME.diff.png): where they differ, red in full at the tolerance's max "
+                    "diff.png (folders: a folder of NAME.diff.png, laid out as the images): where they differ, red in full at the tolerance's max "
                     "(or --diff-full; else 8/255), over the expected image dimmed");
     app->add_option("--diff-full", o->diffFull, "the difference (1/255) drawn full red in --diff")->check(CLI::PositiveNumber);
     app->add_option("--side-by-side", o->sideBySide,
