@@ -103,6 +103,25 @@ TEST_CASE("bad scenes are refused naming the file and the field") {
         {R"({"camera": {"orthographic_height": -2}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
              "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
          "camera.orthographic_height must be a positive number"},
+        // Misspelt keys are refused with the nearest known one, at every level; so are versions.
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"}, "interpolaton": "nearest",
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "s.json: unknown key 'interpolaton' (did you mean 'interpolation'?)"},
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "uv_scael": 2}]})",
+         "s.json: quads[0]: unknown key 'uv_scael' (did you mean 'uv_scale'?)"},
+        {R"({"camera": {"fov": 30}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "s.json: camera: unknown key 'fov'"},
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": {"bank": "a.btflut", "image": "ds"}},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "s.json: materials.a: unknown key 'image' (did you mean 'images'?)"},
+        {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"}, "zzz": 1,
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "unknown key 'zzz' (known: btflut_scene, image, camera, light, materials, interpolation, dither, quads)"},
+        {R"({"btflut_scene": 2, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
+             "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
+         "s.json: btflut_scene 2 is not a scene version this btflut reads (1)"},
     };
     for (const Case& c : cases) {
         INFO(c.text);

@@ -12,6 +12,7 @@
 #include "core/bank/lut_bank.h"
 #include "core/data/scene.h"
 #include "core/histogram/histogram.h"
+#include "core/io/closest_name.h"
 #include "core/result.h"
 
 namespace btflut::cli {
@@ -82,10 +83,6 @@ Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::strin
 
 /// Opens a dataset; a non-empty `mask` replaces the dataset's own mask (--mask).
 Result<Dataset> openDatasetWithMask(const std::string& path, const std::string& mask);
-
-/// The name of `names` nearest `word` (a prefix of 3 letters or more, or within an edit
-/// distance of about a third of its length); empty when none is near.
-std::string closestName(const std::string& word, const std::vector<std::string>& names);
 
 /// "unknown option --ligth (did you mean --light?)" for the first option of `args` (the
 /// command line after the program name) that neither `root` nor `sub` knows; empty if none.

@@ -75,6 +75,18 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
     Scene scene;
     scene.file = file;
     const std::string at = file + ": ";
+    // Every key is one the scene format knows (docs/scene.md): a misspelt one is refused with
+    // the nearest, not ignored.
+    if (Status s = requireKnownKeys(doc, {"btflut_scene", "image", "camera", "light", "materials", "interpolation", "dither", "quads"}, file); !s)
+        return Error{s.error()};
+    if (doc.contains("btflut_scene") && doc["btflut_scene"] != kSceneVersion)
+        return Error{at + "btflut_scene " + jsonText(doc["btflut_scene"], -1) + " is not a scene version this btflut reads (" +
+                     std::to_string(kSceneVersion) + ")"};
+    for (const auto& [key, known] : {std::pair<const char*, std::vector<std::string>>{"image", {"width", "height"}},
+                                     {"camera", {"position", "target", "up", "fov_degrees", "orthographic_height"}},
+                                     {"light", {"direction"}}})
+        if (doc.contains(key))
+            if (Status s = requireKnownKeys(doc[key], known, at + key); !s) return Error{s.error()};
     if (doc.contains("image")) {
         const json& im = doc["image"];
         if (!im.is_object() || !im.contains("width") || !im.contains("height") || !im["width"].is_number_integer() ||
@@ -129,6 +141,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
         SceneMaterial& m = scene.materials[name];
         if (entry.is_string()) {
             m.bank = resolve(entry);
+        } else if (Status s = requireKnownKeys(entry, {"bank", "images"}, at + "materials." + name); !s) {
+            return Error{s.error()};
         } else if (entry.is_object() && entry.contains("bank") && entry["bank"].is_string() &&
                    (!entry.contains("images") || entry["images"].is_string())) {
             m.bank = resolve(entry["bank"]);
@@ -155,6 +169,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
         const json& q = doc["quads"][i];
         const std::string where = at + "quads[" + std::to_string(i) + "]";
         if (!q.is_object()) return Error{where + ": expected an object"};
+        if (Status s = requireKnownKeys(q, {"material", "center", "normal", "tangent", "size", "uv_scale", "mode"}, where); !s)
+            return Error{s.error()};
         SceneQuad quad;
         if (!q.contains("material") || !q["material"].is_string()) return Error{where + ": no \"material\""};
         quad.material = q["material"].get<std::string>();
@@ -197,7 +213,7 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
 
 std::string sceneToJson(const Scene& scene, const std::string& folder) {
     auto vec = [](const Vec3& v) { return json::array({v.x, v.y, v.z}); };
-    json doc{{"btflut_scene", 1},
+    json doc{{"btflut_scene", kSceneVersion},
              {"image", {{"width", scene.width}, {"height", scene.height}}},
              {"camera", {{"position", vec(scene.eye)}, {"target", vec(scene.target)}, {"up", vec(scene.up)},
                          {"fov_degrees", scene.fovDegrees}}},

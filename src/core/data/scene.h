@@ -38,6 +38,9 @@ struct SceneQuad {
     RenderMode mode = RenderMode::Lut;
 };
 
+/// The scene format's version ("btflut_scene"); scenes of another are refused.
+constexpr int kSceneVersion = 1;
+
 struct Scene {
     std::string file;
     int width = 1024, height = 1024;

@@ -8,10 +8,13 @@
 //   - writing replaces bytes that are not UTF-8 (file names are bytes on Linux) with
 //     U+FFFD instead of throwing.
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "core/direction/direction.h"
+#include "core/io/closest_name.h"
 #include "core/result.h"
 
 namespace btflut {
@@ -34,6 +37,23 @@ inline Result<nlohmann::json> parseJsonText(const std::string& text, const std::
     } catch (const nlohmann::json::exception& e) {
         return Error{file + ": not valid JSON (" + e.what() + ")"};
     }
+}
+
+/// Refuses a key of `object` that is not in `known`, naming it and the nearest known key
+/// ("FILE: quads[0]: unknown key 'uv_scael' (did you mean 'uv_scale'?)"): a misspelt key
+/// would otherwise be ignored silently. `where` is the object's place ("FILE: quads[0]").
+inline Status requireKnownKeys(const nlohmann::json& object, const std::vector<std::string>& known,
+                               const std::string& where) {
+    if (!object.is_object()) return success();
+    for (const auto& item : object.items()) {
+        if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
+        const std::string guess = closestName(item.key(), known);
+        std::string list;
+        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+        return Error{where + ": unknown key '" + item.key() + "' (" +
+                     (guess.empty() ? "known: " + list : "did you mean '" + guess + "'?") + ")"};
+    }
+    return success();
 }
 
 /// The text of a JSON value (indent < 0: one line), never throwing on invalid UTF-8.
