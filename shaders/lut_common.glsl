@@ -29,7 +29,7 @@ float btflutUniformLut(int lut, int count, float v) {
 }
 #endif
 
-// Banks that blend references (src/core/predict/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
+// Banks that blend references (src/core/relight/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
 // BLEND_MODEL for a light model, REGIONS). The blend is exact integer arithmetic in float
 // (8-bit codes times integer weights, sums below 2^24), so its code is the CPU's; the LUT
 // of the texel's region is applied to it.

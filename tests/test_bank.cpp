@@ -1,7 +1,8 @@
 #include <doctest/doctest.h>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
+#include "core/relight/relighter.h"
 #include "core/bank/lut_bank.h"
 #include "core/inverse/model_fill.h"
 #include "core/physics/geometry.h"

@@ -1,6 +1,6 @@
 #include <doctest/doctest.h>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "helpers.h"
 

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <tuple>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 #include "gl/context.h"
 #include "gl/native_renderer.h"
 #include "gl/scene_renderer.h"

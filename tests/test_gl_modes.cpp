@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "gl/context.h"
 #include "gl/scene_renderer.h"

@@ -1,8 +1,9 @@
 // GL tests (doctest suite "gl", CTest label gl): headless contexts, and the GPU path of relight.
 #include <doctest/doctest.h>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
+#include "core/relight/relighter.h"
 #include "gl/context.h"
 #include "gl/native_renderer.h"
 #include "gl/shader.h"

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 #include "gl/context.h"
 #include "gl/scene_renderer.h"
 #include "helpers.h"

@@ -1,18 +1,18 @@
 // Linear light models (core/predict/light_model.h) and `bake --predictor auto`
-// (core/bank/auto_bake.h): fits, the fixed-point evaluator, numerical traps, degenerate
+// (core/bake/auto_bake.h): fits, the fixed-point evaluator, numerical traps, degenerate
 // captures, version 5 files, and the validated choice on the shared data.
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <fstream>
 
-#include "core/bank/auto_bake.h"
-#include "core/bank/bake.h"
+#include "core/bake/auto_bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/data/dataset.h"
 #include "core/eval/metrics.h"
 #include "core/predict/light_model.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 #include "helpers.h"
 
 using namespace btflut;

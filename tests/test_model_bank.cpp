@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include "core/bank/bank_file.h"
+#include "core/relight/relighter.h"
 #include "core/physics/model_bank.h"
 #include "helpers.h"
 

@@ -1,8 +1,9 @@
 // Acceptance numbers on real measured data (../shared/data/psm-rock).
 #include <doctest/doctest.h>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
+#include "core/relight/relighter.h"
 #include "helpers.h"
 
 using namespace btflut;

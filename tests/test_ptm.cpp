@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/predict/ptm.h"
 #include "helpers.h"

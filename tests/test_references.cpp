@@ -5,13 +5,13 @@
 
 #include <random>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/eval/holdout.h"
 #include "core/eval/metrics.h"
 #include "core/histogram/histogram.h"
 #include "core/predict/references.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 #include "helpers.h"
 
 using namespace btflut;

@@ -1,6 +1,6 @@
 #pragma once
 // The GPU side of a bank that blends references and matches regions (LutBank::Blend,
-// core/predict/relighter.h): its textures, the shader defines of lut_common.glsl's BLEND path, and
+// core/relight/relighter.h): its textures, the shader defines of lut_common.glsl's BLEND path, and
 // the per-light uniforms and LUT tables. Shared by the native and the scene renderer.
 //
 //   BlendTextures t = BlendTextures::upload(bank, bytes);     // per bank
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 #include "gl/objects.h"
 
 namespace btflut {

@@ -1,5 +1,5 @@
 #pragma once
-// An EngineMaterial (core/predict/engine_material.h) on the GPU, as shaders/btflut.glsl reads
+// An EngineMaterial (core/relight/engine_material.h) on the GPU, as shaders/btflut.glsl reads
 // it: the LUT grid as a 3D texture, and for banks with a predictor its planes (or references
 // and albedo), weights over the light disk and region labels, with the `predictor` uniforms.
 // The sphere and the cylinder draw with it, as an engine draws an exported folder.
@@ -7,7 +7,7 @@
 //   EngineTextures t = EngineTextures::upload(material, bytes);   // per bank
 //   t.bind(program, material, 1);                                 // per draw: units 1 .. 4
 
-#include "core/predict/engine_material.h"
+#include "core/relight/engine_material.h"
 #include "gl/objects.h"
 
 namespace btflut {

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 #include "gl/blend_textures.h"
 #include "gl/objects.h"
 

@@ -41,7 +41,7 @@
 #include "core/data/dataset.h"
 #include "core/data/scene.h"
 #include "core/image/image.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 #include "gl/blend_textures.h"
 #include "gl/objects.h"
 #include "gl/relight_pass.h"

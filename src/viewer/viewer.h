@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/lut_bank.h"
 
 #include "core/result.h"

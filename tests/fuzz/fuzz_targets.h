@@ -15,7 +15,7 @@
 #include "core/histogram/histogram.h"
 #include "core/image/image.h"
 #include "core/physics/model_bank.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 
 namespace btflut::fuzz {
 

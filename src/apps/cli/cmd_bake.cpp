@@ -9,8 +9,8 @@
 #include <optional>
 
 #include "cli/cli.h"
-#include "core/bank/auto_bake.h"
-#include "core/bank/bake.h"
+#include "core/bake/auto_bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/fit.h"
 #include "core/inverse/model_fill.h"

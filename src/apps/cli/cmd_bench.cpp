@@ -11,7 +11,7 @@
 
 #include "cli/cli.h"
 #include "cli/model_options.h"
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/lut_bank.h"
 #include "core/check.h"
 #include "core/histogram/histogram.h"

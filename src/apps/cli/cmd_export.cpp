@@ -14,10 +14,11 @@
 #include "cli/cli.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
-#include "core/predict/engine_material.h"
+#include "core/relight/engine_material.h"
+#include "core/relight/material_json.h"
 #include "core/predict/light_model.h"
 #include "core/predict/ptm_file.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 #include "cli/web_page.h"
 #include "gl/shader.h"
 
@@ -125,7 +126,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
             "per light: blend the references of the Delaunay triangle (equal-area disk) around the light with "
             "barycentric weights (or relight the PTM or the light model), round the blend to its codes, and per region map its "
             "distribution over the mask's texels onto the quantile function blended from the atlas's nodes "
-            "(see src/core/predict/relighter.h)";
+            "(see src/core/relight/relighter.h)";
     }
     nlohmann::json side;
     side["format"] = "btflut-atlas";
@@ -194,45 +195,6 @@ Status writeFolder(const std::string& folder, const std::vector<std::pair<std::s
 
 std::string_view asText(const Bytes& bytes) { return {reinterpret_cast<const char*>(bytes.data()), bytes.size()}; }
 
-// The sidecar's "predictor" (version 2): what btflut.glsl's BtflutPredictor takes, and the
-// files of its textures.
-nlohmann::json predictorJson(const EngineMaterial& m, const std::vector<std::string>& images, bool albedo, bool labels) {
-    const bool model = m.kind == EngineMaterial::Kind::Model;
-    nlohmann::json p{{"kind", model ? "model" : "references"},
-                     {"images", images},
-                     {"images_layout", model ? "RGBA8, planes four to an image (plane p: image p / 4, channel p % 4); "
-                                               "value_p = (code_p - bias[p]) * scale[p], code 0 .. 255"
-                                             : "one reference per image (RGB; a grey one in R, G and B)"},
-                     {"planes", m.planes},
-                     {"channels", m.channels},
-                     {"codes", m.codes},
-                     {"output_channels", m.outputChannels},
-                     {"regions", m.regions}};
-    if (model) {
-        p["basis"] = lightBasisName(m.basis);
-        p["basis_index"] = static_cast<int>(m.basis);
-        if (m.basis == LightBasis::Hsh) p["order"] = m.order;
-        p["scale"] = m.scale;
-        p["bias"] = m.bias;
-    }
-    if (albedo)
-        p["albedo"] = {{"file", "albedo.png"}, {"use", m.albedoMultiplies ? "multiplies" : "chroma"}};
-    if (labels) p["labels"] = {{"file", "labels.png"}, {"texture", "R8, nearest: each texel's region (value = region)"}};
-    if (m.weights > 0)
-        p["weights"] = {{"file", "weights.bin"},
-                        {"format", "float32, little-endian, [layer][j][i][4]: a 2D array texture of RGBA32F layers"},
-                        {"grid_size", m.weightGridSize},
-                        {"count", m.weights},
-                        {"layers", m.weightLayers()},
-                        {"row", model ? "the channels' offsets, then each plane's channel weights ((1 + planes) x channels)"
-                                      : "one weight per reference"},
-                        {"grid_mapping", "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise; read "
-                                         "bilinearly between nodes (btflutWeightLayer)"}};
-    else
-        p["weights"] = nullptr;  // ptm, hsh: closed form in btflut.glsl
-    return p;
-}
-
 // A file name an export writes (material.json, luts.png, planes-N.png, ...).
 bool exportFileName(const std::string& name) {
     static const std::regex planes(R"(planes-\d+\.png)");
@@ -281,71 +243,22 @@ Result<EngineExport> engineExport(const LutBank& b, const std::string& bankPath)
                                  m.lutChannels, m.lutTexels, "LUT texture");
     if (!luts) return Error{luts.error()};
     EngineExport out;
-    nlohmann::json& side = out.side;
-    side = nlohmann::json{
-        // Banks of LUTs keep version 1, so that loaders written for it still read them.
-        {"format", "btflut-material"},
-        {"version", predictor ? 2 : 1},
-        {"kind", predictor ? (m.kind == EngineMaterial::Kind::Model ? "model" : "references") : "luts"},
-        {"shader", "btflut.glsl"},
-        {"shader_version", predictor ? 2 : 1},
-        {"reference", {{"file", "reference.png"},
-                       {"width", b.reference.width},
-                       {"height", b.reference.height},
-                       {"channels", b.reference.channels},
-                       {"bit_depth", b.reference.bitDepth},
-                       {"name", b.referenceName},
-                       {"light", directionJson(b.referenceLight)},
-                       {"view", directionJson(b.referenceView)}}},
-        {"luts", {{"file", "luts.png"},
-                  {"texture", "3D, width entries, height grid_size, depth grid_size x " + std::string(predictor ? "regions" : "layers") +
-                                  "; 16-bit unorm, " + (m.lutChannels == 3 ? "RGB (one LUT per colour channel)" : "one channel")},
-                  {"entries", m.entries},
-                  {"grid_size", g},
-                  {"layers", predictor ? 1 : m.blocks},
-                  {"row_of_node", predictor ? "(region * grid_size + j) * grid_size + i" : "(layer * grid_size + j) * grid_size + i"}}},
-        {"colour", colourName(b.colour)},
-        {"lut_input_code", m.inputCode},
-        {"lut_output_code", m.outputCode},
-        {"grid_mapping", "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise with j; a direction "
-                         "(theta, phi) maps to sqrt(2) sin(theta / 2) (cos phi, sin phi); z = surface normal, x = "
-                         "texture +u (image right), y = texture +v (image up)"},
-        {"views", nlohmann::json::array()}};
-    if (predictor) side["luts"]["regions"] = m.regions;
-    for (const ViewLayer& layer : b.layers) {
-        nlohmann::json provenance = nlohmann::json::array();
-        for (Provenance p : layer.gridProvenance) provenance.push_back(provenanceName(p));
-        nlohmann::json lights = nlohmann::json::array();  // the measured (or modelled) directions
-        for (const LightNode& node : layer.nodes) {
-            nlohmann::json light = directionJson(node.light);
-            light["modelled"] = node.modelled;
-            lights.push_back(light);
-        }
-        side["views"].push_back({{"view", directionJson(layer.view)}, {"node_provenance", provenance}, {"lights", lights}});
-    }
-    if (!b.modelFill.empty()) side["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
-
     std::vector<std::pair<std::string, Bytes>> pngs{{"reference.png", encodePng(b.reference, b.reference.bitDepth)},
                                                     {"luts.png", encodePng(*luts, 16)}};
     std::string weights;
     if (predictor) {
-        std::vector<std::string> images;
-        for (std::size_t k = 0; k < m.images.size(); ++k) {
-            images.push_back("planes-" + std::to_string(k) + ".png");
-            pngs.push_back({images.back(), encodePng(m.images[k], 8)});
-        }
-        const bool albedo = !m.albedo.samples.empty(), labels = !m.labels.samples.empty();
-        if (albedo) pngs.push_back({"albedo.png", encodePng(m.albedo, 8)});
-        if (labels) pngs.push_back({"labels.png", encodePng(m.labels, 8)});
-        side["predictor"] = predictorJson(m, images, albedo, labels);
+        for (std::size_t k = 0; k < m.images.size(); ++k) pngs.push_back({planeImageName(k), encodePng(m.images[k], 8)});
+        if (!m.albedo.samples.empty()) pngs.push_back({"albedo.png", encodePng(m.albedo, 8)});
+        if (!m.labels.samples.empty()) pngs.push_back({"labels.png", encodePng(m.labels, 8)});
         static_assert(std::endian::native == std::endian::little, "weights.bin is little-endian");
         weights.assign(reinterpret_cast<const char*>(m.weightGrid.data()), m.weightGrid.size() * sizeof(float));
     }
     for (auto& [name, bytes] : pngs) out.files.push_back({name, std::string(asText(bytes))});
     if (!weights.empty()) out.files.push_back({"weights.bin", weights});
-    out.files.push_back({"material.json", jsonText(side)});
+    out.side = materialJson(b, m);
+    out.files.push_back({"material.json", jsonText(out.side)});
     for (const char* include : kShaderIncludes) out.files.push_back({include, std::string(embeddedShader(include))});
-    out.summary = side["kind"].get<std::string>() + " material, luts.png (3D texture " + std::to_string(m.entries) + "x" +
+    out.summary = out.side["kind"].get<std::string>() + " material, luts.png (3D texture " + std::to_string(m.entries) + "x" +
                   std::to_string(g) + "x" + std::to_string(g * m.blocks) + ", 16-bit)";
     return out;
 }

@@ -5,7 +5,7 @@
 
 #include "cli/cli.h"
 #include "core/bank/bank_file.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 
 namespace btflut::cli {
 

@@ -4,7 +4,7 @@
 //
 //   Result<LutBank> bank = bakeBank(dataset, BakeOptions{});    // bake.h
 //   BankLookup lut = bank->lookup(light, view);    // blended LUT + how it was obtained
-//   Image relit = relight(*bank, light, view);     // the CPU reference of the shader
+//   Image relit = relight(*bank, light, view);     // the CPU reference (relight/relighter.h)
 //
 // Layout. Images are grouped by view direction into layers (one layer for a fixed camera).
 // Each layer holds
@@ -258,11 +258,6 @@ struct DirectionalLut {
 /// disk, isotropic otherwise. Refuses (naming `source`) a bank that could not follow the light.
 Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,
                 const std::string& source);
-
-/// The reference image with the LUT for (light, view) applied to every pixel (see
-/// applyLuts), dithered unless `dither` is false; for banks that make their LUTs at run time,
-/// the references blended and matched (relighter.h).
-Image relight(const LutBank& bank, Direction light, Direction view = {}, bool dither = true);
 
 /// One code of the value a LUT maps for this image: of a channel in rgb mode or for a grey
 /// image, of the grey value (channels x max code) otherwise. The unit of the dithered input.

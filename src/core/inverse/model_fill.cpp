@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "core/parallel.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 
 namespace btflut {
 

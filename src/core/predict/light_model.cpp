@@ -6,7 +6,6 @@
 #include <numbers>
 
 #include "core/check.h"
-#include "core/predict/relighter.h"
 
 namespace btflut {
 

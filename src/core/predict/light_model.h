@@ -35,6 +35,12 @@
 
 namespace btflut {
 
+/// Predictions are exact integer arithmetic, so that the CPU and a GPU (whose float sums of
+/// integers below 2^24 are exact, fused or not) get the same codes: reference weights are
+/// integers summing to kWeightUnit, applied to the references' 8-bit codes, and a light
+/// model's channels are scaled by it (LightModelFixed).
+constexpr int kWeightUnit = 4096;
+
 enum class LightBasis : std::uint32_t { Ptm = 0, Hsh = 1, Rbf = 2, Bilinear = 3 };
 
 const char* lightBasisName(LightBasis basis);
@@ -98,7 +104,7 @@ struct LightModelFixed {
 };
 LightModelFixed lightModelFixed(const LightModel& model, Direction light);
 
-/// A texel's channels times 255 * kWeightUnit (kWeightUnit: relighter.h), clamped: the
+/// A texel's channels times 255 * kWeightUnit, clamped: the
 /// fixed-point prediction, channels 1 or 3 (grey models give one).
 std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightModelFixed& fixed, std::size_t texel);
 

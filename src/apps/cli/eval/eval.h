@@ -14,7 +14,7 @@
 #include <tuple>
 #include <vector>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/lut_bank.h"
 #include "core/data/dataset.h"
 #include "core/data/scene.h"

@@ -5,7 +5,7 @@
 
 #include "cli/cli.h"
 #include "cli/eval/eval.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 #include "gl/context.h"
 #include "gl/native_renderer.h"
 #include "gl/scene_renderer.h"

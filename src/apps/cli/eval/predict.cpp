@@ -9,11 +9,11 @@
 #include <set>
 
 #include "cli/eval/eval.h"
-#include "core/bank/auto_bake.h"
-#include "core/bank/bake.h"
+#include "core/bake/auto_bake.h"
+#include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/model_fill.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 
 namespace btflut::cli::eval {
 

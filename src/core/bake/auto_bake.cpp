@@ -1,4 +1,4 @@
-#include "core/bank/auto_bake.h"
+#include "core/bake/auto_bake.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "core/eval/metrics.h"
 #include "core/io/json_text.h"
 #include "core/parallel.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 
 namespace btflut {
 

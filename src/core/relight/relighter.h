@@ -28,11 +28,6 @@
 
 namespace btflut {
 
-/// Blends are exact integer arithmetic, so that the CPU and a GPU (whose float sums of
-/// integers below 2^24 are exact, fused or not) get the same codes: reference weights are
-/// integers summing to kWeightUnit, applied to the references' 8-bit codes.
-constexpr int kWeightUnit = 4096;
-
 struct RelightFrame {
     Direction light;                     ///< what the frame is for
     int count = 1;                       ///< references blended, 1 to 3 (0 for a light model)
@@ -100,6 +95,11 @@ private:
     /// For a bank read without its match grid (older files): the grid, made on first use.
     mutable std::shared_ptr<const LutBank> m_gridBank;
 };
+
+/// The reference image with the LUT for (light, view) applied to every pixel (see
+/// applyLuts), dithered unless `dither` is false; for banks that make their LUTs at run time,
+/// the references blended and matched (Relighter).
+Image relight(const LutBank& bank, Direction light, Direction view = {}, bool dither = true);
 
 /// A bank with a predictor: the codes of a predicted value, 255 (a channel) or 765 (the grey of
 /// RGB8: three channels' codes summed); its match LUTs read code q at (q + 1) / (codes + 1).

@@ -1,4 +1,4 @@
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "core/parallel.h"
 #include "core/predict/references.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 
 namespace btflut {
 

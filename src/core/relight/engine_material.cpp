@@ -1,11 +1,11 @@
-#include "core/predict/engine_material.h"
+#include "core/relight/engine_material.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/check.h"
 #include "core/predict/light_model.h"
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 
 namespace btflut {
 

@@ -1,4 +1,4 @@
-#include "core/predict/relighter.h"
+#include "core/relight/relighter.h"
 
 #include <algorithm>
 #include <cmath>

@@ -19,7 +19,7 @@
 #include <functional>
 #include <optional>
 
-#include "core/bank/bake.h"
+#include "core/bake/bake.h"
 
 namespace btflut {
 
