@@ -46,17 +46,21 @@ struct Context {
 };
 
 Context createContext() {
-    auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
-    EGLDisplay display = getPlatformDisplay ? getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
-                                            : eglGetDisplay(EGL_DEFAULT_DISPLAY);
+    auto getPlatformDisplay =
+        reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+    EGLDisplay display = getPlatformDisplay
+                             ? getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
+                             : eglGetDisplay(EGL_DEFAULT_DISPLAY);
     if (display == EGL_NO_DISPLAY || !eglInitialize(display, nullptr, nullptr) || !eglBindAPI(EGL_OPENGL_API))
         fail("EGL: no display with desktop OpenGL");
-    const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
+    const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
+                                       EGL_NONE};
     EGLConfig config = nullptr;
     EGLint count = 0;
     if (!eglChooseConfig(display, configAttributes, &config, 1, &count) || count == 0) fail("EGL: no OpenGL config");
-    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    const EGLint contextAttributes[] = {
+        EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+        EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);
     if (context == EGL_NO_CONTEXT || !eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context))
         fail("EGL: cannot make an OpenGL 3.3 core context current");
@@ -126,15 +130,18 @@ int includeVersion(const std::string& text) {
 void bindUnused(GLenum target, GLuint texture) {
     glBindTexture(target, texture);
     const float zero[4] = {0, 0, 0, 0};
-    if (target == GL_TEXTURE_2D_ARRAY) glTexImage3D(target, 0, GL_RGBA32F, 1, 1, 1, 0, GL_RGBA, GL_FLOAT, zero);
-    else glTexImage2D(target, 0, GL_R8, 1, 1, 0, GL_RED, GL_FLOAT, zero);
+    if (target == GL_TEXTURE_2D_ARRAY)
+        glTexImage3D(target, 0, GL_RGBA32F, 1, 1, 1, 0, GL_RGBA, GL_FLOAT, zero);
+    else
+        glTexImage2D(target, 0, GL_R8, 1, 1, 0, GL_RED, GL_FLOAT, zero);
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
 }
 
 // The predictor's textures (units 2 .. 4) and uniforms, as material.json describes them;
 // `w` and `h` get the planes' size.
-void setUpPredictor(GLuint program, const std::string& folder, const nlohmann::json& p, const GLuint textures[3], int& w, int& h) {
+void setUpPredictor(GLuint program, const std::string& folder, const nlohmann::json& p, const GLuint textures[3],
+                    int& w, int& h) {
     // The planes (or references), then the albedo: layers of one RGBA8 array, linear, repeating.
     std::vector<std::string> files = p["images"].get<std::vector<std::string>>();
     if (p.contains("albedo")) files.push_back(p["albedo"]["file"]);
@@ -150,7 +157,8 @@ void setUpPredictor(GLuint program, const std::string& folder, const nlohmann::j
     }
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D_ARRAY, textures[0]);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, w, h, static_cast<GLsizei>(files.size()), 0, GL_RGBA, GL_UNSIGNED_BYTE, layers.data());
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, w, h, static_cast<GLsizei>(files.size()), 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, layers.data());
     for (GLenum f : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTexParameteri(GL_TEXTURE_2D_ARRAY, f, GL_LINEAR);
     // The weights over the light disk: float32 RGBA layers, read exactly (texelFetch).
     glActiveTexture(GL_TEXTURE3);
@@ -165,7 +173,8 @@ void setUpPredictor(GLuint program, const std::string& folder, const nlohmann::j
                  " RGBA float32 layers material.json describes");
         glBindTexture(GL_TEXTURE_2D_ARRAY, textures[1]);
         glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, size, size, count, 0, GL_RGBA, GL_FLOAT, bytes.data());
-        for (GLenum f : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTexParameteri(GL_TEXTURE_2D_ARRAY, f, GL_NEAREST);
+        for (GLenum f : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER})
+            glTexParameteri(GL_TEXTURE_2D_ARRAY, f, GL_NEAREST);
     }
     // Each texel's region.
     glActiveTexture(GL_TEXTURE4);
@@ -181,7 +190,9 @@ void setUpPredictor(GLuint program, const std::string& folder, const nlohmann::j
         for (GLenum f : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTexParameteri(GL_TEXTURE_2D, f, GL_NEAREST);
         stbi_image_free(labels);
     }
-    auto uniform = [&](const std::string& name) { return glGetUniformLocation(program, ("predictor." + name).c_str()); };
+    auto uniform = [&](const std::string& name) {
+        return glGetUniformLocation(program, ("predictor." + name).c_str());
+    };
     const bool model = p["kind"] == "model";
     glUniform1i(glGetUniformLocation(program, "planes"), 2);
     glUniform1i(glGetUniformLocation(program, "weights"), 3);
@@ -210,11 +221,16 @@ int main(int argc, char** argv) {
     bool dither = true;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--light" && i + 1 < argc) lightText = argv[++i];
-        else if (a == "-o" && i + 1 < argc) output = argv[++i];
-        else if (a == "--no-dither") dither = false;
-        else if (folder.empty() && a[0] != '-') folder = a;
-        else fail(usage);
+        if (a == "--light" && i + 1 < argc)
+            lightText = argv[++i];
+        else if (a == "-o" && i + 1 < argc)
+            output = argv[++i];
+        else if (a == "--no-dither")
+            dither = false;
+        else if (folder.empty() && a[0] != '-')
+            folder = a;
+        else
+            fail(usage);
     }
     double theta = 0, phi = 0;
     if (folder.empty() || output.empty() || std::sscanf(lightText.c_str(), "%lf,%lf", &theta, &phi) != 2) fail(usage);
@@ -222,7 +238,8 @@ int main(int argc, char** argv) {
     // The sidecar says what the textures hold; this program reads versions 1 and 2.
     const std::string sidecar = folder + "/material.json";
     const nlohmann::json material = nlohmann::json::parse(readText(sidecar), nullptr, false);
-    if (material.is_discarded() || material.value("format", "") != "btflut-material") fail(sidecar + ": not a btflut material");
+    if (material.is_discarded() || material.value("format", "") != "btflut-material")
+        fail(sidecar + ": not a btflut material");
     if (const int version = material.value("version", 0); version < 1 || version > 2)
         fail(sidecar + ": version " + std::to_string(version) + ", this program reads versions 1 and 2");
     const std::string shaderPath = folder + "/" + material["shader"].get<std::string>(), include = readText(shaderPath);
@@ -235,7 +252,8 @@ int main(int argc, char** argv) {
     const int blocks = predictor ? material["luts"]["regions"].get<int>() : material["luts"]["layers"].get<int>();
     int lw = 0, lh = 0, lc = 0;
     stbi_us* luts = stbi_load_16((folder + "/luts.png").c_str(), &lw, &lh, &lc, 0);
-    if (!luts || lw != entries || lh != grid * grid * blocks) fail(folder + "/luts.png: not the texture material.json describes");
+    if (!luts || lw != entries || lh != grid * grid * blocks)
+        fail(folder + "/luts.png: not the texture material.json describes");
 
     const Context egl = createContext();
     const GLenum format[] = {0, GL_RED, GL_RG, GL_RGB, GL_RGBA};
@@ -245,14 +263,17 @@ int main(int argc, char** argv) {
     // The LUT grid: the PNG's rows are the 3D texture's (entries x G x G * blocks) memory.
     glActiveTexture(GL_TEXTURE1);
     glBindTexture(GL_TEXTURE_3D, textures[1]);
-    glTexImage3D(GL_TEXTURE_3D, 0, lc == 1 ? GL_R16 : GL_RGB16, entries, grid, grid * blocks, 0, format[lc], GL_UNSIGNED_SHORT, luts);
+    glTexImage3D(GL_TEXTURE_3D, 0, lc == 1 ? GL_R16 : GL_RGB16, entries, grid, grid * blocks, 0, format[lc],
+                 GL_UNSIGNED_SHORT, luts);
     for (GLenum p : {GL_TEXTURE_MIN_FILTER, GL_TEXTURE_MAG_FILTER}) glTexParameteri(GL_TEXTURE_3D, p, GL_LINEAR);
-    for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) glTexParameteri(GL_TEXTURE_3D, p, GL_CLAMP_TO_EDGE);
+    for (GLenum p : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTexParameteri(GL_TEXTURE_3D, p, GL_CLAMP_TO_EDGE);
     stbi_image_free(luts);
 
     const GLuint program = glCreateProgram();
     glAttachShader(program, compile(GL_VERTEX_SHADER, kVertex));
-    glAttachShader(program, compile(GL_FRAGMENT_SHADER, "#version 330 core\n" + include + (predictor ? kPredictorFragment : kFragment)));
+    glAttachShader(program, compile(GL_FRAGMENT_SHADER,
+                                    "#version 330 core\n" + include + (predictor ? kPredictorFragment : kFragment)));
     glLinkProgram(program);
     glUseProgram(program);
     glUniform1i(glGetUniformLocation(program, "luts"), 1);
@@ -277,7 +298,8 @@ int main(int argc, char** argv) {
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, textures[0]);
         const GLint internal = deep ? (channels == 1 ? GL_R16 : GL_RGB16) : (channels == 1 ? GL_R8 : GL_RGB8);
-        glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format[channels], deep ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE, reference);
+        glTexImage2D(GL_TEXTURE_2D, 0, internal, w, h, 0, format[channels], deep ? GL_UNSIGNED_SHORT : GL_UNSIGNED_BYTE,
+                     reference);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         stbi_image_free(reference);
@@ -303,7 +325,8 @@ int main(int argc, char** argv) {
     glViewport(0, 0, w, h);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 
-    std::vector<unsigned char> rgba(static_cast<std::size_t>(w) * h * 4), out(static_cast<std::size_t>(w) * h * channels);
+    std::vector<unsigned char> rgba(static_cast<std::size_t>(w) * h * 4),
+        out(static_cast<std::size_t>(w) * h * channels);
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
     if (glGetError() != GL_NO_ERROR) fail("OpenGL error");

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <random>
 #include <sstream>
 #include <string>
@@ -28,8 +28,8 @@ class TempDir {
 public:
     TempDir() {
         static int counter = 0;
-        m_path = fs::temp_directory_path() /
-                 ("btflut-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+        m_path =
+            fs::temp_directory_path() / ("btflut-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
         fs::remove_all(m_path);
         fs::create_directories(m_path);
     }
@@ -123,8 +123,8 @@ struct SyntheticShot {
 
 /// Writes grey 8-bit PNGs and a btflut manifest; the first shot's image is the
 /// reference image itself (offset 0, slope 1 expected). Returns the manifest path.
-inline std::string writeSyntheticDataset(const TempDir& dir, const std::vector<SyntheticShot>& shots,
-                                         int w = 40, int h = 30) {
+inline std::string writeSyntheticDataset(const TempDir& dir, const std::vector<SyntheticShot>& shots, int w = 40,
+                                         int h = 30) {
     nlohmann::json manifest{{"btflut_dataset", 1}, {"images", nlohmann::json::array()}};
     for (std::size_t s = 0; s < shots.size(); ++s) {
         Image im(w, h, 1);

@@ -2,19 +2,18 @@
 
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
-#include "core/relight/relighter.h"
 #include "core/bank/lut_bank.h"
 #include "core/inverse/model_fill.h"
 #include "core/physics/geometry.h"
+#include "core/relight/relighter.h"
 #include "helpers.h"
 
 using namespace btflut;
 using namespace btflut::test;
 
 namespace {
-const std::vector<SyntheticShot> kShots{{0, 0, 0, 0, 0, 1},    {30, 0, 0, 0, 40, 1},
-                                        {30, 120, 0, 0, 0, 2}, {30, 240, 0, 0, 100, 1},
-                                        {55, 60, 0, 0, 20, 2}, {55, 300, 0, 0, 150, 1}};
+const std::vector<SyntheticShot> kShots{{0, 0, 0, 0, 0, 1},      {30, 0, 0, 0, 40, 1},  {30, 120, 0, 0, 0, 2},
+                                        {30, 240, 0, 0, 100, 1}, {55, 60, 0, 0, 20, 2}, {55, 300, 0, 0, 150, 1}};
 
 Dataset openSynthetic(const TempDir& dir, const std::vector<SyntheticShot>& shots = kShots) {
     auto ds = openDataset(writeSyntheticDataset(dir, shots));
@@ -85,8 +84,8 @@ TEST_CASE("grid nodes carry their provenance and the blended LUT at 16 bits") {
 
 TEST_CASE("view layers: one per view direction, blended between views") {
     TempDir dir;
-    Dataset ds = openSynthetic(dir, {{10, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 20, 1},
-                                     {10, 0, 40, 0, 50, 1}, {30, 0, 40, 0, 80, 1}});
+    Dataset ds =
+        openSynthetic(dir, {{10, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 20, 1}, {10, 0, 40, 0, 50, 1}, {30, 0, 40, 0, 80, 1}});
     auto bank = bakeBank(ds, {});
     REQUIRE(bank.ok());
     REQUIRE(bank->layers.size() == 2);
@@ -94,7 +93,8 @@ TEST_CASE("view layers: one per view direction, blended between views") {
     BankLookup v1 = bank->lookup(Direction::fromDegrees(10, 0), Direction::fromDegrees(40, 0));
     CHECK(v0.values[10] * 255 == doctest::Approx(10));
     CHECK(v1.values[10] * 255 == doctest::Approx(60));
-    BankLookup mid = bank->lookup(Direction::fromDegrees(10, 0), fromDisk({toDisk(Direction::fromDegrees(40, 0)).x / 2, 0}));
+    BankLookup mid =
+        bank->lookup(Direction::fromDegrees(10, 0), fromDisk({toDisk(Direction::fromDegrees(40, 0)).x / 2, 0}));
     CHECK(mid.provenance == Provenance::Interpolated);
     CHECK(mid.values[10] * 255 == doctest::Approx(35));
 }
@@ -250,9 +250,14 @@ TEST_CASE("lookups say how the light and the view were obtained; coverage is the
 TEST_CASE("layers domain: a light beyond one view's measured lights takes the nearest view that measured it") {
     TempDir dir;
     // View A measured lights up to 30 degrees; view B also at 70 degrees (a brighter offset).
-    auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 10, 1}, {30, 120, 0, 0, 10, 1},
-                                                      {30, 240, 0, 0, 10, 1}, {0, 0, 40, 0, 0, 1}, {70, 0, 40, 0, 60, 1},
-                                                      {70, 120, 40, 0, 60, 1}, {70, 240, 40, 0, 60, 1}}));
+    auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1},
+                                                      {30, 0, 0, 0, 10, 1},
+                                                      {30, 120, 0, 0, 10, 1},
+                                                      {30, 240, 0, 0, 10, 1},
+                                                      {0, 0, 40, 0, 0, 1},
+                                                      {70, 0, 40, 0, 60, 1},
+                                                      {70, 120, 40, 0, 60, 1},
+                                                      {70, 240, 40, 0, 60, 1}}));
     REQUIRE(ds.ok());
     auto bank = bakeBank(*ds, {.gridSize = 9, .domain = BankDomain::Layers});
     REQUIRE(bank.ok());
@@ -267,14 +272,16 @@ TEST_CASE("layers domain: a light beyond one view's measured lights takes the ne
     REQUIRE(filled.layers[0].nodes.size() > filled.layers[0].measuredNodes);  // view A has modelled lights
     const BankLookup fromB = filled.lookup(grazing, viewA);
     CHECK(fromB.lightProvenance == Provenance::Interpolated);
-    for (std::size_t k = 0; k < a.values.size(); ++k) CHECK(fromB.values[k] == doctest::Approx(b.values[k]).epsilon(1e-5));
+    for (std::size_t k = 0; k < a.values.size(); ++k)
+        CHECK(fromB.values[k] == doctest::Approx(b.values[k]).epsilon(1e-5));
     // Within view A's lights nothing changes: its own measurement.
     const BankLookup own = bank->lookup(Direction::fromDegrees(30, 0), viewA);
     CHECK(own.provenance == Provenance::Measured);
     // A bank of one view clamps as before: nothing else measured that light.
-    auto single = bakeBank(*openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 10, 1},
-                                                                   {30, 120, 0, 0, 10, 1}, {30, 240, 0, 0, 10, 1}})),
-                           {.gridSize = 9});
+    auto single =
+        bakeBank(*openDataset(writeSyntheticDataset(
+                     dir, {{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 10, 1}, {30, 120, 0, 0, 10, 1}, {30, 240, 0, 0, 10, 1}})),
+                 {.gridSize = 9});
     REQUIRE(single.ok());
     CHECK(single->lookup(grazing).lightProvenance == Provenance::Extrapolated);
 }
@@ -287,8 +294,8 @@ TEST_CASE("isotropic domain: a pair beyond the hull takes the nearest measured p
     std::vector<SyntheticShot> shots;
     const std::vector<Geometry> path = curetC2();
     for (std::size_t k = 1; k < path.size(); ++k)
-        shots.push_back({path[k].light.theta * 180 / M_PI, path[k].light.phi * 180 / M_PI, path[k].view.theta * 180 / M_PI,
-                         path[k].view.phi * 180 / M_PI, static_cast<int>(10 * k), 1});
+        shots.push_back({path[k].light.theta * 180 / M_PI, path[k].light.phi * 180 / M_PI,
+                         path[k].view.theta * 180 / M_PI, path[k].view.phi * 180 / M_PI, static_cast<int>(10 * k), 1});
     auto ds = openDataset(writeSyntheticDataset(dir, shots));
     REQUIRE(ds.ok());
     auto bank = bakeBank(*ds, {.referenceName = "shot6", .domain = BankDomain::Isotropic});  // c2-8: frontal camera
@@ -297,7 +304,8 @@ TEST_CASE("isotropic domain: a pair beyond the hull takes the nearest measured p
     const BankLookup nearest = bank->lookup(path[1].light, path[1].view);  // c2-2, measured
     CHECK(held.provenance == Provenance::Extrapolated);
     CHECK(nearest.provenance == Provenance::Measured);
-    for (std::size_t k = 0; k < held.values.size(); ++k) CHECK(held.values[k] == doctest::Approx(nearest.values[k]).epsilon(1e-5));
+    for (std::size_t k = 0; k < held.values.size(); ++k)
+        CHECK(held.values[k] == doctest::Approx(nearest.values[k]).epsilon(1e-5));
     // Between the hull and one grid step out, the clamped blend gives way gradually: no jump.
     const Direction nearLight = Direction::fromDegrees(23, 0), nearView = Direction::fromDegrees(68, 0);
     const BankLookup close = bank->lookup(nearLight, nearView);

@@ -9,8 +9,8 @@ using namespace btflut;
 using namespace btflut::test;
 
 namespace {
-const std::vector<SyntheticShot> kShots{{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 40, 1}, {30, 120, 0, 0, 0, 2},
-                                        {30, 240, 0, 0, 100, 1}};
+const std::vector<SyntheticShot> kShots{
+    {0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 40, 1}, {30, 120, 0, 0, 0, 2}, {30, 240, 0, 0, 100, 1}};
 }
 
 TEST_CASE("btflut --help and every subcommand's --help succeed") {
@@ -28,23 +28,27 @@ TEST_CASE("btflut --help and every subcommand's --help succeed") {
     requireOneLineError(runCli({"frobnicate"}), "frobnicate");
     // Misspellings: the nearest name, and the help to read.
     requireOneLineError(runCli({"bak"}), "unknown command 'bak' (did you mean bake?); see btflut --help");
-    requireOneLineError(runCli({"relight", "m.btflut", "--ligth", "30,0", "-o", "x.png"}),
-                        "btflut relight: error: unknown option --ligth (did you mean --light?); see btflut relight --help");
+    requireOneLineError(
+        runCli({"relight", "m.btflut", "--ligth", "30,0", "-o", "x.png"}),
+        "btflut relight: error: unknown option --ligth (did you mean --light?); see btflut relight --help");
     requireOneLineError(runCli({"compare", "a.png", "b.png", "--tolerence=max=2"}), "did you mean --tolerance?");
     requireOneLineError(runCli({"relight", "m.btflut", "-o", "x.png"}), "see btflut relight --help");
     CHECK(runCli({"view", "--help"}).out.find("{false}") == std::string::npos);
-    requireOneLineError(runCli({"bench", "render", "m.btflut", "--sise", "8x8"}),
-                        "btflut bench render: error: unknown option --sise (did you mean --size?); see btflut bench render --help");
+    requireOneLineError(
+        runCli({"bench", "render", "m.btflut", "--sise", "8x8"}),
+        "btflut bench render: error: unknown option --sise (did you mean --size?); see btflut bench render --help");
     // Angles as people write them.
     requireOneLineError(runCli({"relight", "m.btflut", "--light", "95,0", "-o", "x.png"}), "theta 95 degrees");
     // Negative numbers are values, not options.
-    CHECK(runCli({"relight", "m.btflut", "--light", "30,-20", "-o", "x.png"}).err.find("unknown option") == std::string::npos);
+    CHECK(runCli({"relight", "m.btflut", "--light", "30,-20", "-o", "x.png"}).err.find("unknown option") ==
+          std::string::npos);
 }
 
 TEST_CASE("-q, --json and --force mean one thing on every command") {
     // -q on every command that prints progress or what it wrote; --force where the output is a
     // folder that may hold other files; --json where the printed figures are the result.
-    for (const char* cmd : {"hist", "fit", "bake", "relight", "export", "match", "simulate", "plot", "synth", "render", "eval", "compare"}) {
+    for (const char* cmd : {"hist", "fit", "bake", "relight", "export", "match", "simulate", "plot", "synth", "render",
+                            "eval", "compare"}) {
         INFO(cmd);
         CHECK(runCli({cmd, "--help"}).out.find("-q,--quiet") != std::string::npos);
     }
@@ -149,8 +153,7 @@ TEST_CASE("bake, info, relight and export work from files") {
     CHECK(side["grid_size"] == 5);
     CHECK(side["layers"][0]["node_provenance"].size() == 25);
     // The centre row (the pole, shot0's light) is the identity on the reference's codes.
-    for (int code = 0; code < 100; ++code)
-        CHECK(std::lround(atlas->at(code, 12, 0) * 255) == code);
+    for (int code = 0; code < 100; ++code) CHECK(std::lround(atlas->at(code, 12, 0) * 255) == code);
 }
 
 TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched") {
@@ -161,7 +164,8 @@ TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched
     std::ofstream(dir / "keep.png") << "precious";
 
     SUBCASE("missing dataset") {
-        requireOneLineError(runCli({"bake", dir / "nothing", "-o", dir / "keep.btflut"}), "nothing: no such file or folder");
+        requireOneLineError(runCli({"bake", dir / "nothing", "-o", dir / "keep.btflut"}),
+                            "nothing: no such file or folder");
     }
     SUBCASE("corrupt image in the dataset") {
         std::ofstream(dir / "shot2.png", std::ios::binary) << "\x89PNG\r\n\x1a\n";
@@ -176,7 +180,8 @@ TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched
     }
     SUBCASE("truncated and bit-flipped banks") {
         std::string bytes = readText(dir / "m.btflut");
-        std::ofstream(dir / "cut.btflut", std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+        std::ofstream(dir / "cut.btflut", std::ios::binary)
+            .write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
         requireOneLineError(runCli({"relight", dir / "cut.btflut", "--light", "10,0", "-o", dir / "keep.png"}),
                             "cut.btflut: truncated");
         bytes[bytes.size() / 3] ^= 4;
@@ -185,17 +190,23 @@ TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched
         requireOneLineError(runCli({"export", dir / "flip.btflut", "-o", dir / "keep.png"}), "flip.btflut");
     }
     SUBCASE("bad directions") {
-        requireOneLineError(runCli({"relight", dir / "m.btflut", "--light", "nan,0", "-o", dir / "keep.png"}), "--light");
-        requireOneLineError(runCli({"relight", dir / "m.btflut", "--light", "90,0", "-o", dir / "keep.png"}), "horizon");
-        requireOneLineError(runCli({"relight", dir / "m.btflut", "--light", "30,0", "--view", "95,0", "-o", dir / "keep.png"}), "--view");
+        requireOneLineError(runCli({"relight", dir / "m.btflut", "--light", "nan,0", "-o", dir / "keep.png"}),
+                            "--light");
+        requireOneLineError(runCli({"relight", dir / "m.btflut", "--light", "90,0", "-o", dir / "keep.png"}),
+                            "horizon");
+        requireOneLineError(
+            runCli({"relight", dir / "m.btflut", "--light", "30,0", "--view", "95,0", "-o", dir / "keep.png"}),
+            "--view");
     }
     SUBCASE("a constant reference, a bad reference name") {
-        requireOneLineError(runCli({"bake", manifest, "--reference", "zzz", "-o", dir / "keep.btflut"}), "no image named 'zzz'");
+        requireOneLineError(runCli({"bake", manifest, "--reference", "zzz", "-o", dir / "keep.btflut"}),
+                            "no image named 'zzz'");
         Image flat(40, 30, 1);
         std::fill(flat.samples.begin(), flat.samples.end(), 0.25f);
         REQUIRE(savePng(flat, dir / "shot0.png").ok());
-        requireOneLineError(runCli({"bake", manifest, "--references", "1", "--reference", "shot0", "-o", dir / "keep.btflut"}),
-                            "reference image is constant");
+        requireOneLineError(
+            runCli({"bake", manifest, "--references", "1", "--reference", "shot0", "-o", dir / "keep.btflut"}),
+            "reference image is constant");
         // The default bakes it all the same: a light model carries the brightness.
         CliRun automatic = runCli({"bake", manifest, "-o", dir / "auto.btflut", "-q"});
         CHECK(automatic.status == 0);
@@ -211,7 +222,8 @@ TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched
 
 TEST_CASE("simulate writes hist's CSV and refuses bad parameters") {
     TempDir dir;
-    CliRun ok = runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "16", "-o", dir / "s.csv"});
+    CliRun ok =
+        runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "16", "-o", dir / "s.csv"});
     REQUIRE(ok.status == 0);
     auto rows = parseHistogramCsv(readText(dir / "s.csv"), "s.csv");
     REQUIRE(rows.ok());
@@ -240,15 +252,20 @@ TEST_CASE("simulate writes hist's CSV and refuses bad parameters") {
         INFO(needle);
         requireOneLineError(runCli(args), needle);
     }
-    requireOneLineError(runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c3", "-o", dir / "bad.csv"}), "curet-c3");
-    requireOneLineError(runCli({"simulate", "--roughness", "0.4", "--geometry", "10,0,95,0", "-o", dir / "bad.csv"}), "theta");
+    requireOneLineError(runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c3", "-o", dir / "bad.csv"}),
+                        "curet-c3");
+    requireOneLineError(runCli({"simulate", "--roughness", "0.4", "--geometry", "10,0,95,0", "-o", dir / "bad.csv"}),
+                        "theta");
     CHECK_FALSE(fs::exists(dir / "bad.csv"));
 }
 
 TEST_CASE("plot draws histogram CSV files as a figure; bad files refused") {
     TempDir dir;
-    REQUIRE(runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "12", "-o", dir / "a.csv"}).status == 0);
-    REQUIRE(runCli({"simulate", "--roughness", "0.6", "--geometry", "curet-specular", "--nodes", "12", "-o", dir / "b.csv"}).status == 0);
+    REQUIRE(runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "12", "-o", dir / "a.csv"})
+                .status == 0);
+    REQUIRE(
+        runCli({"simulate", "--roughness", "0.6", "--geometry", "curet-specular", "--nodes", "12", "-o", dir / "b.csv"})
+            .status == 0);
     CliRun ok = runCli({"plot", dir / "a.csv", dir / "b.csv", "-o", dir / "fig.png"});
     REQUIRE(ok.status == 0);
     auto fig = loadImage(dir / "fig.png");
@@ -282,7 +299,8 @@ TEST_CASE("small things: hist of one image, info --json, match --mask, plot --ov
     REQUIRE(rows.ok());
     REQUIRE(rows->size() == 1);
     CHECK(rows->front().name == "shot1");
-    CliRun simulate = runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "8", "-o", dir / "s.csv"});
+    CliRun simulate =
+        runCli({"simulate", "--roughness", "0.4", "--geometry", "curet-c2", "--nodes", "8", "-o", dir / "s.csv"});
     CHECK(simulate.out.find("11 histogram(s) of 64 bins") != std::string::npos);
 
     REQUIRE(runCli({"bake", manifest, "-o", dir / "m.btflut", "--grid", "5", "-q"}).status == 0);
@@ -298,11 +316,12 @@ TEST_CASE("small things: hist of one image, info --json, match --mask, plot --ov
     for (int y = 0; y < 30; ++y)
         for (int x = 0; x < 20; ++x) mask.at(x, y, 0) = 1;
     REQUIRE(savePng(mask, dir / "mask.png").ok());
-    CHECK(runCli({"match", dir / "shot0.png", dir / "shot1.png", "--mask", dir / "mask.png", "--target-mask", dir / "mask.png",
-                  "-o", dir / "matched.png"})
+    CHECK(runCli({"match", dir / "shot0.png", dir / "shot1.png", "--mask", dir / "mask.png", "--target-mask",
+                  dir / "mask.png", "-o", dir / "matched.png"})
               .status == 0);
-    requireOneLineError(runCli({"match", dir / "shot0.png", dir / "shot1.png", "--mask", dir / "small.png", "-o", dir / "x.png"}),
-                        "small.png");
+    requireOneLineError(
+        runCli({"match", dir / "shot0.png", dir / "shot1.png", "--mask", dir / "small.png", "-o", dir / "x.png"}),
+        "small.png");
 
     CliRun overlay = runCli({"plot", dir / "one.csv", dir / "s.csv", "--overlay", "-o", dir / "o.png"});
     REQUIRE(overlay.status == 0);

@@ -127,7 +127,8 @@ TEST_CASE("manifests: directions in degrees, optional view and mask, errors name
         {R"({"images": [{"file": "a.png"}]})", "images[0]: no \"light\""},
         {R"({"images": [{"file": "a.png", "light": {"theta": 95, "phi": 0}}]})", "images[0].light: theta 95"},
         {R"({"images": [{"file": "a.png", "light": [1, 2]}]})", "images[0].light: expected"},
-        {R"({"btflut_dataset": 2, "images": [{"file": "a.png", "light": {"theta": 1, "phi": 2}}]})", "unsupported manifest version"},
+        {R"({"btflut_dataset": 2, "images": [{"file": "a.png", "light": {"theta": 1, "phi": 2}}]})",
+         "unsupported manifest version"},
     };
     for (const Case& c : cases) {
         INFO(c.text);

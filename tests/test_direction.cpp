@@ -26,7 +26,7 @@ TEST_CASE("measured light vectors: normalised within 1e-3, refused beyond, above
     REQUIRE_FALSE(far.ok());
     CHECK(far.error().find("lights.txt:3") == 0);
     CHECK(far.error().find("not a unit vector") != std::string::npos);
-    CHECK_FALSE(directionFromMeasuredVector({1, 0, 0}, "x").ok());   // horizon
+    CHECK_FALSE(directionFromMeasuredVector({1, 0, 0}, "x").ok());       // horizon
     CHECK_FALSE(directionFromMeasuredVector({0, 0.6, -0.8}, "x").ok());  // below
     CHECK_FALSE(directionFromMeasuredVector({NAN, 0, 1}, "x").ok());
     CHECK(angleBetween(*directionFromMeasuredVector({0.6, 0, 0.8}, "x"),

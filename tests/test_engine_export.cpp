@@ -34,10 +34,11 @@ void checkExample(const TempDir& dir, const std::string& bank, const std::string
     const CliRun same = runCli({"compare", example, grid, "--tolerance", tolerance, "--json"});
     const nlohmann::json sameJson = nlohmann::json::parse(same.out);
     const nlohmann::json nodes = nlohmann::json::parse(runCli({"compare", example, exact, "--json"}).out);
-    MESSAGE(fs::path(bank).filename().string() << " at " << light << ": example against relight --grid: max "
-                                               << sameJson["max_255"].get<double>() << "/255, p99 " << sameJson["p99_255"].get<double>()
-                                               << "/255, mean " << sameJson["mean_255"].get<double>()
-                                               << "/255; against the exact relight: " << (nodes["psnr"].is_null() ? 99.0 : nodes["psnr"].get<double>()) << " dB");
+    MESSAGE(fs::path(bank).filename().string()
+            << " at " << light << ": example against relight --grid: max " << sameJson["max_255"].get<double>()
+            << "/255, p99 " << sameJson["p99_255"].get<double>() << "/255, mean " << sameJson["mean_255"].get<double>()
+            << "/255; against the exact relight: " << (nodes["psnr"].is_null() ? 99.0 : nodes["psnr"].get<double>())
+            << " dB");
     INFO(bank << " at " << light << ": " << same.out << same.err);
     CHECK(same.status == 0);
 }
@@ -59,7 +60,8 @@ TEST_SUITE("gl") {
             REQUIRE(runCli(bake).status == 0);
             CliRun run = runCli({"export", bank, "-o", folder});
             REQUIRE_MESSAGE(run.status == 0, run.err);
-            for (const char* file : {"reference.png", "luts.png", "material.json", "btflut.glsl"}) CHECK(fs::exists(folder + "/" + file));
+            for (const char* file : {"reference.png", "luts.png", "material.json", "btflut.glsl"})
+                CHECK(fs::exists(folder + "/" + file));
             const nlohmann::json material = readJson(folder + "/material.json");
             CHECK(material["format"] == "btflut-material");
             Result<Image> luts = loadImage(folder + "/luts.png");
@@ -79,7 +81,8 @@ TEST_SUITE("gl") {
             // Below the horizon the include draws black, as btflut's renderer does.
             const std::string below = dir / "below.png";
             REQUIRE(std::system(("ASAN_OPTIONS=detect_leaks=0 " + std::string(BTFLUT_EXAMPLE_QUAD) + " " + folder +
-                                 " --light 95,30 -o " + below + " > /dev/null").c_str()) == 0);
+                                 " --light 95,30 -o " + below + " > /dev/null")
+                                    .c_str()) == 0);
             Result<Image> black = loadImage(below);
             REQUIRE(black.ok());
             CHECK(*std::max_element(black->samples.begin(), black->samples.end()) == 0.f);
@@ -94,7 +97,9 @@ TEST_SUITE("gl") {
     // a float one, so about 1% of the texels sit one code apart, and where a LUT is steep
     // (a spike of shadowed texels spread over many output codes) that moves them up to 20/255:
     // hence the 99th percentile and the mean, not the largest difference.
-    TEST_CASE("export -o DIR/ of every bank with a predictor: the example matches relight --grid (references within 2/255, models p99)") {
+    TEST_CASE(
+        "export -o DIR/ of every bank with a predictor: the example matches relight --grid (references within 2/255, "
+        "models p99)") {
         TempDir dir;
         std::vector<std::pair<std::string, std::vector<std::string>>> banks{
             {"ptm", {"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "ptm"}},
@@ -106,7 +111,8 @@ TEST_SUITE("gl") {
             const std::string rock = sharedDataDir() + "/psm-rock";
             banks.push_back({"rock-ptm-albedo", {"bake", rock, "--predictor", "ptm"}});
             banks.push_back({"rock-rbf-rgb", {"bake", rock, "--predictor", "rbf9", "--colour", "rgb"}});
-            banks.push_back({"rock-references-rgb-regions", {"bake", rock, "--references", "3", "--colour", "rgb", "--regions", "2"}});
+            banks.push_back({"rock-references-rgb-regions",
+                             {"bake", rock, "--references", "3", "--colour", "rgb", "--regions", "2"}});
             banks.push_back({"rock-references-lrgb", {"bake", rock, "--references", "4", "--colour", "lrgb"}});
         }
         for (auto& [name, bake] : banks) {
@@ -124,16 +130,20 @@ TEST_SUITE("gl") {
                 REQUIRE(planes.ok());
                 CHECK(planes->bitDepth == 8);
             }
-            if (predictor["kind"] == "model") CHECK(predictor["scale"].size() == predictor["planes"].get<std::size_t>());
+            if (predictor["kind"] == "model")
+                CHECK(predictor["scale"].size() == predictor["planes"].get<std::size_t>());
             // The weights in closed form for ptm and hsh, a grid over the light disk otherwise.
             const bool closed = predictor.value("basis", "") == "ptm" || predictor.value("basis", "") == "hsh";
             CHECK(predictor["weights"].is_null() == closed);
-            if (!closed) CHECK(fs::file_size(folder + "/weights.bin") == predictor["weights"]["grid_size"].get<std::size_t>() *
-                                                                              predictor["weights"]["grid_size"].get<std::size_t>() *
-                                                                              predictor["weights"]["layers"].get<std::size_t>() * 16);
+            if (!closed)
+                CHECK(fs::file_size(folder + "/weights.bin") ==
+                      predictor["weights"]["grid_size"].get<std::size_t>() *
+                          predictor["weights"]["grid_size"].get<std::size_t>() *
+                          predictor["weights"]["layers"].get<std::size_t>() * 16);
             // References blend in btflut's own 1/4096 steps: exact. Models: see above.
             const std::string tolerance = predictor["kind"] == "references" ? "max=2" : "p99=2,mean=0.2";
-            for (const std::string light : {"40,250", "63,17", "80,300"}) checkExample(dir, bank, folder, light, tolerance);
+            for (const std::string light : {"40,250", "63,17", "80,300"})
+                checkExample(dir, bank, folder, light, tolerance);
         }
         // The example refuses a shader include older than the sidecar asks for, and a sidecar
         // newer than it reads: one line naming the file and the versions.
@@ -142,17 +152,20 @@ TEST_SUITE("gl") {
         text.replace(text.find("#define BTFLUT_GLSL_VERSION 2"), 29, "#define BTFLUT_GLSL_VERSION 1");
         std::ofstream(include, std::ios::binary) << text;
         auto example = [&](const std::string& errors) {
-            const std::string command = "ASAN_OPTIONS=detect_leaks=0 " + std::string(BTFLUT_EXAMPLE_QUAD) + " " + folder +
-                                        " --light 40,250 -o " + (dir / "refused.png") + " > /dev/null 2> " + errors;
+            const std::string command = "ASAN_OPTIONS=detect_leaks=0 " + std::string(BTFLUT_EXAMPLE_QUAD) + " " +
+                                        folder + " --light 40,250 -o " + (dir / "refused.png") + " > /dev/null 2> " +
+                                        errors;
             return std::system(command.c_str());
         };
         CHECK(example(dir / "old.txt") != 0);
-        CHECK(readText(dir / "old.txt").find(include + ": the shader include is version 1, older than the version 2") != std::string::npos);
+        CHECK(readText(dir / "old.txt").find(include + ": the shader include is version 1, older than the version 2") !=
+              std::string::npos);
         nlohmann::json newer = readJson(folder + "/material.json");
         newer["version"] = 3;
         std::ofstream(folder + "/material.json") << newer.dump();
         CHECK(example(dir / "newer.txt") != 0);
-        CHECK(readText(dir / "newer.txt").find("material.json: version 3, this program reads versions 1 and 2") != std::string::npos);
+        CHECK(readText(dir / "newer.txt").find("material.json: version 3, this program reads versions 1 and 2") !=
+              std::string::npos);
         CHECK_FALSE(fs::exists(dir / "refused.png"));
     }
 }
@@ -169,7 +182,8 @@ TEST_CASE("export: the folder refused when not empty (unless --force); a failed 
     CHECK(readText(dir / "busy/notes.txt") == "mine");
     // A folder that holds a previous export and nothing else is exported into again without
     // --force (an asset pipeline), and what the new export does not write goes.
-    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "rbf9", "-o", dir / "rbf.btflut", "-q"}).status == 0);
+    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "rbf9", "-o", dir / "rbf.btflut", "-q"}).status ==
+            0);
     REQUIRE(runCli({"export", dir / "rbf.btflut", "-o", dir / "asset"}).status == 0);
     CHECK(fs::exists(dir / "asset/weights.bin"));
     CliRun again = runCli({"export", bank, "-o", dir / "asset"});
@@ -201,7 +215,9 @@ TEST_CASE("export: the folder refused when not empty (unless --force); a failed 
     CHECK(luts->height == 9 * 9);
 }
 
-TEST_CASE("export --web: one page holding the export's files; bad outputs refused (the browser test: tests/browser_check.sh)") {
+TEST_CASE(
+    "export --web: one page holding the export's files; bad outputs refused (the browser test: "
+    "tests/browser_check.sh)") {
     TempDir dir;
     const std::string bank = dir / "m.btflut";
     REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "3", "-o", bank, "-q"}).status == 0);
@@ -229,12 +245,14 @@ TEST_CASE("export --web: one page holding the export's files; bad outputs refuse
     // -o and --web in one run: the files are made once; a folder refused leaves no page either.
     fs::create_directories(dir / "busy");
     std::ofstream(dir / "busy/notes.txt") << "mine";
-    requireOneLineError(runCli({"export", bank, "-o", dir / "busy", "--web", dir / "both.html"}), "the folder is not empty");
+    requireOneLineError(runCli({"export", bank, "-o", dir / "busy", "--web", dir / "both.html"}),
+                        "the folder is not empty");
     CHECK_FALSE(fs::exists(dir / "both.html"));
     fs::create_directories(dir / "taken.html");
     requireOneLineError(runCli({"export", bank, "--web", dir / "taken.html"}), "taken.html");
     CHECK(fs::is_directory(dir / "taken.html"));
-    CHECK(runCli({"export", bank, "--web", dir / "new/deeper/m.html", "-q"}).status == 0);  // folders made, as for every output
+    CHECK(runCli({"export", bank, "--web", dir / "new/deeper/m.html", "-q"}).status ==
+          0);  // folders made, as for every output
     CHECK(fs::exists(dir / "new/deeper/m.html"));
 }
 
@@ -252,15 +270,18 @@ TEST_CASE("export --ptm: a PTM 1.2 LRGB file, rows bottom first, that reads back
     REQUIRE(original.ok());
     const Ptm& ptm = original->ptm;
     // The payload's first record is the bottom row's first texel.
-    const std::size_t payload = bytes->size() - ptm.texels() * 9, bottom = ptm.texels() - static_cast<std::size_t>(ptm.width);
+    const std::size_t payload = bytes->size() - ptm.texels() * 9,
+                      bottom = ptm.texels() - static_cast<std::size_t>(ptm.width);
     Result<Ptm> back = decodePtmFile(*bytes, file);
     REQUIRE_MESSAGE(back.ok(), back.error());
     CHECK(std::abs(int{(*bytes)[payload + ptm.texels() * 6]} - int{ptm.albedo[bottom * 3]}) == 0);
     CHECK(back->albedo == ptm.albedo);
-    for (Direction light : {Direction::fromDegrees(0, 0), Direction::fromDegrees(45, 120), Direction::fromDegrees(70, 300)}) {
+    for (Direction light :
+         {Direction::fromDegrees(0, 0), Direction::fromDegrees(45, 120), Direction::fromDegrees(70, 300)}) {
         const Image a = ptm.render(light), b = back->render(light);
         double worst = 0;
-        for (std::size_t i = 0; i < a.samples.size(); ++i) worst = std::max(worst, std::abs(double{a.samples[i]} - b.samples[i]));
+        for (std::size_t i = 0; i < a.samples.size(); ++i)
+            worst = std::max(worst, std::abs(double{a.samples[i]} - b.samples[i]));
         INFO("light " << light.thetaDegrees() << "," << light.phiDegrees());
         CHECK(worst * 255 <= 2.0);  // integer biases: each coefficient byte moved by at most half a code
     }
@@ -285,7 +306,8 @@ TEST_CASE("compare: exit 0 within the tolerance, 1 outside, 2 on bad input; the 
     CliRun same = runCli({"compare", dir / "a.png", dir / "a.png"});
     CHECK(same.status == 0);
     CHECK(same.out.find("psnr inf (identical)") != std::string::npos);
-    CliRun off = runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "max=2,psnr=40", "--diff", dir / "d.png"});
+    CliRun off =
+        runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "max=2,psnr=40", "--diff", dir / "d.png"});
     CHECK(off.status == 1);
     CHECK(off.out.find("max 3") != std::string::npos);
     // p99: one sample in 3072 off by 3 is within p99=2; a third of them is not.
@@ -293,7 +315,8 @@ TEST_CASE("compare: exit 0 within the tolerance, 1 outside, 2 on bad input; the 
     CHECK(few.status == 0);
     CHECK(nlohmann::json::parse(few.out)["p99_255"].get<double>() == 0);
     Image many = a;
-    for (std::size_t i = 0; i < many.samples.size(); i += 3) many.samples[i] = std::min(1.f, many.samples[i] + 3 / 255.f);
+    for (std::size_t i = 0; i < many.samples.size(); i += 3)
+        many.samples[i] = std::min(1.f, many.samples[i] + 3 / 255.f);
     REQUIRE(savePng(many, dir / "many.png").ok());
     CHECK(runCli({"compare", dir / "a.png", dir / "many.png", "--tolerance", "p99=2"}).status == 1);
     Result<Image> diff = loadImage(dir / "d.png");
@@ -337,11 +360,13 @@ TEST_CASE("compare: exit 0 within the tolerance, 1 outside, 2 on bad input; the 
 TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folders, folders of images, JUnit") {
     TempDir dir;
     Image a = randomGreyImage(64, 48, 1), b = a;
-    for (std::size_t i = 0; i < 31; ++i) b.samples[i * 97] = std::min(1.f, b.samples[i * 97] + 3 / 255.f);  // 1% of the pixels
+    for (std::size_t i = 0; i < 31; ++i)
+        b.samples[i * 97] = std::min(1.f, b.samples[i * 97] + 3 / 255.f);  // 1% of the pixels
     REQUIRE(savePng(a, dir / "a.png").ok());
     REQUIRE(savePng(b, dir / "b.png").ok());
     // pixels: the share (per cent) of pixels more than `threshold` off.
-    const nlohmann::json j = nlohmann::json::parse(runCli({"compare", dir / "a.png", dir / "b.png", "--json", "--tolerance", "pixels=2%, threshold=1"}).out);
+    const nlohmann::json j = nlohmann::json::parse(
+        runCli({"compare", dir / "a.png", dir / "b.png", "--json", "--tolerance", "pixels=2%, threshold=1"}).out);
     CHECK(j["within"].get<bool>());
     CHECK(j["pixels_percent"].get<double>() > 0.9);
     CHECK(j["pixels_percent"].get<double>() < 1.1);
@@ -357,7 +382,8 @@ TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folder
     CHECK(twice.err.find("max is given twice") != std::string::npos);
     // Outputs into folders that do not exist yet; the side-by-side image is three panes wide.
     CHECK(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "max=3", "--diff", dir / "new/d.png",
-                  "--side-by-side", dir / "new2/s.png"}).status == 0);
+                  "--side-by-side", dir / "new2/s.png"})
+              .status == 0);
     Result<Image> side = loadImage(dir / "new2/s.png");
     REQUIRE(side.ok());
     CHECK(side->width == 3 * 64);
@@ -372,7 +398,8 @@ TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folder
     REQUIRE(savePng(b, dir / "out/two.png").ok());
     REQUIRE(savePng(a, dir / "golden/two.png").ok());
     REQUIRE(savePng(a, dir / "golden/three.png").ok());
-    const CliRun folders = runCli({"compare", dir / "out", dir / "golden", "--junit", dir / "reports/compare.xml", "--diff", dir / "diffs"});
+    const CliRun folders = runCli(
+        {"compare", dir / "out", dir / "golden", "--junit", dir / "reports/compare.xml", "--diff", dir / "diffs"});
     CHECK(folders.status == 1);
     CHECK(folders.out.find("one.png: psnr inf") != std::string::npos);
     CHECK(folders.out.find("two.png: psnr") != std::string::npos);

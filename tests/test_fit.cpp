@@ -22,8 +22,9 @@ std::vector<HistogramRow> simulatedRows(const SurfaceModel& model, double smooth
     std::vector<HistogramRow> rows;
     for (const Geometry& g : curetC2())
         rows.push_back({g.name, g.light, g.view,
-                        simulateHistogram(model, g.light, g.view,
-                                          {.method = SimulationMethod::Quadrature, .bins = 64, .nodes = 64, .smooth = smoothing})});
+                        simulateHistogram(
+                            model, g.light, g.view,
+                            {.method = SimulationMethod::Quadrature, .bins = 64, .nodes = 64, .smooth = smoothing})});
     return rows;
 }
 
@@ -35,11 +36,11 @@ TEST_CASE("fit: Lambertian roughness from noise-free curet-c2 histograms within 
         Result<SurfaceFit> fit = fitSurfaceModel(simulatedRows(truth, 1.0), FitBrdf::Lambert);
         REQUIRE_MESSAGE(fit.ok(), fit.error());
         INFO("r " << r << ": fitted " << fit->model.roughness << " +- " << fit->parameters[0].standardError << ", gain "
-                  << fit->model.gain << ", smoothing " << fit->smoothing << ", rms " << fit->rms << ", " << fit->iterations
-                  << " iterations, " << fit->seconds << " s");
-        MESSAGE("r " << r << ": fitted " << fit->model.roughness << " +- " << fit->parameters[0].standardError << ", gain "
-                  << fit->model.gain << ", smoothing " << fit->smoothing << ", rms " << fit->rms << ", " << fit->iterations
-                  << " iterations, " << fit->seconds << " s");
+                  << fit->model.gain << ", smoothing " << fit->smoothing << ", rms " << fit->rms << ", "
+                  << fit->iterations << " iterations, " << fit->seconds << " s");
+        MESSAGE("r " << r << ": fitted " << fit->model.roughness << " +- " << fit->parameters[0].standardError
+                     << ", gain " << fit->model.gain << ", smoothing " << fit->smoothing << ", rms " << fit->rms << ", "
+                     << fit->iterations << " iterations, " << fit->seconds << " s");
         CHECK(std::abs(fit->model.roughness - r) <= 0.01 * r);
         CHECK(std::abs(fit->model.gain - 0.8) <= 0.02);
         REQUIRE(fit->residuals.size() == 11);
@@ -92,15 +93,19 @@ TEST_CASE("btflut fit: parameters file that bake --model reads, the plot, and ba
     Image reference(32, 24, 1);
     for (std::size_t i = 0; i < reference.samples.size(); ++i) reference.samples[i] = static_cast<float>(i % 97) / 96.f;
     REQUIRE(savePng(reference, dir / "ref.png").ok());
-    CHECK(runCli({"bake", "--model", dir / "p.json", "--reference", dir / "ref.png", "-o", dir / "m.btflut", "-q"}).status == 0);
+    CHECK(runCli({"bake", "--model", dir / "p.json", "--reference", dir / "ref.png", "-o", dir / "m.btflut", "-q"})
+              .status == 0);
 
     // Bad input: one line, non-zero exit, nothing written.
     const std::string out = dir / "x.json";
     rows.resize(2);
     std::ofstream(dir / "two.csv") << histogramsToCsv(rows);
-    requireOneLineError(runCli({"fit", dir / "two.csv", "-o", out}), "2 histogram(s) cannot determine the 3 parameters of lambert");
-    requireOneLineError(runCli({"fit", dir / "h.csv", "--brdf", "glossy", "-o", out}), "--brdf 'glossy' is not lambert, ts or mix");
-    std::ofstream(dir / "mixed.csv") << "name,theta_i,phi_i,theta_r,phi_r,b0,b1,b2\na,0,0,0,0,0.5,0.5,0\nb,10,0,0,0,1,0\n";
+    requireOneLineError(runCli({"fit", dir / "two.csv", "-o", out}),
+                        "2 histogram(s) cannot determine the 3 parameters of lambert");
+    requireOneLineError(runCli({"fit", dir / "h.csv", "--brdf", "glossy", "-o", out}),
+                        "--brdf 'glossy' is not lambert, ts or mix");
+    std::ofstream(dir / "mixed.csv")
+        << "name,theta_i,phi_i,theta_r,phi_r,b0,b1,b2\na,0,0,0,0,0.5,0.5,0\nb,10,0,0,0,1,0\n";
     CHECK(runCli({"fit", dir / "mixed.csv", "-o", out}).status != 0);
     std::vector<HistogramRow> empty = simulatedRows(truth);
     std::fill(empty[3].bins.begin(), empty[3].bins.end(), 0.0);
@@ -114,8 +119,8 @@ TEST_CASE("btflut fit: the roughness of rendered Lambertian height fields within
     TempDir dir;
     for (double r : {0.2, 0.4, 0.6}) {
         const std::string folder = dir / ("r" + std::to_string(r));
-        REQUIRE(runCli({"synth", "--roughness", std::to_string(r), "--size", "256", "--samples", "1", "--correlation-length",
-                        "8", "--geometry", "curet-c2", "-q", "-o", folder})
+        REQUIRE(runCli({"synth", "--roughness", std::to_string(r), "--size", "256", "--samples", "1",
+                        "--correlation-length", "8", "--geometry", "curet-c2", "-q", "-o", folder})
                     .status == 0);
         CliRun run = runCli({"fit", folder, "-o", folder + ".json"});
         REQUIRE_MESSAGE(run.status == 0, run.err);

@@ -47,8 +47,11 @@ Bytes spiralBank(std::size_t nodes) {
     std::vector<DirectionalLut> luts;
     for (std::size_t n = 0; n < nodes; ++n) {
         const double z = 1 - 0.99 * (static_cast<double>(n) + 0.5) / static_cast<double>(nodes);
-        luts.push_back({"", Direction{std::acos(z), std::fmod(2.39996322972865332 * static_cast<double>(n), 2 * std::numbers::pi)},
-                        {}, {0.f, 1.f}});
+        luts.push_back(
+            {"",
+             Direction{std::acos(z), std::fmod(2.39996322972865332 * static_cast<double>(n), 2 * std::numbers::pi)},
+             {},
+             {0.f, 1.f}});
     }
     REQUIRE(setNodes(bank, luts, {}, "spiral").ok());
     return encodeBank(bank);

@@ -31,7 +31,8 @@ std::string colourMaterial(const TempDir& dir) {
         REQUIRE(grey.ok());
         Image rgb(grey->width, grey->height, 3);
         for (std::size_t i = 0; i < grey->pixelCount(); ++i)
-            for (int c = 0; c < 3; ++c) rgb.samples[i * 3 + c] = std::round(grey->samples[i] * (1.f - 0.2f * c) * 255.f) / 255.f;
+            for (int c = 0; c < 3; ++c)
+                rgb.samples[i * 3 + c] = std::round(grey->samples[i] * (1.f - 0.2f * c) * 255.f) / 255.f;
         REQUIRE(savePng(rgb, entry.path().string()).ok());
     }
     return dir / "m";
@@ -49,7 +50,8 @@ Image asRgb(const Image& image) {
 double worstDifference(const Image& a, const Image& b) {
     REQUIRE(a.samples.size() == b.samples.size());
     double worst = 0;
-    for (std::size_t i = 0; i < a.samples.size(); ++i) worst = std::max(worst, static_cast<double>(std::abs(a.samples[i] - b.samples[i])));
+    for (std::size_t i = 0; i < a.samples.size(); ++i)
+        worst = std::max(worst, static_cast<double>(std::abs(a.samples[i] - b.samples[i])));
     return worst;
 }
 
@@ -58,8 +60,8 @@ double worstDifference(const Image& a, const Image& b) {
 std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
     auto dataset = openDataset(colourMaterial(dir));
     REQUIRE(dataset.ok());
-    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "rti-9", "--size", "40", "--correlation-length", "5", "-q",
-                    "-o", dir / "grey"})
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "rti-9", "--size", "40", "--correlation-length", "5",
+                    "-q", "-o", dir / "grey"})
                 .status == 0);
     auto grey = openDataset(dir / "grey");
     REQUIRE(grey.ok());
@@ -72,16 +74,21 @@ std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
           {"grey images K4 R2", BakeOptions{.references = 4, .regions = 2}, true},  // one channel per reference
           {"lrgb K5 R2", BakeOptions{.colour = ColourMode::Lrgb, .references = 5, .regions = 2}, false},
           {"ptm R2", BakeOptions{.model = LightModelOptions{.basis = Basis::Ptm}, .regions = 2}, false},
-          {"hsh3 rgb", BakeOptions{.colour = ColourMode::Rgb, .model = LightModelOptions{.basis = Basis::Hsh, .order = 3}}, false},
-          {"rbf5 match 0.5", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 5}, .match = 0.5f}, false},
+          {"hsh3 rgb",
+           BakeOptions{.colour = ColourMode::Rgb, .model = LightModelOptions{.basis = Basis::Hsh, .order = 3}}, false},
+          {"rbf5 match 0.5", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 5}, .match = 0.5f},
+           false},
           {"bln4 corrections R2",
-           BakeOptions{.model = LightModelOptions{.basis = Basis::Bilinear, .planes = 4}, .target = Target::Corrections, .regions = 2},
+           BakeOptions{.model = LightModelOptions{.basis = Basis::Bilinear, .planes = 4},
+           .target = Target::Corrections,
+           .regions = 2},
            false},
           {"grey images hsh2", BakeOptions{.model = LightModelOptions{.basis = Basis::Hsh, .order = 2}}, true},
           {"grey images rbf7", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 7}}, true},
-          {"bln5c (4-bit planes)", BakeOptions{.model = LightModelOptions{.basis = Basis::Bilinear, .planes = 5, .packed = true}},
-           false},
-          {"grey images rbf4c", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 4, .packed = true}}, true}}) {
+          {"bln5c (4-bit planes)",
+           BakeOptions{.model = LightModelOptions{.basis = Basis::Bilinear, .planes = 5, .packed = true}}, false},
+          {"grey images rbf4c",
+           BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 4, .packed = true}}, true}}) {
         auto bank = bakeBank(greyImages ? *grey : *dataset, options);
         REQUIRE_MESSAGE(bank.ok(), name << ": " << bank.error());
         banks.emplace_back(name, std::move(*bank));
@@ -98,7 +105,8 @@ TEST_SUITE("gl") {
         if (!context.ok()) FAIL(context.error());
         for (const auto& [name, bank] : blendingBanks(dir)) {
             const Relighter relighter(bank);
-            for (Direction light : {Direction::fromDegrees(20, 30), Direction::fromDegrees(50, 200), bank.layers[0].nodes[3].light})
+            for (Direction light :
+                 {Direction::fromDegrees(20, 30), Direction::fromDegrees(50, 200), bank.layers[0].nodes[3].light})
                 for (bool dither : {false, true}) {
                     auto gpu = renderNative(bank, light, {}, dither);
                     if (!gpu.ok()) FAIL(gpu.error());
@@ -109,7 +117,8 @@ TEST_SUITE("gl") {
         }
     }
 
-    TEST_CASE("the scene renderer draws banks that blend references as the Relighter does, uploading them only for lut") {
+    TEST_CASE(
+        "the scene renderer draws banks that blend references as the Relighter does, uploading them only for lut") {
         TempDir dir;
         auto context = createHeadlessContext(GlBackend::Auto);
         if (!context.ok()) FAIL(context.error());
@@ -142,11 +151,14 @@ TEST_SUITE("gl") {
                 CHECK((*renderer)->stats().quadsPerFragment == (way.path == LutPath::PerFragment ? 1u : 0u));
                 const Image gpu = (*renderer)->readBack();
                 // Relit in texture space, or per fragment at 1:1, dithered per texel.
-                const Image cpuRgb = asRgb(relighter.apply(way.exact ? relighter.frame(light) : relighter.gridFrame(light), true));
+                const Image cpuRgb =
+                    asRgb(relighter.apply(way.exact ? relighter.frame(light) : relighter.gridFrame(light), true));
                 double mean = 0;
-                for (std::size_t i = 0; i < gpu.samples.size(); ++i) mean += std::abs(gpu.samples[i] - cpuRgb.samples[i]);
+                for (std::size_t i = 0; i < gpu.samples.size(); ++i)
+                    mean += std::abs(gpu.samples[i] - cpuRgb.samples[i]);
                 mean /= static_cast<double>(gpu.samples.size());
-                INFO(name << ", " << way.name << ": worst " << worstDifference(gpu, cpuRgb) * 255 << "/255, mean " << mean * 255);
+                INFO(name << ", " << way.name << ": worst " << worstDifference(gpu, cpuRgb) * 255 << "/255, mean "
+                          << mean * 255);
                 // 8-bit relit texture and framebuffer, filtered fetches at texel centres.
                 CHECK(worstDifference(gpu, cpuRgb) <= 1.0 / 255);
                 CHECK(mean <= 0.6 / 255);
@@ -167,7 +179,8 @@ TEST_SUITE("gl") {
         // 0.8) in that frame.
         const int size = 80;
         const double half = 1.05;
-        ShapeFrame frame{Shape::Cylinder, {0, -200, 0}, {0, 0, 0}, {0, 0, 1}, 2 * std::atan(half / 200) * 180 / M_PI, {}};
+        ShapeFrame frame{
+            Shape::Cylinder, {0, -200, 0}, {0, 0, 0}, {0, 0, 1}, 2 * std::atan(half / 200) * 180 / M_PI, {}};
         const Vec3 world{0.3, -0.8, 0.5};
         const double n = std::sqrt(0.98);
         frame.light.direction = {world.x / n, world.y / n, world.z / n};
@@ -186,11 +199,14 @@ TEST_SUITE("gl") {
                 for (int y = 0; y < size; ++y) {
                     const double z = half - (y + 0.5) * 2 * half / size;
                     if (std::abs(z) > 0.9) continue;
-                    const double px = (size / 2 + 0.5) * 2 * half / size - half;  // the pixel column right of the centre
-                    const double tx = (0.75 + std::asin(px) / (2 * M_PI)) * 3 * rgb.width, ty = (1 - z) / 2 * rgb.height;
+                    const double px =
+                        (size / 2 + 0.5) * 2 * half / size - half;  // the pixel column right of the centre
+                    const double tx = (0.75 + std::asin(px) / (2 * M_PI)) * 3 * rgb.width,
+                                 ty = (1 - z) / 2 * rgb.height;
                     for (int c = 0; c < 3; ++c) {
                         // The relit image sampled bilinearly where the fragment samples the planes.
-                        const double fx = std::fmod(tx - 0.5 + rgb.width, rgb.width), fy = std::clamp(ty - 0.5, 0.0, rgb.height - 1.0);
+                        const double fx = std::fmod(tx - 0.5 + rgb.width, rgb.width),
+                                     fy = std::clamp(ty - 0.5, 0.0, rgb.height - 1.0);
                         const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
                         const int x1 = (x0 + 1) % rgb.width, y1 = std::min(y0 + 1, rgb.height - 1);
                         const double ax = fx - x0, ay = fy - y0;
@@ -203,14 +219,18 @@ TEST_SUITE("gl") {
                 return sum / count;
             };
             const double right = errorAt(local), wrong = errorAt(Direction::fromDegrees(60, 200));
-            MESSAGE(name << ": mean " << right * 255 << "/255 against the relit column; " << wrong * 255 << "/255 under another light");
+            MESSAGE(name << ": mean " << right * 255 << "/255 against the relit column; " << wrong * 255
+                         << "/255 under another light");
             // 0.4-2.1: bilinear before the LUT against after, the weights' grid (barycentric
             // weights have kinks it smooths), region labels per texel, the dither per pixel.
             CHECK(right < 3.0 / 255);
             CHECK(wrong > 10 * right);
             // A point light far along the same direction lights it alike (its direction per fragment).
             ShapeFrame point = frame;
-            point.light = {true, {}, {1e4 * frame.light.direction.x, 1e4 * frame.light.direction.y, 1e4 * frame.light.direction.z}};
+            point.light = {
+                true,
+                {},
+                {1e4 * frame.light.direction.x, 1e4 * frame.light.direction.y, 1e4 * frame.light.direction.z}};
             REQUIRE((*shape)->draw(point, size, size).ok());
             const Image far = readFramebufferRgb((*shape)->framebuffer(), size, size);
             double mean = 0;

@@ -28,7 +28,8 @@ Difference compare(const Image& gpu, const Image& cpu) {
     for (std::size_t i = 0; i < gpu.pixelCount(); ++i)
         for (int c = 0; c < 3; ++c) {
             const double e = std::abs(gpu.samples[i * 3 + static_cast<std::size_t>(c)] -
-                                      cpu.samples[i * static_cast<std::size_t>(cpu.channels) + (cpu.channels == 3 ? static_cast<std::size_t>(c) : 0)]);
+                                      cpu.samples[i * static_cast<std::size_t>(cpu.channels) +
+                                                  (cpu.channels == 3 ? static_cast<std::size_t>(c) : 0)]);
             d.mean += e;
             d.worst = std::max(d.worst, e);
         }
@@ -44,8 +45,9 @@ Image draw(SceneRenderer& renderer, Direction light, RenderMode mode) {
 
 // Shots whose code maps differ, so that LUTs, PTM and nearest images all depend on the light.
 std::vector<SyntheticShot> variedShots(double viewTheta = 0, double viewPhi = 0) {
-    return {{0, 0, viewTheta, viewPhi, 0, 1},    {30, 0, viewTheta, viewPhi, 40, 1},  {30, 90, viewTheta, viewPhi, 10, 2},
-            {45, 180, viewTheta, viewPhi, 5, 1}, {45, 270, viewTheta, viewPhi, 60, 1}, {60, 45, viewTheta, viewPhi, 0, 2},
+    return {{0, 0, viewTheta, viewPhi, 0, 1},     {30, 0, viewTheta, viewPhi, 40, 1},
+            {30, 90, viewTheta, viewPhi, 10, 2},  {45, 180, viewTheta, viewPhi, 5, 1},
+            {45, 270, viewTheta, viewPhi, 60, 1}, {60, 45, viewTheta, viewPhi, 0, 2},
             {60, 225, viewTheta, viewPhi, 90, 1}, {20, 300, viewTheta, viewPhi, 20, 1}};
 }
 
@@ -99,8 +101,8 @@ TEST_SUITE("gl") {
         // Scenes relight in texture space, dithered per texel: the twin is relight's dithered output.
         const Image cpu = applyLuts(bank->reference, bank->colour, nodeLut.values, bank->entries, bank->targetCode());
         CHECK(compare(nearestNode, cpu).worst <= 1.0 / 255);
-        CHECK(compare(interpolated, applyLuts(bank->reference, bank->colour, bank->lookup(between).values, bank->entries,
-                                              bank->targetCode()))
+        CHECK(compare(interpolated, applyLuts(bank->reference, bank->colour, bank->lookup(between).values,
+                                              bank->entries, bank->targetCode()))
                   .worst <= 1.0 / 255);
         CHECK(compare(interpolated, nearestNode).mean > 2.0 / 255);
     }
@@ -109,8 +111,8 @@ TEST_SUITE("gl") {
         TempDir dir;
         std::vector<SyntheticShot> shots;
         // Five views; each view's images are brighter the further the view is from frontal.
-        for (auto [theta, phi, offset] : {std::tuple{0.0, 0.0, 0}, {40.0, 0.0, 40}, {40.0, 90.0, 20}, {40.0, 180.0, 60},
-                                          {40.0, 270.0, 30}})
+        for (auto [theta, phi, offset] :
+             {std::tuple{0.0, 0.0, 0}, {40.0, 0.0, 40}, {40.0, 90.0, 20}, {40.0, 180.0, 60}, {40.0, 270.0, 30}})
             for (SyntheticShot s : variedShots(theta, phi)) {
                 s.offset += offset;
                 s.slope = 1;
@@ -142,13 +144,14 @@ TEST_SUITE("gl") {
             const double expected = Lut::applyLut(lut.values.data(), bank->entries, v);
             const double d = std::abs(gpu.at(x, y, 0) - expected);
             INFO("pixel " << x << "," << y << " view theta " << view.thetaDegrees());
-            (x == 32 || x == 31 ? worstCentre : worstCorner) = std::max(x == 32 || x == 31 ? worstCentre : worstCorner, d);
+            (x == 32 || x == 31 ? worstCentre : worstCorner) =
+                std::max(x == 32 || x == 31 ? worstCentre : worstCorner, d);
             if (x == 0 || x == 63)
                 cornerVsCentreView = std::max(
                     cornerVsCentreView, std::abs(expected - Lut::applyLut(centreLut.values.data(), bank->entries, v)));
         }
         CHECK(worstCentre <= 1.5 / 255);
-        CHECK(worstCorner <= 3.0 / 255);  // the grid's bilinear blend, near its nodes
+        CHECK(worstCorner <= 3.0 / 255);         // the grid's bilinear blend, near its nodes
         CHECK(cornerVsCentreView > 10.0 / 255);  // the corners really see other LUTs
         CHECK((*renderer)->stats().viewLayersLoaded == 5);
     }
@@ -157,8 +160,13 @@ TEST_SUITE("gl") {
         TempDir dir;
         std::vector<SyntheticShot> shots;
         // An inner ring of views around frontal and an outer ring at 75 degrees.
-        for (auto [theta, phi] : {std::pair{0.0, 0.0}, {20.0, 0.0}, {20.0, 120.0}, {20.0, 240.0}, {75.0, 60.0},
-                                  {75.0, 180.0}, {75.0, 300.0}})
+        for (auto [theta, phi] : {std::pair{0.0, 0.0},
+                                  {20.0, 0.0},
+                                  {20.0, 120.0},
+                                  {20.0, 240.0},
+                                  {75.0, 60.0},
+                                  {75.0, 180.0},
+                                  {75.0, 300.0}})
             for (SyntheticShot s : variedShots(theta, phi)) shots.push_back(s);
         bakeShots(dir, shots, 32, 32);
         auto context = createHeadlessContext(GlBackend::Auto);
@@ -220,7 +228,8 @@ namespace {
 std::string writeMaskedCapture(const TempDir& dir, int w, int h) {
     auto inside = [&](int x, int y) { return x >= w / 5 && x < w - w / 5 && y >= h / 5 && y < h - h / 5; };
     nlohmann::json manifest{{"btflut_dataset", 1}, {"images", nlohmann::json::array()}, {"mask", "mask.png"}};
-    const double lights[][2] = {{0, 0}, {30, 0}, {30, 90}, {45, 180}, {45, 270}, {60, 45}, {60, 225}, {20, 300}, {50, 120}};
+    const double lights[][2] = {{0, 0},   {30, 0},   {30, 90},  {45, 180}, {45, 270},
+                                {60, 45}, {60, 225}, {20, 300}, {50, 120}};
     for (std::size_t s = 0; s < std::size(lights); ++s) {
         const Vec3 l = toVector(Direction::fromDegrees(lights[s][0], lights[s][1]));
         Image im(w, h, 1);
@@ -266,10 +275,13 @@ TEST_SUITE("gl") {
         const std::string manifest = writeMaskedCapture(dir, w, h);
         auto context = createHeadlessContext(GlBackend::Auto);
         REQUIRE(context.ok());
-        const std::vector<std::vector<std::string>> kinds = {
-            {"--references", "1", "--ptm"}, {"--references", "3"},       {"--predictor", "hsh2", "--match", "1"},
-            {"--predictor", "hsh2", "--match", "0.5"}, {"--predictor", "ptm"},
-            {"--regions", "2"},                        {}};
+        const std::vector<std::vector<std::string>> kinds = {{"--references", "1", "--ptm"},
+                                                             {"--references", "3"},
+                                                             {"--predictor", "hsh2", "--match", "1"},
+                                                             {"--predictor", "hsh2", "--match", "0.5"},
+                                                             {"--predictor", "ptm"},
+                                                             {"--regions", "2"},
+                                                             {}};
         Result<Dataset> ds = openDataset(manifest);
         REQUIRE(ds.ok());
         Result<Mask> mask = loadDatasetMask(*ds, w, h);
@@ -292,8 +304,8 @@ TEST_SUITE("gl") {
                 if (kind.size() == 3 && kind[2] == "--ptm") modes.push_back(RenderMode::Ptm);
                 for (RenderMode mode : modes) {
                     const double drawn = meanGrey(draw(**renderer, shot.light, mode), *mask);
-                    INFO("light " << shot.name << ", mode " << std::string(renderModeName(mode)) << ": mean " << drawn * 255
-                                  << ", measured " << measured * 255);
+                    INFO("light " << shot.name << ", mode " << std::string(renderModeName(mode)) << ": mean "
+                                  << drawn * 255 << ", measured " << measured * 255);
                     CHECK(std::abs(drawn - measured) <= 0.08 * measured + 1 / 255.0);
                 }
             }

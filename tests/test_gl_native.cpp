@@ -58,7 +58,8 @@ TEST_SUITE("gl") {
             for (int y = 0; y < 32; ++y)
                 for (int x = 0; x < 48; ++x)
                     for (int c = 0; c < 3; ++c)
-                        im.at(x, y, c) = static_cast<float>(((x * (3 + s) + y * 7 + c * 29 + s * s * 13) % 200 + 20) / 255.0);
+                        im.at(x, y, c) =
+                            static_cast<float>(((x * (3 + s) + y * 7 + c * 29 + s * s * 13) % 200 + 20) / 255.0);
             std::string name = "s" + std::to_string(s) + ".png";
             REQUIRE(savePng(im, dir / name).ok());
             manifest["images"].push_back({{"file", name}, {"light", {{"theta", lights[s][0]}, {"phi", lights[s][1]}}}});
@@ -137,7 +138,8 @@ TEST_SUITE("gl") {
 TEST_SUITE("gl") {
     TEST_CASE("scenes: golden image, culling, and materials no visible quad uses are never loaded") {
         TempDir dir;
-        auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {45, 0, 0, 0, 100, 2}, {60, 200, 0, 0, 20, 1}}));
+        auto ds = openDataset(
+            writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {45, 0, 0, 0, 100, 2}, {60, 200, 0, 0, 20, 1}}));
         REQUIRE(ds.ok());
         auto bank = bakeBank(*ds, {});
         REQUIRE(bank.ok());
@@ -190,8 +192,8 @@ TEST_SUITE("gl") {
         // The one-reference path of the shapes (ShapeRenderer) pinned: tests/reference/shape-*.png,
         // made when banks with a predictor joined it (issue 22) and equal to the viewer's before.
         TempDir dir;
-        auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {45, 0, 0, 0, 100, 2}, {60, 200, 0, 0, 20, 1},
-                                                          {50, 100, 0, 0, 40, 2}}));
+        auto ds = openDataset(writeSyntheticDataset(
+            dir, {{0, 0, 0, 0, 0, 1}, {45, 0, 0, 0, 100, 2}, {60, 200, 0, 0, 20, 1}, {50, 100, 0, 0, 40, 2}}));
         REQUIRE(ds.ok());
         auto bank = bakeBank(*ds, {});
         REQUIRE(bank.ok());
@@ -231,7 +233,8 @@ TEST_SUITE("gl") {
         TempDir dir;
         auto ds = openDataset(writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}, {45, 0, 0, 0, 100, 2}}));
         REQUIRE(runCli({"bake", dir / "btflut-dataset.json", "-o", dir / "m.btflut", "-q"}).status == 0);
-        std::ofstream(dir / "s.json") << R"({"light": {"direction": [0, 0, 1]}, "materials": {"m": "m.btflut", "x": "nope.btflut"},
+        std::ofstream(dir / "s.json")
+            << R"({"light": {"direction": [0, 0, 1]}, "materials": {"m": "m.btflut", "x": "nope.btflut"},
             "quads": [{"material": "m", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "size": [2,2]}]})";
         CliRun ok = runCli({"render", dir / "s.json", "--size", "96x64", "--light", "30,0", "--mode", "flat", "--stats",
                             "-o", dir / "s.png"});
@@ -239,15 +242,18 @@ TEST_SUITE("gl") {
         CHECK(ok.out.find("materials skipped (no visible quad uses them): x") != std::string::npos);
         CHECK(loadImage(dir / "s.png")->width == 96);
         // --json: what was written and the same statistics; -q: nothing.
-        CliRun json = runCli({"render", dir / "s.json", "--size", "96x64", "--mode", "flat", "--json", "-o", dir / "j.png"});
+        CliRun json =
+            runCli({"render", dir / "s.json", "--size", "96x64", "--mode", "flat", "--json", "-o", dir / "j.png"});
         REQUIRE(json.status == 0);
         const nlohmann::json stats = nlohmann::json::parse(json.out);
         CHECK(stats["width"] == 96);
         CHECK(stats["stats"]["materials_skipped"] == nlohmann::json::array({"x"}));
         CHECK(stats["stats"]["quads_drawn"] == 1);
         CHECK(runCli({"render", dir / "s.json", "--size", "96x64", "-q", "-o", dir / "q.png"}).out.empty());
-        REQUIRE(runCli({"render", dir / "s.json", "--size", "96x64", "--mode", "brdf", "-o", dir / "b.png"}).status == 0);
-        requireOneLineError(runCli({"render", dir / "s.json", "--mode", "shiny", "-o", dir / "x.png"}), "--mode 'shiny'");
+        REQUIRE(runCli({"render", dir / "s.json", "--size", "96x64", "--mode", "brdf", "-o", dir / "b.png"}).status ==
+                0);
+        requireOneLineError(runCli({"render", dir / "s.json", "--mode", "shiny", "-o", dir / "x.png"}),
+                            "--mode 'shiny'");
         requireOneLineError(runCli({"render", dir / "s.json", "--mode", "ptm", "-o", dir / "x.png"}),
                             "m.btflut: the bank holds no PTM (bake it with --ptm)");
         requireOneLineError(runCli({"render", dir / "s.json", "--mode", "nearest", "-o", dir / "x.png"}),
@@ -277,7 +283,8 @@ TEST_SUITE("gl") {
             "quads": [{"material": "m", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})";
         requireOneLineError(runCli({"render", dir / "missing.json", "-o", dir / "x.png"}), "gone.btflut: cannot open");
         std::ofstream(dir / "broken.json") << "{ not json";
-        requireOneLineError(runCli({"render", dir / "broken.json", "-o", dir / "x.png"}), "broken.json: not valid JSON");
+        requireOneLineError(runCli({"render", dir / "broken.json", "-o", dir / "x.png"}),
+                            "broken.json: not valid JSON");
         requireOneLineError(runCli({"render", dir / "s.json", "--size", "0x10", "-o", dir / "x.png"}), "--size '0x10'");
         requireOneLineError(runCli({"render", dir / "s.json", "--light", "nan,0", "-o", dir / "x.png"}), "--light");
         CHECK_FALSE(fs::exists(dir / "x.png"));

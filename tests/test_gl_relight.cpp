@@ -54,8 +54,9 @@ double meanDifference(const std::vector<double>& a, const std::vector<double>& b
 
 // Shots whose LUTs are steep: the brighter ones clip half the reference's levels.
 std::vector<SyntheticShot> steepShots(double viewTheta = 0, double viewPhi = 0) {
-    return {{0, 0, viewTheta, viewPhi, 0, 1}, {45, 0, viewTheta, viewPhi, 100, 2}, {45, 180, viewTheta, viewPhi, 0, 3},
-            {60, 90, viewTheta, viewPhi, 20, 1}, {60, 270, viewTheta, viewPhi, 60, 2}, {30, 45, viewTheta, viewPhi, 10, 1}};
+    return {{0, 0, viewTheta, viewPhi, 0, 1},     {45, 0, viewTheta, viewPhi, 100, 2},
+            {45, 180, viewTheta, viewPhi, 0, 3},  {60, 90, viewTheta, viewPhi, 20, 1},
+            {60, 270, viewTheta, viewPhi, 60, 2}, {30, 45, viewTheta, viewPhi, 10, 1}};
 }
 
 // The bank of a synthetic dataset, saved as dir/m.btflut.
@@ -107,12 +108,15 @@ TEST_SUITE("gl") {
         CHECK(r.stats().textureBytes.relit >= 2 * bank.reference.pixelCount());
     }
 
-    TEST_CASE("a moving light is drawn per fragment where that costs less than relighting; the frame after it stops relights") {
+    TEST_CASE(
+        "a moving light is drawn per fragment where that costs less than relighting; the frame after it stops "
+        "relights") {
         TempDir dir;
         const LutBank bank = savedBank(dir, steepShots());
         auto context = createHeadlessContext(GlBackend::Auto);
         REQUIRE(context.ok());
-        const Direction a = Direction::fromDegrees(30, 20), b = Direction::fromDegrees(40, 200), c = Direction::fromDegrees(50, 80);
+        const Direction a = Direction::fromDegrees(30, 20), b = Direction::fromDegrees(40, 200),
+                        c = Direction::fromDegrees(50, 80);
         auto renderer = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 40, 30));
         REQUIRE(renderer.ok());
         SceneRenderer& r = **renderer;
@@ -123,10 +127,12 @@ TEST_SUITE("gl") {
         CHECK(r.stats().quadsPerFragment == 1);
         CHECK(r.stats().relightPasses == 1);
         // Per fragment at 1:1 is relight: the same LUT, dithered per texel.
-        const Image cpu = applyLuts(bank.reference, bank.colour, bank.lookup(b).values, bank.entries, bank.targetCode());
+        const Image cpu =
+            applyLuts(bank.reference, bank.colour, bank.lookup(b).values, bank.entries, bank.targetCode());
         double worst = 0;
         for (int y = 0; y < 30; ++y)
-            for (int x = 0; x < 40; ++x) worst = std::max(worst, std::abs(static_cast<double>(moving.at(x, y, 0)) - cpu.at(x, y, 0)));
+            for (int x = 0; x < 40; ++x)
+                worst = std::max(worst, std::abs(static_cast<double>(moving.at(x, y, 0)) - cpu.at(x, y, 0)));
         INFO("per fragment against relight: worst " << worst * 255 << "/255");
         CHECK(worst <= 1.0 / 255 + 1e-6);
         draw(r, b);  // stopped: relit once
@@ -161,15 +167,18 @@ TEST_SUITE("gl") {
             auto renderer = SceneRenderer::create(scene);
             REQUIRE(renderer.ok());
             const Image gpu = draw(**renderer, light);
-            const Image cpu = applyLuts(bank.reference, bank.colour, lut.values, bank.entries, dither ? bank.targetCode() : 0);
+            const Image cpu =
+                applyLuts(bank.reference, bank.colour, lut.values, bank.entries, dither ? bank.targetCode() : 0);
             double worst = 0;
             for (int y = 0; y < 30; ++y)
-                for (int x = 0; x < 40; ++x) worst = std::max(worst, std::abs(static_cast<double>(gpu.at(x, y, 0)) - cpu.at(x, y, 0)));
+                for (int x = 0; x < 40; ++x)
+                    worst = std::max(worst, std::abs(static_cast<double>(gpu.at(x, y, 0)) - cpu.at(x, y, 0)));
             INFO("dither " << dither << ": worst " << worst * 255 << "/255");
             CHECK(worst <= 0.5 / 255 + 1e-6);  // the relit texture's and the framebuffer's 8-bit rounding
         }
         // The command: dithered by default, the plain LUT with --no-dither.
-        std::ofstream(dir / "s.json") << R"({"image": {"width": 40, "height": 30}, "camera": {"position": [0, 0, 2.4142135623730949],
+        std::ofstream(dir / "s.json")
+            << R"({"image": {"width": 40, "height": 30}, "camera": {"position": [0, 0, 2.4142135623730949],
             "target": [0, 0, 0], "up": [0, 1, 0], "fov_degrees": 45}, "light": {"direction": [0.5, 0.4, 0.77]},
             "materials": {"m": "m.btflut"},
             "quads": [{"material": "m", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0], "size": [2.6666666666666665, 2]}]})";
@@ -194,10 +203,11 @@ TEST_SUITE("gl") {
             const std::vector<double> truth = boxMeans(relit, block);
             // What applying the LUT to the mipmapped reference gives (the per-fragment LUT).
             std::vector<double> lutOfMean = boxMeans(bank.reference, block);
-            for (double& v : lutOfMean) v = Lut::applyLut(&bank.lookup(light).values[0], bank.entries, static_cast<float>(v));
+            for (double& v : lutOfMean)
+                v = Lut::applyLut(&bank.lookup(light).values[0], bank.entries, static_cast<float>(v));
             const double error = meanDifference(gpu, truth), plain = meanDifference(lutOfMean, truth);
-            INFO("blocks of " << block << ": " << error * 255 << "/255 from the mean of relit texels; the LUT of the mean "
-                              << plain * 255 << "/255");
+            INFO("blocks of " << block << ": " << error * 255
+                              << "/255 from the mean of relit texels; the LUT of the mean " << plain * 255 << "/255");
             CHECK(error <= 1.5 / 255);  // each mip level rounds to 8 bits
             CHECK(plain > 3 * error);
         }
@@ -236,8 +246,8 @@ TEST_SUITE("gl") {
         const auto [truthMean, truthSd] = moments(truth);
         const auto [plainMean, plainSd] = moments(lutOfMean);
         const double perPixel = meanDifference(far, truth), plainPerPixel = meanDifference(lutOfMean, truth);
-        INFO("mean " << truthMean * 255 << "/255, sd " << truthSd * 255 << "/255; per-mip LUTs: " << farMean * 255 << ", "
-                     << farSd * 255 << "; the LUT of the mean: " << plainMean * 255 << ", " << plainSd * 255
+        INFO("mean " << truthMean * 255 << "/255, sd " << truthSd * 255 << "/255; per-mip LUTs: " << farMean * 255
+                     << ", " << farSd * 255 << "; the LUT of the mean: " << plainMean * 255 << ", " << plainSd * 255
                      << "; per pixel " << perPixel * 255 << " against " << plainPerPixel * 255);
         CHECK(std::abs(farMean - truthMean) < std::abs(plainMean - truthMean) / 2);
         CHECK(std::abs(farMean - truthMean) <= 2.0 / 255);
@@ -263,7 +273,8 @@ TEST_CASE("bench render reports static and moving frames, GPU time and overdraw"
     if (out["gpu_timer"].get<bool>()) CHECK(out["sizes"][0].contains("lut_gpu_ms"));
     requireOneLineError(runCli({"bench", "render", dir / "m.btflut", "--size", "64by48"}), "--size '64by48'");
     // A bank with a predictor: the lut over the predictor drawn per fragment without its LUT.
-    REQUIRE(runCli({"bake", dir / "btflut-dataset.json", "--predictor", "ptm", "--ptm", "-o", dir / "p.btflut", "-q"}).status == 0);
+    REQUIRE(runCli({"bake", dir / "btflut-dataset.json", "--predictor", "ptm", "--ptm", "-o", dir / "p.btflut", "-q"})
+                .status == 0);
     run = runCli({"bench", "render", dir / "p.btflut", "--size", "64x48", "--frames", "2", "--repeat", "1", "--json"});
     REQUIRE(run.status == 0);
     const nlohmann::json predictor = nlohmann::json::parse(run.out);

@@ -12,8 +12,8 @@ using namespace btflut;
 using namespace btflut::test;
 
 namespace {
-const std::vector<SyntheticShot> kShots{{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 40, 1}, {30, 120, 0, 0, 0, 2},
-                                        {30, 240, 0, 0, 100, 1}};
+const std::vector<SyntheticShot> kShots{
+    {0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 40, 1}, {30, 120, 0, 0, 0, 2}, {30, 240, 0, 0, 100, 1}};
 
 std::string regression(const std::string& target, const std::string& name) {
     return (fs::path(BTFLUT_SOURCE_DIR) / "tests" / "fuzz" / "regressions" / target / name).string();
@@ -31,8 +31,9 @@ TEST_CASE("image and bank bombs: refused from their headers, one line, nothing w
     for (const char* name : {"png-claims-20000x20000.png", "tga-claims-65535x65535.tga", "jpeg-claims-60000x60000.jpg",
                              "bmp-claims-16777217x20000.bmp"}) {
         INFO(name);
-        requireOneLineError(runCli({"match", regression("image", name), regression("image", name), "-o", dir / "out.png"}),
-                            "pixels, over the limit of 268435456 pixels (raise it with --max-pixels)");
+        requireOneLineError(
+            runCli({"match", regression("image", name), regression("image", name), "-o", dir / "out.png"}),
+            "pixels, over the limit of 268435456 pixels (raise it with --max-pixels)");
     }
     requireOneLineError(runCli({"match", regression("image", "tga-rle-8000x8000-data-missing.tga"),
                                 regression("image", "tga-rle-8000x8000-data-missing.tga"), "-o", dir / "out.png"}),
@@ -52,7 +53,8 @@ TEST_CASE("--max-pixels bounds every image a command reads, before or after the 
     std::string manifest = writeSyntheticDataset(dir, kShots);  // 40 x 30 = 1200 pixels
     requireOneLineError(runCli({"--max-pixels", "1000", "hist", manifest, "-o", dir / "h.csv"}),
                         "shot0.png: image is 40x30 pixels, over the limit of 1000 pixels");
-    requireOneLineError(runCli({"hist", manifest, "-o", dir / "h.csv", "--max-pixels", "1199"}), "over the limit of 1199");
+    requireOneLineError(runCli({"hist", manifest, "-o", dir / "h.csv", "--max-pixels", "1199"}),
+                        "over the limit of 1199");
     CHECK(runCli({"hist", manifest, "-o", dir / "h.csv", "--max-pixels", "1200"}).status == 0);
     CHECK(runCli({"hist", manifest, "-o", dir / "h2.csv"}).status == 0);  // the default again
     CHECK(runCli({"--max-pixels", "0", "hist", manifest, "-o", dir / "h3.csv"}).status != 0);
@@ -69,7 +71,8 @@ TEST_CASE("no exception escapes: numbers out of range, wrong JSON types, odd fil
     requireOneLineError(runCli({"render", dir / "s.json", "-o", dir / "r.png"}), "quads[0].mode: expected a string");
     std::ofstream(dir / "w.json") << R"({"image": {"width": 4294967360, "height": 64}, "light": {"direction": [0,0,1]},
         "materials": {"a": "m.btflut"}, "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})";
-    requireOneLineError(runCli({"render", dir / "w.json", "-o", dir / "r.png"}), "image size 4294967360x64 is not within 1..16384");
+    requireOneLineError(runCli({"render", dir / "w.json", "-o", dir / "r.png"}),
+                        "image size 4294967360x64 is not within 1..16384");
     CHECK_FALSE(fs::exists(dir / "r.png"));
 
     // A photometric-stereo image number beyond any integer.
@@ -77,7 +80,8 @@ TEST_CASE("no exception escapes: numbers out of range, wrong JSON types, odd fil
     std::ofstream(dir / "psm/lights.txt") << "1\n0 0 1\n";
     fs::copy_file(dir / "shot0.png", dir / "psm/rock.0.png");
     fs::copy_file(dir / "shot0.png", dir / "psm/rock.99999999999999999999.png");
-    requireOneLineError(runCli({"hist", dir / "psm", "-o", dir / "h.csv"}), "image number 99999999999999999999 is out of range");
+    requireOneLineError(runCli({"hist", dir / "psm", "-o", dir / "h.csv"}),
+                        "image number 99999999999999999999 is out of range");
 
     // Image names that are not UTF-8 go into JSON as U+FFFD.
     fs::copy_file(dir / "shot1.png", dir / "\xff\xfe.png");
@@ -102,8 +106,8 @@ TEST_CASE("outputs go through exclusive temporary files: a planted symlink is no
 
 TEST_CASE("simulate --smooth 1e9 stays finite") {
     TempDir dir;
-    REQUIRE(runCli({"simulate", "--roughness", "0.4", "--geometry", "10,0,0,0", "--nodes", "8", "--bins", "16", "--smooth",
-                    "1e9", "-o", dir / "s.csv"})
+    REQUIRE(runCli({"simulate", "--roughness", "0.4", "--geometry", "10,0,0,0", "--nodes", "8", "--bins", "16",
+                    "--smooth", "1e9", "-o", dir / "s.csv"})
                 .status == 0);
     auto rows = parseHistogramCsv(readText(dir / "s.csv"), "s.csv");
     REQUIRE(rows.ok());
@@ -125,11 +129,15 @@ TEST_CASE("options are honoured or refused, never ignored") {
     requireOneLineError(runCli({"render", bank, "--native", "--light", "30,0", "--mode", "bogus", "-o", out}),
                         "mode 'bogus' is not lut, brdf, ptm, flat or nearest");
     requireOneLineError(runCli({"render", dir / "s.json", "--mode", "bogus", "-o", out}), "mode 'bogus'");
-    requireOneLineError(runCli({"render", bank, "--native", "--light", "30,0", "--stats", "-o", out}), "--stats reports on scenes");
-    requireOneLineError(runCli({"render", bank, "--native", "--light", "30,0", "--size", "8x8", "-o", out}), "--size is for scenes");
-    requireOneLineError(runCli({"render", dir / "s.json", "--view", "30,0", "-o", out}), "a scene's camera sets the view");
-    requireOneLineError(runCli({"relight", bank, "--light", "60,30", "--view", "30,0", "-o", out}),
-                        "the bank holds one view direction (0.000000, 0.000000 degrees); it cannot relight for --view 30,0");
+    requireOneLineError(runCli({"render", bank, "--native", "--light", "30,0", "--stats", "-o", out}),
+                        "--stats reports on scenes");
+    requireOneLineError(runCli({"render", bank, "--native", "--light", "30,0", "--size", "8x8", "-o", out}),
+                        "--size is for scenes");
+    requireOneLineError(runCli({"render", dir / "s.json", "--view", "30,0", "-o", out}),
+                        "a scene's camera sets the view");
+    requireOneLineError(
+        runCli({"relight", bank, "--light", "60,30", "--view", "30,0", "-o", out}),
+        "the bank holds one view direction (0.000000, 0.000000 degrees); it cannot relight for --view 30,0");
     CHECK(runCli({"relight", bank, "--light", "60,30", "--view", "0,0", "-o", out, "-q"}).status == 0);
     fs::remove(out);
 
@@ -144,7 +152,8 @@ TEST_CASE("options are honoured or refused, never ignored") {
     CHECK(info.out.find("nan") == std::string::npos);
     CHECK(info.out.find("of light directions covered") != std::string::npos);
 
-    requireOneLineError(runCli({"bake", manifest, "--references", "1", "-o", dir / "huge.btflut", "--grid", "257", "--entries", "32768"}),
+    requireOneLineError(runCli({"bake", manifest, "--references", "1", "-o", dir / "huge.btflut", "--grid", "257",
+                                "--entries", "32768"}),
                         "over the .btflut format's 4 GiB chunk limit");
 }
 
@@ -182,13 +191,16 @@ TEST_CASE("synth --force replaces only what synth wrote") {
 
     fs::create_directories(dir / "mine");
     std::ofstream(dir / "mine/thesis.tex") << "years of work";
-    requireOneLineError(with({"-o", dir / "mine", "--force"}), "--force replaces only a folder written by btflut synth");
+    requireOneLineError(with({"-o", dir / "mine", "--force"}),
+                        "--force replaces only a folder written by btflut synth");
     CHECK(readText(dir / "mine/thesis.tex") == "years of work");
 }
 
 TEST_CASE("the paper's geometry (curet-c2: light and view move together) bakes a bank that follows the light") {
     TempDir dir;
-    REQUIRE(runCli({"synth", "--preset", "plastic", "--size", "48", "--correlation-length", "6", "-q", "-o", dir / "c2"}).status == 0);
+    REQUIRE(
+        runCli({"synth", "--preset", "plastic", "--size", "48", "--correlation-length", "6", "-q", "-o", dir / "c2"})
+            .status == 0);
     CliRun bake = runCli({"bake", dir / "c2", "-o", dir / "c2.btflut"});
     REQUIRE(bake.status == 0);
     CHECK(bake.out.find("domain isotropic") != std::string::npos);
@@ -206,7 +218,8 @@ TEST_CASE("the paper's geometry (curet-c2: light and view move together) bakes a
         const Image relit = applyLuts(bank->reference, bank->colour, lut.values, bank->entries, bank->targetCode());
         const Image measured = *loadImage(im.path);
         const Mask all = fullMask(relit.width, relit.height);
-        const auto a = binHistogram(countGreyLevels(relit, all), 64), b = binHistogram(countGreyLevels(measured, all), 64);
+        const auto a = binHistogram(countGreyLevels(relit, all), 64),
+                   b = binHistogram(countGreyLevels(measured, all), 64);
         double l1 = 0;
         for (std::size_t k = 0; k < a.size(); ++k) l1 += std::abs(a[k] - b[k]);
         INFO(im.name);
@@ -217,15 +230,17 @@ TEST_CASE("the paper's geometry (curet-c2: light and view move together) bakes a
     REQUIRE(runCli({"relight", dir / "c2.btflut", "--light", "70,180", "-o", dir / "b.png", "-q"}).status == 0);
     CHECK(std::abs(meanOf(*loadImage(dir / "a.png")) - meanOf(*loadImage(dir / "b.png"))) > 0.02);
 
-    requireOneLineError(runCli({"bake", dir / "c2", "--domain", "layers", "-o", dir / "l.btflut"}),
-                        "each view direction has one light direction, so a bank over view layers cannot follow the light");
+    requireOneLineError(
+        runCli({"bake", dir / "c2", "--domain", "layers", "-o", dir / "l.btflut"}),
+        "each view direction has one light direction, so a bank over view layers cannot follow the light");
     CHECK_FALSE(fs::exists(dir / "l.btflut"));
 }
 
 TEST_CASE("a dataset that cannot vary with the light is refused; layered banks stay format version 1") {
     TempDir dir;
     std::string one = writeSyntheticDataset(dir, {{0, 0, 0, 0, 0, 1}});
-    requireOneLineError(runCli({"bake", one, "-o", dir / "one.btflut"}), "no bank baked from them can follow the light");
+    requireOneLineError(runCli({"bake", one, "-o", dir / "one.btflut"}),
+                        "no bank baked from them can follow the light");
     CHECK_FALSE(fs::exists(dir / "one.btflut"));
 
     TempDir other;

@@ -32,7 +32,8 @@ std::string tiltedGeometry(Direction light, double tiltDeg, double azimuthDeg) {
     const Direction l = fromVector(turned(toVector(light), axis, -tiltDeg * kDegree));
     const Direction v = fromVector(turned({0, 0, 1}, axis, -tiltDeg * kDegree));
     char text[160];
-    std::snprintf(text, sizeof text, "%.6f,%.6f,%.6f,%.6f", l.thetaDegrees(), l.phiDegrees(), v.thetaDegrees(), v.phiDegrees());
+    std::snprintf(text, sizeof text, "%.6f,%.6f,%.6f,%.6f", l.thetaDegrees(), l.phiDegrees(), v.thetaDegrees(),
+                  v.phiDegrees());
     return text;
 }
 
@@ -55,7 +56,8 @@ std::string fittedMaterial(const TempDir& dir) {
     return dir / "concrete.json";
 }
 
-nlohmann::json orient(const std::string& image, const std::string& material, const std::string& flag, const std::string& known) {
+nlohmann::json orient(const std::string& image, const std::string& material, const std::string& flag,
+                      const std::string& known) {
     CliRun run = runCli({"orient", image, "--material", material, flag, known, "--json"});
     REQUIRE_MESSAGE(run.status == 0, run.err);
     return nlohmann::json::parse(run.out);
@@ -72,8 +74,8 @@ TEST_CASE("orient: the tilt of rendered height fields within 5 degrees up to 60,
         const nlohmann::json out = orient(image, material, "--light", "0,0");
         const nlohmann::json& best = out["candidates"][0];
         const double estimate = best["normal"]["theta"].get<double>();
-        MESSAGE("tilt " << tilt << ": estimated " << estimate << " +- " << best["tilt_uncertainty"].get<double>() << ", "
-                        << out["candidates"].size() << " candidate(s)");
+        MESSAGE("tilt " << tilt << ": estimated " << estimate << " +- " << best["tilt_uncertainty"].get<double>()
+                        << ", " << out["candidates"].size() << " candidate(s)");
         CHECK(std::abs(estimate - tilt) <= 5);
         CHECK(best["tilt_uncertainty"].get<double>() >= std::abs(estimate - tilt) - 1);
         // Lit from the camera, every azimuth of the normal looks the same: said, not guessed.
@@ -81,13 +83,15 @@ TEST_CASE("orient: the tilt of rendered height fields within 5 degrees up to 60,
     }
     // The same sample seen from the light's side: with light and camera together, the same answer.
     const std::string image = render(dir, "v40", tiltedGeometry(Direction::fromDegrees(0, 0), 40, 130));
-    CHECK(std::abs(orient(image, material, "--view", "0,0")["candidates"][0]["normal"]["theta"].get<double>() - 40) <= 5);
+    CHECK(std::abs(orient(image, material, "--view", "0,0")["candidates"][0]["normal"]["theta"].get<double>() - 40) <=
+          5);
 }
 
 TEST_CASE("orient: a bank with view directions as the material (light and camera together, 0 to 75 degrees)") {
     TempDir dir;
     std::string pairs;
-    for (int t = 0; t < 80; t += 5) pairs += (pairs.empty() ? "" : ";") + std::to_string(t) + ",0," + std::to_string(t) + ",0";
+    for (int t = 0; t < 80; t += 5)
+        pairs += (pairs.empty() ? "" : ";") + std::to_string(t) + ",0," + std::to_string(t) + ",0";
     REQUIRE(runCli({"synth", "--roughness", "0.4", "--size", "256", "--samples", "1", "--correlation-length", "8",
                     "--geometry", pairs, "-q", "-o", dir / "coaxial"})
                 .status == 0);
@@ -95,7 +99,8 @@ TEST_CASE("orient: a bank with view directions as the material (light and camera
     for (double tilt : {30.0, 50.0}) {
         const std::string image = render(dir, "b" + std::to_string(static_cast<int>(tilt)),
                                          tiltedGeometry(Direction::fromDegrees(0, 0), tilt, 250));
-        const double estimate = orient(image, dir / "coaxial.btflut", "--light", "0,0")["candidates"][0]["normal"]["theta"];
+        const double estimate =
+            orient(image, dir / "coaxial.btflut", "--light", "0,0")["candidates"][0]["normal"]["theta"];
         MESSAGE("bank: tilt " << tilt << " estimated " << estimate);
         CHECK(std::abs(estimate - tilt) <= 5);
     }
@@ -106,13 +111,14 @@ TEST_CASE("orient: with the light off the camera the histogram is ambiguous; the
     const std::string material = fittedMaterial(dir);
     const Direction light = Direction::fromDegrees(30, 180);
     for (auto [tilt, azimuth] : {std::pair{20.0, 0.0}, {40.0, 90.0}, {40.0, 200.0}}) {
-        const std::string image = render(dir, "o" + std::to_string(static_cast<int>(tilt + azimuth)),
-                                         tiltedGeometry(light, tilt, azimuth));
+        const std::string image =
+            render(dir, "o" + std::to_string(static_cast<int>(tilt + azimuth)), tiltedGeometry(light, tilt, azimuth));
         const nlohmann::json out = orient(image, material, "--light", "30,180");
         const Direction truth = Direction::fromDegrees(tilt, azimuth);
         bool found = false;
         for (const nlohmann::json& c : out["candidates"]) {
-            const Direction n = Direction::fromDegrees(c["normal"]["theta"].get<double>(), c["normal"]["phi"].get<double>());
+            const Direction n =
+                Direction::fromDegrees(c["normal"]["theta"].get<double>(), c["normal"]["phi"].get<double>());
             found = found || angleBetween(n, truth) / kDegree <= c["uncertainty"].get<double>() + 2;
         }
         MESSAGE("normal (" << tilt << ", " << azimuth << "): " << out["candidates"].size() << " candidate(s), best ("
@@ -166,16 +172,19 @@ TEST_CASE("classify: 8 synthetic materials, queries at lights not used to build 
     std::vector<std::pair<std::string, std::string>> images;  // material, query image
     for (const auto& [name, flags] : materials) {
         auto synth = [&](const std::string& geometry, const std::string& seed, const std::string& folder) {
-            std::vector<std::string> args{"synth", "--geometry", geometry, "--size", "256", "--samples", "1",
-                                          "--correlation-length", "8", "--seed", seed, "-q", "-o", folder};
+            std::vector<std::string> args{
+                "synth", "--geometry", geometry, "--size", "256", "--samples", "1", "--correlation-length",
+                "8",     "--seed",     seed,     "-q",     "-o",  folder};
             args.insert(args.end(), flags.begin(), flags.end());
             CliRun run = runCli(args);
             REQUIRE_MESSAGE(run.status == 0, run.err);
         };
         synth("rti-24", "1", dir / ("dome-" + name));
-        REQUIRE(runCli({"bake", dir / ("dome-" + name), "-o", dir / ("library/" + name + ".btflut"), "-q"}).status == 0);
+        REQUIRE(runCli({"bake", dir / ("dome-" + name), "-o", dir / ("library/" + name + ".btflut"), "-q"}).status ==
+                0);
         synth(queries, "2", dir / ("query-" + name));  // another patch of the material, under other lights
-        for (int i = 1; i <= 4; ++i) images.push_back({name, dir / ("query-" + name + "/p" + std::to_string(i) + ".png")});
+        for (int i = 1; i <= 4; ++i)
+            images.push_back({name, dir / ("query-" + name + "/p" + std::to_string(i) + ".png")});
     }
     std::vector<MaterialHistograms> library;
     for (const auto& [name, flags] : materials) {
@@ -191,7 +200,8 @@ TEST_CASE("classify: 8 synthetic materials, queries at lights not used to build 
         right += library[classify(h, library, {}, Metric::Histogram).front().material].name == name;
         rightByMean += library[classify(h, library, {}, Metric::MeanBrightness).front().material].name == name;
     }
-    const double accuracy = static_cast<double>(right) / images.size(), baseline = static_cast<double>(rightByMean) / images.size();
+    const double accuracy = static_cast<double>(right) / images.size(),
+                 baseline = static_cast<double>(rightByMean) / images.size();
     MESSAGE("top-1: histograms " << right << "/" << images.size() << ", mean brightness only " << rightByMean << "/"
                                  << images.size());
     CHECK(accuracy >= 0.9);

@@ -38,7 +38,8 @@ Image reliefImage(const Relief& r, Direction light) {
             const double shade = std::max(0.0, (-p * l.x - q * l.y + l.z) / norm);
             for (int c = 0; c < im.channels; ++c) {
                 const double albedo = 0.55 + 0.3 * std::sin(0.11 * (x + 3 * c) + 0.07 * y);
-                im.at(x, y, c) = inside ? static_cast<float>(std::lround(std::clamp(albedo * shade, 0.0, 1.0) * 255) / 255.0) : 0.f;
+                im.at(x, y, c) =
+                    inside ? static_cast<float>(std::lround(std::clamp(albedo * shade, 0.0, 1.0) * 255) / 255.0) : 0.f;
             }
         }
     return im;
@@ -50,7 +51,8 @@ std::string writeRelief(const TempDir& dir, const Relief& r, const std::vector<D
     for (std::size_t i = 0; i < lights.size(); ++i) {
         const std::string name = "l" + std::to_string(i) + ".png";
         REQUIRE(savePng(reliefImage(r, lights[i]), dir / name).ok());
-        manifest["images"].push_back({{"file", name}, {"light", {{"theta", lights[i].thetaDegrees()}, {"phi", lights[i].phiDegrees()}}}});
+        manifest["images"].push_back(
+            {{"file", name}, {"light", {{"theta", lights[i].thetaDegrees()}, {"phi", lights[i].phiDegrees()}}}});
     }
     if (r.border > 0) {
         Image mask(r.size, r.size, 1);
@@ -101,9 +103,12 @@ TEST_CASE("light models: a Lambertian relief between the measured lights, every 
     for (const LightModelOptions& o : everyBasis()) {
         Result<LightModel> model = fit(images, lights, mask, o);
         REQUIRE_MESSAGE(model.ok(), model.error());
-        CHECK(model->bytesPerTexel() == (o.basis == LightBasis::Ptm ? 9 : o.basis == LightBasis::Hsh ? o.order * o.order + 3 : o.planes));
+        CHECK(model->bytesPerTexel() == (o.basis == LightBasis::Ptm   ? 9
+                                         : o.basis == LightBasis::Hsh ? o.order * o.order + 3
+                                                                      : o.planes));
         double psnr = 0, nearest = 0;
-        for (Direction l : {Direction::fromDegrees(25, 10), Direction::fromDegrees(45, 200), Direction::fromDegrees(60, 300)}) {
+        for (Direction l :
+             {Direction::fromDegrees(25, 10), Direction::fromDegrees(45, 200), Direction::fromDegrees(60, 300)}) {
             const Image truth = reliefImage(relief, l);
             psnr += compareImages(model->render(l), truth, mask).psnr / 3;
             std::size_t n = 0;
@@ -126,15 +131,19 @@ TEST_CASE("light models: the fixed-point prediction (the shader's arithmetic) is
     for (const LightModelOptions& o : everyBasis()) {
         Result<LightModel> model = fit(images, lights, fullMask(relief.size, relief.size), o);
         REQUIRE(model.ok());
-        for (Direction l : {Direction::fromDegrees(0, 0), Direction::fromDegrees(35, 80), Direction::fromDegrees(80, 250)}) {
+        for (Direction l :
+             {Direction::fromDegrees(0, 0), Direction::fromDegrees(35, 80), Direction::fromDegrees(80, 250)}) {
             const Image ideal = model->render(l);
             const LightModelFixed fixed = lightModelFixed(*model, l);
             double w = 0;
             for (std::size_t i = 0; i < model->texels(); ++i) {
                 const std::array<std::int64_t, 3> c = predictFixed(*model, fixed, i);
                 for (int k = 0; k < ideal.channels; ++k)
-                    w = std::max(w, std::abs(static_cast<double>(c[static_cast<std::size_t>(k)]) / (255.0 * kWeightUnit) -
-                                             ideal.samples[i * static_cast<std::size_t>(ideal.channels) + static_cast<std::size_t>(k)]));
+                    w = std::max(
+                        w,
+                        std::abs(
+                            static_cast<double>(c[static_cast<std::size_t>(k)]) / (255.0 * kWeightUnit) -
+                            ideal.samples[i * static_cast<std::size_t>(ideal.channels) + static_cast<std::size_t>(k)]));
             }
             INFO(lightModelName(*model) << " at " << l.thetaDegrees() << ": " << w * 255 << "/255");
             CHECK(w <= 1.0 / 255);
@@ -300,9 +309,9 @@ TEST_CASE("shared data: lut auto beats relight-cli's best 9-plane basis, with th
         for (const nlohmann::json& m : report["modes"]) modes[m["name"]] = m;
         const nlohmann::json& automatic = modes.at("lut auto");
         const nlohmann::json& paper = modes.at("lut K1 R1 grey");
-        MESSAGE(std::string(name) << ": lut auto " << automatic["psnr"] << " dB, L1 " << automatic["l1"] << "; the paper's bank "
-                     << paper["psnr"] << " dB, L1 " << paper["l1"] << "; rbf " << modes.at("rbf")["psnr"] << ", bln "
-                     << modes.at("bln")["psnr"]);
+        MESSAGE(std::string(name) << ": lut auto " << automatic["psnr"] << " dB, L1 " << automatic["l1"]
+                                  << "; the paper's bank " << paper["psnr"] << " dB, L1 " << paper["l1"] << "; rbf "
+                                  << modes.at("rbf")["psnr"] << ", bln " << modes.at("bln")["psnr"]);
         CHECK(automatic["bytes_per_texel"].get<double>() <= 9);
         CHECK(automatic["psnr"].get<double>() >= relight);
         CHECK(automatic["psnr"].get<double>() >= modes.at("rbf")["psnr"].get<double>());
@@ -318,13 +327,18 @@ TEST_CASE("the match LUTs baked over the grid: close to the exact run-time LUT, 
     const Mask mask = fullMask(40, 40);
     double previous = 0;
     for (int grid : {9, 33}) {
-        Result<LutBank> bank = bakeBank(*dataset, {.gridSize = grid, .model = LightModelOptions{.basis = LightBasis::Rbf, .planes = 6}});
+        Result<LutBank> bank =
+            bakeBank(*dataset, {.gridSize = grid, .model = LightModelOptions{.basis = LightBasis::Rbf, .planes = 6}});
         REQUIRE(bank.ok());
         REQUIRE(bank->layers[0].matchGridLuts.size() == static_cast<std::size_t>(grid * grid) * bank->matchLength());
         const Relighter relighter(*bank);
         double psnr = 0;
-        for (Direction l : {Direction::fromDegrees(27, 15), Direction::fromDegrees(52, 170), Direction::fromDegrees(66, 290)})
-            psnr += compareImages(relighter.apply(relighter.gridFrame(l), true), relighter.apply(relighter.frame(l), true), mask).psnr / 3;
+        for (Direction l :
+             {Direction::fromDegrees(27, 15), Direction::fromDegrees(52, 170), Direction::fromDegrees(66, 290)})
+            psnr += compareImages(relighter.apply(relighter.gridFrame(l), true),
+                                  relighter.apply(relighter.frame(l), true), mask)
+                        .psnr /
+                    3;
         INFO("grid " << grid << ": the grid's relighting against the exact one, " << psnr << " dB");
         CHECK(psnr > 35);
         CHECK(psnr > previous);

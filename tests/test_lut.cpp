@@ -15,10 +15,18 @@ LevelCounts randomLevels(std::mt19937& rng, std::size_t codes) {
     int shape = static_cast<int>(rng() % 4);
     for (std::size_t k = 0; k < codes; ++k) {
         switch (shape) {
-            case 0: l.counts[k] = rng() % 50; break;                        // dense
-            case 1: l.counts[k] = (rng() % 4 == 0) ? rng() % 1000 : 0; break;  // sparse
-            case 2: l.counts[k] = (k / 16) % 2 ? rng() % 30 : 0; break;     // empty stretches
-            default: l.counts[k] = rng() % 3 == 0 ? 1 : 0; break;            // thin
+            case 0:
+                l.counts[k] = rng() % 50;
+                break;  // dense
+            case 1:
+                l.counts[k] = (rng() % 4 == 0) ? rng() % 1000 : 0;
+                break;  // sparse
+            case 2:
+                l.counts[k] = (k / 16) % 2 ? rng() % 30 : 0;
+                break;  // empty stretches
+            default:
+                l.counts[k] = rng() % 3 == 0 ? 1 : 0;
+                break;  // thin
         }
     }
     if (rng() % 3 == 0) l.counts[rng() % codes] += 100000;  // a spike
@@ -138,8 +146,8 @@ TEST_CASE("dithering splits reference codes, so coarse references reproduce the 
         std::uint32_t pixel = 0;
         for (std::size_t k = 0; k < 256; ++k)
             for (int n = 0; n < static_cast<int>(static_cast<double>(ref.counts[k]) * scale); ++n, ++pixel) {
-                float v = lutInput(static_cast<float>(static_cast<double>(k) / last), pixel % 640,
-                                   pixel / 640, static_cast<float>(1 / last));
+                float v = lutInput(static_cast<float>(static_cast<double>(k) / last), pixel % 640, pixel / 640,
+                                   static_cast<float>(1 / last));
                 outputs.push_back(lutOutput(lut.apply(v), static_cast<float>(1 / last)));
             }
         std::sort(outputs.begin(), outputs.end());
@@ -148,12 +156,14 @@ TEST_CASE("dithering splits reference codes, so coarse references reproduce the 
         for (std::size_t m : presentCodes(target)) {
             targetCdf += static_cast<double>(target.counts[m]) / static_cast<double>(target.total());
             double top = (static_cast<double>(m) + 0.5) / last + 1e-7;  // float outputs
-            double outCdf = static_cast<double>(std::upper_bound(outputs.begin(), outputs.end(), top) - outputs.begin()) /
-                            static_cast<double>(outputs.size());
+            double outCdf =
+                static_cast<double>(std::upper_bound(outputs.begin(), outputs.end(), top) - outputs.begin()) /
+                static_cast<double>(outputs.size());
             worst = std::max(worst, std::abs(outCdf - targetCdf));
             double plain = 0;
             for (std::size_t k : presentCodes(ref))
-                if (onCodes.values[k] <= static_cast<double>(m) / last + 1e-7) plain += static_cast<double>(ref.counts[k]) / static_cast<double>(ref.total());
+                if (onCodes.values[k] <= static_cast<double>(m) / last + 1e-7)
+                    plain += static_cast<double>(ref.counts[k]) / static_cast<double>(ref.total());
             worstUndithered = std::max(worstUndithered, std::abs(plain - targetCdf));
         }
         INFO("trial " << trial << ": undithered " << worstUndithered);

@@ -36,7 +36,8 @@ Image disturbed(const Image& image, std::uint64_t seed) {
     Random random(seed);
     const double top = image.maxCode();
     for (float& v : out.samples)
-        if (random.uniform() < 0.3) v = static_cast<float>(std::clamp(std::round(v * top + (random.uniform() - 0.5) * 40), 0.0, top) / top);
+        if (random.uniform() < 0.3)
+            v = static_cast<float>(std::clamp(std::round(v * top + (random.uniform() - 0.5) * 40), 0.0, top) / top);
     return out;
 }
 
@@ -54,7 +55,9 @@ ImageErrors reference(const Image& p, const Image& q, const Mask& mask) {
     for (std::size_t b = 0; b < hp.size(); ++b) e.l1 += std::abs(hp[b] - hq[b]);
     e.emd = earthMoversDistance(hp, hq);
     const double top = q.maxCode();
-    auto value = [&](const Image& image, std::size_t i, int c) { return std::round(image.samples[i * image.channels + c] * top) / top; };
+    auto value = [&](const Image& image, std::size_t i, int c) {
+        return std::round(image.samples[i * image.channels + c] * top) / top;
+    };
     auto grey = [&](const Image& image, std::size_t i) {
         double sum = 0;
         for (int c = 0; c < image.channels; ++c) sum += value(image, i, c);
@@ -85,7 +88,8 @@ ImageErrors reference(const Image& p, const Image& q, const Mask& mask) {
             double mx = 0, my = 0, xx = 0, yy = 0, xy = 0;
             for (int j = -5; j <= 5; ++j)
                 for (int i = -5; i <= 5; ++i) {
-                    const std::size_t at = static_cast<std::size_t>(std::clamp(row + j, 0, h - 1)) * w + std::clamp(x + i, 0, w - 1);
+                    const std::size_t at =
+                        static_cast<std::size_t>(std::clamp(row + j, 0, h - 1)) * w + std::clamp(x + i, 0, w - 1);
                     const double g = weights[j + 5] * weights[i + 5], a = grey(p, at), b = grey(q, at);
                     mx += g * a, my += g * b, xx += g * a * a, yy += g * b * b, xy += g * a * b;
                 }
@@ -119,7 +123,8 @@ TEST_CASE("metrics: every figure equals its definition (8 and 16 bits, grey and 
             checkClose(compareImages(predicted, photo, mask), reference(predicted, photo, mask));
             checkClose(compareImages(predicted, photo, fullMask(w, h)), reference(predicted, photo, fullMask(w, h)));
             // From codes, as `compare` reads files: the same figures.
-            checkClose(compareCodes(toCodes(predicted, depth), toCodes(photo, depth), mask), reference(predicted, photo, mask));
+            checkClose(compareCodes(toCodes(predicted, depth), toCodes(photo, depth), mask),
+                       reference(predicted, photo, mask));
         }
 }
 
@@ -162,7 +167,8 @@ TEST_CASE("charts: the Pareto front, and panels drawn with missing figures") {
     CHECK(paretoFront(cost, value, Better::Lower) == std::vector<std::size_t>{0, 1});
     CHECK(paretoFront({}, {}, Better::Higher).empty());
     ChartPanel points{.title = "t", .xLabel = "x", .yLabel = "y", .logX = true, .pareto = Better::Higher};
-    for (std::size_t i = 0; i < cost.size(); ++i) points.series.push_back({"p" + std::to_string(i), {cost[i]}, {value[i]}});
+    for (std::size_t i = 0; i < cost.size(); ++i)
+        points.series.push_back({"p" + std::to_string(i), {cost[i]}, {value[i]}});
     ChartPanel empty{.title = "nothing", .xLabel = "x", .yLabel = "y"};
     empty.series.push_back({"nan", {std::nan("")}, {1.0}});
     ChartPanel lines{.title = "lines", .xLabel = "theta", .yLabel = "dB", .lines = true};

@@ -23,7 +23,8 @@ Image detailed() {
 std::vector<float> steepLut(int entries) {
     std::vector<float> lut(static_cast<std::size_t>(entries));
     for (int k = 0; k < entries; ++k)
-        lut[static_cast<std::size_t>(k)] = std::clamp(2.5f * static_cast<float>(k) / static_cast<float>(entries - 1) - 1.f, 0.f, 1.f);
+        lut[static_cast<std::size_t>(k)] =
+            std::clamp(2.5f * static_cast<float>(k) / static_cast<float>(entries - 1) - 1.f, 0.f, 1.f);
     return lut;
 }
 
@@ -54,15 +55,16 @@ TEST_CASE("per-mip LUTs give a mip level the brightness of its blocks' LUT value
                         truth += Lut::applyLut(lut.data(), kEntries, image.at(x, y, 0)) / (block * block);
                     }
                 mean /= block * block;
-                mip += Lut::applyLut(&perLevel[static_cast<std::size_t>(level) * kEntries], kEntries, static_cast<float>(mean));
+                mip += Lut::applyLut(&perLevel[static_cast<std::size_t>(level) * kEntries], kEntries,
+                                     static_cast<float>(mean));
                 plain += Lut::applyLut(lut.data(), kEntries, static_cast<float>(mean));
                 ++blocks;
             }
         mip /= blocks;
         plain /= blocks;
         truth /= blocks;
-        INFO("level " << level << ": mean of the blocks' LUT values " << truth * 255 << "/255; per-mip LUT " << mip * 255
-                      << "/255, the plain LUT of the mean " << plain * 255 << "/255");
+        INFO("level " << level << ": mean of the blocks' LUT values " << truth * 255 << "/255; per-mip LUT "
+                      << mip * 255 << "/255, the plain LUT of the mean " << plain * 255 << "/255");
         CHECK(std::abs(mip - truth) < 1.0 / 255);
         CHECK(std::abs(plain - truth) > 5 * std::abs(mip - truth));
     }
@@ -73,7 +75,8 @@ TEST_CASE("per-mip LUTs of the identity stay the identity where blocks have that
     for (int entries : {256, 1024}) {
         const MipLuts mips(image, ColourMode::Grey, entries);
         std::vector<float> identity(static_cast<std::size_t>(entries));
-        for (int k = 0; k < entries; ++k) identity[static_cast<std::size_t>(k)] = static_cast<float>(k) / static_cast<float>(entries - 1);
+        for (int k = 0; k < entries; ++k)
+            identity[static_cast<std::size_t>(k)] = static_cast<float>(k) / static_cast<float>(entries - 1);
         std::vector<float> perLevel(static_cast<std::size_t>(mips.levels()) * static_cast<std::size_t>(entries));
         mips.apply(0, identity.data(), perLevel.data());
         // Level 1's block means span the middle of the range: there E[x | mean v] = v.
@@ -83,7 +86,8 @@ TEST_CASE("per-mip LUTs of the identity stay the identity where blocks have that
             CHECK(std::abs(out - v) < 2.0f / 255);
         }
         // Means no block has fall back to the plain LUT.
-        CHECK(std::abs(Lut::applyLut(&perLevel[static_cast<std::size_t>(entries) * 4], entries, 0.02f) - 0.02f) < 1e-3f);
+        CHECK(std::abs(Lut::applyLut(&perLevel[static_cast<std::size_t>(entries) * 4], entries, 0.02f) - 0.02f) <
+              1e-3f);
     }
 }
 

@@ -1,8 +1,8 @@
 #include <doctest/doctest.h>
 
 #include "core/bank/bank_file.h"
-#include "core/relight/relighter.h"
 #include "core/physics/model_bank.h"
+#include "core/relight/relighter.h"
 #include "helpers.h"
 
 using namespace btflut;
@@ -16,7 +16,8 @@ TEST_CASE("a model bank gives the reference the model's histogram at its lights"
     Image reference(160, 120, 1, 16);  // 16-bit, so reference codes are fine enough to split
     for (int y = 0; y < 120; ++y)
         for (int x = 0; x < 160; ++x)
-            reference.at(x, y, 0) = static_cast<float>(0.5 + 0.3 * std::sin(0.13 * x) * std::cos(0.07 * y + 0.01 * x * x));
+            reference.at(x, y, 0) =
+                static_cast<float>(0.5 + 0.3 * std::sin(0.13 * x) * std::cos(0.07 * y + 0.01 * x * x));
     auto bank = bakeModelBank(*params, reference, fullMask(160, 120), {.name = "ref"});
     REQUIRE(bank.ok());
     CHECK(bank->layers.front().nodes.size() == 4);
@@ -71,7 +72,8 @@ TEST_CASE("model parameter files: defaults, and errors naming the file and field
 
 TEST_CASE("btflut bake --model from files; bad combinations refused") {
     TempDir dir;
-    std::ofstream(dir / "m.json") << R"({"roughness": 0.4, "gain": 0.6, "lights": [{"theta": 0, "phi": 0}, {"theta": 60, "phi": 90}]})";
+    std::ofstream(dir / "m.json")
+        << R"({"roughness": 0.4, "gain": 0.6, "lights": [{"theta": 0, "phi": 0}, {"theta": 60, "phi": 90}]})";
     REQUIRE(savePng(randomGreyImage(40, 30, 3), dir / "ref.png").ok());
     CliRun ok = runCli({"bake", "--model", dir / "m.json", "--reference", dir / "ref.png", "-o", dir / "m.btflut"});
     REQUIRE(ok.status == 0);
@@ -80,14 +82,14 @@ TEST_CASE("btflut bake --model from files; bad combinations refused") {
     CHECK(bank->referenceName == "ref");
     CHECK(bank->layers.front().nodes.size() == 2);
     requireOneLineError(runCli({"bake", "--model", dir / "m.json", "-o", dir / "x.btflut"}), "needs --reference IMAGE");
-    requireOneLineError(runCli({"bake", dir.path().string(), "--model", dir / "m.json", "--reference", dir / "ref.png", "-o",
-                                dir / "x.btflut"}),
+    requireOneLineError(runCli({"bake", dir.path().string(), "--model", dir / "m.json", "--reference", dir / "ref.png",
+                                "-o", dir / "x.btflut"}),
                         "not both");
     requireOneLineError(runCli({"bake", "--model", dir / "m.json", "--reference", dir / "ref.png", "--colour", "rgb",
                                 "-o", dir / "x.btflut"}),
                         "grey LUTs");
-    requireOneLineError(runCli({"bake", "--model", dir / "missing.json", "--reference", dir / "ref.png", "-o",
-                                dir / "x.btflut"}),
-                        "missing.json: cannot open");
+    requireOneLineError(
+        runCli({"bake", "--model", dir / "missing.json", "--reference", dir / "ref.png", "-o", dir / "x.btflut"}),
+        "missing.json: cannot open");
     CHECK_FALSE(fs::exists(dir / "x.btflut"));
 }

@@ -43,8 +43,8 @@ TEST_CASE("fill model: at lights removed from a synthetic dataset, relit histogr
     std::ofstream list(dir / "grazing.txt");
     for (const std::string& name : grazingThird(folder)) list << name << "\n";
     list.close();
-    CliRun run = runCli({"eval", folder, "--holdout", dir / "grazing.txt", "--modes", "lut", "--predictor", "references",
-                         "--fill", "clamp,model", "--no-gl", "--json"});
+    CliRun run = runCli({"eval", folder, "--holdout", dir / "grazing.txt", "--modes", "lut", "--predictor",
+                         "references", "--fill", "clamp,model", "--no-gl", "--json"});
     REQUIRE_MESSAGE(run.status == 0, run.err);
     const nlohmann::json report = nlohmann::json::parse(run.out);
     REQUIRE(report["modes"].size() == 2);
@@ -52,10 +52,9 @@ TEST_CASE("fill model: at lights removed from a synthetic dataset, relit histogr
     const nlohmann::json& filled = report["modes"][1];
     REQUIRE(clamped["fill"] == "clamp");
     REQUIRE(filled["fill"] == "model");
-    MESSAGE("64-bin L1 at the removed lights: clamped " << clamped["l1"].get<double>() << ", filled "
-                                                        << filled["l1"].get<double>() << "; EMD "
-                                                        << clamped["emd"].get<double>() << " -> "
-                                                        << filled["emd"].get<double>());
+    MESSAGE("64-bin L1 at the removed lights: clamped "
+            << clamped["l1"].get<double>() << ", filled " << filled["l1"].get<double>() << "; EMD "
+            << clamped["emd"].get<double>() << " -> " << filled["emd"].get<double>());
     CHECK(filled["l1"].get<double>() < clamped["l1"].get<double>());
     CHECK(filled["emd"].get<double>() < clamped["emd"].get<double>());
 }
@@ -95,7 +94,8 @@ TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured 
         return sum / static_cast<double>(lut.size());
     };
     CHECK(mean(grazing.values) < mean(filled->lookup(Direction::fromDegrees(80, 120)).values));
-    CHECK(mean(filled->lookup(Direction::fromDegrees(80, 120)).values) < mean(clamped->lookup(Direction::fromDegrees(80, 120)).values));
+    CHECK(mean(filled->lookup(Direction::fromDegrees(80, 120)).values) <
+          mean(clamped->lookup(Direction::fromDegrees(80, 120)).values));
     // Continuous at the hull: just outside it the LUT moves from the clamped one gradually.
     double theta = 60;
     while (filled->lookup(Direction::fromDegrees(theta, 120)).lightProvenance != Provenance::Modelled) theta += 0.05;
@@ -125,13 +125,19 @@ TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured 
 
     // A parameters file instead of fitting; bad combinations refused with one line.
     std::ofstream(dir / "p.json") << R"({"brdf": "lambert", "roughness": 0.4, "gain": 1})";
-    CHECK(runCli({"bake", folder, "--fill", "model", "--params", dir / "p.json", "-o", dir / "p.btflut", "-q"}).status == 0);
+    CHECK(
+        runCli({"bake", folder, "--fill", "model", "--params", dir / "p.json", "-o", dir / "p.btflut", "-q"}).status ==
+        0);
     const std::string out = dir / "x.btflut";
-    requireOneLineError(runCli({"bake", folder, "--params", dir / "p.json", "-o", out}), "--params and --fit-brdf go with --fill model");
-    requireOneLineError(runCli({"bake", folder, "--fill", "model", "--regions", "2", "-o", out}), "not each of --regions");
-    requireOneLineError(runCli({"bake", folder, "--fill", "model", "--fit-brdf", "glossy", "-o", out}), "is not lambert, ts or mix");
+    requireOneLineError(runCli({"bake", folder, "--params", dir / "p.json", "-o", out}),
+                        "--params and --fit-brdf go with --fill model");
+    requireOneLineError(runCli({"bake", folder, "--fill", "model", "--regions", "2", "-o", out}),
+                        "not each of --regions");
+    requireOneLineError(runCli({"bake", folder, "--fill", "model", "--fit-brdf", "glossy", "-o", out}),
+                        "is not lambert, ts or mix");
     std::ofstream(dir / "bad.json") << R"({"roughness": -1})";
-    requireOneLineError(runCli({"bake", folder, "--fill", "model", "--params", dir / "bad.json", "-o", out}), "bad.json");
+    requireOneLineError(runCli({"bake", folder, "--fill", "model", "--params", dir / "bad.json", "-o", out}),
+                        "bad.json");
     CHECK_FALSE(fs::exists(out));
     LutBank rgb = *clamped;
     rgb.colour = ColourMode::Rgb;

@@ -100,12 +100,12 @@ TEST_CASE("Fresnel: 0.04 at normal incidence for n = 1.5, 1 at grazing, Brewster
 TEST_CASE("curet-c2 and curet-specular geometries") {
     auto c2 = curetC2();
     REQUIRE(c2.size() == 11);
-    CHECK(c2[3].light.thetaDegrees() == doctest::Approx(0));   // L: frontal to the lamp
+    CHECK(c2[3].light.thetaDegrees() == doctest::Approx(0));  // L: frontal to the lamp
     CHECK(c2[3].view.thetaDegrees() == doctest::Approx(45));
     CHECK(c2[5].light.thetaDegrees() == doctest::Approx(22.5));  // S: specular
     CHECK(c2[5].view.thetaDegrees() == doctest::Approx(22.5));
     CHECK(std::abs(c2[5].light.phiDegrees() - c2[5].view.phiDegrees()) == doctest::Approx(180));
-    CHECK(c2[7].view.thetaDegrees() == doctest::Approx(0));     // C: frontal to the camera
+    CHECK(c2[7].view.thetaDegrees() == doctest::Approx(0));  // C: frontal to the camera
     CHECK(c2[10].light.thetaDegrees() == doctest::Approx(78.75));
     CHECK(c2[10].view.thetaDegrees() == doctest::Approx(33.75));
     CHECK(c2[10].light.phiDegrees() == doctest::Approx(c2[10].view.phiDegrees()));  // same side
@@ -129,8 +129,8 @@ TEST_CASE("histograms sum to 1 and hold no NaN over a stress grid") {
                     for (double tr : {0.0, 45.0, 90.0})
                         for (double dphi : {0.0, 90.0, 180.0}) {
                             SurfaceModel model{r, {0.5, 0.5, sigma, n}, 2.0};
-                            for (SimulationMethod method : {SimulationMethod::Quadrature, SimulationMethod::Mc,
-                                                            SimulationMethod::McPaper}) {
+                            for (SimulationMethod method :
+                                 {SimulationMethod::Quadrature, SimulationMethod::Mc, SimulationMethod::McPaper}) {
                                 auto h = simulateHistogram(model, Direction::fromDegrees(ti, dphi),
                                                            Direction::fromDegrees(tr, 0),
                                                            {.method = method, .samples = 1000, .nodes = 12});
@@ -161,7 +161,8 @@ TEST_CASE("paper Fig. 8 as behaviour: Lambertian surfaces at curet-c2") {
             byR.push_back(hs);
         }
         for (std::size_t i = 1; i < byR.size(); ++i) {
-            for (int k = 8; k < 11; ++k) CHECK(byR[i][static_cast<std::size_t>(k)][0] > byR[i - 1][static_cast<std::size_t>(k)][0]);
+            for (int k = 8; k < 11; ++k)
+                CHECK(byR[i][static_cast<std::size_t>(k)][0] > byR[i - 1][static_cast<std::size_t>(k)][0]);
             CHECK(stdOf(byR[i][7]) > stdOf(byR[i - 1][7]));  // position 8
         }
     }
@@ -182,8 +183,8 @@ TEST_CASE("paper Fig. 9 as behaviour: Torrance-Sparrow highlights peak near the 
         MESSAGE(std::string(simulationMethodName(method)) << ": bright-mode mass peaks at position " << peak);
         INFO(simulationMethodName(method));
         CHECK((peak >= 5 && peak <= 7));
-        CHECK(bright[1] < 0.5 * bright[static_cast<std::size_t>(peak - 1)]);   // position 2
-        CHECK(bright[9] < 0.5 * bright[static_cast<std::size_t>(peak - 1)]);   // position 10
+        CHECK(bright[1] < 0.5 * bright[static_cast<std::size_t>(peak - 1)]);  // position 2
+        CHECK(bright[9] < 0.5 * bright[static_cast<std::size_t>(peak - 1)]);  // position 10
     }
 }
 
@@ -200,8 +201,9 @@ TEST_CASE("Monte Carlo converges to the quadrature like N^-1/2") {
             small += earthMoversDistance(a, reference);
             large += earthMoversDistance(b, reference);
         }
-        MESSAGE(std::string(simulationMethodName(mc)) << ": mean EMD " << small / 11 << " at 4e3, " << large / 11
-                                         << " at 2.56e5 (ratio " << small / large << ", N^-1/2 predicts 8)");
+        MESSAGE(std::string(simulationMethodName(mc))
+                << ": mean EMD " << small / 11 << " at 4e3, " << large / 11 << " at 2.56e5 (ratio " << small / large
+                << ", N^-1/2 predicts 8)");
         CHECK(small / large > 5);
         CHECK(small / large < 12);
     }
@@ -210,10 +212,13 @@ TEST_CASE("Monte Carlo converges to the quadrature like N^-1/2") {
 TEST_CASE("Monte Carlo results do not depend on the thread count") {
     SurfaceModel model{.roughness = 0.5};
     auto g = curetC2()[9];
-    auto one = simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::Mc, .samples = 30000, .threads = 1});
-    auto two = simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::Mc, .samples = 30000, .threads = 2});
+    auto one =
+        simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::Mc, .samples = 30000, .threads = 1});
+    auto two =
+        simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::Mc, .samples = 30000, .threads = 2});
     CHECK(one == two);
-    auto seeded = simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::Mc, .samples = 30000, .seed = 2});
+    auto seeded =
+        simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::Mc, .samples = 30000, .seed = 2});
     CHECK(seeded != one);
 }
 

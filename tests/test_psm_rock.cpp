@@ -58,8 +58,8 @@ TEST_CASE("psm-rock: the bank is at most 1.25x the raw size of one image") {
     const double oneImage = 512.0 * 340 * 3;
     const double with = static_cast<double>(encodeBank(*bank).size());
     const double without = static_cast<double>(encodeBank(*bank, {.embedReference = false}).size());
-    MESSAGE("bank with reference " << with << " bytes (" << with / oneImage << "x), without "
-                                   << without << " (" << without / oneImage << "x)");
+    MESSAGE("bank with reference " << with << " bytes (" << with / oneImage << "x), without " << without << " ("
+                                   << without / oneImage << "x)");
     CHECK(with <= 1.25 * oneImage);
     CHECK(without <= 1.25 * oneImage);
 }

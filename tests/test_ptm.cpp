@@ -23,12 +23,14 @@ Image polynomialImage(int w, int h, Direction light) {
     Image im(w, h, 3);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const double a[Ptm::kTerms] = {-0.2 * std::sin(x * 0.3), -0.25 + 0.1 * std::cos(y * 0.2), 0.1 * std::sin(x + y),
-                                           0.2 * std::cos(x * 0.7), -0.15 * std::sin(y * 0.5), 0.6 + 0.05 * std::cos(x * y)};
+            const double a[Ptm::kTerms] = {-0.2 * std::sin(x * 0.3),  -0.25 + 0.1 * std::cos(y * 0.2),
+                                           0.1 * std::sin(x + y),     0.2 * std::cos(x * 0.7),
+                                           -0.15 * std::sin(y * 0.5), 0.6 + 0.05 * std::cos(x * y)};
             double luminance = 0;
             for (int k = 0; k < Ptm::kTerms; ++k) luminance += a[k] * t[k];
             const double albedo[3] = {1.0, 0.8 + 0.1 * std::sin(x), 0.5 + 0.2 * std::cos(y)};
-            for (int c = 0; c < 3; ++c) im.at(x, y, c) = static_cast<float>(std::clamp(albedo[c] * luminance, 0.0, 1.0));
+            for (int c = 0; c < 3; ++c)
+                im.at(x, y, c) = static_cast<float>(std::clamp(albedo[c] * luminance, 0.0, 1.0));
         }
     return im;
 }

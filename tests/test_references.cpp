@@ -80,7 +80,8 @@ TEST_CASE("quantile functions: matching to a target's quantiles is matching to t
         double sum = 0;
         int off = 0;
         for (int e = 0; e < 256; ++e) {
-            const double d = std::abs(viaQuantiles.values[static_cast<std::size_t>(e)] - direct.values[static_cast<std::size_t>(e)]);
+            const double d =
+                std::abs(viaQuantiles.values[static_cast<std::size_t>(e)] - direct.values[static_cast<std::size_t>(e)]);
             sum += d;
             off += d > 1.0 / 765;
         }
@@ -109,14 +110,16 @@ TEST_CASE("regions: k-means finds responses that differ, label images map grey v
         for (int x = 0; x < 20; ++x)
             for (int k = 0; k < 6; ++k) {
                 const int v = x < 10 ? 30 + 30 * k : 180 - 30 * k;
-                responses.values[(static_cast<std::size_t>(y) * 20 + x) * 6 + k] = static_cast<std::uint8_t>(v + static_cast<int>(rng() % 7));
+                responses.values[(static_cast<std::size_t>(y) * 20 + x) * 6 + k] =
+                    static_cast<std::uint8_t>(v + static_cast<int>(rng() % 7));
             }
     const Mask all = fullMask(20, 10);
     Result<Regions> two = segmentRegions(responses, all, 2, "test");
     REQUIRE(two.ok());
     CHECK(two->count == 2);
     for (int y = 0; y < 10; ++y)
-        for (int x = 0; x < 20; ++x) CHECK((two->labels[static_cast<std::size_t>(y) * 20 + x] == two->labels[0]) == (x < 10));
+        for (int x = 0; x < 20; ++x)
+            CHECK((two->labels[static_cast<std::size_t>(y) * 20 + x] == two->labels[0]) == (x < 10));
     Result<Regions> many = segmentRegions(responses, all, 4, "test");
     REQUIRE_FALSE(many.ok());
     CHECK(many.error().find("too few for 4 regions") != std::string::npos);
@@ -131,7 +134,8 @@ TEST_CASE("regions: k-means finds responses that differ, label images map grey v
     CHECK(regionsFromLabels(labels, all, 21, 10, "labels.png").error().find("labels.png: label image is 20x10") == 0);
     Mask half = all;
     for (std::size_t i = 0; i < half.inside.size(); ++i) half.inside[i] = (i % 20) >= 5;
-    CHECK(regionsFromLabels(labels, half, 20, 10, "labels.png").error().find("has no sample pixels") != std::string::npos);
+    CHECK(regionsFromLabels(labels, half, 20, 10, "labels.png").error().find("has no sample pixels") !=
+          std::string::npos);
 }
 
 TEST_CASE("several references: blend, then match keeps the measured histogram; the references move the shading") {
@@ -158,8 +162,8 @@ TEST_CASE("several references: blend, then match keeps the measured histogram; t
             oneError += meanAbsolute(withOne, measured);
             blendError += meanAbsolute(withBlend, measured);
         }
-        INFO(colourName(colour) << ": histogram L1 " << blendL1 / 9 << " (one reference " << oneL1 / 9 << "), pixel error "
-                                << blendError / 9 << " (one reference " << oneError / 9 << ")");
+        INFO(colourName(colour) << ": histogram L1 " << blendL1 / 9 << " (one reference " << oneL1 / 9
+                                << "), pixel error " << blendError / 9 << " (one reference " << oneError / 9 << ")");
         // At the measured lights the histogram is the measured one as closely as with one
         // reference (on a 48 x 48 material 8-bit rounding alone costs some 0.03) ...
         CHECK(blendL1 / 9 < oneL1 / 9 + 0.01);
@@ -170,7 +174,8 @@ TEST_CASE("several references: blend, then match keeps the measured histogram; t
         auto found = std::find_if(dataset->images.begin(), dataset->images.end(),
                                   [&](const DatasetImage& im) { return im.name == second.name; });
         REQUIRE(found != dataset->images.end());
-        CHECK(meanAbsolute(blendRelighter.apply(blendRelighter.frame(second.light), true), *loadImage(found->path)) < 2.0 / 255);
+        CHECK(meanAbsolute(blendRelighter.apply(blendRelighter.frame(second.light), true), *loadImage(found->path)) <
+              2.0 / 255);
     }
 }
 
@@ -192,7 +197,9 @@ TEST_CASE("blending per-reference LUTs instead loses the histogram (the measured
         // The target's 64-bin histogram, from its quantile function.
         std::vector<double> target(64, 0.0);
         const std::vector<float>& q = frame.target.values;
-        for (float v : q) target[static_cast<std::size_t>(std::min(63, static_cast<int>(v * 64)))] += 1.0 / static_cast<double>(q.size());
+        for (float v : q)
+            target[static_cast<std::size_t>(std::min(63, static_cast<int>(v * 64)))] +=
+                1.0 / static_cast<double>(q.size());
         auto l1 = [&](const Image& image) {
             const auto h = binHistogram(countGreyLevels(quantised(image, 8), *loadDatasetMask(*dataset, 48, 48)), 64);
             double sum = 0;
@@ -219,15 +226,18 @@ TEST_CASE("regions and the PTM predictor relight to the measured histograms; a o
         const Relighter relighter(bank);
         double l1 = 0;
         for (const DatasetImage& im : dataset->images)
-            l1 += histogramL1(quantised(relighter.apply(relighter.frame(im.light), true), 8), *loadImage(im.path), mask);
+            l1 +=
+                histogramL1(quantised(relighter.apply(relighter.frame(im.light), true), 8), *loadImage(im.path), mask);
         return l1 / static_cast<double>(dataset->images.size());
     };
     const double classicL1 = l1Over(*bakeBank(*dataset, {}));
     for (BakeOptions options : {BakeOptions{.regions = 3}, BakeOptions{.references = 3, .regions = 2},
-                                BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}}, BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}, .regions = 2}}) {
+                                BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}},
+                                BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}, .regions = 2}}) {
         auto bank = bakeBank(*dataset, options);
         REQUIRE(bank.ok());
-        INFO("references " << options.references << " regions " << options.regions << " model " << options.model.has_value());
+        INFO("references " << options.references << " regions " << options.regions << " model "
+                           << options.model.has_value());
         CHECK(l1Over(*bank) < classicL1 + 0.01);  // the measured histograms, as closely as the classic bank
     }
     auto classic = bakeBank(*dataset, {});
@@ -250,7 +260,7 @@ TEST_CASE("version 3 and 5 files round-trip, and every cut and flipped bit is re
         auto bank = bakeBank(*dataset, options);
         REQUIRE(bank.ok());
         CHECK(bankFormatVersion(*bank) == 5);  // the LUTs baked over the grid (MGRD) are version 5
-        if (!options.model) {  // without them, the references' banks are what version 3 readers read
+        if (!options.model) {                  // without them, the references' banks are what version 3 readers read
             LutBank plain = *bank;
             for (ViewLayer& layer : plain.layers) layer.matchGridLuts.clear();
             CHECK(bankFormatVersion(plain) == 3);
@@ -282,21 +292,26 @@ TEST_CASE("bake refuses bad settings of references, regions and labels with one 
     TempDir dir;
     const Material m = renderedMaterial(dir);
     const std::string out = dir / "m.btflut";
-    requireOneLineError(runCli({"bake", m.grey, "-o", out, "--references", "10"}), "--references 10 must be within 1..9");
+    requireOneLineError(runCli({"bake", m.grey, "-o", out, "--references", "10"}),
+                        "--references 10 must be within 1..9");
     requireOneLineError(runCli({"bake", m.grey, "-o", out, "--references", "0"}), "--references");
     requireOneLineError(runCli({"bake", m.grey, "-o", out, "--regions", "60"}), "too few for 60 regions");
     requireOneLineError(runCli({"bake", m.grey, "-o", out, "--colour", "lrgb"}), "--colour lrgb needs colour images");
-    requireOneLineError(runCli({"bake", m.colour, "-o", out, "--colour", "lrgb", "--references", "17", "--regions", "1"}),
-                        "--references 17 must be within 1..9");
+    requireOneLineError(
+        runCli({"bake", m.colour, "-o", out, "--colour", "lrgb", "--references", "17", "--regions", "1"}),
+        "--references 17 must be within 1..9");
     Image labels(20, 20, 1);
     REQUIRE(savePng(labels, dir / "labels.png").ok());
     requireOneLineError(runCli({"bake", m.grey, "-o", out, "--labels", dir / "labels.png"}),
                         "labels.png: label image is 20x20 but the images are 48x48");
-    requireOneLineError(runCli({"bake", m.grey, "-o", out, "--predictor", "ptm", "--references", "3"}), "--predictor ptm");
+    requireOneLineError(runCli({"bake", m.grey, "-o", out, "--predictor", "ptm", "--references", "3"}),
+                        "--predictor ptm");
     CHECK_FALSE(fs::exists(out));
 
     // Fine settings bake, and info describes them.
-    REQUIRE(runCli({"bake", m.colour, "-o", out, "--colour", "lrgb", "--references", "4", "--regions", "2", "-q"}).status == 0);
+    REQUIRE(
+        runCli({"bake", m.colour, "-o", out, "--colour", "lrgb", "--references", "4", "--regions", "2", "-q"}).status ==
+        0);
     CliRun info = runCli({"info", out});
     REQUIRE(info.status == 0);
     CHECK(info.out.find("format version 5") != std::string::npos);
@@ -314,7 +329,8 @@ TEST_CASE("bake refuses bad settings of references, regions and labels with one 
     const auto side = nlohmann::json::parse(readText(dir / "x.json"));
     CHECK(side["blend"]["references"].size() == 4);
     CHECK(side["blend"]["regions"] == 2);
-    for (const char* file : {"x-reference-3.png", "x-albedo.png", "x-labels.png", "x-mask.png"}) CHECK(fs::exists(dir / file));
+    for (const char* file : {"x-reference-3.png", "x-albedo.png", "x-labels.png", "x-mask.png"})
+        CHECK(fs::exists(dir / file));
 }
 
 TEST_CASE("hold-out folds, and eval end to end on a small material") {
@@ -332,19 +348,21 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     CHECK(loo->at(4).train.size() == 8);
     CHECK(holdoutFolds(*dataset, "every:1", 2).error().find("expected every:K with K >= 2") != std::string::npos);
     std::ofstream(dir / "held.txt") << dataset->images[2].name << "\nnobody\n";
-    CHECK(holdoutFolds(*dataset, dir / "held.txt", 2).error().find("held.txt:2: no image named 'nobody'") != std::string::npos);
+    CHECK(holdoutFolds(*dataset, dir / "held.txt", 2).error().find("held.txt:2: no image named 'nobody'") !=
+          std::string::npos);
     std::ofstream(dir / "most.txt") << "l1\nl2\nl3\nl4\n";
     CHECK(holdoutFolds(*dataset, dir / "most.txt", 6).error().find("leaves 5 training images") != std::string::npos);
 
     CliRun r = runCli({"eval", m.colour, "--holdout", "every:3", "--references", "1,3", "--regions", "1,2", "--colour",
-                       "grey,lrgb", "--predictor", "references,ptm", "--blended-luts", "--no-gl", "--json", "-o", dir / "eval"});
+                       "grey,lrgb", "--predictor", "references,ptm", "--blended-luts", "--no-gl", "--json", "-o",
+                       dir / "eval"});
     INFO(r.err);
     REQUIRE(r.status == 0);
     const auto json = nlohmann::json::parse(r.out);
     std::map<std::string, nlohmann::json> byName;
     for (const auto& mode : json["modes"]) byName[mode["name"]] = mode;
-    for (const char* name : {"lut K1 R1 grey", "lut K3 R2 lrgb", "lut K3 R1 grey (LUTs blended)", "lut ptm R2 grey", "brdf",
-                             "ptm", "nearest"}) {
+    for (const char* name : {"lut K1 R1 grey", "lut K3 R2 lrgb", "lut K3 R1 grey (LUTs blended)", "lut ptm R2 grey",
+                             "brdf", "ptm", "nearest"}) {
         INFO(name);
         REQUIRE(byName.count(name));
         CHECK(byName[name]["psnr"].get<double>() > 10);
@@ -371,13 +389,15 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     REQUIRE(front.size() >= 1);
     for (std::size_t i = 1; i < front.size(); ++i) {
         CHECK(byName[front[i]]["psnr"].get<double>() > byName[front[i - 1]]["psnr"].get<double>());
-        CHECK(byName[front[i]]["bytes_per_texel"].get<double>() >= byName[front[i - 1]]["bytes_per_texel"].get<double>());
+        CHECK(byName[front[i]]["bytes_per_texel"].get<double>() >=
+              byName[front[i - 1]]["bytes_per_texel"].get<double>());
     }
     for (const auto& [name, mode] : byName)
         for (const auto& on : front) {
             INFO(name << " against " << on);
-            const bool dominates = mode["bytes_per_texel"].get<double>() <= byName[on]["bytes_per_texel"].get<double>() &&
-                                   mode["psnr"].get<double>() > byName[on]["psnr"].get<double>();
+            const bool dominates =
+                mode["bytes_per_texel"].get<double>() <= byName[on]["bytes_per_texel"].get<double>() &&
+                mode["psnr"].get<double>() > byName[on]["psnr"].get<double>();
             CHECK_FALSE(dominates);
         }
     CHECK(json["pareto_fronts"]["psnr_frame_ms"].empty());  // --no-gl: no frame times
@@ -387,11 +407,13 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
         for (const auto& n : mode["count"]) counted += n.get<std::size_t>();
     CHECK(counted == json["rows"].size());
     CHECK(loadImage(dir / "eval/tradeoff.png")->width > 3 * 400);
-    CliRun two = runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "lut", "--no-gl", "--json", "--contact", "2"});
+    CliRun two =
+        runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "lut", "--no-gl", "--json", "--contact", "2"});
     REQUIRE(two.status == 0);
     CHECK(nlohmann::json::parse(two.out)["contact_sheet"].size() == 2);
 
-    requireOneLineError(runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "ptm", "--no-gl"}), "the PTM fits six terms");
+    requireOneLineError(runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "ptm", "--no-gl"}),
+                        "the PTM fits six terms");
     requireOneLineError(runCli({"eval", m.grey, "--modes", "lut,shiny", "--no-gl"}), "mode 'shiny'");
     requireOneLineError(runCli({"eval", m.grey, "--references", "1,x", "--no-gl"}), "--references '1,x'");
 }

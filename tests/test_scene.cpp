@@ -77,8 +77,10 @@ TEST_CASE("bad scenes are refused naming the file and the field") {
         {R"({"image": {"width": 0, "height": 10}, "light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
              "quads": [{"material": "a", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
          "image size 0x10"},
-        {R"({"light": {"direction": [0,0,0]}, "materials": {"a": "a.btflut"}, "quads": []})", "light.direction is a zero vector"},
-        {R"({"light": {"direction": [0,"x",1]}, "materials": {"a": "a.btflut"}, "quads": []})", "light.direction: expected numbers"},
+        {R"({"light": {"direction": [0,0,0]}, "materials": {"a": "a.btflut"}, "quads": []})",
+         "light.direction is a zero vector"},
+        {R"({"light": {"direction": [0,"x",1]}, "materials": {"a": "a.btflut"}, "quads": []})",
+         "light.direction: expected numbers"},
         {R"({"light": {"direction": [0,0,1]}, "materials": {"a": "a.btflut"},
              "quads": [{"material": "z", "center": [0,0,0], "normal": [0,0,1], "tangent": [1,0,0]}]})",
          "material 'z' is not in \"materials\""},
@@ -188,7 +190,8 @@ TEST_CASE("a pixel's ray finds the texture coordinates of the quad point it show
     const auto m = viewProjection(s);
     for (auto [su, sv] : {std::pair{0.5, 0.5}, {0.1, 0.8}, {0.9, 0.3}}) {
         const double wx = (su - 0.5) * q.width, wy = (0.5 - sv) * q.height;  // texture y runs down the bitangent
-        const double cx = m[0] * wx + m[4] * wy + m[12], cy = m[1] * wx + m[5] * wy + m[13], cw = m[3] * wx + m[7] * wy + m[15];
+        const double cx = m[0] * wx + m[4] * wy + m[12], cy = m[1] * wx + m[5] * wy + m[13],
+                     cw = m[3] * wx + m[7] * wy + m[15];
         const double px = (cx / cw + 1) / 2 * s.width, py = (1 - cy / cw) / 2 * s.height;
         auto uv = quadTextureAt(s, q, static_cast<int>(px), static_cast<int>(py));
         REQUIRE(uv.has_value());

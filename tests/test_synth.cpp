@@ -26,8 +26,8 @@ TEST_CASE("height fields have the requested rms slope, isotropic and anisotropic
     }
     // Corduroy-like: 0.6 along 30 degrees, 0.15 across.
     const double angle = 30 * kDegree;
-    auto a = synthesizeHeightField({.size = 512, .roughness = 0.6, .roughnessAcross = 0.15, .angle = angle,
-                                    .correlationLength = 10, .seed = 2});
+    auto a = synthesizeHeightField(
+        {.size = 512, .roughness = 0.6, .roughnessAcross = 0.15, .angle = angle, .correlationLength = 10, .seed = 2});
     REQUIRE(a.ok());
     CHECK(measuredRmsSlope(*a, angle) == doctest::Approx(0.6).epsilon(0.02));
     CHECK(measuredRmsSlope(*a, angle + std::numbers::pi / 2) == doctest::Approx(0.15).epsilon(0.1));
@@ -59,8 +59,10 @@ TEST_CASE("rendered height fields: masking, shadowing, and the model's recipes a
             if (g.light.thetaDegrees() > 60 || g.view.thetaDegrees() > 60) continue;
             Image image = renderHeightField(*field, model, g.light, g.view, {.samplesPerAxis = 1});
             auto truth = binHistogram(countGreyLevels(image, fullMask(512, 512)), 64);
-            auto area = simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::Quadrature, .nodes = 64});
-            auto paper = simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::QuadraturePaper, .nodes = 64});
+            auto area =
+                simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::Quadrature, .nodes = 64});
+            auto paper =
+                simulateHistogram(model, g.light, g.view, {.method = SimulationMethod::QuadraturePaper, .nodes = 64});
             const double dArea = earthMoversDistance(truth, area), dPaper = earthMoversDistance(truth, paper);
             INFO("r " << r << " " << g.name << ": area-weighted " << dArea << ", paper " << dPaper);
             CHECK(dArea <= 0.02);
@@ -68,7 +70,8 @@ TEST_CASE("rendered height fields: masking, shadowing, and the model's recipes a
             worstPaper = std::max(worstPaper, dPaper);
         }
     }
-    MESSAGE("worst EMD to rendered fields, theta <= 60: area-weighted " << worstArea << ", paper's recipe " << worstPaper);
+    MESSAGE("worst EMD to rendered fields, theta <= 60: area-weighted " << worstArea << ", paper's recipe "
+                                                                        << worstPaper);
     CHECK(worstArea < worstPaper);
 }
 
@@ -115,9 +118,12 @@ TEST_CASE("btflut synth writes a dataset every reader takes, reproducibly, atomi
     REQUIRE(runCli({"bake", dir / "cord", "-o", dir / "cord.btflut", "-q"}).status == 0);
 
     // Same flags, same seed: the same bytes (whatever the thread count); --force replaces.
-    REQUIRE(runCli({"synth", "--preset", "corduroy", "--geometry", "rti-6", "--size", "64", "--correlation-length", "6",
-                    "--samples", "1", "--albedo-variation", "0.3", "--ambient", "0.05", "--noise", "0.01", "--threads",
-                    "1", "-o", dir / "again"})
+    REQUIRE(runCli({"synth",      "--preset",  "corduroy", "--geometry",
+                    "rti-6",      "--size",    "64",       "--correlation-length",
+                    "6",          "--samples", "1",        "--albedo-variation",
+                    "0.3",        "--ambient", "0.05",     "--noise",
+                    "0.01",       "--threads", "1",        "-o",
+                    dir / "again"})
                 .status == 0);
     CHECK(readText(dir / "again/l4.png") == readText(dir / "cord/l4.png"));
     requireOneLineError(runCli({"synth", "--size", "64", "--correlation-length", "6", "-o", dir / "cord"}),

@@ -79,8 +79,7 @@ TEST_CASE("one point and collinear points degrade gracefully") {
 TEST_CASE("rings of cocircular points (Bonn-like layouts) triangulate to cover their hull") {
     std::vector<DiskPoint> pts{{0, 0}};
     for (double theta : {15.0, 30.0, 45.0, 60.0, 75.0})
-        for (int k = 0; k < 12; ++k)
-            pts.push_back(toDisk(Direction::fromDegrees(theta, 30.0 * k)));
+        for (int k = 0; k < 12; ++k) pts.push_back(toDisk(Direction::fromDegrees(theta, 30.0 * k)));
     Triangulation t(pts);
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-1, 1);

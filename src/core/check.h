@@ -5,13 +5,12 @@
 #include <cstdio>
 #include <cstdlib>
 
-#define BTFLUT_CHECK(cond)                                                              \
-    do {                                                                                \
-        if (!(cond)) {                                                                  \
-            std::fprintf(stderr, "%s:%d: internal error: CHECK(%s) failed\n", __FILE__, \
-                         __LINE__, #cond);                                              \
-            std::abort();                                                               \
-        }                                                                               \
+#define BTFLUT_CHECK(cond)                                                                                \
+    do {                                                                                                  \
+        if (!(cond)) {                                                                                    \
+            std::fprintf(stderr, "%s:%d: internal error: CHECK(%s) failed\n", __FILE__, __LINE__, #cond); \
+            std::abort();                                                                                 \
+        }                                                                                                 \
     } while (0)
 
 #ifdef NDEBUG

@@ -34,10 +34,13 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
             for (std::size_t p = 0; p < W; ++p) data[((p / 3) * n + i) * 3 + p % 3] = m.coefficients[i * P + p];
             for (std::size_t p = W; p < P; ++p) {
                 const std::size_t q = p - W, layer = static_cast<std::size_t>(t.m_layers) + q / 6;
-                data[(layer * n + i) * 3 + (q % 6) / 2] += static_cast<std::uint8_t>(m.coefficients[i * P + p] << (q % 2 == 0 ? 4 : 0));
+                data[(layer * n + i) * 3 + (q % 6) / 2] +=
+                    static_cast<std::uint8_t>(m.coefficients[i * P + p] << (q % 2 == 0 ? 4 : 0));
             }
         }
-        if (!m.albedo.empty()) std::copy(m.albedo.begin(), m.albedo.end(), data.begin() + static_cast<std::ptrdiff_t>(planeLayers * n * 3));
+        if (!m.albedo.empty())
+            std::copy(m.albedo.begin(), m.albedo.end(),
+                      data.begin() + static_cast<std::ptrdiff_t>(planeLayers * n * 3));
         t.m_references = uploadTextureArray(m.width, m.height, layers, 3, data.data(), bytes);
     } else if (bank.colour == ColourMode::Lrgb) {
         // Four grey references per RGBA layer (reference j: layer j / 4, channel j % 4).
@@ -58,7 +61,8 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
             for (std::size_t i = 0; i < texels; ++i)
                 for (int c = 0; c < 3; ++c)
                     data[(static_cast<std::size_t>(j) * texels + i) * 3 + static_cast<std::size_t>(c)] =
-                        byteOf(r.samples[i * static_cast<std::size_t>(r.channels) + (r.channels == 1 ? 0 : static_cast<std::size_t>(c))]);
+                        byteOf(r.samples[i * static_cast<std::size_t>(r.channels) +
+                                         (r.channels == 1 ? 0 : static_cast<std::size_t>(c))]);
         }
         t.m_references = uploadTextureArray(first.width, first.height, k, 3, data.data(), bytes);
     }
@@ -103,7 +107,8 @@ std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
 
 std::vector<GlTexture> BlendTextures::makeLutTables() const {
     std::vector<GlTexture> tables;
-    for (int c = 0; c < m_bank->channels(); ++c) tables.push_back(uploadLutTable(nullptr, m_bank->entries, m_bank->blend.regions));
+    for (int c = 0; c < m_bank->channels(); ++c)
+        tables.push_back(uploadLutTable(nullptr, m_bank->entries, m_bank->blend.regions));
     return tables;
 }
 
@@ -121,7 +126,8 @@ void BlendTextures::updateLuts(const std::vector<GlTexture>& tables, const Relig
         for (std::size_t r = 0; r < regions; ++r)
             std::copy_n(&frame.luts[(r * channels + c) * entries], entries, &table[r * entries]);
         gl.BindTexture(GL_TEXTURE_2D, tables[c].id());
-        gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_bank->entries, m_bank->blend.regions, GL_RED, GL_FLOAT, table.data());
+        gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_bank->entries, m_bank->blend.regions, GL_RED, GL_FLOAT,
+                         table.data());
     }
 }
 
@@ -136,7 +142,8 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
     if (m_labels.id()) unit(2, GL_TEXTURE_2D, m_labels.id(), "blendLabels");
     for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
         const std::string name = "blendLuts[" + std::to_string(c) + "]";
-        unit(3 + c, GL_TEXTURE_2D, tables[std::min<std::size_t>(static_cast<std::size_t>(c), tables.size() - 1)].id(), name.c_str());
+        unit(3 + c, GL_TEXTURE_2D, tables[std::min<std::size_t>(static_cast<std::size_t>(c), tables.size() - 1)].id(),
+             name.c_str());
     }
     const LutBank& bank = *m_bank;
     const bool model = bank.predictsWithModel();
@@ -144,7 +151,8 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
     gl.Uniform1i(gl.GetUniformLocation(p, "blendEntries"), bank.entries);
     gl.Uniform1i(gl.GetUniformLocation(p, "blendRegions"), bank.blend.regions);
     if (m_lutsAsUniforms)
-        gl.Uniform1fv(gl.GetUniformLocation(p, "lutValues"), static_cast<GLsizei>(bank.matchLength()), frame.luts.data());
+        gl.Uniform1fv(gl.GetUniformLocation(p, "lutValues"), static_cast<GLsizei>(bank.matchLength()),
+                      frame.luts.data());
     if (model) {
         // The frame's integers (LightModelFixed; the CPU twin: predictFixed), per layer of three
         // planes and per channel.
@@ -159,12 +167,15 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
         for (std::size_t q = W; q < P; ++q)  // layer, channel, high or low nibble, then the texel's channel
             for (std::size_t c = 0; c < C; ++c) {
                 const std::size_t k = q - W;
-                nibbles[(((k / 6) * C + c) * 2 + k % 2) * 3 + (k % 6) / 2] = static_cast<float>(frame.model.weights[q * C + c]);
+                nibbles[(((k / 6) * C + c) * 2 + k % 2) * 3 + (k % 6) / 2] =
+                    static_cast<float>(frame.model.weights[q * C + c]);
             }
-        if (layers > 0) gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelWeights"), static_cast<GLsizei>(layers * C), weights.data());
+        if (layers > 0)
+            gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelWeights"), static_cast<GLsizei>(layers * C),
+                          weights.data());
         if (nibbleLayers > 0)
-            gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelNibbleWeights"), static_cast<GLsizei>(nibbleLayers * C * 2),
-                          nibbles.data());
+            gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelNibbleWeights"),
+                          static_cast<GLsizei>(nibbleLayers * C * 2), nibbles.data());
         const float offset[3] = {static_cast<float>(frame.model.offset[0]), static_cast<float>(frame.model.offset[1]),
                                  static_cast<float>(frame.model.offset[2])};
         gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelOffset"), 1, offset);
@@ -172,7 +183,8 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
     } else if (bank.colour == ColourMode::Lrgb) {
         std::vector<float> weights(static_cast<std::size_t>(m_layers) * 4, 0.f);
         for (int k = 0; k < frame.count; ++k)
-            weights[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])] = static_cast<float>(frame.weights[static_cast<std::size_t>(k)]);
+            weights[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])] =
+                static_cast<float>(frame.weights[static_cast<std::size_t>(k)]);
         gl.Uniform4fv(gl.GetUniformLocation(p, "blendWeights"), m_layers, weights.data());
     } else {
         const auto fetches = static_cast<GLsizei>(std::min<std::size_t>(bank.blend.references.size(), 3));
@@ -186,6 +198,5 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
         gl.Uniform1fv(gl.GetUniformLocation(p, "blendWeight"), fetches, weights);
     }
 }
-
 
 }  // namespace btflut

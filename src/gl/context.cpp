@@ -36,7 +36,8 @@ const OsMesaApi* osMesa() {
         OsMesaApi a;
         void* library = ::dlopen("libOSMesa.so.8", RTLD_NOW | RTLD_LOCAL);  // never closed
         if (!library) return a;
-        a.createContextAttribs = reinterpret_cast<decltype(a.createContextAttribs)>(::dlsym(library, "OSMesaCreateContextAttribs"));
+        a.createContextAttribs =
+            reinterpret_cast<decltype(a.createContextAttribs)>(::dlsym(library, "OSMesaCreateContextAttribs"));
         a.makeCurrent = reinterpret_cast<decltype(a.makeCurrent)>(::dlsym(library, "OSMesaMakeCurrent"));
         a.getProcAddress = reinterpret_cast<decltype(a.getProcAddress)>(::dlsym(library, "OSMesaGetProcAddress"));
         a.destroyContext = reinterpret_cast<decltype(a.destroyContext)>(::dlsym(library, "OSMesaDestroyContext"));
@@ -50,18 +51,25 @@ class OsMesaContext : public HeadlessContext {
 public:
     static Result<std::unique_ptr<HeadlessContext>> create() {
         if (!osMesa()) return Error{"OSMesa: cannot load libOSMesa.so.8 (Debian package libosmesa6)"};
-        const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_PROFILE,
-                                  OSMESA_CORE_PROFILE, OSMESA_CONTEXT_MAJOR_VERSION, 3,
-                                  OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
+        const int attributes[] = {OSMESA_FORMAT,
+                                  OSMESA_RGBA,
+                                  OSMESA_DEPTH_BITS,
+                                  0,
+                                  OSMESA_PROFILE,
+                                  OSMESA_CORE_PROFILE,
+                                  OSMESA_CONTEXT_MAJOR_VERSION,
+                                  3,
+                                  OSMESA_CONTEXT_MINOR_VERSION,
+                                  3,
+                                  0};
         std::unique_ptr<OsMesaContext> c(new OsMesaContext());
         c->m_context = osMesa()->createContextAttribs(attributes, nullptr);
         if (!c->m_context) return Error{"OSMesa: cannot create an OpenGL 3.3 core context"};
         // Drawing goes to framebuffer objects; OSMesa still wants a buffer to be current.
         if (!osMesa()->makeCurrent(c->m_context, c->m_pixel.data(), GL_UNSIGNED_BYTE, 1, 1))
             return Error{"OSMesa: cannot make the context current"};
-        if (const char* missing = loadGlFunctions([](const char* n) {
-                return reinterpret_cast<void*>(osMesa()->getProcAddress(n));
-            }))
+        if (const char* missing =
+                loadGlFunctions([](const char* n) { return reinterpret_cast<void*>(osMesa()->getProcAddress(n)); }))
             return Error{std::string("OSMesa: missing ") + missing};
         return std::unique_ptr<HeadlessContext>(std::move(c));
     }
@@ -80,8 +88,8 @@ class EglContext : public HeadlessContext {
 public:
     static Result<std::unique_ptr<HeadlessContext>> create() {
         std::unique_ptr<EglContext> c(new EglContext());
-        auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-            eglGetProcAddress("eglGetPlatformDisplayEXT"));
+        auto getPlatformDisplay =
+            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
         c->m_display = getPlatformDisplay
                            ? getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr)
                            : eglGetDisplay(EGL_DEFAULT_DISPLAY);
@@ -90,21 +98,21 @@ public:
         c->m_initialised = true;
         if (!eglBindAPI(EGL_OPENGL_API)) return Error{"EGL: no desktop OpenGL API"};
         // eglChooseConfig defaults to window surfaces, which a surfaceless display has none of.
-        const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
+        const EGLint configAttributes[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
+                                           EGL_NONE};
         EGLConfig config = nullptr;
         EGLint count = 0;
         if (!eglChooseConfig(c->m_display, configAttributes, &config, 1, &count) || count == 0)
             return Error{"EGL: no OpenGL config"};
-        const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                            EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                            EGL_NONE};
+        const EGLint contextAttributes[] = {
+            EGL_CONTEXT_MAJOR_VERSION,           3,       EGL_CONTEXT_MINOR_VERSION, 3, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+            EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
         c->m_context = eglCreateContext(c->m_display, config, EGL_NO_CONTEXT, contextAttributes);
         if (c->m_context == EGL_NO_CONTEXT) return Error{"EGL: cannot create an OpenGL 3.3 core context"};
         if (!eglMakeCurrent(c->m_display, EGL_NO_SURFACE, EGL_NO_SURFACE, c->m_context))
             return Error{"EGL: cannot make a surfaceless context current"};
-        if (const char* missing = loadGlFunctions([](const char* n) {
-                return reinterpret_cast<void*>(eglGetProcAddress(n));
-            }))
+        if (const char* missing =
+                loadGlFunctions([](const char* n) { return reinterpret_cast<void*>(eglGetProcAddress(n)); }))
             return Error{std::string("EGL: missing ") + missing};
         return std::unique_ptr<HeadlessContext>(std::move(c));
     }

@@ -17,7 +17,8 @@ GlTexture uploadLutGrid(const EngineMaterial& m, std::size_t& bytes) {
     gl.TexImage3D(GL_TEXTURE_3D, 0, m.lutChannels == 3 ? GL_RGB16 : GL_R16, m.entries, g, g * m.blocks, 0,
                   m.lutChannels == 3 ? GL_RGB : GL_RED, GL_UNSIGNED_SHORT, m.lutTexels.data());
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R}) gl.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        gl.TexParameteri(GL_TEXTURE_3D, wrap, GL_CLAMP_TO_EDGE);
     gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl.TexParameteri(GL_TEXTURE_3D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     bytes += m.lutTexels.size() * 2;
@@ -37,7 +38,8 @@ GlTexture uploadPlanes(const EngineMaterial& m, std::size_t& bytes) {
         const auto channels = static_cast<std::size_t>(image.channels);
         for (std::size_t i = 0; i < texels; ++i)
             for (std::size_t c = 0; c < channels; ++c)
-                data[(l * texels + i) * 4 + c] = static_cast<std::uint8_t>(image.samples[i * channels + c] * 255.f + 0.5f);
+                data[(l * texels + i) * 4 + c] =
+                    static_cast<std::uint8_t>(image.samples[i * channels + c] * 255.f + 0.5f);
     }
     return uploadTextureArray(width, height, static_cast<int>(layers.size()), 4, data.data(), bytes);
 }

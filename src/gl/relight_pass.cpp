@@ -53,7 +53,8 @@ void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlText
     if (m_lutsAsUniforms) return;  // bindLuts sets them
     for (std::size_t c = 0; c < luts.size(); ++c) {
         gl.BindTexture(GL_TEXTURE_1D, luts[c].id());
-        gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, m_bank->entries, GL_RED, GL_FLOAT, &frame.luts[c * static_cast<std::size_t>(m_bank->entries)]);
+        gl.TexSubImage1D(GL_TEXTURE_1D, 0, 0, m_bank->entries, GL_RED, GL_FLOAT,
+                         &frame.luts[c * static_cast<std::size_t>(m_bank->entries)]);
     }
 }
 
@@ -104,8 +105,8 @@ Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>&
 GlTexture allocateRelitTexture(const Image& reference) {
     const bool grey = reference.channels == 1, sixteen = reference.bitDepth == 16;
     const GLenum format = grey ? (sixteen ? GL_R16 : GL_R8) : (sixteen ? GL_RGBA16 : GL_RGBA8);
-    GlTexture texture = allocateTexture2D(reference.width, reference.height, format, grey ? GL_RED : GL_RGBA,
-                                          GL_UNSIGNED_BYTE);
+    GlTexture texture =
+        allocateTexture2D(reference.width, reference.height, format, grey ? GL_RED : GL_RGBA, GL_UNSIGNED_BYTE);
     gl.GenerateMipmap(GL_TEXTURE_2D);  // allocates the chain
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

@@ -19,7 +19,8 @@ bool sameVector(const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y 
 
 // Every view direction the renderer may look a material up at: the view grid of each
 // visible quad that uses it (the centre is one of its points).
-std::vector<Direction> SceneRenderer::viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const {
+std::vector<Direction> SceneRenderer::viewsOf(const std::string& material,
+                                              const std::vector<std::size_t>& visible) const {
     std::vector<Direction> views;
     for (std::size_t i : visible)
         if (m_scene.quads[i].material == material) {
@@ -182,7 +183,8 @@ void SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
             if (moved && !relit) {
                 double pixels = 0;
                 for (const QuadState* q : quads) pixels += coveredPixels(m_scene.quads[q->index]);
-                perFragment = pixels * perFragmentExtraCost(bank) < static_cast<double>(bank.reference.pixelCount()) * relitTexelCost(bank);
+                perFragment = pixels * perFragmentExtraCost(bank) <
+                              static_cast<double>(bank.reference.pixelCount()) * relitTexelCost(bank);
             }
         }
         for (QuadState* q : quads) {
@@ -258,11 +260,13 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
     if (oneLayerLut(q, mode) && !material.pass)
         material.pass.emplace(material.bank, material.reference.id(), material.blend ? &*material.blend : nullptr);
     if (mode == RenderMode::Lut && !oneLayerLut(q, mode) && q.luts.empty()) {
-        if (!material.mipLuts) material.mipLuts.emplace(material.bank.reference, material.bank.colour, material.bank.entries);
+        if (!material.mipLuts)
+            material.mipLuts.emplace(material.bank.reference, material.bank.colour, material.bank.entries);
         const int levels = material.mipLuts->levels();
         for (int c = 0; c < material.mipLuts->channels(); ++c) {
             q.luts.push_back(uploadLutVolume(nullptr, material.bank.entries, kViewGrid, kViewGrid * levels));
-            bytes.luts += static_cast<std::size_t>(material.bank.entries) * kViewGrid * kViewGrid * static_cast<std::size_t>(levels) * 4;
+            bytes.luts += static_cast<std::size_t>(material.bank.entries) * kViewGrid * kViewGrid *
+                          static_cast<std::size_t>(levels) * 4;
         }
         q.lightUploaded = {0, 0, -2};
         update(q, light, mode);
@@ -271,8 +275,8 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
         Result<Ptm> ptm = loadBankPtm(paths.bank);
         if (!ptm) return Error{ptm.error()};
         for (int p = 0; p < 3; ++p)
-            material.ptm[static_cast<std::size_t>(p)] = uploadMipmapped(ptm->width, ptm->height, GL_RGB8, GL_RGB,
-                                                                        GL_UNSIGNED_BYTE, ptm->plane(p).data(), bytes.ptm);
+            material.ptm[static_cast<std::size_t>(p)] = uploadMipmapped(
+                ptm->width, ptm->height, GL_RGB8, GL_RGB, GL_UNSIGNED_BYTE, ptm->plane(p).data(), bytes.ptm);
         material.ptmScale = ptm->scale;
         material.ptmBias = ptm->bias;
         material.ptmLoaded = true;
@@ -291,9 +295,11 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
             material.images = std::move(*dataset);
         }
         const auto& all = material.images->images;
-        auto found = std::find_if(all.begin(), all.end(), [&](const DatasetImage& im) { return im.name == q.nearestImage; });
+        auto found =
+            std::find_if(all.begin(), all.end(), [&](const DatasetImage& im) { return im.name == q.nearestImage; });
         if (found == all.end())
-            return Error{paths.images + ": no image named '" + q.nearestImage + "' (the bank's node); is it the dataset "
+            return Error{paths.images + ": no image named '" + q.nearestImage +
+                         "' (the bank's node); is it the dataset "
                          "the bank was baked from?"};
         Result<Image> image = loadImage(found->path);
         if (!image) return Error{image.error()};
@@ -339,8 +345,8 @@ Status SceneRenderer::relight(const std::vector<RenderMode>& modes) {
                 }
                 found->light = q->light;
                 const Direction light = fromVector(q->light), view = material.bank.layers.front().view;
-                if (Status s = material.pass->run(frameFor(material, light, view), found->luts,
-                                                  found->texture.id(), m_dither);
+                if (Status s =
+                        material.pass->run(frameFor(material, light, view), found->luts, found->texture.id(), m_dither);
                     !s)
                     return s;
                 gl.BindTexture(GL_TEXTURE_2D, found->texture.id());
@@ -352,7 +358,8 @@ Status SceneRenderer::relight(const std::vector<RenderMode>& modes) {
         }
         m_stats.relitTextures += relit.size();
         if (!relit.empty())
-            m_stats.textureBytes.relit += relit.size() * (relitTextureBytes(material.bank.reference) + material.pass->lutBytes());
+            m_stats.textureBytes.relit +=
+                relit.size() * (relitTextureBytes(material.bank.reference) + material.pass->lutBytes());
     }
     return success();
 }

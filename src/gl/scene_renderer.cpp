@@ -13,11 +13,16 @@ namespace {
 
 const char* modeDefine(RenderMode mode) {
     switch (mode) {
-        case RenderMode::Lut: return "LUT_MODE";
-        case RenderMode::Brdf: return "BRDF_MODE";
-        case RenderMode::Ptm: return "PTM_MODE";
-        case RenderMode::Flat: return "FLAT_MODE";
-        case RenderMode::Nearest: return "NEAREST_MODE";
+        case RenderMode::Lut:
+            return "LUT_MODE";
+        case RenderMode::Brdf:
+            return "BRDF_MODE";
+        case RenderMode::Ptm:
+            return "PTM_MODE";
+        case RenderMode::Flat:
+            return "FLAT_MODE";
+        case RenderMode::Nearest:
+            return "NEAREST_MODE";
     }
     return "";
 }
@@ -67,7 +72,8 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene,
 }
 
 Status SceneRenderer::resize(int width, int height) {
-    if (width < 1 || height < 1) return Error{"image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty"};
+    if (width < 1 || height < 1)
+        return Error{"image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty"};
     if (m_target.id() && width == m_scene.width && height == m_scene.height) return success();
     m_scene.width = width;
     m_scene.height = height;
@@ -91,7 +97,7 @@ void SceneRenderer::setInterpolation(bool interpolate) {
     if (interpolate == m_interpolate) return;
     m_interpolate = interpolate;
     for (QuadState& q : m_quads) q.lightUploaded = {0, 0, -2};  // blend again
-    for (auto& [name, m] : m_materials) m.relit.clear();       // relight again
+    for (auto& [name, m] : m_materials) m.relit.clear();        // relight again
 }
 
 const LutBank* SceneRenderer::bank(const std::string& material) const {
@@ -184,8 +190,8 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
         if (mode == RenderMode::Lut && !unlit && !oneLayerLut(q, mode)) {
             for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
                 const std::string name = "lut[" + std::to_string(c) + "]";
-                bind(1 + c, GL_TEXTURE_3D, q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id(),
-                     name.c_str());
+                bind(1 + c, GL_TEXTURE_3D,
+                     q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id(), name.c_str());
             }
             const auto n = static_cast<float>(material.bank.entries);
             gl.Uniform2f(gl.GetUniformLocation(*p, "lutCoordinate"), (n - 1) / n, 0.5f / n);

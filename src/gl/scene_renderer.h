@@ -76,10 +76,10 @@ struct SceneRendererOptions {
 };
 
 struct RenderStats {
-    std::vector<std::string> loadedMaterials;   ///< names, in load order
-    std::vector<std::string> skippedMaterials;  ///< used by no visible quad: never read
-    std::vector<std::string> loadedPtms;        ///< materials whose PTM a ptm quad needed
-    std::size_t imagesLoaded = 0;               ///< measured images read for mode nearest
+    std::vector<std::string> loadedMaterials;          ///< names, in load order
+    std::vector<std::string> skippedMaterials;         ///< used by no visible quad: never read
+    std::vector<std::string> loadedPtms;               ///< materials whose PTM a ptm quad needed
+    std::size_t imagesLoaded = 0;                      ///< measured images read for mode nearest
     std::size_t viewLayers = 0, viewLayersLoaded = 0;  ///< over the loaded banks
     std::size_t quadsDrawn = 0, quadsCulled = 0, quadsUnlit = 0;
     std::size_t relitTextures = 0;  ///< mode lut's relit textures held (per material and light direction)
@@ -142,13 +142,13 @@ private:
     };
     struct Material {
         LutBank bank;
-        GlTexture reference;        ///< uploaded when a mode first needs it
+        GlTexture reference;                 ///< uploaded when a mode first needs it
         std::optional<Relighter> relighter;  ///< the LUTs (and blend) per light
         std::optional<BlendTextures> blend;  ///< banks that blend references: uploaded when mode lut first needs them
         std::optional<RelightPass> pass;     ///< banks of one view layer, mode lut
         std::vector<Relit> relit;            ///< by light direction
         std::optional<MipLuts> mipLuts;      ///< banks with view layers, mode lut
-        LevelCounts referenceGrey;  ///< for the brdf mode's mean
+        LevelCounts referenceGrey;           ///< for the brdf mode's mean
         bool ptmLoaded = false;
         std::array<GlTexture, 3> ptm;  ///< coefficients 0-2, 3-5, albedo
         std::array<float, 6> ptmScale{}, ptmBias{};
@@ -160,12 +160,12 @@ private:
         /// banks with view layers: per channel, 3D over the view grid and mip levels; of one view
         /// layer drawn per fragment: the frame's LUTs (RelightPass::makeLuts)
         std::vector<GlTexture> luts;
-        Vec3 light;                   ///< in the quad's frame
-        std::size_t relit = 0;        ///< mode lut of a bank of one view layer: its material's relit texture
-        bool perFragment = false;     ///< ... or relit per fragment this frame (choosePaths)
+        Vec3 light;                     ///< in the quad's frame
+        std::size_t relit = 0;          ///< mode lut of a bank of one view layer: its material's relit texture
+        bool perFragment = false;       ///< ... or relit per fragment this frame (choosePaths)
         Vec3 lastFrameLight{0, 0, -2};  ///< the light in its frame at the previous frame (none yet: below the horizon)
-        RelightFrame frame;           ///< per fragment: the frame in `luts`
-        Vec3 frameLight{0, 0, -2};    ///< ... and the light (in the quad's frame) it is for
+        RelightFrame frame;             ///< per fragment: the frame in `luts`
+        Vec3 frameLight{0, 0, -2};      ///< ... and the light (in the quad's frame) it is for
         Vec3 lightUploaded{0, 0, -2}, eyeUploaded;  ///< what its state was computed for
         RenderMode modeUploaded = RenderMode::Flat;
         float brightness = 1;  ///< brdf mode

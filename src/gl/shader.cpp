@@ -54,8 +54,7 @@ Result<GLuint> compile(GLenum stage, const std::vector<ShaderFile>& files, const
 }  // namespace
 
 Result<GlProgram> buildProgram(const std::vector<std::string>& vertexFiles,
-                               const std::vector<std::string>& fragmentFiles,
-                               const std::vector<std::string>& defines) {
+                               const std::vector<std::string>& fragmentFiles, const std::vector<std::string>& defines) {
     std::vector<ShaderFile> stages[2];
     for (int s = 0; s < 2; ++s)
         for (const std::string& name : s == 0 ? vertexFiles : fragmentFiles) {

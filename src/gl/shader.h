@@ -18,8 +18,7 @@ namespace btflut {
 std::string_view embeddedShader(std::string_view name);
 
 Result<GlProgram> buildProgram(const std::vector<std::string>& vertexFiles,
-                               const std::vector<std::string>& fragmentFiles,
-                               const std::vector<std::string>& defines);
+                               const std::vector<std::string>& fragmentFiles, const std::vector<std::string>& defines);
 
 /// A shader file's name and text.
 struct ShaderFile {

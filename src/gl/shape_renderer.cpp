@@ -32,7 +32,8 @@ std::string gridNoteOf(const LutBank& bank) {
                       "measured ones (the rim of a curved object; bake --fill model to model them)",
                       measured);
     else if (modelled > 0)
-        std::snprintf(line, sizeof line, "lights beyond theta %.0f come from the fitted model (bake --fill model)", measured);
+        std::snprintf(line, sizeof line, "lights beyond theta %.0f come from the fitted model (bake --fill model)",
+                      measured);
     else
         return {};
     return line;
@@ -99,7 +100,8 @@ Status ShapeRenderer::draw(const ShapeFrame& frame, int width, int height) {
     // Texels about square: the sphere's equator is 2 pi round and pi from pole to pole; the
     // cylinder 2 pi round and 2 high.
     const double aspect = static_cast<double>(m_bank.reference.width) / m_bank.reference.height;
-    const float around = static_cast<float>(std::max(1.0, std::round((frame.shape == Shape::Sphere ? 2.0 : M_PI) / aspect)));
+    const float around =
+        static_cast<float>(std::max(1.0, std::round((frame.shape == Shape::Sphere ? 2.0 : M_PI) / aspect)));
     gl.Uniform2f(location("uvRepeats"), around, 1.f);
     gl.Uniform1i(location("pointLight"), frame.light.point ? 1 : 0);
     gl.Uniform3f(location("lightDirection"), static_cast<float>(frame.light.direction.x),

@@ -16,8 +16,8 @@
 
 #include "core/bank/lut_bank.h"
 #include "core/data/scene.h"
-#include "core/result.h"
 #include "core/relight/engine_material.h"
+#include "core/result.h"
 #include "gl/engine_textures.h"
 #include "gl/objects.h"
 #include "gl/textures.h"

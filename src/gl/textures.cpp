@@ -23,8 +23,8 @@ GlTexture uploadLutVolume(const float* values, int entries, int height, int dept
     return texture;
 }
 
-GlTexture uploadMipmapped(int width, int height, GLenum internalFormat, GLenum format, GLenum type,
-                          const void* data, std::size_t& bytes) {
+GlTexture uploadMipmapped(int width, int height, GLenum internalFormat, GLenum format, GLenum type, const void* data,
+                          std::size_t& bytes) {
     GlTexture texture = makeTexture();
     gl.BindTexture(GL_TEXTURE_2D, texture.id());
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -52,7 +52,8 @@ GlTexture uploadMipmapped(const Image& image, std::size_t& bytes) {
         return uploadMipmapped(image.width, image.height, sixteen ? GL_R16 : GL_R8, GL_RED, GL_FLOAT,
                                image.samples.data(), bytes);
     const std::vector<float> rgb = rgbSamples(image);
-    return uploadMipmapped(image.width, image.height, sixteen ? GL_RGB16 : GL_RGB8, GL_RGB, GL_FLOAT, rgb.data(), bytes);
+    return uploadMipmapped(image.width, image.height, sixteen ? GL_RGB16 : GL_RGB8, GL_RGB, GL_FLOAT, rgb.data(),
+                           bytes);
 }
 
 GlTexture uploadLutTable(const float* values, int entries, int rows) {
@@ -101,7 +102,8 @@ GlTexture allocateTexture2D(int width, int height, GLenum internalFormat, GLenum
 
 Result<ColourDepthTarget> allocateColourDepthTarget(int width, int height) {
     ColourDepthTarget t{allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE),
-                        allocateTexture2D(width, height, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_FLOAT), makeFramebuffer()};
+                        allocateTexture2D(width, height, GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_FLOAT),
+                        makeFramebuffer()};
     gl.BindFramebuffer(GL_FRAMEBUFFER, t.framebuffer.id());
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.colour.id(), 0);
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t.depth.id(), 0);

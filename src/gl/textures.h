@@ -20,8 +20,8 @@ GlTexture uploadLutVolume(const float* values, int entries, int height, int dept
 /// A repeating, trilinearly filtered texture with its mipmaps from `format` (GL_RGB, or
 /// GL_RED for grey, read back as (v, v, v)) data of `type`, top row first; adds its GPU
 /// bytes to `bytes`.
-GlTexture uploadMipmapped(int width, int height, GLenum internalFormat, GLenum format, GLenum type,
-                          const void* data, std::size_t& bytes);
+GlTexture uploadMipmapped(int width, int height, GLenum internalFormat, GLenum format, GLenum type, const void* data,
+                          std::size_t& bytes);
 /// An image at its own precision: R8/R16 for grey (read as RGB), RGB8/RGB16 for colour.
 GlTexture uploadMipmapped(const Image& image, std::size_t& bytes);
 

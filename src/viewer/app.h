@@ -34,7 +34,10 @@ const char* paneLabel(RenderMode mode);
 class Viewer {
 public:
     Viewer(ViewerOptions options, ViewerInput input, Window& window)
-        : m_options(std::move(options)), m_input(std::move(input)), m_window(window), m_orbit(Orbit::of(m_input.scene)) {}
+        : m_options(std::move(options)),
+          m_input(std::move(input)),
+          m_window(window),
+          m_orbit(Orbit::of(m_input.scene)) {}
 
     Status start();
     /// Runs until the window closes, the scripted frames are done, or a file is to be opened
@@ -109,9 +112,9 @@ private:
     const LutBank* m_bank = nullptr;  ///< quad 0's material, when visible
     bool m_panelVisible = true;
     bool m_helpVisible = false;
-    LevelCounts m_referenceGrey;     ///< over the sample mask, when the dataset has one
-    std::optional<Mask> m_mask;      ///< the dataset's sample mask (single-quad views)
-    std::string m_hovered;  ///< scene files: the material of the quad under the cursor
+    LevelCounts m_referenceGrey;  ///< over the sample mask, when the dataset has one
+    std::optional<Mask> m_mask;   ///< the dataset's sample mask (single-quad views)
+    std::string m_hovered;        ///< scene files: the material of the quad under the cursor
 
     Direction m_light = Direction::fromDegrees(45, 30);
     Orbit m_orbit;
@@ -122,14 +125,15 @@ private:
 
     Geometry m_geometry = Geometry::Quad;
     std::unique_ptr<ShapeRenderer> m_shapes;  ///< made when a sphere or cylinder is first shown
-    double m_pointLight = 0;  ///< > 0: a point light this far from the origin, in the light's direction
-    bool m_flat = false;  ///< 2D mode: frontal, orthographic, 1:1 at zoom 1
+    double m_pointLight = 0;                  ///< > 0: a point light this far from the origin, in the light's direction
+    bool m_flat = false;                      ///< 2D mode: frontal, orthographic, 1:1 at zoom 1
     FlatView m_flatView;
     RenderMode m_compareMode = RenderMode::Brdf;  ///< image B of the wipe or lens
     PresentSettings m_present;
     PresentPass m_presentPass;
     bool m_draggingWipe = false;
-    float m_wipeAt = 0.5f;  ///< the wipe line, a fraction of the panes' width: it stays put when Tab or a resize changes them
+    float m_wipeAt =
+        0.5f;  ///< the wipe line, a fraction of the panes' width: it stays put when Tab or a resize changes them
 
     GlTexture m_compositeColour, m_compositeColourB;  ///< A: the panes; B: the compare mode's
     GlFramebuffer m_composite, m_compositeB;

@@ -16,7 +16,8 @@ struct Orbit {
 
     Vec3 eye() const {
         return {target.x + distance * std::cos(elevation) * std::cos(azimuth),
-                target.y + distance * std::cos(elevation) * std::sin(azimuth), target.z + distance * std::sin(elevation)};
+                target.y + distance * std::cos(elevation) * std::sin(azimuth),
+                target.z + distance * std::sin(elevation)};
     }
     static Orbit of(const Scene& s) {
         Orbit o;
@@ -32,8 +33,8 @@ struct Orbit {
 /// Frontal orthographic view of a quad lying in the z = 0 plane (normal +z, tangent +x), in
 /// texel units of an image `texelsWide` x `texelsHigh` that spans it.
 struct FlatView {
-    double zoom = 1;             ///< window pixels per texel
-    double panX = 0, panY = 0;   ///< the texel at the pane's centre, from the image's centre (y up)
+    double zoom = 1;            ///< window pixels per texel
+    double panX = 0, panY = 0;  ///< the texel at the pane's centre, from the image's centre (y up)
 
     /// The zoom that fits the image in a pane, and no pan.
     void fit(int paneWidth, int paneHeight, int texelsWide, int texelsHigh) {
@@ -49,7 +50,8 @@ struct FlatView {
     }
     /// The camera for a pane: the image's texel edges fall on pixel edges (so at zoom 1 each
     /// pixel is one texel, unfiltered), whatever the parity of the pane's and image's sizes.
-    void apply(Scene& scene, const SceneQuad& quad, int paneWidth, int paneHeight, int texelsWide, int texelsHigh) const {
+    void apply(Scene& scene, const SceneQuad& quad, int paneWidth, int paneHeight, int texelsWide,
+               int texelsHigh) const {
         const double worldPerTexel = quad.height / texelsHigh;
         auto snapped = [&](double pan, int pane, int texels) {
             // The image's left (bottom) edge in pane pixels, moved to the nearest whole pixel.

@@ -19,7 +19,8 @@ using json = nlohmann::json;
 
 // The parameters `btflut synth` recorded in a dataset's manifest, if any.
 json manifestParameters(const std::string& datasetPath) {
-    fs::path manifest = fs::is_directory(datasetPath) ? fs::path(datasetPath) / "btflut-dataset.json" : fs::path(datasetPath);
+    fs::path manifest =
+        fs::is_directory(datasetPath) ? fs::path(datasetPath) / "btflut-dataset.json" : fs::path(datasetPath);
     if (manifest.extension() != ".json" || !fs::exists(manifest)) return {};
     Result<Bytes> bytes = readFile(manifest.string());
     if (!bytes) return {};
@@ -74,8 +75,9 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
         }
         if (!baked) return Error{baked.error()};
         static int opened = 0;  // a session may open several datasets
-        in.temporaryBank = (fs::temp_directory_path() / ("btflut-view-" + std::to_string(::getpid()) + "-" +
-                                                         std::to_string(opened++) + ".btflut")).string();
+        in.temporaryBank = (fs::temp_directory_path() /
+                            ("btflut-view-" + std::to_string(::getpid()) + "-" + std::to_string(opened++) + ".btflut"))
+                               .string();
         if (Status s = saveBank(*baked, in.temporaryBank); !s) return Error{s.error()};
         bank = in.temporaryBank;
         images = path;

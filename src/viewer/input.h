@@ -18,8 +18,8 @@ struct ViewerInput {
     Scene scene;
     bool singleQuad = false;
     std::string title;
-    nlohmann::json modelParameters;       ///< a synthetic dataset's parameters, when known
-    std::string temporaryBank;  ///< baked from a dataset for this session; removed at exit
+    nlohmann::json modelParameters;  ///< a synthetic dataset's parameters, when known
+    std::string temporaryBank;       ///< baked from a dataset for this session; removed at exit
 };
 
 /// Opens `options.input` (the bundled default material when empty). Errors name the file: missing,

@@ -30,7 +30,8 @@ void keepMasked(FrameSamples& samples, const Scene& scene, const SceneQuad& quad
         for (int i = 0; i < samples.width; ++i) {
             std::uint8_t& covered = samples.covered[static_cast<std::size_t>(j) * samples.width + i];
             if (!covered) continue;
-            const std::optional<std::array<double, 2>> uv = rays.quadTextureAt(quad, samples.pixelX(i), samples.pixelRow(j));
+            const std::optional<std::array<double, 2>> uv =
+                rays.quadTextureAt(quad, samples.pixelX(i), samples.pixelRow(j));
             if (!uv) {
                 covered = 0;
                 continue;
@@ -51,7 +52,8 @@ void Viewer::updatePlots() {
     // About 2^16 pixels of the frame, every stride-th across and down: plenty for 64 bins,
     // and a large window's frame is not read back whole each time the light moves.
     const Scene& scene = m_renderer->scene();
-    const int stride = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(scene.width) * scene.height / 65536.0)));
+    const int stride =
+        std::max(1, static_cast<int>(std::sqrt(static_cast<double>(scene.width) * scene.height / 65536.0)));
     FrameSamples frame = m_renderer->sampleFrame(stride);
     if (m_mask) keepMasked(frame, scene, scene.quads[0], *m_mask);
     m_renderedHistogram.assign(kHistogramBins, 0.f);
@@ -66,20 +68,22 @@ void Viewer::updatePlots() {
     for (float& v : m_renderedHistogram) v = total > 0 ? static_cast<float>(v / total) : 0.f;
 
     const RelightFrame lut = m_renderer->centreFrame(0, lightVector());
-    m_provenance = std::string("light ") + provenanceName(lut.lightProvenance) + ", view " + provenanceName(lut.viewProvenance);
+    m_provenance =
+        std::string("light ") + provenanceName(lut.lightProvenance) + ", view " + provenanceName(lut.viewProvenance);
     m_lutCurve.assign(lut.luts.begin(), lut.luts.begin() + m_bank->entries);  // region 0's, first channel
     m_targetHistogram.assign(kHistogramBins, 0.f);
     total = 0;
     auto add = [&](float v, double weight) {
-        m_targetHistogram[static_cast<std::size_t>(std::min(kHistogramBins - 1, static_cast<int>(v * kHistogramBins)))] +=
-            static_cast<float>(weight);
+        m_targetHistogram[static_cast<std::size_t>(
+            std::min(kHistogramBins - 1, static_cast<int>(v * kHistogramBins)))] += static_cast<float>(weight);
         total += weight;
     };
     if (m_bank->makesLuts()) {
         // The target's distribution from its quantile functions (first channel), each region
         // weighted by its sample texels.
         const LutBank::Blend& blend = m_bank->blend;
-        const auto samples = static_cast<std::size_t>(blend.quantiles), channels = static_cast<std::size_t>(m_bank->channels());
+        const auto samples = static_cast<std::size_t>(blend.quantiles),
+                   channels = static_cast<std::size_t>(m_bank->channels());
         for (std::size_t i = 0; i < blend.mask.inside.size(); i += 16)  // every 16th texel: plenty for a plot
             if (blend.mask.inside[i]) {
                 const std::size_t r = blend.labels.empty() ? 0 : blend.labels[i];
@@ -95,7 +99,8 @@ void Viewer::updatePlots() {
 }
 
 Status Viewer::modeOffered(RenderMode m) const {
-    if (m == RenderMode::Ptm && !m_havePtm) return Error{m_input.scene.file + ": mode ptm needs a bank baked with --ptm"};
+    if (m == RenderMode::Ptm && !m_havePtm)
+        return Error{m_input.scene.file + ": mode ptm needs a bank baked with --ptm"};
     if (m == RenderMode::Nearest && !m_haveImages)
         return Error{m_input.scene.file + ": mode nearest needs the measured images (--images DATASET)"};
     return success();
@@ -132,8 +137,9 @@ bool Viewer::panel(int width, int height) {
     if (ImGui::CollapsingHeader("File")) {
         ImGui::TextWrapped("%s", m_input.scene.file.c_str());
         ImGui::SetNextItemWidth(kPanelWidth - 80);
-        const bool entered = ImGui::InputTextWithHint("##path", "bank, dataset or scene; or drop a file", m_pathField.data(),
-                                                      m_pathField.size(), ImGuiInputTextFlags_EnterReturnsTrue);
+        const bool entered =
+            ImGui::InputTextWithHint("##path", "bank, dataset or scene; or drop a file", m_pathField.data(),
+                                     m_pathField.size(), ImGuiInputTextFlags_EnterReturnsTrue);
         ImGui::SameLine();
         if ((ImGui::Button("Open") || entered) && m_pathField[0] != '\0') requestOpen(m_pathField.data());
         for (const std::string& recent : m_recent) {
@@ -146,7 +152,8 @@ bool Viewer::panel(int width, int height) {
     }
     if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
         const LutBank* shown = shownBank();
-        changed |= hemisphereWidget("##hemisphere", m_light, shown ? shown->layers[0].nodes : std::vector<LightNode>{}, 200);
+        changed |=
+            hemisphereWidget("##hemisphere", m_light, shown ? shown->layers[0].nodes : std::vector<LightNode>{}, 200);
         if (!m_input.singleQuad)
             ImGui::TextDisabled("%s", m_hovered.empty() ? "dots: quad 0's material; hover a quad for its own"
                                                         : ("dots: '" + m_hovered + "', under the cursor").c_str());
@@ -177,7 +184,8 @@ bool Viewer::panel(int width, int height) {
         if (flatOffered()) {
             ImGui::TextUnformatted("Projection");
             ImGui::SameLine();
-            if (ImGui::RadioButton("2D (V)", m_flat) && !m_flat) m_flat = true, resetCamera(width, height), changed = true;
+            if (ImGui::RadioButton("2D (V)", m_flat) && !m_flat)
+                m_flat = true, resetCamera(width, height), changed = true;
             ImGui::SameLine();
             if (ImGui::RadioButton("3D", !m_flat) && m_flat) m_flat = false, resetCamera(width, height), changed = true;
             if (m_flat) {
@@ -208,9 +216,11 @@ bool Viewer::panel(int width, int height) {
         if (ImGui::SmallButton("reset##tone")) m_present.exposure = 0, m_present.gamma = 1;
         if (m_input.singleQuad) {
             ImGui::TextUnformatted("Geometry (G)");
-            for (const auto& [value, name] : {std::pair{Geometry::Quad, "quad"}, {Geometry::Sphere, "sphere"}, {Geometry::Cylinder, "cylinder"}}) {
+            for (const auto& [value, name] :
+                 {std::pair{Geometry::Quad, "quad"}, {Geometry::Sphere, "sphere"}, {Geometry::Cylinder, "cylinder"}}) {
                 ImGui::SameLine();
-                if (ImGui::RadioButton(name, m_geometry == value) && m_geometry != value) changed |= setGeometry(value, width, height);
+                if (ImGui::RadioButton(name, m_geometry == value) && m_geometry != value)
+                    changed |= setGeometry(value, width, height);
             }
             if (curved()) {
                 bool point = m_pointLight > 0;
@@ -219,7 +229,8 @@ bool Viewer::panel(int width, int height) {
                     float distance = static_cast<float>(m_pointLight);
                     ImGui::SameLine();
                     ImGui::SetNextItemWidth(140);
-                    if (ImGui::SliderFloat("distance", &distance, 1.2f, 10, "%.1f")) m_pointLight = distance, changed = true;
+                    if (ImGui::SliderFloat("distance", &distance, 1.2f, 10, "%.1f"))
+                        m_pointLight = distance, changed = true;
                 }
                 ImGui::TextDisabled("mode lut, per fragment: each point's own light and view");
                 if (!m_shapes->gridNote().empty()) {
@@ -245,10 +256,11 @@ bool Viewer::panel(int width, int height) {
     if (m_bank && !curved() && ImGui::CollapsingHeader("Histogram and LUT", ImGuiTreeNodeFlags_DefaultOpen)) {
         ImGui::TextDisabled("bars: rendered material; line: the bank's target");
         histogramPlot("##histogram", m_renderedHistogram, m_targetHistogram, kPanelWidth - 20, 90);
-        ImGui::PlotLines("##lut", m_lutCurve.data(), static_cast<int>(m_lutCurve.size()), 0, "LUT at the quad centre", 0, 1,
-                         ImVec2(kPanelWidth - 20, 90));
+        ImGui::PlotLines("##lut", m_lutCurve.data(), static_cast<int>(m_lutCurve.size()), 0, "LUT at the quad centre",
+                         0, 1, ImVec2(kPanelWidth - 20, 90));
     }
-    if (const LutBank* bank = shownBank(); bank && bank != m_bank && ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (const LutBank* bank = shownBank();
+        bank && bank != m_bank && ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) {
         // A scene's material under the cursor: what it is made of.
         ImGui::Text("'%s': %s", m_hovered.c_str(), m_input.scene.materials.at(m_hovered).bank.c_str());
         ImGui::Text("%d x %d reference, %s LUTs of %d entries", bank->reference.width, bank->reference.height,
@@ -276,7 +288,8 @@ bool Viewer::panel(int width, int height) {
                 ImGui::Text("lut: %s relit, matched (%.2f) in %d region(s)", lightModelName(blend.model).c_str(),
                             static_cast<double>(blend.match), blend.regions);
             else
-                ImGui::Text("lut: %zu references blended, matched in %d region(s)", blend.references.size(), blend.regions);
+                ImGui::Text("lut: %zu references blended, matched in %d region(s)", blend.references.size(),
+                            blend.regions);
         }
         ImGui::Text("%zu view layer(s), %zu lights (theta <= %.0f)", m_bank->layers.size(), nodes, maxTheta);
         ImGui::Text("%.0f%% of light directions inside the measured", 100 * m_coverage);
@@ -328,15 +341,16 @@ void Viewer::compareOverlay(int height) const {
     ImDrawList* draw = ImGui::GetForegroundDrawList();
     const auto h = static_cast<float>(height);
     const ImU32 white = IM_COL32(255, 255, 255, 220);
-    const std::string a = std::string("A: ") + renderModeName(m_paneModes[0]), b = std::string("B: ") + renderModeName(m_compareMode);
+    const std::string a = std::string("A: ") + renderModeName(m_paneModes[0]),
+                      b = std::string("B: ") + renderModeName(m_compareMode);
     if (m_present.compare == PresentSettings::Compare::Wipe) {
         draw->AddLine(ImVec2(m_present.wipeX, 0), ImVec2(m_present.wipeX, h), white, 2);
         draw->AddText(ImVec2(m_present.wipeX - 8 - ImGui::CalcTextSize(a.c_str()).x, h - 24), white, a.c_str());
         draw->AddText(ImVec2(m_present.wipeX + 8, h - 24), white, b.c_str());
     } else if (m_present.compare == PresentSettings::Compare::Lens) {
         draw->AddCircle(ImVec2(m_present.lensX, h - m_present.lensY), m_present.lensRadius, white, 64, 2);
-        draw->AddText(ImVec2(m_present.lensX - m_present.lensRadius, h - m_present.lensY + m_present.lensRadius + 4), white,
-                      (b + " in the lens, " + a + " outside").c_str());
+        draw->AddText(ImVec2(m_present.lensX - m_present.lensRadius, h - m_present.lensY + m_present.lensRadius + 4),
+                      white, (b + " in the lens, " + a + " outside").c_str());
     }
 }
 

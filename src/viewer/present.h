@@ -14,8 +14,8 @@ namespace btflut {
 
 struct PresentSettings {
     enum class Compare { Off, Wipe, Lens } compare = Compare::Off;
-    float wipeX = 0;                    ///< window pixels
-    float lensX = 0, lensY = 0;         ///< window pixels, origin bottom left
+    float wipeX = 0;             ///< window pixels
+    float lensX = 0, lensY = 0;  ///< window pixels, origin bottom left
     float lensRadius = 120;
     float exposure = 0;  ///< stops
     float gamma = 1;     ///< 1: none

@@ -25,8 +25,8 @@ bool Viewer::sceneInput(int width, int height) {
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left)) m_draggingWipe = false;
     if (!m_input.singleQuad && overScene && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || m_hovered.empty()))
         m_hovered = materialAt(static_cast<int>(io.MousePos.x), static_cast<int>(io.MousePos.y), width, height);
-    if (overScene && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && m_present.compare == PresentSettings::Compare::Wipe &&
-        std::abs(mouseX - m_present.wipeX) < 8)
+    if (overScene && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+        m_present.compare == PresentSettings::Compare::Wipe && std::abs(mouseX - m_present.wipeX) < 8)
         m_draggingWipe = true;  // grabbed the wipe line
     if (m_draggingWipe) {
         m_wipeAt = std::clamp(mouseX / static_cast<float>(std::max(1, width - panelWidth())), 0.f, 1.f);
@@ -46,7 +46,8 @@ bool Viewer::sceneInput(int width, int height) {
             changed |= d.x != 0 || d.y != 0;
         }
         if (io.MouseWheel != 0 && io.KeyCtrl && m_present.compare == PresentSettings::Compare::Lens) {
-            m_present.lensRadius = std::clamp(m_present.lensRadius * static_cast<float>(std::pow(1.1, io.MouseWheel)), 8.f, 2000.f);
+            m_present.lensRadius =
+                std::clamp(m_present.lensRadius * static_cast<float>(std::pow(1.1, io.MouseWheel)), 8.f, 2000.f);
         } else if (io.MouseWheel != 0 && m_flat) {  // zoom about the cursor, in the pane under it
             for (const Pane& p : panes(width, height))
                 if (mouseX >= static_cast<float>(p.x) && mouseX < static_cast<float>(p.x + p.width))
@@ -59,10 +60,14 @@ bool Viewer::sceneInput(int width, int height) {
     }
     if (!io.WantCaptureKeyboard) {
         const double step = M_PI / 180;
-        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow))) m_light.phi = std::fmod(m_light.phi + 2 * M_PI - step, 2 * M_PI), changed = true;
-        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow))) m_light.phi = std::fmod(m_light.phi + step, 2 * M_PI), changed = true;
-        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_UpArrow))) m_light.theta = std::max(0.0, m_light.theta - step), changed = true;
-        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_DownArrow))) m_light.theta = std::min(89 * step, m_light.theta + step), changed = true;
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow)))
+            m_light.phi = std::fmod(m_light.phi + 2 * M_PI - step, 2 * M_PI), changed = true;
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow)))
+            m_light.phi = std::fmod(m_light.phi + step, 2 * M_PI), changed = true;
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_UpArrow)))
+            m_light.theta = std::max(0.0, m_light.theta - step), changed = true;
+        if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_DownArrow)))
+            m_light.theta = std::min(89 * step, m_light.theta + step), changed = true;
         if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
             m_light = Direction::fromDegrees(45, 30);
             resetCamera(width, height);

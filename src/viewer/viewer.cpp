@@ -1,9 +1,9 @@
 #include "viewer/viewer.h"
 
 #include <GLFW/glfw3.h>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -28,11 +28,16 @@ using json = nlohmann::json;
 
 const char* paneLabel(RenderMode mode) {
     switch (mode) {
-        case RenderMode::Lut: return "LUT";
-        case RenderMode::Brdf: return "2D texture mapping (brdf)";
-        case RenderMode::Ptm: return "PTM";
-        case RenderMode::Flat: return "flat texture";
-        case RenderMode::Nearest: return "nearest measured image";
+        case RenderMode::Lut:
+            return "LUT";
+        case RenderMode::Brdf:
+            return "2D texture mapping (brdf)";
+        case RenderMode::Ptm:
+            return "PTM";
+        case RenderMode::Flat:
+            return "flat texture";
+        case RenderMode::Nearest:
+            return "nearest measured image";
     }
     return "";
 }
@@ -51,7 +56,8 @@ Status Viewer::start() {
             if (!mask) return Error{mask.error()};
             if (!dataset->maskPath.empty()) m_mask = std::move(*mask);
         }
-        m_referenceGrey = countGreyLevels(m_bank->reference, m_mask ? *m_mask : fullMask(m_bank->reference.width, m_bank->reference.height));
+        m_referenceGrey = countGreyLevels(
+            m_bank->reference, m_mask ? *m_mask : fullMask(m_bank->reference.width, m_bank->reference.height));
         m_coverage = m_bank->lightCoverage(0);
         m_haveImages = !paths.images.empty();
         m_havePtm = m_bank->ptmInFile;
@@ -76,14 +82,16 @@ Status Viewer::start() {
     // one frontal view); 3D for scene files and banks with several views.
     if (m_options.projection == "2d" && !flatOffered())
         return Error{m_input.scene.file + ": 2D mode shows one material (a bank or dataset), not a scene file"};
-    m_flat = m_options.projection.empty() ? m_options.camera.empty() && flatOffered() && m_bank->layers.size() == 1 && m_bank->layers[0].view.theta < M_PI / 180
+    m_flat = m_options.projection.empty() ? m_options.camera.empty() && flatOffered() && m_bank->layers.size() == 1 &&
+                                                m_bank->layers[0].view.theta < M_PI / 180
                                           : m_options.projection == "2d";
     if (!m_options.compare.empty()) {
         Result<RenderMode> b = parseRenderMode(m_options.compareMode);
         if (!b) return Error{"--compare-" + b.error()};
         if (Status s = modeOffered(*b); !s) return s;
         m_compareMode = *b;
-        m_present.compare = m_options.compare == "wipe" ? PresentSettings::Compare::Wipe : PresentSettings::Compare::Lens;
+        m_present.compare =
+            m_options.compare == "wipe" ? PresentSettings::Compare::Wipe : PresentSettings::Compare::Lens;
     }
     m_present.exposure = static_cast<float>(m_options.exposure);
     m_present.gamma = static_cast<float>(m_options.gamma);
@@ -101,7 +109,8 @@ std::vector<Viewer::Pane> Viewer::panes(int width, int height) const {
 }
 
 void Viewer::allocateComposites(int width, int height) {
-    for (auto [colour, framebuffer] : {std::pair{&m_compositeColour, &m_composite}, {&m_compositeColourB, &m_compositeB}}) {
+    for (auto [colour, framebuffer] :
+         {std::pair{&m_compositeColour, &m_composite}, {&m_compositeColourB, &m_compositeB}}) {
         *colour = allocateTexture2D(width, height, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE);
         gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // no mipmaps: complete for texelFetch
         gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -115,7 +124,8 @@ void Viewer::allocateComposites(int width, int height) {
 
 void Viewer::paneCamera(const Pane& pane, Scene& scene) const {
     if (m_flat) {
-        m_flatView.apply(scene, scene.quads[0], pane.width, pane.height, m_bank->reference.width, m_bank->reference.height);
+        m_flatView.apply(scene, scene.quads[0], pane.width, pane.height, m_bank->reference.width,
+                         m_bank->reference.height);
         return;
     }
     scene.eye = m_orbit.eye();
@@ -146,8 +156,12 @@ Status Viewer::renderPanes(int width, int height) {
     for (std::size_t p = 0; p < all.size(); ++p) {
         const Pane& pane = all[p];
         if (curved()) {  // the sphere or cylinder: mode lut, per fragment
-            ShapeFrame frame{m_geometry == Geometry::Sphere ? Shape::Sphere : Shape::Cylinder, m_orbit.eye(), m_orbit.target,
-                             {0, 0, 1}, m_input.scene.fovDegrees, {}};
+            ShapeFrame frame{m_geometry == Geometry::Sphere ? Shape::Sphere : Shape::Cylinder,
+                             m_orbit.eye(),
+                             m_orbit.target,
+                             {0, 0, 1},
+                             m_input.scene.fovDegrees,
+                             {}};
             const Vec3 l = lightVector();
             frame.light = {m_pointLight > 0, l, {l.x * m_pointLight, l.y * m_pointLight, l.z * m_pointLight}};
             if (Status s = m_shapes->draw(frame, pane.width, pane.height); !s) return s;
@@ -182,10 +196,11 @@ void Viewer::reportTiming() const {
     std::sort(ms.begin(), ms.end());
     int width = 0, height = 0;
     glfwGetFramebufferSize(m_window.handle(), &width, &height);
-    std::printf("view timing: %zu frames at %dx%d (%s, %s%s): median %.2f ms, 90th percentile %.2f ms, slowest %.2f ms\n",
-                ms.size(), width, height, m_flat ? "2D" : "3D", renderModeName(m_paneModes[0]),
-                m_options.lightSweep ? ", the light moving every frame" : "", ms[ms.size() / 2], ms[ms.size() * 9 / 10],
-                ms.back());
+    std::printf(
+        "view timing: %zu frames at %dx%d (%s, %s%s): median %.2f ms, 90th percentile %.2f ms, slowest %.2f ms\n",
+        ms.size(), width, height, m_flat ? "2D" : "3D", renderModeName(m_paneModes[0]),
+        m_options.lightSweep ? ", the light moving every frame" : "", ms[ms.size() / 2], ms[ms.size() * 9 / 10],
+        ms.back());
 }
 
 Status Viewer::screenshot(const std::string& path, int width, int height) {
@@ -220,38 +235,43 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
             if (material.bank == m_input.temporaryBank) material.bank = kept.string();
     }
     const std::string sceneFile = std::string(stem) + ".scene.json";
-    if (Status s = writeFileAtomically((dir / sceneFile).string(), sceneToJson(scene, dir.string())); !s) return s;  // paths relative to it
+    if (Status s = writeFileAtomically((dir / sceneFile).string(), sceneToJson(scene, dir.string())); !s)
+        return s;  // paths relative to it
     json state{{"frame", frame},
-                     {"light", {{"theta", m_light.thetaDegrees()}, {"phi", m_light.phiDegrees()}}},
-                     {"mode", renderModeName(pane.mode)},
-                     {"projection", m_flat ? "2d" : "3d"},
-                     {"input", m_input.scene.file},
-                     {"geometry", m_geometry == Geometry::Quad ? "quad" : m_geometry == Geometry::Sphere ? "sphere" : "cylinder"},
-                     {"point_light", m_pointLight},
-                     {"grid_note", m_shapes ? m_shapes->gridNote() : ""},
-                     {"hovered_material", m_hovered},
-                     {"help_visible", m_helpVisible},
-                     {"message", m_message},
-                     {"zoom", m_flat ? json(m_flatView.zoom) : json()},
-                     {"compare", m_present.compare == PresentSettings::Compare::Off
-                                     ? json()
-                                     : json{{"kind", m_present.compare == PresentSettings::Compare::Wipe ? "wipe" : "lens"},
-                                            {"mode", renderModeName(m_compareMode)},
-                                            {"wipe_x", m_present.wipeX}}},
-                     {"scene", sceneFile},
-                     // PNG pixels, origin top left: where the scene pane and the panel are
-                     {"scene_viewport", {pane.x, height - pane.y - pane.height, pane.width, pane.height}},
-                     {"panel", {width - panelWidth(), 0, panelWidth(), height}}};
+               {"light", {{"theta", m_light.thetaDegrees()}, {"phi", m_light.phiDegrees()}}},
+               {"mode", renderModeName(pane.mode)},
+               {"projection", m_flat ? "2d" : "3d"},
+               {"input", m_input.scene.file},
+               {"geometry", m_geometry == Geometry::Quad     ? "quad"
+                            : m_geometry == Geometry::Sphere ? "sphere"
+                                                             : "cylinder"},
+               {"point_light", m_pointLight},
+               {"grid_note", m_shapes ? m_shapes->gridNote() : ""},
+               {"hovered_material", m_hovered},
+               {"help_visible", m_helpVisible},
+               {"message", m_message},
+               {"zoom", m_flat ? json(m_flatView.zoom) : json()},
+               {"compare", m_present.compare == PresentSettings::Compare::Off
+                               ? json()
+                               : json{{"kind", m_present.compare == PresentSettings::Compare::Wipe ? "wipe" : "lens"},
+                                      {"mode", renderModeName(m_compareMode)},
+                                      {"wipe_x", m_present.wipeX}}},
+               {"scene", sceneFile},
+               // PNG pixels, origin top left: where the scene pane and the panel are
+               {"scene_viewport", {pane.x, height - pane.y - pane.height, pane.width, pane.height}},
+               {"panel", {width - panelWidth(), 0, panelWidth(), height}}};
     if (m_flat) {  // where the image lies in the PNG (2D mode, the first pane)
         Scene camera = m_input.scene;
         paneCamera(pane, camera);
         const double texelsPerWorld = m_bank->reference.height / scene.quads[0].height;
-        const double left = pane.width / 2.0 - (camera.target.x - scene.quads[0].center.x) * texelsPerWorld * m_flatView.zoom -
+        const double left = pane.width / 2.0 -
+                            (camera.target.x - scene.quads[0].center.x) * texelsPerWorld * m_flatView.zoom -
                             m_bank->reference.width * m_flatView.zoom / 2;
-        const double top = pane.height / 2.0 + (camera.target.y - scene.quads[0].center.y) * texelsPerWorld * m_flatView.zoom -
+        const double top = pane.height / 2.0 +
+                           (camera.target.y - scene.quads[0].center.y) * texelsPerWorld * m_flatView.zoom -
                            m_bank->reference.height * m_flatView.zoom / 2;
-        state["image_rect"] = {pane.x + left, height - pane.y - pane.height + top, m_bank->reference.width * m_flatView.zoom,
-                               m_bank->reference.height * m_flatView.zoom};
+        state["image_rect"] = {pane.x + left, height - pane.y - pane.height + top,
+                               m_bank->reference.width * m_flatView.zoom, m_bank->reference.height * m_flatView.zoom};
     }
     return writeFileAtomically((dir / (std::string(stem) + ".json")).string(), jsonText(state));
 }
@@ -276,7 +296,8 @@ Status Viewer::run(int& frame) {
         int width = 0, height = 0;
         glfwGetFramebufferSize(window, &width, &height);
         resetCamera(width, height);
-        if (m_flat && !m_options.zoom.empty() && m_options.zoom != "fit") m_flatView.zoom = std::stod(m_options.zoom);  // validated
+        if (m_flat && !m_options.zoom.empty() && m_options.zoom != "fit")
+            m_flatView.zoom = std::stod(m_options.zoom);  // validated
         m_pointLight = m_options.pointLight;
         if (m_options.geometry != "quad" &&
             !setGeometry(m_options.geometry == "sphere" ? Geometry::Sphere : Geometry::Cylinder, width, height))
@@ -320,7 +341,8 @@ Status Viewer::run(int& frame) {
         ImGui_ImplGlfw_NewFrame();
         if (scripted && !m_options.injectCursor.empty()) {  // as the backend would set it from the window system
             float x = 0, y = 0;
-            if (std::sscanf(m_options.injectCursor.c_str(), "%f,%f", &x, &y) == 2) ImGui::GetIO().MousePos = ImVec2(x, y);
+            if (std::sscanf(m_options.injectCursor.c_str(), "%f,%f", &x, &y) == 2)
+                ImGui::GetIO().MousePos = ImVec2(x, y);
         }
         if (scripted && !m_options.injectKeys.empty()) {  // pressed at frame 1, released at frame 2
             for (const std::string& name : m_options.injectKeys) {
@@ -342,20 +364,20 @@ Status Viewer::run(int& frame) {
         }
         dirty = m_panelVisible && panel(width, height);
         if (!m_panelVisible)
-            ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(width) - 190, 8), IM_COL32(200, 200, 200, 255),
-                                                    "Tab: panel   F1: keys");
+            ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(width) - 190, 8),
+                                                    IM_COL32(200, 200, 200, 255), "Tab: panel   F1: keys");
         keyHelp();
         compareOverlay(height);
         const std::vector<Pane> all = panes(width, height);
         for (const Pane& p : all)  // labels over the panes
             if (all.size() > 1)
-                ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(p.x) + 8, 8), IM_COL32(255, 255, 255, 255),
-                                                        paneLabel(p.mode));
+                ImGui::GetForegroundDrawList()->AddText(ImVec2(static_cast<float>(p.x) + 8, 8),
+                                                        IM_COL32(255, 255, 255, 255), paneLabel(p.mode));
         ImGui::Render();
         PresentSettings present = m_present;
         if (curved()) present.compare = PresentSettings::Compare::Off;  // the shapes draw mode lut only
-        if (Status s = m_presentPass.draw({m_composite.id(), m_compositeColour.id()}, {m_compositeB.id(), m_compositeColourB.id()},
-                                          present, width, height);
+        if (Status s = m_presentPass.draw({m_composite.id(), m_compositeColour.id()},
+                                          {m_compositeB.id(), m_compositeColourB.id()}, present, width, height);
             !s)
             return s;
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
@@ -364,8 +386,8 @@ Status Viewer::run(int& frame) {
         const bool last = scripted && frame + 1 == m_options.frames;
         if (m_screenshotRequested || (last && !m_options.screenshot.empty())) {
             const std::string path = !m_options.screenshot.empty() ? m_options.screenshot
-                                                                   : "btflut-screenshot-" + std::to_string(::getpid()) + "-" +
-                                                                         std::to_string(frame) + ".png";
+                                                                   : "btflut-screenshot-" + std::to_string(::getpid()) +
+                                                                         "-" + std::to_string(frame) + ".png";
             if (Status s = screenshot(path, width, height); !s) return s;
             m_screenshotRequested = false;
             idleFrames = 0;  // show the status line
@@ -373,7 +395,8 @@ Status Viewer::run(int& frame) {
         glfwSwapBuffers(window);
         if (m_options.timing) {
             gl.Finish();  // the frame's time is the whole of its work, the GPU's included
-            m_frameMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count());
+            m_frameMs.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count());
         }
     }
     if (m_options.timing && m_openRequest.empty()) reportTiming();
@@ -396,7 +419,8 @@ Status runViewer(const ViewerOptions& options) {
         char* end = nullptr;
         const double zoom = std::strtod(options.zoom.c_str(), &end);
         if (*end != '\0' || !(zoom >= 1.0 / 64 && zoom <= 64))
-            return Error{"--zoom '" + options.zoom + "': expected fit, or pixels per texel from 1/64 to 64 (1: one texel per pixel)"};
+            return Error{"--zoom '" + options.zoom +
+                         "': expected fit, or pixels per texel from 1/64 to 64 (1: one texel per pixel)"};
     }
     if (!options.compare.empty() && options.compare != "wipe" && options.compare != "lens")
         return Error{"--compare '" + options.compare + "': expected wipe or lens"};
@@ -407,13 +431,15 @@ Status runViewer(const ViewerOptions& options) {
         double azimuth = 0, elevation = 0, distance = 1;
         char extra = 0;
         const int n = std::sscanf(options.camera.c_str(), "%lf,%lf,%lf%c", &azimuth, &elevation, &distance, &extra);
-        if ((n != 2 && n != 3) || !std::isfinite(azimuth) || !std::isfinite(elevation) || elevation < 3 || elevation > 89 ||
-            !std::isfinite(distance) || distance <= 0)
-            return Error{"--camera '" + options.camera + "': expected AZIMUTH,ELEVATION[,DISTANCE] in degrees, elevation "
+        if ((n != 2 && n != 3) || !std::isfinite(azimuth) || !std::isfinite(elevation) || elevation < 3 ||
+            elevation > 89 || !std::isfinite(distance) || distance <= 0)
+            return Error{"--camera '" + options.camera +
+                         "': expected AZIMUTH,ELEVATION[,DISTANCE] in degrees, elevation "
                          "3 to 89, distance > 0"};
     }
     // The window first: without a display there is nothing to do, and nothing to bake.
-    Result<std::unique_ptr<Window>> window = Window::create(options.width, options.height, "btflut view", options.vsync);
+    Result<std::unique_ptr<Window>> window =
+        Window::create(options.width, options.height, "btflut view", options.vsync);
     if (!window) return Error{window.error()};
     Result<ViewerInput> input = openInput(options);
     if (!input) return Error{input.error()};
@@ -441,7 +467,8 @@ Status runViewer(const ViewerOptions& options) {
             next.images.clear();
             next.projection.clear();
             next.camera.clear();
-            next.light = std::to_string(viewer->light().thetaDegrees()) + "," + std::to_string(viewer->light().phiDegrees());
+            next.light =
+                std::to_string(viewer->light().thetaDegrees()) + "," + std::to_string(viewer->light().phiDegrees());
             Result<ViewerInput> opened = openInput(next);
             if (!opened) {
                 viewer->showMessage(opened.error());

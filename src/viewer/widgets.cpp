@@ -75,11 +75,13 @@ void histogramPlot(const char* id, const std::vector<float>& measured, const std
     auto y = [&](float v) { return origin.y + height - v / top * (height - 2); };
     for (std::size_t b = 0; b < measured.size(); ++b) {
         const float x = origin.x + static_cast<float>(b) * binWidth;
-        draw->AddRectFilled(ImVec2(x, y(measured[b])), ImVec2(x + binWidth - 1, origin.y + height), IM_COL32(110, 170, 240, 255));
+        draw->AddRectFilled(ImVec2(x, y(measured[b])), ImVec2(x + binWidth - 1, origin.y + height),
+                            IM_COL32(110, 170, 240, 255));
     }
     for (std::size_t b = 1; b < expected.size(); ++b) {
         const float x0 = origin.x + (static_cast<float>(b) - 0.5f) * binWidth;
-        draw->AddLine(ImVec2(x0, y(expected[b - 1])), ImVec2(x0 + binWidth, y(expected[b])), IM_COL32(255, 170, 60, 255), 2);
+        draw->AddLine(ImVec2(x0, y(expected[b - 1])), ImVec2(x0 + binWidth, y(expected[b])),
+                      IM_COL32(255, 170, 60, 255), 2);
     }
 }
 

@@ -33,7 +33,8 @@ Result<std::unique_ptr<Window>> Window::create(int width, int height, const std:
                      "); for headless rendering use `btflut render`"};
     glfwMakeContextCurrent(w->m_window);
     glfwSwapInterval(vsync ? 1 : 0);
-    if (const char* missing = loadGlFunctions([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }))
+    if (const char* missing =
+            loadGlFunctions([](const char* name) { return reinterpret_cast<void*>(glfwGetProcAddress(name)); }))
         return Error{std::string("the window's OpenGL context lacks ") + missing};
     return w;
 }

@@ -29,7 +29,8 @@ inline bool bank(const std::uint8_t* data, std::size_t size) {
     if (!b) return false;
     for (double theta : {0.0, 40.0, 85.0})
         for (double phi : {0.0, 135.0}) {
-            const BankLookup lut = b->lookup(Direction::fromDegrees(theta, phi), Direction::fromDegrees(theta / 2, phi));
+            const BankLookup lut =
+                b->lookup(Direction::fromDegrees(theta, phi), Direction::fromDegrees(theta / 2, phi));
             // A blend of valid LUTs (or quantile functions) is valid.
             for (std::size_t at = 0; at < lut.values.size(); at += b->segmentLength())
                 BTFLUT_CHECK(isValidLut(&lut.values[at], b->segmentLength()));
@@ -38,7 +39,8 @@ inline bool bank(const std::uint8_t* data, std::size_t size) {
     b->lightCoverage(0);
     if (b->makesLuts()) {  // relighting from what the file holds: blend, count, match, apply
         const Relighter relighter(*b);
-        BTFLUT_CHECK(relighter.apply(relighter.frame(Direction::fromDegrees(25, 40)), true).pixelCount() == b->reference.pixelCount());
+        BTFLUT_CHECK(relighter.apply(relighter.frame(Direction::fromDegrees(25, 40)), true).pixelCount() ==
+                     b->reference.pixelCount());
     }
     // The views option decodes some layers only.
     Result<LutBank> some = decodeBank(Bytes(data, data + size), "fuzz.btflut",
@@ -58,9 +60,13 @@ inline bool image(const std::uint8_t* data, std::size_t size) {
     return im.ok();
 }
 
-inline bool lp(const std::uint8_t* data, std::size_t size) { return parseLpFile(text(data, size), "fuzz.lp", ".").ok(); }
+inline bool lp(const std::uint8_t* data, std::size_t size) {
+    return parseLpFile(text(data, size), "fuzz.lp", ".").ok();
+}
 
-inline bool lights(const std::uint8_t* data, std::size_t size) { return parseLightsTxt(text(data, size), "lights.txt").ok(); }
+inline bool lights(const std::uint8_t* data, std::size_t size) {
+    return parseLightsTxt(text(data, size), "lights.txt").ok();
+}
 
 inline bool manifest(const std::uint8_t* data, std::size_t size) {
     return parseManifest(text(data, size), "btflut-dataset.json", ".").ok();
@@ -78,7 +84,9 @@ inline bool histograms(const std::uint8_t* data, std::size_t size) {
     return parseHistogramCsv(text(data, size), "h.csv").ok();
 }
 
-inline bool params(const std::uint8_t* data, std::size_t size) { return parseModelParams(text(data, size), "p.json").ok(); }
+inline bool params(const std::uint8_t* data, std::size_t size) {
+    return parseModelParams(text(data, size), "p.json").ok();
+}
 
 // Names as flags and files spell them: Bonn image names and THETA,PHI directions.
 inline bool names(const std::uint8_t* data, std::size_t size) {
@@ -92,8 +100,8 @@ struct Target {
     bool (*accepts)(const std::uint8_t*, std::size_t);
 };
 
-inline constexpr Target kTargets[] = {{"bank", bank},         {"image", image},       {"lp", lp},
-                                      {"lights", lights},     {"manifest", manifest}, {"scene", scene},
-                                      {"histograms", histograms}, {"params", params}, {"names", names}};
+inline constexpr Target kTargets[] = {
+    {"bank", bank},   {"image", image},           {"lp", lp},         {"lights", lights}, {"manifest", manifest},
+    {"scene", scene}, {"histograms", histograms}, {"params", params}, {"names", names}};
 
 }  // namespace btflut::fuzz

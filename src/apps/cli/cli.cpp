@@ -12,8 +12,7 @@
 
 namespace btflut::cli {
 
-Status requireExtension(const std::string& path, const std::vector<std::string>& extensions,
-                        const std::string& what) {
+Status requireExtension(const std::string& path, const std::vector<std::string>& extensions, const std::string& what) {
     std::string ext = fileExtension(path);
     for (const std::string& e : extensions)
         if (ext == e) return success();
@@ -31,7 +30,8 @@ Result<SampleImage> loadSampleImage(const std::string& path, const std::string& 
         if (!loaded) return Error{loaded.error()};
         mask = std::move(*loaded);
     }
-    if (mask.count() == 0) return Error{(maskPath.empty() ? path : maskPath) + ": the image has no sample pixels (the mask is empty)"};
+    if (mask.count() == 0)
+        return Error{(maskPath.empty() ? path : maskPath) + ": the image has no sample pixels (the mask is empty)"};
     return SampleImage{std::move(*image), std::move(mask)};
 }
 
@@ -95,21 +95,24 @@ Scene benchScene(const std::string& bank, int width, int height, const std::stri
     s.target = {0, 0, 0.6};
     s.fovDegrees = 60;
     s.materials["m"] = {bank, images};
-    const std::vector<SceneQuad> quads{{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 6, 6, 3, RenderMode::Lut},
-                                       {"m", {0, 2, 1.5}, {0, -1, 0}, {1, 0, 0}, 6, 3, 2, RenderMode::Lut},
-                                       {"m", {-2.2, 0.6, 1.5}, {0.7071, -0.7071, 0}, {0.7071, 0.7071, 0}, 4, 3, 2, RenderMode::Lut},
-                                       {"m", {2.2, 0.6, 1.5}, {-0.7071, -0.7071, 0}, {0.7071, -0.7071, 0}, 4, 3, 2, RenderMode::Lut}};
+    const std::vector<SceneQuad> quads{
+        {"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 6, 6, 3, RenderMode::Lut},
+        {"m", {0, 2, 1.5}, {0, -1, 0}, {1, 0, 0}, 6, 3, 2, RenderMode::Lut},
+        {"m", {-2.2, 0.6, 1.5}, {0.7071, -0.7071, 0}, {0.7071, 0.7071, 0}, 4, 3, 2, RenderMode::Lut},
+        {"m", {2.2, 0.6, 1.5}, {-0.7071, -0.7071, 0}, {0.7071, -0.7071, 0}, 4, 3, 2, RenderMode::Lut}};
     for (int layer = 0; layer < layers; ++layer)
         for (SceneQuad q : quads) {
             const double offset = 0.001 * layer;
-            q.center = {q.center.x + offset * q.normal.x, q.center.y + offset * q.normal.y, q.center.z + offset * q.normal.z};
+            q.center = {q.center.x + offset * q.normal.x, q.center.y + offset * q.normal.y,
+                        q.center.z + offset * q.normal.z};
             s.quads.push_back(q);
         }
     return s;
 }
 
 const std::array<Vec3, 2>& benchLights() {
-    static const std::array<Vec3, 2> lights{toVector(Direction::fromDegrees(40, 250)), toVector(Direction::fromDegrees(55, 300))};
+    static const std::array<Vec3, 2> lights{toVector(Direction::fromDegrees(40, 250)),
+                                            toVector(Direction::fromDegrees(55, 300))};
     return lights;
 }
 
@@ -146,7 +149,8 @@ std::string unknownOption(const CLI::App& root, const CLI::App& sub, const std::
     for (std::size_t k = 1; k < args.size(); ++k) {
         const std::string word = args[k].substr(0, args[k].find('='));
         if (word == "--") break;  // what follows is positional
-        const bool option = word.size() > 1 && word[0] == '-' && !std::isdigit(static_cast<unsigned char>(word[1])) && word[1] != '.';
+        const bool option =
+            word.size() > 1 && word[0] == '-' && !std::isdigit(static_cast<unsigned char>(word[1])) && word[1] != '.';
         if (!option || std::find(known.begin(), known.end(), word) != known.end()) continue;
         const std::string guess = closestName(word, known);
         return "unknown option " + word + (guess.empty() ? "" : " (did you mean " + guess + "?)");

@@ -21,7 +21,7 @@ namespace btflut::cli {
 struct Command {
     CLI::App* app;
     std::function<Status()> run;
-    int errorExit = 1;               ///< the exit status of an Error
+    int errorExit = 1;                ///< the exit status of an Error
     std::function<int()> exitStatus;  ///< after success (empty: 0); compare's 1 outside its tolerance
 };
 using Commands = std::vector<Command>;
@@ -52,7 +52,8 @@ int run(const std::vector<std::string>& args);
 /// Validates that `path` ends in one of `extensions` (lower case, no dot).
 /// The masked, normalised grey histogram of every image of a dataset (`btflut hist`), or
 /// three per image (R, G, B) with `rgb`; `mask` overrides the dataset's own when not empty.
-Result<std::vector<HistogramRow>> datasetHistograms(const std::string& dataset, const std::string& mask, int bins, bool rgb);
+Result<std::vector<HistogramRow>> datasetHistograms(const std::string& dataset, const std::string& mask, int bins,
+                                                    bool rgb);
 
 /// An image and the mask of its sample pixels (`maskPath`, or every pixel when empty);
 /// refuses a mask without sample pixels.
@@ -62,8 +63,7 @@ struct SampleImage {
 };
 Result<SampleImage> loadSampleImage(const std::string& path, const std::string& maskPath);
 
-Status requireExtension(const std::string& path, const std::vector<std::string>& extensions,
-                        const std::string& what);
+Status requireExtension(const std::string& path, const std::vector<std::string>& extensions, const std::string& what);
 
 /// -q,--quiet, alike on every command that prints progress or what it wrote: only errors
 /// (on stderr) remain, and the exit status. `what`: what it leaves out, where that is more.

@@ -2,8 +2,8 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <iostream>
 #include <functional>
+#include <iostream>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -69,8 +69,8 @@ Status runModelBake(const BakeCommandOptions& o) {
     if (Status s = saveBank(*bank, o.output, {.embedReference = !o.noReference}); !s) return s;
     if (!o.quiet)
         std::cout << "wrote " << o.output << ": model r " << params->model.roughness << ", "
-                  << bank->layers.front().nodes.size() << " model directions, reference " << o.reference
-                  << ", " << std::filesystem::file_size(o.output) << " bytes\n";
+                  << bank->layers.front().nodes.size() << " model directions, reference " << o.reference << ", "
+                  << std::filesystem::file_size(o.output) << " bytes\n";
     return success();
 }
 
@@ -134,15 +134,20 @@ Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, 
 std::string predictorSummary(const LutBank& bank) {
     if (!bank.makesLuts()) return "";
     const LutBank::Blend& b = bank.blend;
-    std::string s = bank.predictsWithModel() ? ", " + std::string(lightBasisName(b.model.basis)) +
-                                                   (b.model.basis == LightBasis::Rbf || b.model.basis == LightBasis::Bilinear
-                                                        ? std::to_string(b.model.planes)
-                                                        : b.model.basis == LightBasis::Hsh ? std::to_string(b.model.order) : "")
-                                             : ", " + std::to_string(b.references.size()) + " reference(s)";
+    std::string s = bank.predictsWithModel()
+                        ? ", " + std::string(lightBasisName(b.model.basis)) +
+                              (b.model.basis == LightBasis::Rbf || b.model.basis == LightBasis::Bilinear
+                                   ? std::to_string(b.model.planes)
+                               : b.model.basis == LightBasis::Hsh ? std::to_string(b.model.order)
+                                                                  : "")
+                        : ", " + std::to_string(b.references.size()) + " reference(s)";
     char match[32];
     std::snprintf(match, sizeof match, "%.2f", static_cast<double>(b.match));
-    return s + (b.match == 1 ? " matched" : b.match == 0 ? " unmatched" : std::string(" matched ") + match) + ", " +
-           std::to_string(b.regions) + " region(s)";
+    return s +
+           (b.match == 1   ? " matched"
+            : b.match == 0 ? " unmatched"
+                           : std::string(" matched ") + match) +
+           ", " + std::to_string(b.regions) + " region(s)";
 }
 
 Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
@@ -153,8 +158,8 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     if (app.count("--budget") > 0 && o.predictor != "auto") return Error{"--budget goes with --predictor auto"};
     if (Status s = requireExtension(o.output, {"btflut"}, "output"); !s) return s;
     // A view layer's grid alone must fit a chunk of the file (4 GiB): refused before any work.
-    const std::uint64_t gridBytes = static_cast<std::uint64_t>(o.grid) * o.grid * (o.entries ? o.entries : 1024) *
-                                    (o.colour == "rgb" ? 3 : 1) * 2;
+    const std::uint64_t gridBytes =
+        static_cast<std::uint64_t>(o.grid) * o.grid * (o.entries ? o.entries : 1024) * (o.colour == "rgb" ? 3 : 1) * 2;
     if (gridBytes > 0xFFFFFFFFu)
         return Error{"--grid " + std::to_string(o.grid) + " with --entries " + std::to_string(o.entries) +
                      " makes a grid of " + std::to_string(gridBytes) +
@@ -179,7 +184,9 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     options.references = o.references;
     if (o.predictor != "auto" && o.predictor != "references") {
         std::optional<Result<LightModelOptions>> model = lightModelNamed(o.predictor);
-        if (!model) return Error{"--predictor '" + o.predictor + "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN or blnN"};
+        if (!model)
+            return Error{"--predictor '" + o.predictor +
+                         "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN or blnN"};
         if (!*model) return Error{"--predictor " + model->error()};
         options.model = **model;
     }
@@ -188,10 +195,11 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     options.quantiles = o.quantiles;
     options.labelsPath = o.labels;
     if (!o.labels.empty() && o.regions > 1) return Error{"give --regions or --labels, not both"};
-    if (o.noReference && (o.references > 1 || o.regions > 1 || !o.labels.empty() || options.colour == ColourMode::Lrgb ||
-                          options.model || o.predictor == "auto"))
-        return Error{"--no-reference: a bank that predicts (the default --predictor auto, references, a model) keeps "
-                     "what it predicts from; give --references 1 for the paper's bank"};
+    if (o.noReference && (o.references > 1 || o.regions > 1 || !o.labels.empty() ||
+                          options.colour == ColourMode::Lrgb || options.model || o.predictor == "auto"))
+        return Error{
+            "--no-reference: a bank that predicts (the default --predictor auto, references, a model) keeps "
+            "what it predicts from; give --references 1 for the paper's bank"};
     if (!o.quiet) options.progress = terminalProgress(o.predictor == "auto" ? "validating" : "baking");
     HistogramsWhileBaking collector{*dataset};
     const bool fitting = o.fill == "model" && o.params.empty();
@@ -216,13 +224,12 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
         std::size_t nodes = 0;
         for (const ViewLayer& l : bank->layers)
             for (const LightNode& n : l.nodes) nodes += !n.modelled;
-        std::cout << "wrote " << o.output << ": " << dataset->images.size() << " images, "
-                  << bank->layers.size() << " view layer(s), " << nodes << " measured nodes, "
-                  << bank->gridSize << "x" << bank->gridSize << " grid, " << bank->entries
-                  << " entries, domain " << domainName(bank->domain) << ", colour " << colourName(bank->colour)
-                  << predictorSummary(*bank) << (bank->selection.empty() ? "" : " (chosen by validation; btflut info)")
-                  << ", reference " << bank->referenceName
-                  << (bank->ptm.empty() ? "" : ", PTM") << ", "
+        std::cout << "wrote " << o.output << ": " << dataset->images.size() << " images, " << bank->layers.size()
+                  << " view layer(s), " << nodes << " measured nodes, " << bank->gridSize << "x" << bank->gridSize
+                  << " grid, " << bank->entries << " entries, domain " << domainName(bank->domain) << ", colour "
+                  << colourName(bank->colour) << predictorSummary(*bank)
+                  << (bank->selection.empty() ? "" : " (chosen by validation; btflut info)") << ", reference "
+                  << bank->referenceName << (bank->ptm.empty() ? "" : ", PTM") << ", "
                   << std::filesystem::file_size(o.output) << " bytes\n";
     }
     return success();
@@ -251,8 +258,7 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
     app->add_option("--grid", o->grid, "grid nodes per side over the equal-area light disk")
         ->check(CLI::Range(2, 257))
         ->capture_default_str();
-    app->add_option("--entries", o->entries,
-                    "LUT entries (default 256, or 1024 for a 16-bit reference)")
+    app->add_option("--entries", o->entries, "LUT entries (default 256, or 1024 for a 16-bit reference)")
         ->check(CLI::Range(2, 65536));
     app->add_option("--colour", o->colour,
                     "grey: one LUT on the grey value, the references' chroma kept; rgb: one LUT per channel; lrgb: "
@@ -306,9 +312,10 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
                     "model (the fitted rough-surface model's LUTs there, marked as modelled in the bank; paper 6.5)")
         ->check(CLI::IsMember({"clamp", "model"}))
         ->capture_default_str();
-    app->add_option("--params", o->params,
-                    "with --fill model: the model's PARAMS.json (btflut fit writes it); without it the dataset is fitted "
-                    "first");
+    app->add_option(
+        "--params", o->params,
+        "with --fill model: the model's PARAMS.json (btflut fit writes it); without it the dataset is fitted "
+        "first");
     app->add_option("--fit-brdf", o->fitBrdf, "with --fill model and no --params: the BRDF to fit (lambert, ts, mix)")
         ->capture_default_str();
     app->add_option("--threads", o->threads,

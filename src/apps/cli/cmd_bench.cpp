@@ -1,11 +1,11 @@
 // btflut bench: timings that print ratios measured side by side, never pass/fail.
 #include <algorithm>
-#include <map>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <iostream>
+#include <limits>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -46,9 +46,7 @@ Status runBenchBake(const BenchBakeOptions& o) {
         pixels += image->pixelCount();
         images.push_back(std::move(*image));
     }
-    ImageProvider preloaded = [&](std::size_t i, Image&) -> Result<const Image*> {
-        return &images[i];
-    };
+    ImageProvider preloaded = [&](std::size_t i, Image&) -> Result<const Image*> { return &images[i]; };
     auto timeBake = [&](int threads) -> Result<double> {
         BakeOptions options;
         options.threads = threads;
@@ -66,14 +64,10 @@ Status runBenchBake(const BenchBakeOptions& o) {
         all.push_back(*a);
         one.push_back(*b);
     }
-    nlohmann::json out{{"dataset", o.dataset},
-                       {"images", images.size()},
-                       {"pixels", pixels},
-                       {"threads", o.threads},
-                       {"seconds_median", median(all)},
-                       {"seconds_median_1_thread", median(one)},
-                       {"seconds", all},
-                       {"seconds_1_thread", one}};
+    nlohmann::json out{
+        {"dataset", o.dataset}, {"images", images.size()},       {"pixels", pixels},
+        {"threads", o.threads}, {"seconds_median", median(all)}, {"seconds_median_1_thread", median(one)},
+        {"seconds", all},       {"seconds_1_thread", one}};
     if (o.json) {
         std::cout << jsonText(out);
     } else {
@@ -104,8 +98,8 @@ Status runBenchSimulate(const BenchSimulateOptions& o) {
     const std::vector<Geometry> geometry = curetC2();
     std::vector<std::vector<double>> reference;
     for (const Geometry& g : geometry)
-        reference.push_back(simulateHistogram(*model, g.light, g.view,
-                                              {.method = SimulationMethod::Quadrature, .nodes = 512}));
+        reference.push_back(
+            simulateHistogram(*model, g.light, g.view, {.method = SimulationMethod::Quadrature, .nodes = 512}));
     struct Config {
         std::string label;
         SimulationOptions options;
@@ -115,10 +109,13 @@ Status runBenchSimulate(const BenchSimulateOptions& o) {
     std::vector<Config> configs;
     for (std::uint64_t n : {1000ull, 10000ull, 50000ull, 100000ull, 1000000ull})
         configs.push_back({"mc " + std::to_string(n), {.method = SimulationMethod::Mc, .samples = n, .seed = 5}});
-    configs.push_back({"mc 50000 1 thread", {.method = SimulationMethod::Mc, .samples = 50000, .seed = 5, .threads = 1}});
-    configs.push_back({"mc 1000000 1 thread", {.method = SimulationMethod::Mc, .samples = 1000000, .seed = 5, .threads = 1}});
+    configs.push_back(
+        {"mc 50000 1 thread", {.method = SimulationMethod::Mc, .samples = 50000, .seed = 5, .threads = 1}});
+    configs.push_back(
+        {"mc 1000000 1 thread", {.method = SimulationMethod::Mc, .samples = 1000000, .seed = 5, .threads = 1}});
     for (int nodes : {4, 6, 8, 12, 16, 24, 32, 48, 64})
-        configs.push_back({"quadrature " + std::to_string(nodes), {.method = SimulationMethod::Quadrature, .nodes = nodes}});
+        configs.push_back(
+            {"quadrature " + std::to_string(nodes), {.method = SimulationMethod::Quadrature, .nodes = nodes}});
     for (int r = 0; r < o.repeat; ++r)
         for (Config& c : configs) {
             auto start = std::chrono::steady_clock::now();
@@ -137,15 +134,21 @@ Status runBenchSimulate(const BenchSimulateOptions& o) {
     double quadSeconds = std::numeric_limits<double>::infinity();
     std::string quadLabel = "none";
     for (const Config& c : configs)
-        if (c.options.method == SimulationMethod::Quadrature && c.error <= mc50k.error && median(c.seconds) < quadSeconds) {
+        if (c.options.method == SimulationMethod::Quadrature && c.error <= mc50k.error &&
+            median(c.seconds) < quadSeconds) {
             quadSeconds = median(c.seconds);
             quadLabel = c.label;
         }
     const double quadOverMc = quadSeconds / median(mc50k.seconds);
     const double speedup50k = median(find("mc 50000 1 thread").seconds) / median(mc50k.seconds);
     const double speedup1m = median(find("mc 1000000 1 thread").seconds) / median(find("mc 1000000").seconds);
-    nlohmann::json out{{"model", {{"roughness", model->roughness}, {"kd", model->brdf.kd}, {"ks", model->brdf.ks},
-                                  {"sigma", model->brdf.sigma}, {"ior", model->brdf.ior}, {"gain", model->gain}}},
+    nlohmann::json out{{"model",
+                        {{"roughness", model->roughness},
+                         {"kd", model->brdf.kd},
+                         {"ks", model->brdf.ks},
+                         {"sigma", model->brdf.sigma},
+                         {"ior", model->brdf.ior},
+                         {"gain", model->gain}}},
                        {"geometry", "curet-c2"},
                        {"reference", "quadrature 512"},
                        {"quad_over_mc50k", quadOverMc},
@@ -186,8 +189,8 @@ struct BenchSynthOptions {
 // One image of a Lambertian r 0.4 field with cast shadows (light 60 degrees, view 30 degrees
 // from the other side), on one thread and on all, interleaved.
 Status runBenchSynth(const BenchSynthOptions& o) {
-    Result<HeightField> field = synthesizeHeightField({.size = o.size, .roughness = 0.4,
-                                                       .correlationLength = std::min(16.0, o.size / 4.0)});
+    Result<HeightField> field =
+        synthesizeHeightField({.size = o.size, .roughness = 0.4, .correlationLength = std::min(16.0, o.size / 4.0)});
     if (!field) return Error{field.error()};
     const SurfaceModel model{.roughness = 0.4};
     const Direction light = Direction::fromDegrees(60, 0), view = Direction::fromDegrees(30, 180);
@@ -195,12 +198,17 @@ Status runBenchSynth(const BenchSynthOptions& o) {
     for (int r = 0; r < o.repeat; ++r)
         for (int threads : {1, 0}) {
             auto start = std::chrono::steady_clock::now();
-            Image image = renderHeightField(*field, model, light, view, {.samplesPerAxis = o.samples, .threads = threads});
-            (threads == 1 ? one : all).push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            Image image =
+                renderHeightField(*field, model, light, view, {.samplesPerAxis = o.samples, .threads = threads});
+            (threads == 1 ? one : all)
+                .push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         }
     const double speedup = median(one) / median(all);
-    nlohmann::json out{{"size", o.size}, {"rays_per_pixel", o.samples * o.samples}, {"seconds_1_thread", median(one)},
-                       {"seconds", median(all)}, {"speedup_2_threads", speedup}};
+    nlohmann::json out{{"size", o.size},
+                       {"rays_per_pixel", o.samples * o.samples},
+                       {"seconds_1_thread", median(one)},
+                       {"seconds", median(all)},
+                       {"speedup_2_threads", speedup}};
     if (o.json) {
         std::cout << jsonText(out);
         return success();
@@ -277,24 +285,30 @@ Status runBenchRender(const BenchRenderOptions& o) {
     GLint timerBits = 0;
     gl.GetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timerBits);
     const bool timer = timerBits > 0;
-    nlohmann::json out{{"context", (*context)->description()}, {"bank", o.bank}, {"frames", o.frames},
-                       {"rounds", o.repeat},  {"overdraw", o.overdraw}, {"quads", 4 * o.overdraw},
-                       {"gpu_timer", timer},  {"sizes", nlohmann::json::array()}};
+    nlohmann::json out{{"context", (*context)->description()},
+                       {"bank", o.bank},
+                       {"frames", o.frames},
+                       {"rounds", o.repeat},
+                       {"overdraw", o.overdraw},
+                       {"quads", 4 * o.overdraw},
+                       {"gpu_timer", timer},
+                       {"sizes", nlohmann::json::array()}};
     // Static: the light stays (lut relights nothing after the first frame). Moving: a new
     // direction every frame, so each frame relights or draws per fragment (lut), recomputes
     // the brightness (brdf) or the PTM weights (ptm).
-    Result<LutPath> lutPath = o.lutPath == "auto"       ? Result<LutPath>(LutPath::Auto)
-                              : o.lutPath == "texture"  ? Result<LutPath>(LutPath::TextureSpace)
-                              : o.lutPath == "fragment" ? Result<LutPath>(LutPath::PerFragment)
-                                                        : Result<LutPath>(Error{"--lut-path: expected auto, texture or fragment"});
+    Result<LutPath> lutPath = o.lutPath == "auto"      ? Result<LutPath>(LutPath::Auto)
+                              : o.lutPath == "texture" ? Result<LutPath>(LutPath::TextureSpace)
+                              : o.lutPath == "fragment"
+                                  ? Result<LutPath>(LutPath::PerFragment)
+                                  : Result<LutPath>(Error{"--lut-path: expected auto, texture or fragment"});
     if (!lutPath) return Error{lutPath.error()};
     std::string text;
     bool first = true;
     for (const std::string& size : o.sizes) {
         int w = 0, h = 0;
         char x = 0, extra = 0;
-        if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 || w > 16384 ||
-            h > 16384)
+        if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 ||
+            w > 16384 || h > 16384)
             return Error{"--size '" + size + "': expected WxH with both within 1..16384"};
         const Scene scene = benchScene(o.bank, w, h, {}, o.overdraw);
         Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(scene, {.lutPath = *lutPath});
@@ -344,7 +358,8 @@ Status runBenchRender(const BenchRenderOptions& o) {
         text += line;
         for (const Row& row : rows) {
             const double sw = median(wall[{row.name, false}]), mw = median(wall[{row.name, true}]);
-            const double sg = timer ? median(gpu[{row.name, false}]) : NAN, mg = timer ? median(gpu[{row.name, true}]) : NAN;
+            const double sg = timer ? median(gpu[{row.name, false}]) : NAN,
+                         mg = timer ? median(gpu[{row.name, true}]) : NAN;
             entry[row.name + "_ms"] = mw * 1e3;
             entry[row.name + "_static_ms"] = sw * 1e3;
             if (timer) {
@@ -380,24 +395,27 @@ Status runBenchRender(const BenchRenderOptions& o) {
                       "(GPU %.3f, %.3f)\n",
                       entry["lut_over_flat_static"].get<double>(), entry["lut_over_flat"].get<double>(),
                       timer ? entry["gpu_lut_over_flat_static"].get<double>() : NAN,
-                      timer ? entry["gpu_lut_over_flat"].get<double>() : NAN, entry["lut_over_ptm_static"].get<double>(),
-                      entry["lut_over_ptm"].get<double>(), timer ? entry["gpu_lut_over_ptm_static"].get<double>() : NAN,
+                      timer ? entry["gpu_lut_over_flat"].get<double>() : NAN,
+                      entry["lut_over_ptm_static"].get<double>(), entry["lut_over_ptm"].get<double>(),
+                      timer ? entry["gpu_lut_over_ptm_static"].get<double>() : NAN,
                       timer ? entry["gpu_lut_over_ptm"].get<double>() : NAN);
         text += line;
         if (predictor) {
-            std::snprintf(line, sizeof line, "    lut/predictor (the predictor per fragment, no LUT): static %.3f, moving %.3f\n",
-                          entry["lut_over_predictor_static"].get<double>(), entry["lut_over_predictor_moving"].get<double>());
+            std::snprintf(
+                line, sizeof line, "    lut/predictor (the predictor per fragment, no LUT): static %.3f, moving %.3f\n",
+                entry["lut_over_predictor_static"].get<double>(), entry["lut_over_predictor_moving"].get<double>());
             text += line;
         }
-        std::snprintf(line, sizeof line, "    lut quads per fragment in the moving frames: %zu of %zu (the last frame)\n",
-                      movingLutStats.quadsPerFragment, movingLutStats.quadsPerFragment + movingLutStats.quadsTextureSpace);
+        std::snprintf(
+            line, sizeof line, "    lut quads per fragment in the moving frames: %zu of %zu (the last frame)\n",
+            movingLutStats.quadsPerFragment, movingLutStats.quadsPerFragment + movingLutStats.quadsTextureSpace);
         entry["lut_moving_quads_per_fragment"] = movingLutStats.quadsPerFragment;
         text += line;
         if (first) {  // the headline figures: the first size
             first = false;
             for (const char* key : {"lut_over_flat", "lut_over_ptm", "lut_over_flat_static", "lut_over_ptm_static",
-                                    "lut_over_predictor_moving", "lut_over_predictor_static", "gpu_lut_over_flat", "gpu_lut_over_ptm", "gpu_lut_over_flat_static",
-                                    "gpu_lut_over_ptm_static"})
+                                    "lut_over_predictor_moving", "lut_over_predictor_static", "gpu_lut_over_flat",
+                                    "gpu_lut_over_ptm", "gpu_lut_over_flat_static", "gpu_lut_over_ptm_static"})
                 if (entry.contains(key)) out[key] = entry[key];
             // Per material: lut reads the reference and draws one relit texture per light
             // direction of its quads (here four); ptm needs its three coefficient/albedo textures.
@@ -409,11 +427,12 @@ Status runBenchRender(const BenchRenderOptions& o) {
             out["light_directions"] = directions;
             out["texture_bytes_ptm"] = bytes.ptm;
             out["lut_over_ptm_texture_bytes"] = static_cast<double>(lutBytes) / static_cast<double>(bytes.ptm);
-            std::snprintf(line, sizeof line,
-                          "  texture memory per material: lut %zu bytes (source %zu + %zu relit textures of %zu), ptm %zu "
-                          "bytes; lut/ptm %.4f\n",
-                          lutBytes, bytes.reference + bytes.blend, directions, bytes.relit / directions, bytes.ptm,
-                          static_cast<double>(lutBytes) / static_cast<double>(bytes.ptm));
+            std::snprintf(
+                line, sizeof line,
+                "  texture memory per material: lut %zu bytes (source %zu + %zu relit textures of %zu), ptm %zu "
+                "bytes; lut/ptm %.4f\n",
+                lutBytes, bytes.reference + bytes.blend, directions, bytes.relit / directions, bytes.ptm,
+                static_cast<double>(lutBytes) / static_cast<double>(bytes.ptm));
             text += line;
             // Drawn per fragment a material needs its source (the reference, or a predictor's
             // planes) and a LUT per channel and region: per texel against the PTM's.
@@ -432,8 +451,8 @@ Status runBenchRender(const BenchRenderOptions& o) {
         std::cout << jsonText(out);
         return success();
     }
-    std::cout << "render " << 4 * o.overdraw << " quads, frame times (median of " << o.repeat << " rounds of " << o.frames
-              << " frames, no wait between frames), " << (*context)->description()
+    std::cout << "render " << 4 * o.overdraw << " quads, frame times (median of " << o.repeat << " rounds of "
+              << o.frames << " frames, no wait between frames), " << (*context)->description()
               << (timer ? "" : "; no GPU timer in this driver") << "\n"
               << text;
     return success();
@@ -454,8 +473,8 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
     commands.push_back({bake, [o] { return runBenchBake(*o); }});
 
     auto so = std::make_shared<BenchSimulateOptions>();
-    CLI::App* simulate = bench->add_subcommand(
-        "simulate", "Error against time: Monte Carlo and quadrature histograms at curet-c2");
+    CLI::App* simulate =
+        bench->add_subcommand("simulate", "Error against time: Monte Carlo and quadrature histograms at curet-c2");
     addModelOptions(*simulate, so->model, false);
     simulate->add_option("--repeat", so->repeat, "timed runs")->check(CLI::Range(1, 100))->capture_default_str();
     simulate->add_flag("--json", so->json, "print JSON");
@@ -464,27 +483,33 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
     auto yo = std::make_shared<BenchSynthOptions>();
     CLI::App* synth = bench->add_subcommand("synth", "Time rendering one synthetic image, 1 thread against all");
     synth->add_option("--size", yo->size, "image size")->check(CLI::Range(16, 8192))->capture_default_str();
-    synth->add_option("--samples", yo->samples, "rays per pixel along each axis")->check(CLI::Range(1, 16))->capture_default_str();
+    synth->add_option("--samples", yo->samples, "rays per pixel along each axis")
+        ->check(CLI::Range(1, 16))
+        ->capture_default_str();
     synth->add_option("--repeat", yo->repeat, "timed runs")->check(CLI::Range(1, 100))->capture_default_str();
     synth->add_flag("--json", yo->json, "print JSON");
     commands.push_back({synth, [yo] { return runBenchSynth(*yo); }});
 
     auto ro = std::make_shared<BenchRenderOptions>();
     CLI::App* render = bench->add_subcommand(
-        "render", "Frame times of the scene renderer in modes flat, brdf, ptm and lut (and, for a bank with a "
-                  "predictor, the predictor per fragment without its LUT), light static and moving (a new direction "
-                  "every frame), wall and GPU time, interleaved");
+        "render",
+        "Frame times of the scene renderer in modes flat, brdf, ptm and lut (and, for a bank with a "
+        "predictor, the predictor per fragment without its LUT), light static and moving (a new direction "
+        "every frame), wall and GPU time, interleaved");
     render->add_option("BANK", ro->bank, "M.btflut used for every quad (baked with --ptm)")->required();
-    render->add_option("--frames", ro->frames, "frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();
+    render->add_option("--frames", ro->frames, "frames per mode and round")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
     render->add_option("--repeat", ro->repeat, "rounds")->check(CLI::Range(1, 100))->capture_default_str();
     render->add_option("--size", ro->sizes, "image sizes WxH (repeatable)")->capture_default_str();
     render->add_option("--overdraw", ro->overdraw, "layers of the four quads, each drawn over the last")
         ->check(CLI::Range(1, 64))
         ->capture_default_str();
     render->add_option("--backend", ro->backend, "auto, osmesa or egl")->capture_default_str();
-    render->add_option("--lut-path", ro->lutPath,
-                       "mode lut on banks of one view layer: auto (per quad and frame, whichever costs less), texture "
-                       "(relit textures only) or fragment (per fragment only)")
+    render
+        ->add_option("--lut-path", ro->lutPath,
+                     "mode lut on banks of one view layer: auto (per quad and frame, whichever costs less), texture "
+                     "(relit textures only) or fragment (per fragment only)")
         ->check(CLI::IsMember({"auto", "texture", "fragment"}))
         ->capture_default_str();
     render->add_flag("--json", ro->json, "print JSON");

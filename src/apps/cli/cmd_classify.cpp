@@ -28,11 +28,13 @@ struct ClassifyCommandOptions {
 Result<std::vector<MaterialHistograms>> loadLibrary(const std::string& folder) {
     namespace fs = std::filesystem;
     std::error_code ec;
-    if (!fs::is_directory(folder, ec)) return Error{folder + ": not a folder (the library is a folder of .btflut banks and PARAMS.json models)"};
+    if (!fs::is_directory(folder, ec))
+        return Error{folder + ": not a folder (the library is a folder of .btflut banks and PARAMS.json models)"};
     std::vector<std::string> paths;
     for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
         const std::string extension = fileExtension(entry.path().string());
-        if (entry.is_regular_file(ec) && (extension == "btflut" || extension == "json")) paths.push_back(entry.path().string());
+        if (entry.is_regular_file(ec) && (extension == "btflut" || extension == "json"))
+            paths.push_back(entry.path().string());
     }
     if (ec) return Error{folder + ": cannot list the folder (" + ec.message() + ")"};
     if (paths.empty()) return Error{folder + ": the library is empty (no .btflut banks or PARAMS.json models)"};
@@ -59,17 +61,20 @@ Status runClassify(const ClassifyCommandOptions& o) {
     const std::size_t shown = std::min<std::size_t>(ranked.size(), static_cast<std::size_t>(o.top));
 
     if (o.json) {
-        nlohmann::json out{{"image", o.image}, {"library", o.library}, {"metric", o.metric}, {"matches", nlohmann::json::array()}};
+        nlohmann::json out{
+            {"image", o.image}, {"library", o.library}, {"metric", o.metric}, {"matches", nlohmann::json::array()}};
         for (std::size_t k = 0; k < shown; ++k) {
             const MaterialHistograms& m = (*library)[ranked[k].material];
-            out["matches"].push_back({{"material", m.name}, {"path", m.path}, {"score", ranked[k].score},
+            out["matches"].push_back({{"material", m.name},
+                                      {"path", m.path},
+                                      {"score", ranked[k].score},
                                       {"light", directionJson(ranked[k].light)}});
         }
         std::cout << jsonText(out);
         return success();
     }
-    std::cout << o.image << ": " << (o.metric == "mean" ? "mean brightness" : "histogram") << " against " << library->size()
-              << " material(s), each at its best light:\n";
+    std::cout << o.image << ": " << (o.metric == "mean" ? "mean brightness" : "histogram") << " against "
+              << library->size() << " material(s), each at its best light:\n";
     for (std::size_t k = 0; k < shown; ++k) {
         const MaterialHistograms& m = (*library)[ranked[k].material];
         char line[256];
@@ -86,7 +91,8 @@ Status runClassify(const ClassifyCommandOptions& o) {
 void addClassifyCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<ClassifyCommandOptions>();
     CLI::App* app = root.add_subcommand(
-        "classify", "Which material of a library one image shows, under an unknown light: top-k scores from histograms");
+        "classify",
+        "Which material of a library one image shows, under an unknown light: top-k scores from histograms");
     app->add_option("IMAGE", o->image, "the image of the sample")->required();
     app->add_option("--library", o->library, "a folder of materials: banks (.btflut) and fitted models (PARAMS.json)")
         ->required();

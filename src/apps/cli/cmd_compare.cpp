@@ -7,14 +7,14 @@
 #include <iostream>
 #include <map>
 #include <memory>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "cli/cli.h"
-#include "core/data/dataset.h"
 #include "core/check.h"
+#include "core/data/dataset.h"
 #include "core/eval/metrics.h"
 #include "core/io/file_io.h"
 #include "core/io/json_text.h"
@@ -71,9 +71,11 @@ Result<Tolerance> parseTolerance(const std::string& text) {
         item = trimmed(item);
         const auto equals = item.find('=');
         const std::string name = trimmed(item.substr(0, equals));
-        if (equals == std::string::npos || std::find(std::begin(kFigures), std::end(kFigures), name) == std::end(kFigures))
-            return Error{"--tolerance '" + text +
-                         "': expected NAME=VALUE,... with NAME one of psnr, ssim, max, mean, p99, pixels, l1, emd, threshold"};
+        if (equals == std::string::npos ||
+            std::find(std::begin(kFigures), std::end(kFigures), name) == std::end(kFigures))
+            return Error{
+                "--tolerance '" + text +
+                "': expected NAME=VALUE,... with NAME one of psnr, ssim, max, mean, p99, pixels, l1, emd, threshold"};
         if (!seen.insert(name).second) return Error{"--tolerance '" + text + "': " + name + " is given twice"};
         std::string value = trimmed(item.substr(equals + 1));
         if (name == "pixels" && !value.empty() && value.back() == '%') value.pop_back();
@@ -81,10 +83,13 @@ Result<Tolerance> parseTolerance(const std::string& text) {
         const double limit = std::strtod(value.c_str(), &end);
         if (value.empty() || *end != '\0' || !std::isfinite(limit) || limit < 0)
             return Error{"--tolerance '" + text + "': '" + value + "' is not a non-negative number"};
-        if (name == "threshold") t.threshold = limit;
-        else t.bounds.push_back({name, limit});
+        if (name == "threshold")
+            t.threshold = limit;
+        else
+            t.bounds.push_back({name, limit});
     }
-    if (t.bounds.empty()) return Error{"--tolerance '" + text + "': no bound (psnr, ssim, max, mean, p99, pixels, l1, emd)"};
+    if (t.bounds.empty())
+        return Error{"--tolerance '" + text + "': no bound (psnr, ssim, max, mean, p99, pixels, l1, emd)"};
     return t;
 }
 
@@ -125,8 +130,10 @@ void countPixels(const ImageCodes& a, const ImageCodes& b, const Mask& mask, dou
             if (!everyPixel && !mask.inside[i]) continue;
             int worst = 0;
             for (int c = 0; c < C; ++c) {
-                const int d = std::abs(int{pa[i * sa + static_cast<std::size_t>(c)]} - int{pb[i * sb + static_cast<std::size_t>(c)]});
-                ++h[static_cast<std::size_t>((i + static_cast<std::size_t>(c)) & 3u) * bins + static_cast<std::size_t>(d)];
+                const int d = std::abs(int{pa[i * sa + static_cast<std::size_t>(c)]} -
+                                       int{pb[i * sb + static_cast<std::size_t>(c)]});
+                ++h[static_cast<std::size_t>((i + static_cast<std::size_t>(c)) & 3u) * bins +
+                    static_cast<std::size_t>(d)];
                 worst = std::max(worst, d);
             }
             ++counted;
@@ -139,11 +146,15 @@ void countPixels(const ImageCodes& a, const ImageCodes& b, const Mask& mask, dou
     };
     parallelFor(bands, 0, [&](std::size_t band) {
         if (b.bitDepth == 16) {
-            if (channels == 3) count.template operator()<3>(band, a.sixteen(), b.sixteen());
-            else count.template operator()<1>(band, a.sixteen(), b.sixteen());
+            if (channels == 3)
+                count.template operator()<3>(band, a.sixteen(), b.sixteen());
+            else
+                count.template operator()<1>(band, a.sixteen(), b.sixteen());
         } else {
-            if (channels == 3) count.template operator()<3>(band, a.eight(), b.eight());
-            else count.template operator()<1>(band, a.eight(), b.eight());
+            if (channels == 3)
+                count.template operator()<3>(band, a.eight(), b.eight());
+            else
+                count.template operator()<1>(band, a.eight(), b.eight());
         }
     });
     std::vector<std::uint64_t> total(static_cast<std::size_t>(top) + 1, 0);
@@ -193,7 +204,8 @@ Image differenceImage(const Image& a, const Image& b, const Mask& mask, double f
         }
         double worst = 0;
         for (int c = 0; c < b.channels; ++c)
-            worst = std::max(worst, std::abs(static_cast<double>(a.samples[i * a.channels + c]) - b.samples[i * b.channels + c]));
+            worst = std::max(
+                worst, std::abs(static_cast<double>(a.samples[i * a.channels + c]) - b.samples[i * b.channels + c]));
         const float base = 0.3f * b.grey(i);
         rgb[0] = rgb[1] = rgb[2] = base;
         if (worst > 0.5 / 65535) {
@@ -226,11 +238,11 @@ Status copyFile(const std::string& from, const std::string& to) {
 
 // One comparison's outcome, for the printed line, the JSON and the JUnit report.
 struct Outcome {
-    std::string name;     // the file name (folders) or the actual image's path
-    std::string problem;  // set when the images could not be compared (missing, unreadable, another size)
-    std::string note;     // "created ...", "updated ..."
-    bool created = false; // a new golden image: nothing compared
-    bool updated = false; // outside the tolerance, and the golden image replaced (--update)
+    std::string name;      // the file name (folders) or the actual image's path
+    std::string problem;   // set when the images could not be compared (missing, unreadable, another size)
+    std::string note;      // "created ...", "updated ..."
+    bool created = false;  // a new golden image: nothing compared
+    bool updated = false;  // outside the tolerance, and the golden image replaced (--update)
     Figures f;
     std::vector<std::string> failed;  // the bounds it is outside of (kept when updated)
     bool ok() const { return problem.empty() && (failed.empty() || updated); }
@@ -248,17 +260,19 @@ std::string line(const Outcome& r, const Tolerance& t, const std::string& tolera
     if (r.created) return r.note;
     const ImageErrors& e = r.f.e;
     char text[400];
-    std::snprintf(text, sizeof text,
-                  "psnr %s, ssim %.4f, max %.2f/255, mean %.3f/255, p99 %.2f/255, pixels %.3f%% over %g/255, histogram l1 "
-                  "%.4f, emd %.5f: %s",
-                  psnrText(r.f).c_str(), e.ssim, e.maxDifference * 255, e.meanDifference * 255, r.f.p99, r.f.pixels,
-                  t.threshold, e.l1, e.emd, r.failed.empty() ? ("within " + tolerance).c_str() : "OUTSIDE the tolerance");
+    std::snprintf(
+        text, sizeof text,
+        "psnr %s, ssim %.4f, max %.2f/255, mean %.3f/255, p99 %.2f/255, pixels %.3f%% over %g/255, histogram l1 "
+        "%.4f, emd %.5f: %s",
+        psnrText(r.f).c_str(), e.ssim, e.maxDifference * 255, e.meanDifference * 255, r.f.p99, r.f.pixels, t.threshold,
+        e.l1, e.emd, r.failed.empty() ? ("within " + tolerance).c_str() : "OUTSIDE the tolerance");
     std::string out = text;
     for (const std::string& name : r.failed)
         for (const Bound& bound : t.bounds)
             if (bound.name == name) {
                 std::ostringstream s;
-                s << "\n  " << name << " " << figure(r.f, name) << (name == "psnr" || name == "ssim" ? " < " : " > ") << bound.limit;
+                s << "\n  " << name << " " << figure(r.f, name) << (name == "psnr" || name == "ssim" ? " < " : " > ")
+                  << bound.limit;
                 out += s.str();
             }
     if (!r.note.empty()) out += "\n" + r.note;
@@ -278,9 +292,14 @@ nlohmann::json outcomeJson(const Outcome& r, const CompareOptions& o, const std:
     }
     const ImageErrors& e = r.f.e;
     out.update({{"psnr", r.f.identical() ? nlohmann::json(nullptr) : nlohmann::json(e.psnr)},
-                {"identical", r.f.identical()}, {"ssim", e.ssim}, {"max_255", e.maxDifference * 255},
-                {"mean_255", e.meanDifference * 255}, {"p99_255", r.f.p99}, {"pixels_percent", r.f.pixels},
-                {"l1", e.l1}, {"emd", e.emd}});
+                {"identical", r.f.identical()},
+                {"ssim", e.ssim},
+                {"max_255", e.maxDifference * 255},
+                {"mean_255", e.meanDifference * 255},
+                {"p99_255", r.f.p99},
+                {"pixels_percent", r.f.pixels},
+                {"l1", e.l1},
+                {"emd", e.emd}});
     return out;
 }
 
@@ -291,7 +310,7 @@ Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const
     Outcome r;
     r.name = actual;
     std::error_code ec;
-    if (o.update && !fs::exists(expected, ec)) {  // a new golden image
+    if (o.update && !fs::exists(expected, ec)) {                                         // a new golden image
         if (Result<ImageCodes> a = loadImageCodes(actual); !a) return Error{a.error()};  // a readable image
         if (Status s = copyFile(actual, expected); !s) return Error{s.error()};
         r.note = "created " + expected + " from " + actual;
@@ -306,8 +325,9 @@ Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const
     if (!a) return Error{a.error()};
     if (!b) return Error{b.error()};
     if (a->width != b->width || a->height != b->height)
-        return Error{actual + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + ", " + expected + " is " +
-                     std::to_string(b->width) + "x" + std::to_string(b->height) + ": images of different sizes"};
+        return Error{actual + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + ", " + expected +
+                     " is " + std::to_string(b->width) + "x" + std::to_string(b->height) +
+                     ": images of different sizes"};
     if (a->channels != b->channels)
         return Error{actual + " has " + std::to_string(a->channels) + " channel(s), " + expected + " has " +
                      std::to_string(b->channels) + ": images of different channel counts"};
@@ -319,8 +339,10 @@ Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const
         if (mask.count() == 0) return Error{o.mask + ": the mask has no pixels to compare"};
     }
     r.f.e = compareCodes(*a, *b, mask);
-    if (a->bitDepth == b->bitDepth) countPixels(*a, *b, mask, t.threshold, r.f);
-    else countPixels(toCodes(toImage(*a), b->bitDepth), *b, mask, t.threshold, r.f);  // as compareCodes recodes it
+    if (a->bitDepth == b->bitDepth)
+        countPixels(*a, *b, mask, t.threshold, r.f);
+    else
+        countPixels(toCodes(toImage(*a), b->bitDepth), *b, mask, t.threshold, r.f);  // as compareCodes recodes it
     for (const Bound& bound : t.bounds)
         if (!within(r.f, bound)) r.failed.push_back(bound.name);
     if (!diff.empty() || !side.empty()) {
@@ -332,7 +354,8 @@ Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const
         if (!diff.empty())
             if (Status s = writeFileAtomically(diff, encodePng(difference, 8)); !s) return Error{s.error()};
         if (!side.empty())
-            if (Status s = writeFileAtomically(side, encodePng(sideBySide(actualImage, expectedImage, difference), 8)); !s)
+            if (Status s = writeFileAtomically(side, encodePng(sideBySide(actualImage, expectedImage, difference), 8));
+                !s)
                 return Error{s.error()};
     }
     if (!r.failed.empty() && o.update) {
@@ -348,11 +371,16 @@ std::string junitReport(const std::vector<Outcome>& rows, const Tolerance& t, co
     auto escaped = [](const std::string& s) {
         std::string out;
         for (char c : s) {
-            if (c == '&') out += "&amp;";
-            else if (c == '<') out += "&lt;";
-            else if (c == '>') out += "&gt;";
-            else if (c == '"') out += "&quot;";
-            else out += c;
+            if (c == '&')
+                out += "&amp;";
+            else if (c == '<')
+                out += "&lt;";
+            else if (c == '>')
+                out += "&gt;";
+            else if (c == '"')
+                out += "&quot;";
+            else
+                out += c;
         }
         return out;
     };
@@ -417,8 +445,10 @@ Status runCompare(CompareOptions& o) {
         }
         rows.push_back(*r);
         json.push_back(outcomeJson(*r, o, o.actual, o.expected));
-        if (o.json) std::cout << jsonText(json.front());
-        else if (shown(*r)) std::cout << line(*r, *t, o.tolerance) << "\n";
+        if (o.json)
+            std::cout << jsonText(json.front());
+        else if (shown(*r))
+            std::cout << line(*r, *t, o.tolerance) << "\n";
     } else {
         // Folders: every image of either, by file name; one line each, every failure listed.
         Result<std::set<std::string>> actual = imageFiles(o.actual), expected = imageFiles(o.expected);
@@ -455,7 +485,8 @@ Status runCompare(CompareOptions& o) {
             updated += r.updated || r.created;
         }
         if (o.json) {
-            std::cout << jsonText(nlohmann::json{{"images", json}, {"failed", failed}, {"compared", rows.size()}, {"updated", updated}});
+            std::cout << jsonText(
+                nlohmann::json{{"images", json}, {"failed", failed}, {"compared", rows.size()}, {"updated", updated}});
         } else if (!o.quiet || failed > 0 || updated > 0) {
             std::cout << "compared " << rows.size() << " image(s): " << failed << " failed";
             if (o.update) std::cout << ", " << updated << " updated";
@@ -474,21 +505,25 @@ Status runCompare(CompareOptions& o) {
 
 void addCompareCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<CompareOptions>();
-    CLI::App* app = root.add_subcommand(
-        "compare", "Compare two images, or two folders of images by path (subfolders included), for screenshot tests: exit 0 within the "
-                   "tolerance, 1 outside it (any image, for folders), 2 on bad input");
+    CLI::App* app = root.add_subcommand("compare",
+                                        "Compare two images, or two folders of images by path (subfolders included), "
+                                        "for screenshot tests: exit 0 within the "
+                                        "tolerance, 1 outside it (any image, for folders), 2 on bad input");
     app->add_option("A", o->actual, "the image to check (a render), or a folder of them")->required();
     app->add_option("B", o->expected, "the expected image (the golden file), or a folder of them")->required();
     app->add_option("--mask", o->mask, "compare only where the mask is non-zero");
-    app->add_option("--tolerance", o->tolerance,
-                    "NAME=VALUE,...: psnr (dB) and ssim at least; max, mean and p99 (absolute difference in 1/255; p99 "
-                    "the 99th percentile of the samples'), pixels (per cent of the pixels whose largest channel "
-                    "difference exceeds threshold=T/255, default 0), l1 and emd (masked 64-bin grey histograms) at most")
+    app->add_option(
+           "--tolerance", o->tolerance,
+           "NAME=VALUE,...: psnr (dB) and ssim at least; max, mean and p99 (absolute difference in 1/255; p99 "
+           "the 99th percentile of the samples'), pixels (per cent of the pixels whose largest channel "
+           "difference exceeds threshold=T/255, default 0), l1 and emd (masked 64-bin grey histograms) at most")
         ->capture_default_str();
     app->add_option("--diff", o->diff,
-                    "diff.png (folders: a folder of NAME.diff.png, laid out as the images): where they differ, red in full at the tolerance's max "
+                    "diff.png (folders: a folder of NAME.diff.png, laid out as the images): where they differ, red in "
+                    "full at the tolerance's max "
                     "(or --diff-full; else 8/255), over the expected image dimmed");
-    app->add_option("--diff-full", o->diffFull, "the difference (1/255) drawn full red in --diff")->check(CLI::PositiveNumber);
+    app->add_option("--diff-full", o->diffFull, "the difference (1/255) drawn full red in --diff")
+        ->check(CLI::PositiveNumber);
     app->add_option("--side-by-side", o->sideBySide,
                     "side.png (folders: a folder of NAME.side.png): expected | actual | diff in one image");
     app->add_option("--junit", o->junit, "report.xml: a JUnit report, one test case per image, for CI dashboards");

@@ -25,7 +25,8 @@ using namespace eval;
 Status runEval(EvalOptions o) {
     if (!o.output.empty()) {
         std::error_code ec;
-        if (fs::exists(o.output, ec) && !fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
+        if (fs::exists(o.output, ec) && !fs::is_directory(o.output, ec))
+            return Error{o.output + ": exists and is not a folder"};
     }
     if (o.quiet && o.output.empty()) return Error{"-q leaves eval's figures only in -o DIR's files: give -o"};
     Result<Dataset> dataset = openDatasetWithMask(o.dataset, o.mask);
@@ -54,7 +55,8 @@ Status runEval(EvalOptions o) {
 
     // Banks for the GL figures (fold 0's), in a temporary folder removed at the end.
     std::string pattern = (fs::temp_directory_path() / "btflut-eval-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) return Error{"cannot create a temporary folder (" + std::string(std::strerror(errno)) + ")"};
+    if (!::mkdtemp(pattern.data()))
+        return Error{"cannot create a temporary folder (" + std::string(std::strerror(errno)) + ")"};
     const fs::path scratch = pattern;
     struct Cleanup {
         fs::path path;
@@ -67,7 +69,9 @@ Status runEval(EvalOptions o) {
 
     std::vector<std::vector<SheetCell>> sheet;
     std::vector<PlotColumn> sheetHistograms;
-    if (Status s = predictFolds(variants, *dataset, *folds, *first, *mask, ptm, o, scratch, bankFiles, sheet, sheetHistograms); !s)
+    if (Status s =
+            predictFolds(variants, *dataset, *folds, *first, *mask, ptm, o, scratch, bankFiles, sheet, sheetHistograms);
+        !s)
         return s;
 
     std::string context;
@@ -76,7 +80,8 @@ Status runEval(EvalOptions o) {
     if (views) context = "not measured: the GL figures draw a fixed camera's scene";
     Report r = report(variants, *dataset, o, *folds, mask->count(), context);
     r.json["contact_sheet"] = nlohmann::json::array();  // the held-out images on contact.png, top to bottom
-    for (const std::vector<SheetCell>& row : sheet) r.json["contact_sheet"].push_back(row.front().label.substr(0, row.front().label.rfind(" (photo)")));
+    for (const std::vector<SheetCell>& row : sheet)
+        r.json["contact_sheet"].push_back(row.front().label.substr(0, row.front().label.rfind(" (photo)")));
     if (!o.output.empty())
         if (Status s = writeReport(r, sheet, sheetHistograms, o); !s) return s;
     if (!o.quiet) std::cout << (o.json ? jsonText(r.json) : r.text);
@@ -88,20 +93,24 @@ Status runEval(EvalOptions o) {
 void addEvalCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<EvalOptions>();
     CLI::App* app = root.add_subcommand(
-        "eval", "Predict held-out photographs of a dataset in every mode and compare: histograms, pixels, memory, time");
+        "eval",
+        "Predict held-out photographs of a dataset in every mode and compare: histograms, pixels, memory, time");
     app->add_option("DATASET", o->dataset,
                     "a dataset (see btflut hist --help); with several views (a BTF, CUReT): held-out (light, view) "
                     "pairs, modes lut, nearest, brdf and flat")
         ->required();
-    app->add_option("--holdout", o->holdout,
-                    "every:K (every K-th image, a light-view pair; one fold), loo (each image in turn), or a file naming one "
-                    "image per line: its name, or its light and view as THETA_I,PHI_I,THETA_R,PHI_R in degrees")
+    app->add_option(
+           "--holdout", o->holdout,
+           "every:K (every K-th image, a light-view pair; one fold), loo (each image in turn), or a file naming one "
+           "image per line: its name, or its light and view as THETA_I,PHI_I,THETA_R,PHI_R in degrees")
         ->capture_default_str();
-    app->add_option("--modes", o->modes,
-                    "comma-separated: lut, brdf, ptm, nearest, flat, and the RTI bases unmatched: hsh (hsh2, hsh3), rbf "
-                    "and bln (9 planes; rbfN, blnN: N planes; rbfNc, blnNc: N bytes of packed 8- and 4-bit planes)")
+    app->add_option(
+           "--modes", o->modes,
+           "comma-separated: lut, brdf, ptm, nearest, flat, and the RTI bases unmatched: hsh (hsh2, hsh3), rbf "
+           "and bln (9 planes; rbfN, blnN: N planes; rbfNc, blnNc: N bytes of packed 8- and 4-bit planes)")
         ->capture_default_str();
-    app->add_option("--references", o->references, "lut: references per bank, a list (e.g. 1,4,6)")->capture_default_str();
+    app->add_option("--references", o->references, "lut: references per bank, a list (e.g. 1,4,6)")
+        ->capture_default_str();
     app->add_option("--regions", o->regions, "lut: regions per bank, a list")->capture_default_str();
     app->add_option("--colour", o->colours, "lut: grey, rgb, lrgb, a list")->capture_default_str();
     app->add_option("--predictor", o->predictors,
@@ -115,29 +124,38 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
                     "lut: clamp, model (bake --fill model, the model fitted to the training images), or both: "
                     "clamp,model")
         ->capture_default_str();
-    app->add_option("--target", o->targets,
-                    "lut with a predictor: measured (each light's target blended from the measured distributions), corrections "
-                    "(each node's LUT from the prediction to its measurement, blended at the light), or both: measured,corrections")
+    app->add_option(
+           "--target", o->targets,
+           "lut with a predictor: measured (each light's target blended from the measured distributions), corrections "
+           "(each node's LUT from the prediction to its measurement, blended at the light), or both: "
+           "measured,corrections")
         ->capture_default_str();
     app->add_option("--mask", o->mask, "sample mask instead of the dataset's own");
     app->add_option("--grid", o->grids, "banks' grid sizes, a list (e.g. 17,33,65)")->capture_default_str();
-    app->add_option("--luts", o->lutSources,
-                    "lut: exact (each light's LUT made at the light), grid (read bilinearly from the bank's grid, as an "
-                    "engine reads the export: for a bank with a predictor, the match LUTs baked over the grid), or "
-                    "both: exact,grid")
+    app->add_option(
+           "--luts", o->lutSources,
+           "lut: exact (each light's LUT made at the light), grid (read bilinearly from the bank's grid, as an "
+           "engine reads the export: for a bank with a predictor, the match LUTs baked over the grid), or "
+           "both: exact,grid")
         ->capture_default_str();
-    app->add_option("--domain", o->domains,
-                    "the banks' domain: auto (bake's choice), layers (a LUT grid per view, blended between views), isotropic "
-                    "(light and view as one point of (theta_i, theta_r, phi_i - phi_r)), or a list: layers,isotropic; nearest "
-                    "measures there too")
+    app->add_option(
+           "--domain", o->domains,
+           "the banks' domain: auto (bake's choice), layers (a LUT grid per view, blended between views), isotropic "
+           "(light and view as one point of (theta_i, theta_r, phi_i - phi_r)), or a list: layers,isotropic; nearest "
+           "measures there too")
         ->capture_default_str();
-    app->add_option("--frames", o->frames, "GL frames per mode and round")->check(CLI::Range(1, 1000))->capture_default_str();
+    app->add_option("--frames", o->frames, "GL frames per mode and round")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
     app->add_option("--backend", o->backend, "GL: auto, osmesa or egl")->capture_default_str();
     app->add_flag("--no-gl", o->noGl, "skip the GL figures (frame time, GPU bytes, GPU against CPU)");
-    app->add_option("--contact", o->sheetLights, "held-out lights on the contact sheet")->check(CLI::Range(1, 64))->capture_default_str();
+    app->add_option("--contact", o->sheetLights, "held-out lights on the contact sheet")
+        ->check(CLI::Range(1, 64))
+        ->capture_default_str();
     app->add_flag("--json", o->json, "print JSON instead of the table");
-    app->add_option("-o,--output", o->output,
-                    "folder for eval.txt, eval.json, rows.csv, contact.png, histograms.png, tradeoff.png and error_theta.png");
+    app->add_option(
+        "-o,--output", o->output,
+        "folder for eval.txt, eval.json, rows.csv, contact.png, histograms.png, tradeoff.png and error_theta.png");
     addQuietFlag(*app, o->quiet, "print nothing (the figures go to -o DIR's files only)");
     commands.push_back({app, [o] { return runEval(*o); }});
 }

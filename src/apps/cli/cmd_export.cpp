@@ -3,23 +3,23 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <bit>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <regex>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "cli/cli.h"
+#include "cli/web_page.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
-#include "core/relight/engine_material.h"
-#include "core/relight/material_json.h"
 #include "core/predict/light_model.h"
 #include "core/predict/ptm_file.h"
+#include "core/relight/engine_material.h"
+#include "core/relight/material_json.h"
 #include "core/relight/relighter.h"
-#include "cli/web_page.h"
 #include "gl/shader.h"
 
 namespace btflut::cli {
@@ -56,9 +56,10 @@ Result<Image> lutRows(const std::string& bankPath, int width, std::uint64_t rows
 // region, one column per LUT entry (or quantile sample); RGB banks use the three colour
 // channels (the atlas).
 Result<Image> gridImage(const ExportOptions& o, const LutBank& b, const std::string& what) {
-    const std::uint64_t rows = static_cast<std::uint64_t>(b.gridSize) * static_cast<std::uint64_t>(b.gridSize) * b.layers.size() *
-                               static_cast<std::uint64_t>(b.makesLuts() ? b.blend.regions : 1);
-    return lutRows(o.bank, static_cast<int>(b.segmentLength()), rows, b.channels(), b.gridTexels(), what);  // the same order as the image's samples
+    const std::uint64_t rows = static_cast<std::uint64_t>(b.gridSize) * static_cast<std::uint64_t>(b.gridSize) *
+                               b.layers.size() * static_cast<std::uint64_t>(b.makesLuts() ? b.blend.regions : 1);
+    return lutRows(o.bank, static_cast<int>(b.segmentLength()), rows, b.channels(), b.gridTexels(),
+                   what);  // the same order as the image's samples
 }
 
 Status exportAtlas(const ExportOptions& o, const LutBank& b) {
@@ -82,14 +83,21 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
         blend["match"] = bl.match;  // the LUT blended with the prediction's own distribution below 1
         blend["target"] = bl.target == LutBank::Blend::Target::Corrections ? "corrections" : "measured";
         blend["mask"] = texture("mask", byteImage(bl.mask.inside, b.reference.width, b.reference.height, 255));
-        if (!bl.labels.empty()) blend["labels"] = texture("labels", byteImage(bl.labels, b.reference.width, b.reference.height, 1));
+        if (!bl.labels.empty())
+            blend["labels"] = texture("labels", byteImage(bl.labels, b.reference.width, b.reference.height, 1));
         if (!bl.albedo.samples.empty()) blend["albedo"] = texture("albedo", bl.albedo);
         if (bl.predictor == LutBank::Blend::Predictor::Model) {
             // The light model (docs/predictors.md; its LMDL chunk in docs/btflut-format.md).
             const LightModel& m = bl.model;
-            nlohmann::json model{{"basis", lightBasisName(m.basis)}, {"name", lightModelName(m)}, {"planes", m.planes},
-                                 {"planes_8bit", m.wide}, {"channels", m.channels}, {"order", m.order},
-                                 {"scale", m.scale}, {"bias", m.bias}, {"images", nlohmann::json::array()}};
+            nlohmann::json model{{"basis", lightBasisName(m.basis)},
+                                 {"name", lightModelName(m)},
+                                 {"planes", m.planes},
+                                 {"planes_8bit", m.wide},
+                                 {"channels", m.channels},
+                                 {"order", m.order},
+                                 {"scale", m.scale},
+                                 {"bias", m.bias},
+                                 {"images", nlohmann::json::array()}};
             if (m.basis == LightBasis::Rbf) {
                 model["sigma"] = m.sigma;
                 for (Direction d : m.lights) model["lights"].push_back(directionJson(d));
@@ -124,7 +132,8 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
         }
         blend["how"] =
             "per light: blend the references of the Delaunay triangle (equal-area disk) around the light with "
-            "barycentric weights (or relight the PTM or the light model), round the blend to its codes, and per region map its "
+            "barycentric weights (or relight the PTM or the light model), round the blend to its codes, and per region "
+            "map its "
             "distribution over the mask's texels onto the quantile function blended from the atlas's nodes "
             "(see src/core/relight/relighter.h)";
     }
@@ -137,9 +146,9 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     if (b.makesLuts()) side["blend"] = blend;
     side["grid_size"] = b.gridSize;
     side["row_of_node"] = "(layer * grid_size^2 + j * grid_size + i) * regions + region";
-    side["entry_value"] = b.makesLuts()
-                              ? "column k holds the target's quantile function at k / (quantiles - 1); 16-bit value / 65535"
-                              : "column k holds LUT(k / (entries - 1)); 16-bit value / 65535";
+    side["entry_value"] =
+        b.makesLuts() ? "column k holds the target's quantile function at k / (quantiles - 1); 16-bit value / 65535"
+                      : "column k holds LUT(k / (entries - 1)); 16-bit value / 65535";
     side["grid_mapping"] =
         "node (i, j) sits at disk point x = -1 + 2 i / (grid_size - 1), y likewise with j; a "
         "direction (theta, phi) maps to r = sqrt(2) sin(theta / 2), (x, y) = r (cos phi, sin phi) "
@@ -151,8 +160,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     for (const ViewLayer& layer : b.layers) {
         nlohmann::json provenance = nlohmann::json::array();
         for (Provenance p : layer.gridProvenance) provenance.push_back(provenanceName(p));
-        side["layers"].push_back({{"view", directionJson(layer.view)},
-                                  {"node_provenance", provenance}});
+        side["layers"].push_back({{"view", directionJson(layer.view)}, {"node_provenance", provenance}});
     }
     std::filesystem::path sidecar = std::filesystem::path(o.output).replace_extension(".json");
     // Both files are complete on disk before either is renamed into place.
@@ -162,7 +170,8 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     for (const auto& [path, bytes] : textures) files.push_back({path, bytes.data(), bytes.size()});
     if (Status s = writeFilesAtomically(files); !s) return s;
     if (o.quiet) return success();
-    std::cout << "wrote " << o.output << " (" << atlas.width << "x" << atlas.height << ", 16-bit), " << sidecar.string();
+    std::cout << "wrote " << o.output << " (" << atlas.width << "x" << atlas.height << ", 16-bit), "
+              << sidecar.string();
     if (!textures.empty()) std::cout << " and " << textures.size() << " textures beside them";
     std::cout << "\n";
     return success();
@@ -180,7 +189,8 @@ Status writeFolder(const std::string& folder, const std::vector<std::pair<std::s
     if (!exists) {
         if (!target.parent_path().empty()) fs::create_directories(target.parent_path(), ec);
         if (ec || !fs::create_directory(dir, ec) || ec)
-            return Error{folder + ": cannot create the folder (" + (ec ? ec.message() : std::string("it exists")) + ")"};
+            return Error{folder + ": cannot create the folder (" + (ec ? ec.message() : std::string("it exists")) +
+                         ")"};
     }
     std::vector<FileContents> contents;
     for (const auto& [name, bytes] : files) contents.push_back({(dir / name).string(), bytes.data(), bytes.size()});
@@ -227,7 +237,7 @@ bool holdsOnlyAnExport(const std::string& folder) {
 // includes; for a bank with a predictor also its planes (or references), albedo, weights and
 // labels. What `-o DIR/` writes and `--web` puts in its page.
 struct EngineExport {
-    nlohmann::json side;  ///< material.json
+    nlohmann::json side;                                     ///< material.json
     std::vector<std::pair<std::string, std::string>> files;  ///< name, bytes; material.json and the includes last
     std::string summary;  ///< "model material, luts.png (3D texture 256x17x17, 16-bit)"
 };
@@ -239,15 +249,17 @@ Result<EngineExport> engineExport(const LutBank& b, const std::string& bankPath)
     const bool predictor = m.kind != EngineMaterial::Kind::Luts;
     const int g = m.gridSize;
     // Row (block * G + j) * G + i holds node (i, j)'s LUT; a block is a view layer or a region.
-    Result<Image> luts = lutRows(bankPath, m.entries, static_cast<std::uint64_t>(g) * g * static_cast<std::uint64_t>(m.blocks),
-                                 m.lutChannels, m.lutTexels, "LUT texture");
+    Result<Image> luts =
+        lutRows(bankPath, m.entries, static_cast<std::uint64_t>(g) * g * static_cast<std::uint64_t>(m.blocks),
+                m.lutChannels, m.lutTexels, "LUT texture");
     if (!luts) return Error{luts.error()};
     EngineExport out;
     std::vector<std::pair<std::string, Bytes>> pngs{{"reference.png", encodePng(b.reference, b.reference.bitDepth)},
                                                     {"luts.png", encodePng(*luts, 16)}};
     std::string weights;
     if (predictor) {
-        for (std::size_t k = 0; k < m.images.size(); ++k) pngs.push_back({planeImageName(k), encodePng(m.images[k], 8)});
+        for (std::size_t k = 0; k < m.images.size(); ++k)
+            pngs.push_back({planeImageName(k), encodePng(m.images[k], 8)});
         if (!m.albedo.samples.empty()) pngs.push_back({"albedo.png", encodePng(m.albedo, 8)});
         if (!m.labels.samples.empty()) pngs.push_back({"labels.png", encodePng(m.labels, 8)});
         static_assert(std::endian::native == std::endian::little, "weights.bin is little-endian");
@@ -258,8 +270,8 @@ Result<EngineExport> engineExport(const LutBank& b, const std::string& bankPath)
     out.side = materialJson(b, m);
     out.files.push_back({"material.json", jsonText(out.side)});
     for (const char* include : kShaderIncludes) out.files.push_back({include, std::string(embeddedShader(include))});
-    out.summary = out.side["kind"].get<std::string>() + " material, luts.png (3D texture " + std::to_string(m.entries) + "x" +
-                  std::to_string(g) + "x" + std::to_string(g * m.blocks) + ", 16-bit)";
+    out.summary = out.side["kind"].get<std::string>() + " material, luts.png (3D texture " + std::to_string(m.entries) +
+                  "x" + std::to_string(g) + "x" + std::to_string(g * m.blocks) + ", 16-bit)";
     return out;
 }
 
@@ -271,8 +283,9 @@ Result<bool> folderReady(const ExportOptions& o) {
     if (!fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
     const bool reexport = holdsOnlyAnExport(o.output);
     if (!fs::is_empty(o.output, ec) && !o.force && !reexport)
-        return Error{o.output + ": the folder is not empty and holds more than a btflut export (--force writes over "
-                                "btflut's files in it)"};
+        return Error{o.output +
+                     ": the folder is not empty and holds more than a btflut export (--force writes over "
+                     "btflut's files in it)"};
     return reexport;
 }
 
@@ -333,7 +346,9 @@ Status runExport(const ExportOptions& o) {
     if (o.grid > 0 && o.grid != bank->gridSize) {  // resampled from the measured directions
         const std::size_t length = bank->makesLuts() ? bank->matchLength() : bank->lutLength();
         const std::uint64_t bytes = static_cast<std::uint64_t>(o.grid) * o.grid * length * 2 * bank->layers.size();
-        if (bytes > (std::uint64_t{1} << 31)) return Error{"--grid " + std::to_string(o.grid) + ": the LUT texture would take " + std::to_string(bytes) + " bytes"};
+        if (bytes > (std::uint64_t{1} << 31))
+            return Error{"--grid " + std::to_string(o.grid) + ": the LUT texture would take " + std::to_string(bytes) +
+                         " bytes"};
         bank->gridSize = o.grid;
         bank->fillGrids();
         if (bank->makesLuts()) bakeMatchGrid(*bank);  // the match LUTs at the new nodes
@@ -361,19 +376,23 @@ Status runExport(const ExportOptions& o) {
 void addExportCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<ExportOptions>();
     CLI::App* app = root.add_subcommand(
-        "export", "Export a bank for engines: a folder with the reference, the LUT grid as a 3D texture, a JSON sidecar "
-                  "and the shader include (docs/engines.md); or the older atlas; or its PTM as an RTI .ptm file");
+        "export",
+        "Export a bank for engines: a folder with the reference, the LUT grid as a 3D texture, a JSON sidecar "
+        "and the shader include (docs/engines.md); or the older atlas; or its PTM as an RTI .ptm file");
     app->add_option("BANK", o->bank, "M.btflut")->required();
     app->add_option("-o,--output", o->output,
-                    "DIR: reference.png, luts.png, material.json, btflut.glsl (and its GLSL ES, HLSL and Godot forms); or atlas.png: the LUT grid as rows of a "
+                    "DIR: reference.png, luts.png, material.json, btflut.glsl (and its GLSL ES, HLSL and Godot forms); "
+                    "or atlas.png: the LUT grid as rows of a "
                     "16-bit PNG with atlas.json (banks that blend references: with their textures)");
-    app->add_option("--web", o->web,
-                    "PAGE.html: one page that opens from disk (no network) and relights the material with WebGL2: the "
-                    "export's files inside it, the light on a disk, 2D and a sphere; #light=THETA,PHI&zoom=1&view=2d|sphere&ui=0");
+    app->add_option(
+        "--web", o->web,
+        "PAGE.html: one page that opens from disk (no network) and relights the material with WebGL2: the "
+        "export's files inside it, the light on a disk, 2D and a sphere; #light=THETA,PHI&zoom=1&view=2d|sphere&ui=0");
     app->add_option("--ptm", o->ptm, "FILE.ptm: the bank's PTM (bake --ptm) as a PTM 1.2 LRGB file for RTI viewers");
-    app->add_option("--grid", o->grid,
-                    "resample the LUT grid at N x N light directions from the measured ones (default: the bank's; finer "
-                    "follows the measured interpolation more closely, at N^2 x entries x 2 bytes per view)")
+    app->add_option(
+           "--grid", o->grid,
+           "resample the LUT grid at N x N light directions from the measured ones (default: the bank's; finer "
+           "follows the measured interpolation more closely, at N^2 x entries x 2 bytes per view)")
         ->check(CLI::Range(2, 257));
     app->add_flag("--force", o->force, "write into a folder that is not empty");
     addQuietFlag(*app, o->quiet);

@@ -39,12 +39,18 @@ Result<std::vector<HistogramRow>> readHistograms(const FitCommandOptions& o) {
 // "fit".
 nlohmann::json paramsJson(const SurfaceFit& fit, const std::vector<HistogramRow>& rows, const std::string& input) {
     nlohmann::json out = nlohmann::json::parse(modelParamsText(fittedModelParams(fit, rows.front().bins.size())));
-    nlohmann::json report{{"histograms", input},       {"bins", rows.front().bins.size()}, {"rms", fit.rms},
-                          {"iterations", fit.iterations}, {"seconds", fit.seconds},          {"parameters", nlohmann::json::array()},
+    nlohmann::json report{{"histograms", input},
+                          {"bins", rows.front().bins.size()},
+                          {"rms", fit.rms},
+                          {"iterations", fit.iterations},
+                          {"seconds", fit.seconds},
+                          {"parameters", nlohmann::json::array()},
                           {"residuals", nlohmann::json::array()}};
     for (const FitParameter& p : fit.parameters)
-        report["parameters"].push_back({{"name", p.name}, {"value", p.value},
-                                        {"standard_error", p.determined() ? nlohmann::json(p.standardError) : nlohmann::json()}});
+        report["parameters"].push_back(
+            {{"name", p.name},
+             {"value", p.value},
+             {"standard_error", p.determined() ? nlohmann::json(p.standardError) : nlohmann::json()}});
     for (std::size_t i = 0; i < rows.size(); ++i)
         report["residuals"].push_back({{"name", rows[i].name}, {"rms", fit.residuals[i]}});
     out["fit"] = report;
@@ -84,13 +90,15 @@ Status runFit(const FitCommandOptions& o) {
         return success();
     }
     char line[160];
-    std::cout << "fitted " << fitBrdfName(*brdf) << " to " << rows->size() << " histograms of " << rows->front().bins.size()
-              << " bins in " << fit->iterations << " iterations (" << fit->seconds << " s)\n";
+    std::cout << "fitted " << fitBrdfName(*brdf) << " to " << rows->size() << " histograms of "
+              << rows->front().bins.size() << " bins in " << fit->iterations << " iterations (" << fit->seconds
+              << " s)\n";
     for (const FitParameter& p : fit->parameters) {
         if (p.determined())
             std::snprintf(line, sizeof line, "  %-10s %10.5f +- %.2g\n", p.name.c_str(), p.value, p.standardError);
         else
-            std::snprintf(line, sizeof line, "  %-10s %10.5f   not determined by these histograms\n", p.name.c_str(), p.value);
+            std::snprintf(line, sizeof line, "  %-10s %10.5f   not determined by these histograms\n", p.name.c_str(),
+                          p.value);
         std::cout << line;
     }
     std::snprintf(line, sizeof line, "residual (RMS of bin differences): %.3g overall\n", fit->rms);
@@ -108,15 +116,20 @@ Status runFit(const FitCommandOptions& o) {
 void addFitCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<FitCommandOptions>();
     CLI::App* app = root.add_subcommand(
-        "fit", "The rough-surface model's parameters from measured histograms: non-linear least squares over every "
-               "direction at once, with standard errors and residuals");
+        "fit",
+        "The rough-surface model's parameters from measured histograms: non-linear least squares over every "
+        "direction at once, with standard errors and residuals");
     app->add_option("INPUT", o->input, "HISTS.csv (as btflut hist writes it) or a dataset")->required();
-    app->add_option("--brdf", o->brdf, "lambert (r, gain), ts (r, gain, sigma, ior) or mix (r, gain, ks, sigma, ior); "
-                                       "each with a smoothing width")
+    app->add_option("--brdf", o->brdf,
+                    "lambert (r, gain), ts (r, gain, sigma, ior) or mix (r, gain, ks, sigma, ior); "
+                    "each with a smoothing width")
         ->capture_default_str();
-    app->add_option("-o,--output", o->output, "PARAMS.json (what bake --model reads, with the fit's report)")->required();
+    app->add_option("-o,--output", o->output, "PARAMS.json (what bake --model reads, with the fit's report)")
+        ->required();
     app->add_option("--plot", o->plot, "fit.png: measured and fitted histograms in the paper's layout");
-    app->add_option("--bins", o->bins, "bins of a dataset's histograms")->check(CLI::Range(8, 1024))->capture_default_str();
+    app->add_option("--bins", o->bins, "bins of a dataset's histograms")
+        ->check(CLI::Range(8, 1024))
+        ->capture_default_str();
     app->add_option("--mask", o->mask, "a dataset's sample mask instead of its own");
     addQuietFlag(*app, o->quiet);
     app->add_flag("--json", o->json, "print the fit's report as JSON (what PARAMS.json holds)");

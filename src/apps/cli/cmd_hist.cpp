@@ -26,8 +26,10 @@ Result<std::vector<HistogramRow>> imageHistograms(const HistOptions& o) {
     Result<SampleImage> sample = loadSampleImage(o.dataset, o.mask);
     if (!sample) return Error{sample.error()};
     const bool rgb = o.channels == "rgb";
-    if (rgb && sample->image.channels != 3) return Error{o.dataset + ": --channels rgb needs a colour image, this one is grey"};
-    return imageHistograms(sample->image, sample->mask, std::filesystem::path(o.dataset).stem().string(), {}, {}, o.bins, rgb);
+    if (rgb && sample->image.channels != 3)
+        return Error{o.dataset + ": --channels rgb needs a colour image, this one is grey"};
+    return imageHistograms(sample->image, sample->mask, std::filesystem::path(o.dataset).stem().string(), {}, {},
+                           o.bins, rgb);
 }
 
 Status runHist(const HistOptions& o) {
@@ -37,13 +39,15 @@ Status runHist(const HistOptions& o) {
                                                  : datasetHistograms(o.dataset, o.mask, o.bins, o.channels == "rgb");
     if (!rows) return Error{rows.error()};
     if (Status s = saveHistograms(*rows, o.output); !s) return s;
-    if (!o.quiet) std::cout << "wrote " << o.output << ": " << rows->size() << " histogram(s) of " << o.bins << " bins\n";
+    if (!o.quiet)
+        std::cout << "wrote " << o.output << ": " << rows->size() << " histogram(s) of " << o.bins << " bins\n";
     return success();
 }
 
 }  // namespace
 
-Result<std::vector<HistogramRow>> datasetHistograms(const std::string& path, const std::string& maskPath, int bins, bool rgb) {
+Result<std::vector<HistogramRow>> datasetHistograms(const std::string& path, const std::string& maskPath, int bins,
+                                                    bool rgb) {
     Result<Dataset> dataset = openDatasetWithMask(path, maskPath);
     if (!dataset) return Error{dataset.error()};
     return histogramsOf(*dataset, bins, rgb);
@@ -57,8 +61,7 @@ void addHistCommand(CLI::App& root, Commands& commands) {
                     "folder or file: btflut manifest (.json), RTI (.lp), photometric-stereo "
                     "folder (lights.txt) or Bonn UBO2003 folder; or one image (its directions written as 0)")
         ->required();
-    app->add_option("-o,--output", o->output,
-                    "FILE.csv (name,theta_i,phi_i,theta_r,phi_r,b0..b{N-1}) or FILE.json")
+    app->add_option("-o,--output", o->output, "FILE.csv (name,theta_i,phi_i,theta_r,phi_r,b0..b{N-1}) or FILE.json")
         ->required();
     app->add_option("--bins", o->bins, "number of equal bins over [0, 1]")
         ->check(CLI::Range(2, 1 << 20))

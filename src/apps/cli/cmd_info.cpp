@@ -31,9 +31,10 @@ void printSelection(const std::string& selection) {
     if (!s.is_object() || !s.contains("chosen")) return;
     const nlohmann::json& chosen = s["chosen"];
     std::cout << "  chosen:    " << chosen.value("name", std::string("?")) << ", match "
-              << fixed(chosen.value("match", 1.0), 2) << ", " << chosen.value("bytes", 0) << " bytes per texel, by validation on "
-              << s.value("folds", 0) << " fold(s) of the dataset's own lights within a budget of " << s.value("budget", 0)
-              << " bytes (" << s.value("rule", std::string()) << ")\n";
+              << fixed(chosen.value("match", 1.0), 2) << ", " << chosen.value("bytes", 0)
+              << " bytes per texel, by validation on " << s.value("folds", 0)
+              << " fold(s) of the dataset's own lights within a budget of " << s.value("budget", 0) << " bytes ("
+              << s.value("rule", std::string()) << ")\n";
     if (s.contains("note")) std::cout << "             " << s["note"].get<std::string>() << "\n";
     if (!s.contains("candidates") || !s["candidates"].is_array()) return;
     std::cout << "             candidate   bytes  match   PSNR      L1\n";
@@ -47,8 +48,8 @@ void printSelection(const std::string& selection) {
             continue;
         }
         for (const nlohmann::json& v : c.value("validation", nlohmann::json::array())) {
-            std::snprintf(line, sizeof line, "             %-10s %6d  %5.2f  %5.2f  %6.4f\n", name.c_str(), c.value("bytes", 0),
-                          v.value("match", 1.0), v.value("psnr", 0.0), v.value("l1", 0.0));
+            std::snprintf(line, sizeof line, "             %-10s %6d  %5.2f  %5.2f  %6.4f\n", name.c_str(),
+                          c.value("bytes", 0), v.value("match", 1.0), v.value("psnr", 0.0), v.value("l1", 0.0));
             std::cout << line;
         }
     }
@@ -63,7 +64,7 @@ std::string degrees(Direction d) {
 // What a view layer holds: its nodes, and its grid nodes in the hemisphere by provenance.
 struct LayerSummary {
     std::size_t measured = 0, modelled = 0;
-    double maxTheta = 0;  ///< of the measured lights
+    double maxTheta = 0;                  ///< of the measured lights
     std::size_t cells[4] = {0, 0, 0, 0};  ///< by Provenance
 };
 
@@ -90,14 +91,15 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
                        {"colour", colourName(b.colour)},
                        {"grid_size", b.gridSize},
                        {"domain", domainName(b.domain)},
-                       {"reference", {{"name", b.referenceName},
-                                      {"light", directionJson(b.referenceLight)},
-                                      {"view", directionJson(b.referenceView)},
-                                      {"width", b.reference.width},
-                                      {"height", b.reference.height},
-                                      {"channels", b.reference.channels},
-                                      {"bit_depth", b.reference.bitDepth},
-                                      {"embedded", !b.reference.samples.empty()}}},
+                       {"reference",
+                        {{"name", b.referenceName},
+                         {"light", directionJson(b.referenceLight)},
+                         {"view", directionJson(b.referenceView)},
+                         {"width", b.reference.width},
+                         {"height", b.reference.height},
+                         {"channels", b.reference.channels},
+                         {"bit_depth", b.reference.bitDepth},
+                         {"embedded", !b.reference.samples.empty()}}},
                        {"ptm", !b.ptm.empty()},
                        {"layers", nlohmann::json::array()}};
     if (b.makesLuts()) {
@@ -109,8 +111,11 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
                         {"target", b.blend.target == LutBank::Blend::Target::Corrections ? "corrections" : "measured"}};
         if (b.predictsWithModel()) {
             const LightModel& m = b.blend.model;
-            out["blend"]["model"] = {{"basis", lightBasisName(m.basis)}, {"planes", m.planes}, {"channels", m.channels},
-                                     {"albedo", !m.albedo.empty()}, {"bytes_per_texel", m.bytesPerTexel()}};
+            out["blend"]["model"] = {{"basis", lightBasisName(m.basis)},
+                                     {"planes", m.planes},
+                                     {"channels", m.channels},
+                                     {"albedo", !m.albedo.empty()},
+                                     {"bytes_per_texel", m.bytesPerTexel()}};
         }
     }
     if (!b.selection.empty()) out["selection"] = nlohmann::json::parse(b.selection, nullptr, false);
@@ -144,17 +149,18 @@ Status runInfo(const InfoOptions& o) {
               << (b.colour == ColourMode::Grey  ? "grey (one LUT on the grey value)"
                   : b.colour == ColourMode::Rgb ? "rgb (one LUT per channel)"
                                                 : "lrgb (one LUT on the grey value, the albedo's chroma)")
-              << "\n  reference: " << b.referenceName << ", light " << degrees(b.referenceLight)
-              << ", view " << degrees(b.referenceView) << ", ";
-    std::cout << b.reference.width << "x" << b.reference.height << "x" << b.reference.channels
-              << " " << b.reference.bitDepth << "-bit, "
-              << (b.reference.samples.empty() ? "not embedded" : "embedded") << "\n";
+              << "\n  reference: " << b.referenceName << ", light " << degrees(b.referenceLight) << ", view "
+              << degrees(b.referenceView) << ", ";
+    std::cout << b.reference.width << "x" << b.reference.height << "x" << b.reference.channels << " "
+              << b.reference.bitDepth << "-bit, " << (b.reference.samples.empty() ? "not embedded" : "embedded")
+              << "\n";
     if (b.makesLuts()) {
         if (b.predictsWithModel())
             std::cout << "  predictor: " << lightModelName(b.blend.model) << " (" << b.blend.model.bytesPerTexel()
                       << " bytes per texel), relit per light and matched, LUTs made at run time from ";
         else
-            std::cout << "  predictor: " << b.blend.references.size() << " reference(s) blended per light, LUTs made at run "
+            std::cout << "  predictor: " << b.blend.references.size()
+                      << " reference(s) blended per light, LUTs made at run "
                       << "time from ";
         std::cout << b.blend.quantiles << "-sample quantile functions; " << b.blend.regions << " region(s)";
         if (b.blend.regions > 1) {
@@ -164,9 +170,10 @@ Status runInfo(const InfoOptions& o) {
             for (std::size_t n : texels) std::cout << " " << n;
             std::cout << ")";
         }
-        std::cout << "\n  match:     " << (b.blend.match == 1 ? std::string("fully")
-                                          : b.blend.match == 0 ? std::string("not at all (the prediction as it is)")
-                                                               : fixed(b.blend.match, 2) + " of the way to the target")
+        std::cout << "\n  match:     "
+                  << (b.blend.match == 1   ? std::string("fully")
+                      : b.blend.match == 0 ? std::string("not at all (the prediction as it is)")
+                                           : fixed(b.blend.match, 2) + " of the way to the target")
                   << (b.blend.target == LutBank::Blend::Target::Corrections
                           ? ", through the nodes' corrections blended at the light"
                           : ", to the measured distributions blended at the light")
@@ -185,8 +192,9 @@ Status runInfo(const InfoOptions& o) {
               << " nodes per view layer over the equal-area light disk\n"
               << "  layers:    " << b.layers.size() << " view direction(s)\n"
               << "  domain:    " << domainName(b.domain)
-              << (b.domain == BankDomain::Layers ? " (over each layer's lights, then between the layers' views)\n"
-                                                 : " (over theta_i, theta_r and phi_i - phi_r: an isotropic material)\n");
+              << (b.domain == BankDomain::Layers
+                      ? " (over each layer's lights, then between the layers' views)\n"
+                      : " (over theta_i, theta_r and phi_i - phi_r: an isotropic material)\n");
     for (std::size_t l = 0; l < b.layers.size(); ++l) {
         const ViewLayer& layer = b.layers[l];
         const LayerSummary summary = summarise(b, layer);

@@ -30,7 +30,8 @@ Status runMatch(const MatchOptions& o) {
     if (!target) return Error{target.error()};
     LevelCounts from = countGreyLevels(source->image, source->mask);
     LevelCounts to = countGreyLevels(target->image, target->mask);
-    if (from.presentCodes() < 2) return Error{o.source + ": constant over its mask, so no LUT can give it another histogram"};
+    if (from.presentCodes() < 2)
+        return Error{o.source + ": constant over its mask, so no LUT can give it another histogram"};
     // Enough entries to hold every code of a grey 8-bit source exactly.
     int entries = o.entries ? o.entries : (source->image.bitDepth == 16 ? 4096 : 256);
     Lut lut = matchLut(from, to, entries);
@@ -45,15 +46,14 @@ Status runMatch(const MatchOptions& o) {
 
 void addMatchCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<MatchOptions>();
-    CLI::App* app = root.add_subcommand(
-        "match", "Give SOURCE the grey-level histogram of TARGET (histogram matching)");
+    CLI::App* app = root.add_subcommand("match", "Give SOURCE the grey-level histogram of TARGET (histogram matching)");
     app->add_option("SOURCE", o->source, "image whose pixels are mapped")->required();
     app->add_option("TARGET", o->target, "image whose histogram is wanted")->required();
     app->add_option("-o,--output", o->output, "out.png")->required();
-    app->add_option("--mask", o->mask, "the source's sample pixels (non-zero): their histogram is matched, every pixel mapped");
+    app->add_option("--mask", o->mask,
+                    "the source's sample pixels (non-zero): their histogram is matched, every pixel mapped");
     app->add_option("--target-mask", o->targetMask, "the target's sample pixels (non-zero): the histogram wanted");
-    app->add_option("--entries", o->entries, "LUT entries (default 256, 4096 for 16-bit)")
-        ->check(CLI::Range(2, 65536));
+    app->add_option("--entries", o->entries, "LUT entries (default 256, 4096 for 16-bit)")->check(CLI::Range(2, 65536));
     addLutImageOptions(*app, o->depth, o->noDither);
     addQuietFlag(*app, o->quiet);
     commands.push_back({app, [o] { return runMatch(*o); }});

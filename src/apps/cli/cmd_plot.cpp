@@ -38,9 +38,10 @@ Status runPlot(const PlotOptions& o) {
 
 void addPlotCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<PlotOptions>();
-    CLI::App* app = root.add_subcommand(
-        "plot", "Histogram CSV files (as hist and simulate write them) as a figure: one panel per "
-                "position, one column per file");
+    CLI::App* app =
+        root.add_subcommand("plot",
+                            "Histogram CSV files (as hist and simulate write them) as a figure: one panel per "
+                            "position, one column per file");
     app->add_option("CSV", o->inputs, "one or more histogram CSV files")->required();
     app->add_option("-o,--output", o->output, "fig.png")->required();
     app->add_flag("--overlay", o->overlay,

@@ -50,7 +50,9 @@ Status runRelight(const RelightOptions& o) {
         const Relighter relighter(bank);
         const Image out = relighter.apply(relighter.gridFrame(query->light), !o.noDither);
         if (Status s = savePng(out, o.output, o.depth); !s) return s;
-        if (!o.quiet) std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT from the match grid)\n";
+        if (!o.quiet)
+            std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height
+                      << ", LUT from the match grid)\n";
         return success();
     }
     if (o.grid) {  // what an engine reads from `export -o DIR/`
@@ -58,7 +60,8 @@ Status runRelight(const RelightOptions& o) {
         const Image out = applyLuts(bank.reference, bank.colour, bank.gridLookup(query->light, layer), bank.entries,
                                     o.noDither ? 0.f : bank.targetCode());
         if (Status s = savePng(out, o.output, o.depth); !s) return s;
-        if (!o.quiet) std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT from the grid)\n";
+        if (!o.quiet)
+            std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT from the grid)\n";
         return success();
     }
     const Relighter relighter(bank);
@@ -75,19 +78,19 @@ Status runRelight(const RelightOptions& o) {
 
 void addRelightCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<RelightOptions>();
-    CLI::App* app = root.add_subcommand(
-        "relight", "Apply the bank's LUT for a light (and view) direction to its reference image");
+    CLI::App* app =
+        root.add_subcommand("relight", "Apply the bank's LUT for a light (and view) direction to its reference image");
     app->add_option("BANK", o->bank, "M.btflut")->required();
     app->add_option("--light", o->light, "light direction THETA,PHI in degrees")->required();
     app->add_option("--view", o->view, "view direction THETA,PHI in degrees (default: the reference image's view)");
     app->add_option("-o,--output", o->output, "out.png")->required();
     addLutImageOptions(*app, o->depth, o->noDither);
-    app->add_option("--reference-image", o->referenceImage,
-                    "reference image, for a bank baked with --no-reference");
-    app->add_flag("--grid", o->grid,
-                  "the LUT as an engine reads it from the exported grid (bilinear between grid nodes, as "
-                  "shaders/btflut.glsl's one filtered fetch), not interpolated over the measured directions; for a bank "
-                  "with a predictor, the LUT baked over the grid (no counting of the prediction per light)");
+    app->add_option("--reference-image", o->referenceImage, "reference image, for a bank baked with --no-reference");
+    app->add_flag(
+        "--grid", o->grid,
+        "the LUT as an engine reads it from the exported grid (bilinear between grid nodes, as "
+        "shaders/btflut.glsl's one filtered fetch), not interpolated over the measured directions; for a bank "
+        "with a predictor, the LUT baked over the grid (no counting of the prediction per light)");
     addQuietFlag(*app, o->quiet, "do not say what was written");
     commands.push_back({app, [o] { return runRelight(*o); }});
 }

@@ -38,16 +38,26 @@ void printWritten(const RenderOptions& o, const Image& image, const RenderStats*
         nlohmann::json out{{"output", o.output}, {"width", image.width}, {"height", image.height}};
         if (stats) {
             const RenderStats& s = *stats;
-            out["stats"] = {{"materials_loaded", s.loadedMaterials}, {"materials_skipped", s.skippedMaterials},
-                            {"ptms_loaded", s.loadedPtms}, {"images_loaded", s.imagesLoaded},
-                            {"view_layers", s.viewLayers}, {"view_layers_loaded", s.viewLayersLoaded},
-                            {"quads_drawn", s.quadsDrawn}, {"quads_unlit", s.quadsUnlit}, {"quads_culled", s.quadsCulled},
-                            {"relit_textures", s.relitTextures}, {"quads_texture_space", s.quadsTextureSpace},
+            out["stats"] = {{"materials_loaded", s.loadedMaterials},
+                            {"materials_skipped", s.skippedMaterials},
+                            {"ptms_loaded", s.loadedPtms},
+                            {"images_loaded", s.imagesLoaded},
+                            {"view_layers", s.viewLayers},
+                            {"view_layers_loaded", s.viewLayersLoaded},
+                            {"quads_drawn", s.quadsDrawn},
+                            {"quads_unlit", s.quadsUnlit},
+                            {"quads_culled", s.quadsCulled},
+                            {"relit_textures", s.relitTextures},
+                            {"quads_texture_space", s.quadsTextureSpace},
                             {"quads_per_fragment", s.quadsPerFragment},
-                            {"texture_bytes", {{"total", s.textureBytes.total()}, {"references", s.textureBytes.reference},
-                                               {"blended_references", s.textureBytes.blend}, {"relit", s.textureBytes.relit},
-                                               {"luts", s.textureBytes.luts}, {"ptms", s.textureBytes.ptm},
-                                               {"images", s.textureBytes.images}}}};
+                            {"texture_bytes",
+                             {{"total", s.textureBytes.total()},
+                              {"references", s.textureBytes.reference},
+                              {"blended_references", s.textureBytes.blend},
+                              {"relit", s.textureBytes.relit},
+                              {"luts", s.textureBytes.luts},
+                              {"ptms", s.textureBytes.ptm},
+                              {"images", s.textureBytes.images}}}};
         }
         std::cout << jsonText(out);
     } else if (!o.quiet) {
@@ -105,16 +115,18 @@ Status runSceneRender(const RenderOptions& o) {
         };
         std::cout << "materials loaded: " << list(stats.loadedMaterials)
                   << "\nmaterials skipped (no visible quad uses them): " << list(stats.skippedMaterials)
-                  << "\nquads drawn: " << stats.quadsDrawn << " (" << stats.quadsUnlit << " unlit), culled: "
-                  << stats.quadsCulled << "\nPTMs loaded (for ptm quads): " << list(stats.loadedPtms)
+                  << "\nquads drawn: " << stats.quadsDrawn << " (" << stats.quadsUnlit
+                  << " unlit), culled: " << stats.quadsCulled
+                  << "\nPTMs loaded (for ptm quads): " << list(stats.loadedPtms)
                   << "\nmeasured images loaded (for nearest quads): " << stats.imagesLoaded
                   << "\nview layers decoded: " << stats.viewLayersLoaded << " of " << stats.viewLayers
                   << "\nrelit textures (mode lut, one per material and light direction): " << stats.relitTextures
-                  << "\nmode lut, banks of one view layer: " << stats.quadsTextureSpace << " quads drawn from relit textures, "
-                  << stats.quadsPerFragment << " relit per fragment (the light moved and that cost less)"
+                  << "\nmode lut, banks of one view layer: " << stats.quadsTextureSpace
+                  << " quads drawn from relit textures, " << stats.quadsPerFragment
+                  << " relit per fragment (the light moved and that cost less)"
                   << "\ntexture memory: " << stats.textureBytes.total() << " bytes (references "
-                  << stats.textureBytes.reference << ", blended references " << stats.textureBytes.blend
-                  << ", relit " << stats.textureBytes.relit << ", LUTs " << stats.textureBytes.luts << ", PTMs "
+                  << stats.textureBytes.reference << ", blended references " << stats.textureBytes.blend << ", relit "
+                  << stats.textureBytes.relit << ", LUTs " << stats.textureBytes.luts << ", PTMs "
                   << stats.textureBytes.ptm << ", measured images " << stats.textureBytes.images << ")\n";
     }
     printWritten(o, *image, &stats);
@@ -130,8 +142,10 @@ Status runRender(const RenderOptions& o) {
         if (!o.view.empty()) return Error{"--view applies to --native; a scene's camera sets the view"};
         return runSceneRender(o);
     }
-    if (!o.native) return Error{"a bank (M.btflut) renders with --native: the frontal quad at its reference image's "
-                                "resolution; scenes are SCENE.json"};
+    if (!o.native)
+        return Error{
+            "a bank (M.btflut) renders with --native: the frontal quad at its reference image's "
+            "resolution; scenes are SCENE.json"};
     // Options of scenes that --native cannot honour are refused, never ignored.
     if (!o.mode.empty() && o.mode != "lut")
         return Error{"--native draws the lut mode (relight's twin); --mode " + o.mode + " needs a scene (SCENE.json)"};
@@ -154,9 +168,10 @@ Status runRender(const RenderOptions& o) {
 
 void addRenderCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<RenderOptions>();
-    CLI::App* app = root.add_subcommand(
-        "render", "Render with OpenGL, headless (OSMesa or EGL): a scene (SCENE.json, docs/scene.md) or, "
-                  "with --native, a bank's reference at its own resolution");
+    CLI::App* app =
+        root.add_subcommand("render",
+                            "Render with OpenGL, headless (OSMesa or EGL): a scene (SCENE.json, docs/scene.md) or, "
+                            "with --native, a bank's reference at its own resolution");
     app->add_option("INPUT", o->input, "SCENE.json or M.btflut")->required();
     app->add_option("--light", o->light,
                     "light THETA,PHI in degrees (bank: its sample frame; scene: the world, z up; "

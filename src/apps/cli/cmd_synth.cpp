@@ -44,8 +44,9 @@ Status runSynth(const SynthOptions& o, const CLI::App& app) {
     const std::string brdf = given("--brdf") ? o.model.brdf : lambert ? "lambert" : ts ? "ts" : "mix";
     Result<SurfaceModel> model = makeSurfaceModel(
         m.surface.roughness, brdf, given("--kd") ? o.model.kd : std::optional(m.model.brdf.kd),
-        given("--ks") ? o.model.ks : std::optional(m.model.brdf.ks), given("--sigma") ? o.model.sigma : m.model.brdf.sigma,
-        given("--ior") ? o.model.ior : m.model.brdf.ior, given("--gain") ? o.model.gain : m.model.gain, "--");
+        given("--ks") ? o.model.ks : std::optional(m.model.brdf.ks),
+        given("--sigma") ? o.model.sigma : m.model.brdf.sigma, given("--ior") ? o.model.ior : m.model.brdf.ior,
+        given("--gain") ? o.model.gain : m.model.gain, "--");
     if (!model) return Error{model.error()};
     m.model = *model;
     m.albedoVariation = o.albedoVariation;
@@ -66,8 +67,8 @@ Status runSynth(const SynthOptions& o, const CLI::App& app) {
 
 void addSynthCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<SynthOptions>();
-    CLI::App* app = root.add_subcommand(
-        "synth", "Render image sets of Gaussian rough surfaces (known truth) as a dataset folder");
+    CLI::App* app =
+        root.add_subcommand("synth", "Render image sets of Gaussian rough surfaces (known truth) as a dataset folder");
     app->add_option("-o,--output", o->output, "output folder (PNGs, mask.png, btflut-dataset.json, synth.lp)")
         ->required();
     app->add_option("--preset", o->preset, "concrete, foil, plastic or corduroy; flags override it")
@@ -76,12 +77,18 @@ void addSynthCommand(CLI::App& root, Commands& commands) {
     app->add_option("--roughness-across", o->roughnessAcross, "rms slope across the principal axis (anisotropy)");
     app->add_option("--angle", o->angle, "principal axis, degrees from x towards y");
     app->add_option("--correlation-length", o->correlationLength, "pixels (4 .. size/4)")->capture_default_str();
-    app->add_option("--albedo-variation", o->albedoVariation, "0..1: smooth random albedo 1 - v u")->capture_default_str();
+    app->add_option("--albedo-variation", o->albedoVariation, "0..1: smooth random albedo 1 - v u")
+        ->capture_default_str();
     app->add_option("--ambient", o->ambient, "constant diffuse irradiance (interreflection)")->capture_default_str();
     app->add_option("--noise", o->noise, "sensor noise standard deviation")->capture_default_str();
-    app->add_option("--geometry", o->geometry, "curet-c2, curet-specular, rti-N (N lights, frontal camera), btf-N (N views x N lights, rendered rectified), a list or a dataset")->capture_default_str();
+    app->add_option("--geometry", o->geometry,
+                    "curet-c2, curet-specular, rti-N (N lights, frontal camera), btf-N (N views x N lights, rendered "
+                    "rectified), a list or a dataset")
+        ->capture_default_str();
     app->add_option("--size", o->size, "field and image size in pixels (any size FFTW takes)")->capture_default_str();
-    app->add_option("--samples", o->samples, "rays per pixel along each axis")->check(CLI::Range(1, 16))->capture_default_str();
+    app->add_option("--samples", o->samples, "rays per pixel along each axis")
+        ->check(CLI::Range(1, 16))
+        ->capture_default_str();
     app->add_option("--seed", o->seed, "surface seed")->capture_default_str();
     app->add_option("--depth", o->depth, "bits per sample")->check(CLI::IsMember({8, 16}))->capture_default_str();
     app->add_option("--threads", o->threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 1024));

@@ -15,7 +15,8 @@ void addViewCommand(CLI::App& root, Commands& commands) {
                     "M.btflut, a dataset (baked for the session) or SCENE.json; default: the bundled material");
     app->add_option("--images", o->images, "with a bank: the dataset it was baked from (for mode nearest)");
     app->add_option("--mode", o->mode, "lut, brdf, ptm, flat or nearest")->capture_default_str();
-    app->add_option("--split", o->split, "panes side by side: 1; 2 (brdf | lut); 3 (brdf | lut | nearest, or flat without images)")
+    app->add_option("--split", o->split,
+                    "panes side by side: 1; 2 (brdf | lut); 3 (brdf | lut | nearest, or flat without images)")
         ->check(CLI::Range(1, 3))
         ->capture_default_str();
     app->add_option("--light", o->light, "light THETA,PHI in degrees (world frame); default 45,30");
@@ -26,17 +27,20 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--camera", o->camera,
                     "AZIMUTH,ELEVATION[,DISTANCE]: the camera around the scene's target (degrees, scene units); "
                     "default the scene's");
-    app->add_option("--projection", o->projection,
-                    "2d: frontal and orthographic, pan and zoom (default for a material of one frontal view); 3d: orbit");
+    app->add_option(
+        "--projection", o->projection,
+        "2d: frontal and orthographic, pan and zoom (default for a material of one frontal view); 3d: orbit");
     app->add_option("--zoom", o->zoom, "2D: pixels per texel (1: one texel per pixel) or fit (default)");
     app->add_option("--compare", o->compare, "wipe or lens: the pane's mode against --compare-mode (key C)");
-    app->add_option("--compare-mode", o->compareMode, "the mode in the wipe's right side or in the lens")->capture_default_str();
+    app->add_option("--compare-mode", o->compareMode, "the mode in the wipe's right side or in the lens")
+        ->capture_default_str();
     app->add_option("--exposure", o->exposure, "stops (in linear light)")->capture_default_str();
     app->add_option("--gamma", o->gamma, "display gamma on top of sRGB (1: none)")->capture_default_str();
     app->add_option("--geometry", o->geometry, "quad; sphere or cylinder (a bank of LUTs, per fragment; key G)")
         ->check(CLI::IsMember({"quad", "sphere", "cylinder"}))
         ->capture_default_str();
-    app->add_option("--point-light", o->pointLight, "sphere and cylinder: a point light this far from the centre (0: directional)")
+    app->add_option("--point-light", o->pointLight,
+                    "sphere and cylinder: a point light this far from the centre (0: directional)")
         ->check(CLI::Range(0.0, 100.0));
     app->add_flag("--timing", o->timing, "scripted: print the median frame time at exit (the first frame left out)");
     app->add_option("--inject-drop", o->injectDrop,
@@ -44,15 +48,18 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--inject-key", o->injectKeys, "scripted (tests): tab or f1, pressed at frame 1")
         ->check(CLI::IsMember({"tab", "f1"}));
     app->add_option("--inject-cursor", o->injectCursor, "scripted (tests): X,Y, the mouse's place in the window");
-    app->add_flag_callback("--no-vsync", [o] { o->vsync = false; }, "draw as fast as possible");
+    app->add_flag_callback(
+        "--no-vsync", [o] { o->vsync = false; }, "draw as fast as possible");
     app->add_option("--frames", o->frames, "scripted: draw N frames, then exit")->check(CLI::Range(1, 100000));
     app->add_flag("--light-sweep", o->lightSweep, "scripted: the light spirals from theta 10 to 80 over the frames");
     app->add_option("--screenshot", o->screenshot, "PNG of the last scripted frame; interactively the S key's file");
     app->add_option("--screenshot-dir", o->screenshotDir,
                     "scripted: every frame as frame-NNNN.png with its state (.json) and scene (.scene.json)");
-    app->add_option("--references", o->bake.references, "with a dataset: references blended per light (bake --references)")
+    app->add_option("--references", o->bake.references,
+                    "with a dataset: references blended per light (bake --references)")
         ->check(CLI::Range(1, 255));
-    app->add_option("--regions", o->bake.regions, "with a dataset: regions matched apart (bake --regions)")->check(CLI::Range(1, 255));
+    app->add_option("--regions", o->bake.regions, "with a dataset: regions matched apart (bake --regions)")
+        ->check(CLI::Range(1, 255));
     auto colour = std::make_shared<std::string>("grey");
     auto predictor = std::make_shared<std::string>("references");
     app->add_option("--colour", *colour, "with a dataset: grey, rgb or lrgb (bake --colour)")
@@ -70,10 +77,14 @@ void addViewCommand(CLI::App& root, Commands& commands) {
                                 o->width = w;
                                 o->height = h;
                             }
-                            o->bake.colour = *colour == "rgb" ? ColourMode::Rgb : *colour == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
+                            o->bake.colour = *colour == "rgb"    ? ColourMode::Rgb
+                                             : *colour == "lrgb" ? ColourMode::Lrgb
+                                                                 : ColourMode::Grey;
                             if (*predictor != "references") {
                                 std::optional<Result<LightModelOptions>> model = lightModelNamed(*predictor);
-                                if (!model) return Status{Error{"--predictor '" + *predictor + "': expected references or a basis (ptm, hsh, rbf, bln)"}};
+                                if (!model)
+                                    return Status{Error{"--predictor '" + *predictor +
+                                                        "': expected references or a basis (ptm, hsh, rbf, bln)"}};
                                 if (!*model) return Status{Error{"--predictor " + model->error()}};
                                 o->bake.model = **model;
                             }

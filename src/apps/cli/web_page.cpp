@@ -28,8 +28,9 @@ std::string base64(std::string_view bytes) {
 std::string deflated(std::string_view text) {
     uLongf size = compressBound(static_cast<uLong>(text.size()));
     std::string out(size, '\0');
-    const int status = compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(text.data()),
-                                 static_cast<uLong>(text.size()), Z_BEST_COMPRESSION);
+    const int status =
+        compress2(reinterpret_cast<Bytef*>(out.data()), &size, reinterpret_cast<const Bytef*>(text.data()),
+                  static_cast<uLong>(text.size()), Z_BEST_COMPRESSION);
     BTFLUT_CHECK(status == Z_OK);
     out.resize(size);
     return out;
@@ -53,15 +54,18 @@ std::string webPage(const std::string& name, const nlohmann::json& material,
         if (file == "btflut_es.glsl") data["include"] = base64(deflated(content));
         const bool png = file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0;
         if (png || file == "weights.bin")
-            data["files"][file] = std::string(png ? "data:image/png;base64," : "data:application/octet-stream;base64,") + base64(content);
+            data["files"][file] =
+                std::string(png ? "data:image/png;base64," : "data:application/octet-stream;base64,") + base64(content);
     }
     BTFLUT_CHECK(data.contains("include"));
     data["bytes"] = bytes;  // the engine export's files, as the page says
-    const std::string code = std::string(embeddedWebFile("btflut_material.js")) + "\n" + std::string(embeddedWebFile("page.js"));
+    const std::string code =
+        std::string(embeddedWebFile("btflut_material.js")) + "\n" + std::string(embeddedWebFile("page.js"));
     data["code"] = base64(deflated(code));  // run by the page's first script
     // JSON inside <script>: "</" written as "<\/" (the same string), so no tag ends it.
     std::string text = data.dump();
-    for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3)) text.insert(at + 1, "\\");
+    for (std::size_t at = text.find("</"); at != std::string::npos; at = text.find("</", at + 3))
+        text.insert(at + 1, "\\");
     std::string page(embeddedWebFile("page.html"));
     return replaced(std::move(page), "/*BTFLUT_DATA*/", text);
 }

@@ -63,7 +63,8 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int 
     model("bln" + std::to_string(planes), {.basis = LightBasis::Bilinear, .planes = planes}, planes);
     // Packed: the same bytes holding more components, the trailing ones with 4 bits.
     model("rbf" + std::to_string(planes) + "c", {.basis = LightBasis::Rbf, .planes = planes, .packed = true}, planes);
-    model("bln" + std::to_string(planes) + "c", {.basis = LightBasis::Bilinear, .planes = planes, .packed = true}, planes);
+    model("bln" + std::to_string(planes) + "c", {.basis = LightBasis::Bilinear, .planes = planes, .packed = true},
+          planes);
     return out;
 }
 
@@ -106,28 +107,37 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
     parallelFor(n, options.base.threads, [&](std::size_t i) {
         if (!provider) {
             Result<Image> image = loadImage(dataset.images[i].path);
-            if (image) decoded[i] = std::move(*image);
-            else errors[i] = image.error();
+            if (image)
+                decoded[i] = std::move(*image);
+            else
+                errors[i] = image.error();
             return;
         }
         Image storage;
         Result<const Image*> image = provider(i, storage);
-        if (!image) errors[i] = image.error();
-        else decoded[i] = *image == &storage ? std::move(storage) : **image;
+        if (!image)
+            errors[i] = image.error();
+        else
+            decoded[i] = *image == &storage ? std::move(storage) : **image;
     });
     for (const std::string& e : errors)
         if (!e.empty()) return Error{e};
     const Image& first = decoded.front();
     for (std::size_t i = 1; i < n; ++i)
-        if (Status s = requireSameSize(decoded[i], dataset.images[i].path, first.width, first.height, dataset.images.front().path); !s)
+        if (Status s = requireSameSize(decoded[i], dataset.images[i].path, first.width, first.height,
+                                       dataset.images.front().path);
+            !s)
             return Error{s.error()};
     const ImageProvider cached = [&](std::size_t i, Image&) -> Result<const Image*> { return &decoded[i]; };
 
     if (options.budget < smallestBudget(first.channels))
-        return Error{"--budget " + std::to_string(options.budget) + ": no predictor fits; the smallest budget that works is " +
+        return Error{"--budget " + std::to_string(options.budget) +
+                     ": no predictor fits; the smallest budget that works is " +
                      std::to_string(smallestBudget(first.channels)) + " bytes per texel (the one-reference bank)"};
     std::vector<Candidate> candidates = candidatesFor(options.base, first.channels, options.budget, n);
-    nlohmann::json selection{{"budget", options.budget}, {"rule", "the highest validation PSNR with histogram L1 within 0.002 of the one-reference bank's"}};
+    nlohmann::json selection{
+        {"budget", options.budget},
+        {"rule", "the highest validation PSNR with histogram L1 within 0.002 of the one-reference bank's"}};
     const std::vector<Fold> folds = dataset.fixedView() ? validationFolds(n) : std::vector<Fold>{};
     Result<Mask> mask = loadDatasetMask(dataset, first.width, first.height);
     if (!mask) return Error{mask.error()};
@@ -137,11 +147,14 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
     std::size_t steps = 0, done = 0;
     for (const Candidate& c : candidates) steps += c.skipped.empty() ? folds.size() : 0;
     if (!folds.empty())
-        log("validating " + std::to_string(steps / folds.size()) + " predictors within " + std::to_string(options.budget) +
-            " bytes per texel on " + std::to_string(folds.size()) + " folds of the " + std::to_string(n) + " lights");
+        log("validating " + std::to_string(steps / folds.size()) + " predictors within " +
+            std::to_string(options.budget) + " bytes per texel on " + std::to_string(folds.size()) + " folds of the " +
+            std::to_string(n) + " lights");
     for (const Fold& fold : folds) {
         const Dataset train = subset(dataset, fold.train);
-        const ImageProvider trainImages = [&](std::size_t i, Image&) -> Result<const Image*> { return &decoded[fold.train[i]]; };
+        const ImageProvider trainImages = [&](std::size_t i, Image&) -> Result<const Image*> {
+            return &decoded[fold.train[i]];
+        };
         for (Candidate& c : candidates) {
             if (!c.skipped.empty()) continue;
             BakeOptions o = c.options;
@@ -163,7 +176,8 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
                 std::vector<ImageErrors> figures(fold.test.size());
                 parallelFor(fold.test.size(), options.base.threads, [&](std::size_t k) {
                     const DatasetImage& info = dataset.images[fold.test[k]];
-                    figures[k] = compareImages(relighter.apply(relighter.frame(info.light, info.view), true), decoded[fold.test[k]], *mask);
+                    figures[k] = compareImages(relighter.apply(relighter.frame(info.light, info.view), true),
+                                               decoded[fold.test[k]], *mask);
                 });
                 auto& [psnr, l1] = c.sums[strength];
                 for (const ImageErrors& e : figures) psnr += e.psnr, l1 += e.l1;
@@ -190,7 +204,8 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
         }
         row["validation"] = nlohmann::json::array();
         for (const auto& [strength, sum] : c.sums) {
-            const double psnr = sum.first / static_cast<double>(c.images), l1 = sum.second / static_cast<double>(c.images);
+            const double psnr = sum.first / static_cast<double>(c.images),
+                         l1 = sum.second / static_cast<double>(c.images);
             row["validation"].push_back({{"match", strength}, {"psnr", psnr}, {"l1", l1}});
             if (l1 <= bound && psnr > chosenPsnr) chosen = &c, chosenMatch = strength, chosenPsnr = psnr;
         }
@@ -216,8 +231,10 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
     Result<LutBank> bank = bakeBank(dataset, final, cached);
     if (!bank && !chosen && dataset.fixedView() && bank.error().find("constant") != std::string::npos) {
         final = candidates.front().options;
-        final.model = LightModelOptions{.basis = LightBasis::Rbf, .planes = std::clamp(options.budget, 1, LightModel::kMaxPlanes)};
-        selection["chosen"] = {{"name", "rbf" + std::to_string(final.model->planes)}, {"match", 1}, {"bytes", final.model->planes}};
+        final.model = LightModelOptions{.basis = LightBasis::Rbf,
+                                        .planes = std::clamp(options.budget, 1, LightModel::kMaxPlanes)};
+        selection["chosen"] = {
+            {"name", "rbf" + std::to_string(final.model->planes)}, {"match", 1}, {"bytes", final.model->planes}};
         selection["note"] = "the reference is constant over the sample: a light model carries the brightness";
         log("the reference is constant over the sample: a light model (rbf) carries the brightness");
         bank = bakeBank(dataset, final, cached);

@@ -24,8 +24,8 @@
 namespace btflut {
 
 struct AutoBakeOptions {
-    BakeOptions base;          ///< grid, entries, threads, reference, quantiles, regions, ptm, progress
-    int budget = 9;            ///< bytes per texel the predictor may store
+    BakeOptions base;            ///< grid, entries, threads, reference, quantiles, regions, ptm, progress
+    int budget = 9;              ///< bytes per texel the predictor may store
     std::optional<float> match;  ///< a fixed match strength instead of the validated one
     /// Called with a line per stage (candidates, folds); may be empty.
     std::function<void(const std::string&)> log;

@@ -21,8 +21,7 @@ struct ImageLuts {
 
 std::vector<LevelCounts> countLevels(const Image& image, const Mask& mask, ColourMode colour) {
     if (colour == ColourMode::Grey) return {countGreyLevels(image, mask)};
-    return {countChannelLevels(image, mask, 0), countChannelLevels(image, mask, 1),
-            countChannelLevels(image, mask, 2)};
+    return {countChannelLevels(image, mask, 0), countChannelLevels(image, mask, 1), countChannelLevels(image, mask, 2)};
 }
 
 // A reference whose most common grey level holds more of the sample than this is passed
@@ -30,10 +29,10 @@ std::vector<LevelCounts> countLevels(const Image& image, const Mask& mask, Colou
 // a tie over the target's quantiles (a foil more than half black under a frontal camera).
 constexpr double kLargestTie = 0.25;
 
-// The default reference and its image (decoded into `storage`, or the provider's): the image nearest to a frontal camera, then
-// nearest to frontal light, whose most common grey level holds at most kLargestTie of the
-// sample; where none does, the one whose most common level holds least. Images are decoded
-// in that order until one qualifies, so a well-exposed frontal image costs nothing extra.
+// The default reference and its image (decoded into `storage`, or the provider's): the image nearest to a frontal
+// camera, then nearest to frontal light, whose most common grey level holds at most kLargestTie of the sample; where
+// none does, the one whose most common level holds least. Images are decoded in that order until one qualifies, so a
+// well-exposed frontal image costs nothing extra.
 Result<std::pair<std::size_t, const Image*>> chooseReference(const Dataset& dataset, const ImageProvider& images,
                                                              Image& storage) {
     std::vector<std::size_t> order(dataset.images.size());
@@ -76,16 +75,17 @@ Result<std::pair<std::size_t, const Image*>> chooseReference(const Dataset& data
 // the other references, the regions (as one mask each) and, for lrgb, the albedo.
 struct BlendSetup {
     std::vector<std::size_t> references;  // dataset indices, the classic reference first
-    std::vector<Mask> regionMasks;         // the sample mask split by region
+    std::vector<Mask> regionMasks;        // the sample mask split by region
     Regions regions;
 };
 
-Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex, const Image& ref,
-                              const Mask& mask, const ImageProvider& images) {
+Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex,
+                              const Image& ref, const Mask& mask, const ImageProvider& images) {
     BlendSetup setup;
     if (!dataset.fixedView())
-        return Error{dataset.source + ": --references, --regions and --colour lrgb need one view (a fixed camera); "
-                                      "this dataset has several"};
+        return Error{dataset.source +
+                     ": --references, --regions and --colour lrgb need one view (a fixed camera); "
+                     "this dataset has several"};
     std::vector<Direction> lights;
     for (const DatasetImage& im : dataset.images) lights.push_back(im.light);
     std::vector<DiskPoint> points;
@@ -97,8 +97,8 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
         distinct += !seen;
     }
     if (options.references < 1 || static_cast<std::size_t>(options.references) > distinct)
-        return Error{"--references " + std::to_string(options.references) + " must be within 1.." + std::to_string(distinct) +
-                     " (the distinct light directions of " + dataset.source + ")"};
+        return Error{"--references " + std::to_string(options.references) + " must be within 1.." +
+                     std::to_string(distinct) + " (the distinct light directions of " + dataset.source + ")"};
     if (options.model) {
         // no references: the model is fitted to every image
     } else if (options.colour == ColourMode::Lrgb && options.references > 16)
@@ -120,14 +120,16 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
                             std::vector<std::uint8_t>(ref.pixelCount() * spread.size())};
         for (std::size_t k = 0; k < spread.size(); ++k) {
             Image storage;
-            Result<const Image*> image = spread[k] == refIndex ? Result<const Image*>(&ref) : images(spread[k], storage);
+            Result<const Image*> image =
+                spread[k] == refIndex ? Result<const Image*>(&ref) : images(spread[k], storage);
             if (!image) return Error{image.error()};
             if (Status size = requireSameSize(**image, dataset.images[spread[k]].path, ref.width, ref.height,
                                               dataset.images[refIndex].path + " (the reference)");
                 !size)
                 return Error{size.error()};
             for (std::size_t i = 0; i < ref.pixelCount(); ++i)
-                responses.values[i * spread.size() + k] = static_cast<std::uint8_t>(std::lround((*image)->grey(i) * 255.f));
+                responses.values[i * spread.size() + k] =
+                    static_cast<std::uint8_t>(std::lround((*image)->grey(i) * 255.f));
         }
         Result<Regions> r = segmentRegions(responses, mask, options.regions, dataset.source);
         if (!r) return Error{r.error()};
@@ -189,16 +191,18 @@ Image blendForm(const Image& image, ColourMode colour) {
     Image out(image.width, image.height, grey ? 1 : image.channels, 8);
     for (std::size_t i = 0; i < out.pixelCount(); ++i)
         for (int c = 0; c < out.channels; ++c) {
-            const float v = grey ? image.grey(i) : image.samples[i * static_cast<std::size_t>(image.channels) + static_cast<std::size_t>(c)];
-            out.samples[i * static_cast<std::size_t>(out.channels) + static_cast<std::size_t>(c)] = std::round(v * 255.f) / 255.f;
+            const float v =
+                grey ? image.grey(i)
+                     : image.samples[i * static_cast<std::size_t>(image.channels) + static_cast<std::size_t>(c)];
+            out.samples[i * static_cast<std::size_t>(out.channels) + static_cast<std::size_t>(c)] =
+                std::round(v * 255.f) / 255.f;
         }
     return out;
 }
 
 }  // namespace
 
-Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
-                         const ImageProvider& provider) {
+Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options, const ImageProvider& provider) {
     const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {
         Result<Image> image = loadImage(dataset.images[i].path);
         if (!image) return Error{image.error()};
@@ -211,7 +215,8 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         return Error{"--grid " + std::to_string(options.gridSize) + " is outside [2, 257]"};
     if (options.entries != 0 && (options.entries < 2 || options.entries > 65536))
         return Error{"--entries " + std::to_string(options.entries) + " is outside [2, 65536]"};
-    if (options.regions < 1 || options.regions > 255) return Error{"--regions " + std::to_string(options.regions) + " is outside [1, 255]"};
+    if (options.regions < 1 || options.regions > 255)
+        return Error{"--regions " + std::to_string(options.regions) + " is outside [1, 255]"};
     if (options.quantiles < 2 || options.quantiles > 65536)
         return Error{"--quantiles " + std::to_string(options.quantiles) + " is outside [2, 65536]"};
 
@@ -223,14 +228,11 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         if (!chosen) return Error{chosen.error()};
         std::tie(refIndex, reference) = *chosen;
     } else {
-        auto it = std::find_if(dataset.images.begin(), dataset.images.end(),
-                               [&](const DatasetImage& im) {
-                                   return im.name == options.referenceName ||
-                                          im.path == options.referenceName;
-                               });
+        auto it = std::find_if(dataset.images.begin(), dataset.images.end(), [&](const DatasetImage& im) {
+            return im.name == options.referenceName || im.path == options.referenceName;
+        });
         if (it == dataset.images.end())
-            return Error{dataset.source + ": no image named '" + options.referenceName +
-                         "' for --reference"};
+            return Error{dataset.source + ": no image named '" + options.referenceName + "' for --reference"};
         refIndex = static_cast<std::size_t>(it - dataset.images.begin());
         Result<const Image*> decoded = images(refIndex, referenceStorage);
         if (!decoded) return Error{decoded.error()};
@@ -239,7 +241,8 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     const DatasetImage& refInfo = dataset.images[refIndex];
     const Image& ref = *reference;
     if (options.colour != ColourMode::Grey && ref.channels != 3)
-        return Error{refInfo.path + ": --colour " + colourName(options.colour) + " needs colour images, this one is grey"};
+        return Error{refInfo.path + ": --colour " + colourName(options.colour) +
+                     " needs colour images, this one is grey"};
     Result<Mask> loadedMask = loadDatasetMask(dataset, ref.width, ref.height);
     if (!loadedMask) return Error{loadedMask.error()};
     const Mask& mask = *loadedMask;
@@ -257,8 +260,9 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
     const bool makesLuts = options.references > 1 || options.regions > 1 || !options.labelsPath.empty() ||
                            options.colour == ColourMode::Lrgb || options.model;
     if (options.model && (options.references > 1 || options.colour == ColourMode::Lrgb))
-        return Error{"--predictor " + std::string(lightBasisName(options.model->basis)) +
-                     " relights with a light model: it takes no --references, and its colour is the model's (grey or rgb)"};
+        return Error{
+            "--predictor " + std::string(lightBasisName(options.model->basis)) +
+            " relights with a light model: it takes no --references, and its colour is the model's (grey or rgb)"};
     if (!(options.match >= 0 && options.match <= 1)) return Error{"--match must be from 0 (not at all) to 1 (fully)"};
     BlendSetup blend;
     std::vector<LevelCounts> refLevels;
@@ -272,9 +276,10 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         refLevels = countLevels(ref, mask, options.colour);
         for (const LevelCounts& levels : refLevels)
             if (levels.presentCodes() < 2)
-                return Error{refInfo.path + ": reference image is constant over the sample, so no "
-                                            "LUT can give it another histogram; choose another "
-                                            "with --reference"};
+                return Error{refInfo.path +
+                             ": reference image is constant over the sample, so no "
+                             "LUT can give it another histogram; choose another "
+                             "with --reference"};
     }
     const std::size_t length = bank.nodeLength();
 
@@ -304,16 +309,16 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         const DatasetImage& info = dataset.images[i];
         ImageLuts& out = results[i];
         Image storage;
-        Result<const Image*> image =
-            i == refIndex ? Result<const Image*>(&ref) : pass(i, storage);
+        Result<const Image*> image = i == refIndex ? Result<const Image*>(&ref) : pass(i, storage);
         if (!image) {
             out.error = image.error();
-        } else if (Status size = requireSameSize(**image, info.path, ref.width, ref.height,
-                                                 refInfo.path + " (the reference)");
+        } else if (Status size =
+                       requireSameSize(**image, info.path, ref.width, ref.height, refInfo.path + " (the reference)");
                    !size) {
             out.error = size.error();
         } else if (options.colour != ColourMode::Grey && (*image)->channels != 3) {
-            out.error = info.path + ": --colour " + std::string(colourName(options.colour)) + " needs colour images, this one is grey";
+            out.error = info.path + ": --colour " + std::string(colourName(options.colour)) +
+                        " needs colour images, this one is grey";
         } else {
             if (ptm && angleBetween(info.view, refInfo.view) < 1e-9) ptm->add(**image, info.light);
             if (albedo) albedo->add(**image);
@@ -361,14 +366,17 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         bank.blend.mask = mask;
     } else if (makesLuts) {
         bank.blend.references = std::move(blendReferences);
-        for (std::size_t k : blend.references) bank.blend.lights.push_back({dataset.images[k].name, dataset.images[k].light});
+        for (std::size_t k : blend.references)
+            bank.blend.lights.push_back({dataset.images[k].name, dataset.images[k].light});
         bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
         if (albedo) bank.blend.albedo = albedo->finish();
         bank.blend.mask = mask;
         for (const Image& r : bank.blend.references) {
-            const std::vector<LevelCounts> levels = countLevels(r, mask, bank.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey);
+            const std::vector<LevelCounts> levels =
+                countLevels(r, mask, bank.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey);
             for (const LevelCounts& l : levels)
-                if (l.presentCodes() < 2) return Error{dataset.source + ": a reference image is constant over the sample"};
+                if (l.presentCodes() < 2)
+                    return Error{dataset.source + ": a reference image is constant over the sample"};
         }
     }
     if (Status s = setNodes(bank, luts, options.domain, dataset.source); !s) return Error{s.error()};
@@ -377,7 +385,8 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
         if (!fitted) return Error{fitted.error()};
         bank.ptm = std::move(*fitted);
     }
-    if (bank.makesLuts() && options.matchGrid) bakeMatchGrid(bank, options.threads);  // the LUTs an engine or a moving light reads
+    if (bank.makesLuts() && options.matchGrid)
+        bakeMatchGrid(bank, options.threads);  // the LUTs an engine or a moving light reads
     return bank;
 }
 

@@ -22,19 +22,20 @@ struct BakeOptions {
     int gridSize = 17;
     int entries = 0;  ///< 0: 256 for an 8-bit reference, 1024 for a 16-bit one
     ColourMode colour = ColourMode::Grey;
-    int threads = 0;  ///< 0: all cores
-    bool ptm = false;  ///< also fit a PTM (ptm.h) to the images of the reference's view
+    int threads = 0;                   ///< 0: all cores
+    bool ptm = false;                  ///< also fit a PTM (ptm.h) to the images of the reference's view
     std::optional<BankDomain> domain;  ///< empty: chosen from the directions (setNodes)
-    int references = 1;       ///< K references blended per light (a fixed camera; relighter.h)
+    int references = 1;                ///< K references blended per light (a fixed camera; relighter.h)
     /// Instead of references: a light model (light_model.h) fitted to every image, relit,
     /// then matched. Every image is held in memory while baking (the fit needs them all).
     std::optional<LightModelOptions> model;
     float match = 1;  ///< with a model or references: how far each light's LUT matches (LutBank::Blend::match)
-    LutBank::Blend::Target target = LutBank::Blend::Target::Measured;  ///< with a model or references (LutBank::Blend::target)
-    bool matchGrid = true;  ///< banks with a predictor: bake the LUTs over the grid (LutBank::matchGridLuts)
-    int regions = 1;          ///< regions segmented from the images' responses over the lights
-    std::string labelsPath;   ///< instead: a label image (each grey value one region)
-    int quantiles = 1024;     ///< samples of the targets' quantile functions (banks that make LUTs)
+    LutBank::Blend::Target target =
+        LutBank::Blend::Target::Measured;  ///< with a model or references (LutBank::Blend::target)
+    bool matchGrid = true;   ///< banks with a predictor: bake the LUTs over the grid (LutBank::matchGridLuts)
+    int regions = 1;         ///< regions segmented from the images' responses over the lights
+    std::string labelsPath;  ///< instead: a label image (each grey value one region)
+    int quantiles = 1024;    ///< samples of the targets' quantile functions (banks that make LUTs)
     /// Called after each image with (done, total); may be empty.
     std::function<void(std::size_t, std::size_t)> progress;
 };
@@ -47,7 +48,6 @@ using ImageProvider = std::function<Result<const Image*>(std::size_t index, Imag
 /// the reference and one image per thread. Errors name the file and the problem (corrupt
 /// image, sizes differ, mask of another size or empty, constant reference, ...).
 /// Without a provider, images are decoded from the dataset's files.
-Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options,
-                         const ImageProvider& provider = {});
+Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options, const ImageProvider& provider = {});
 
 }  // namespace btflut

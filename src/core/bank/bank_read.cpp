@@ -88,8 +88,7 @@ Result<Chunks> splitChunks(const Bytes& bytes, const std::string& name) {
         const std::uint8_t* payload = file.getBytes(length);
         auto storedCrc = file.get<std::uint32_t>();
         if (!file.ok())
-            return fail("truncated (chunk " + tagName(tag) + " declares " + std::to_string(length) +
-                        " bytes)");
+            return fail("truncated (chunk " + tagName(tag) + " declares " + std::to_string(length) + " bytes)");
         if (chunkCrc(tag, payload, length) != storedCrc && !kFuzzingBuild)
             return fail("checksum mismatch in chunk " + tagName(tag) + " (file is corrupted)");
         if (chunks.list.empty() && tag != kHead) return fail("first chunk is not HEAD");
@@ -130,8 +129,9 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
     m.width = static_cast<int>(head.refWidth);
     m.height = static_cast<int>(head.refHeight);
     const bool fixedBasis = m.basis == LightBasis::Ptm || m.basis == LightBasis::Hsh;
-    if (fixedBasis && (channels != 1 || (m.basis == LightBasis::Hsh ? order != 2 && order != 3 : order != 0) ||
-                       static_cast<int>(planes) != LightModel::termCount(m.basis, m.order) || grid != 0 || wide != planes))
+    if (fixedBasis &&
+        (channels != 1 || (m.basis == LightBasis::Hsh ? order != 2 && order != 3 : order != 0) ||
+         static_cast<int>(planes) != LightModel::termCount(m.basis, m.order) || grid != 0 || wide != planes))
         return fail("a " + std::string(lightBasisName(m.basis)) + " model with the wrong terms");
     if ((albedo ? 3u : channels) != head.refChannels) return fail("its colour does not match the reference image's");
     if (m.basis == LightBasis::Bilinear && (grid < 2 || grid > 64)) return fail("invalid grid size");
@@ -141,7 +141,8 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
     for (std::uint32_t p = 0; p < planes; ++p) m.scale.push_back(in.get<float>());
     for (std::uint32_t p = 0; p < planes; ++p) m.bias.push_back(in.get<float>());
     for (std::uint32_t p = 0; p < planes; ++p)
-        if (!std::isfinite(m.scale[p]) || !(m.scale[p] > 0) || !std::isfinite(m.bias[p])) return fail("invalid scale or bias");
+        if (!std::isfinite(m.scale[p]) || !(m.scale[p] > 0) || !std::isfinite(m.bias[p]))
+            return fail("invalid scale or bias");
     const auto lights = in.get<std::uint32_t>();
     if (!in.ok() || lights > in.remaining() / 16 || (m.basis == LightBasis::Rbf) != (lights > 0))
         return fail("invalid light count");
@@ -151,9 +152,12 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
         m.lights.push_back(*light);
     }
     const std::uint64_t row = (1 + std::uint64_t{planes}) * channels;
-    const std::uint64_t rows = m.basis == LightBasis::Rbf ? lights : m.basis == LightBasis::Bilinear ? std::uint64_t{grid} * grid : 0;
+    const std::uint64_t rows = m.basis == LightBasis::Rbf        ? lights
+                               : m.basis == LightBasis::Bilinear ? std::uint64_t{grid} * grid
+                                                                 : 0;
     const auto tableLength = in.get<std::uint32_t>();
-    if (!in.ok() || tableLength != rows * row || tableLength > in.remaining() / 4) return fail("the table does not fit the model");
+    if (!in.ok() || tableLength != rows * row || tableLength > in.remaining() / 4)
+        return fail("the table does not fit the model");
     m.table.resize(tableLength);
     if (const std::uint8_t* bytes = in.getBytes(tableLength * sizeof(float)); bytes && tableLength > 0)
         std::memcpy(m.table.data(), bytes, tableLength * sizeof(float));
@@ -163,7 +167,8 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
         const auto length = in.get<std::uint32_t>();
         const std::uint8_t* bytes = in.getBytes(length);
         if (!in.ok()) return fail("truncated " + what);
-        Result<Image> image = decodeImage(Bytes(bytes, bytes + length), name + " (light model " + what + ")", m.width, m.height);
+        Result<Image> image =
+            decodeImage(Bytes(bytes, bytes + length), name + " (light model " + what + ")", m.width, m.height);
         if (!image) return Error{image.error()};
         if (image->width != m.width || image->height != m.height || image->channels != 3 || image->bitDepth != 8)
             return fail(what + " is not an RGB8 image of the reference's size");
@@ -176,23 +181,27 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
         if (!image) return Error{image.error()};
         for (std::size_t i = 0; i < m.texels(); ++i)
             for (std::size_t c = 0; c < 3 && first + c < W; ++c)
-                m.coefficients[i * P + first + c] = static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
+                m.coefficients[i * P + first + c] =
+                    static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
     }
     for (std::size_t first = W; first < P; first += 6) {  // 4-bit planes, two to a channel
-        Result<Image> image = png("4-bit planes " + std::to_string(first) + "-" + std::to_string(std::min(P, first + 6) - 1));
+        Result<Image> image =
+            png("4-bit planes " + std::to_string(first) + "-" + std::to_string(std::min(P, first + 6) - 1));
         if (!image) return Error{image.error()};
         for (std::size_t i = 0; i < m.texels(); ++i)
             for (std::size_t c = 0; c < 3; ++c) {
                 const auto code = static_cast<int>(std::lround(image->samples[i * 3 + c] * 255));
                 if (first + 2 * c < P) m.coefficients[i * P + first + 2 * c] = static_cast<std::uint8_t>(code / 16);
-                if (first + 2 * c + 1 < P) m.coefficients[i * P + first + 2 * c + 1] = static_cast<std::uint8_t>(code % 16);
+                if (first + 2 * c + 1 < P)
+                    m.coefficients[i * P + first + 2 * c + 1] = static_cast<std::uint8_t>(code % 16);
             }
     }
     if (albedo) {
         Result<Image> image = png("albedo");
         if (!image) return Error{image.error()};
         m.albedo.resize(m.texels() * 3);
-        for (std::size_t s = 0; s < m.albedo.size(); ++s) m.albedo[s] = static_cast<std::uint8_t>(std::lround(image->samples[s] * 255));
+        for (std::size_t s = 0; s < m.albedo.size(); ++s)
+            m.albedo[s] = static_cast<std::uint8_t>(std::lround(image->samples[s] * 255));
     }
     if (in.remaining() != 0) return fail("has the wrong size");
     return m;
@@ -254,10 +263,13 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
     if (bank.gridSize < 2 || static_cast<std::uint32_t>(bank.gridSize) > kMaxGrid)
         return fail("grid size " + std::to_string(bank.gridSize) + " is invalid");
     if (head.layerCount == 0) return fail("bank has no view layers");
-    if (head.layerCount > kMaxBankNodes) return fail("bank declares " + std::to_string(head.layerCount) + " view layers, over the format's limit of " + std::to_string(kMaxBankNodes));
+    if (head.layerCount > kMaxBankNodes)
+        return fail("bank declares " + std::to_string(head.layerCount) + " view layers, over the format's limit of " +
+                    std::to_string(kMaxBankNodes));
     if ((head.refChannels != 1 && head.refChannels != 3) || (head.refDepth != 8 && head.refDepth != 16))
         return fail("reference image description is invalid");
-    if (Status s = checkImageSize(head.refWidth, head.refHeight, name + ": reference image"); !s) return Error{s.error()};
+    if (Status s = checkImageSize(head.refWidth, head.refHeight, name + ": reference image"); !s)
+        return Error{s.error()};
     if (domain > 1) return fail("interpolation domain " + std::to_string(domain) + " is invalid");
     bank.domain = static_cast<BankDomain>(domain);
     return head;
@@ -287,7 +299,8 @@ Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t
         auto length = in.get<std::uint32_t>();
         const std::uint8_t* png = in.getBytes(length);
         if (!in.ok()) return Error{name + ": PTM chunk: truncated " + what};
-        Result<Image> image = decodeImage(Bytes(png, png + length), name + " (PTM " + what + ")", ptm.width, ptm.height);
+        Result<Image> image =
+            decodeImage(Bytes(png, png + length), name + " (PTM " + what + ")", ptm.width, ptm.height);
         if (!image) return Error{image.error()};
         if (image->width != ptm.width || image->height != ptm.height || image->channels != 3)
             return Error{name + ": PTM chunk: " + what + " has the wrong size"};
@@ -438,7 +451,8 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             const std::uint8_t* luts = in.getBytes(nodes * length1 * sizeof(float));
             const std::uint8_t* kinds = in.getBytes(cells);
             const std::uint8_t* grid = in.getBytes(cells * length1 * sizeof(std::uint16_t));
-            if (!in.ok() || in.remaining() != 0) return fail("LAYR chunk " + std::to_string(bank.layers.size()) + " has the wrong size");
+            if (!in.ok() || in.remaining() != 0)
+                return fail("LAYR chunk " + std::to_string(bank.layers.size()) + " has the wrong size");
             std::vector<DiskPoint> lights;
             for (const LightNode& node : layer.nodes) lights.push_back(toDisk(node.light));
             if (hasNearDuplicates(lights, 1e-9)) return fail("two nodes share one light direction");
@@ -478,7 +492,8 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             if (!bank.makesLuts()) return fail("unexpected chunk " + tagName(tag));
             if (Status st = readBlendChunk(tag, in, name, *head, bank); !st) return Error{st.error()};
         } else if (tag == kLightModel) {
-            if (haveModel || bank.blend.predictor != LutBank::Blend::Predictor::Model) return fail("unexpected LMDL chunk");
+            if (haveModel || bank.blend.predictor != LutBank::Blend::Predictor::Model)
+                return fail("unexpected LMDL chunk");
             haveModel = true;
             Result<LightModel> model = decodeLightModel(in, name, *head);
             if (!model) return Error{model.error()};
@@ -509,7 +524,8 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             if (havePtm) return fail("two PTMC chunks");
             havePtm = true;
             bank.ptmInFile = true;
-            if (!options.ptm && bank.blend.predictor != LutBank::Blend::Predictor::Ptm) continue;  // the predictor's is needed
+            if (!options.ptm && bank.blend.predictor != LutBank::Blend::Predictor::Ptm)
+                continue;  // the predictor's is needed
             Result<Ptm> ptm = decodePtm({tag, payload, length}, name, head->refWidth, head->refHeight);
             if (!ptm) return Error{ptm.error()};
             bank.ptm = std::move(*ptm);
@@ -550,14 +566,16 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
     if (bank.makesLuts()) {
         const LutBank::Blend& blend = bank.blend;
         const bool ptmPredictor = blend.predictor == LutBank::Blend::Predictor::Ptm;
-        if (ptmPredictor && (!havePtm || bank.colour != ColourMode::Grey)) return fail("a PTM-predicted bank without its PTM");
+        if (ptmPredictor && (!havePtm || bank.colour != ColourMode::Grey))
+            return fail("a PTM-predicted bank without its PTM");
         if (blend.predictor == LutBank::Blend::Predictor::Model && (!haveModel || bank.colour == ColourMode::Lrgb))
             return fail("a bank predicted by a light model without its model (LMDL chunk)");
         if (ptmPredictor) bank.blend.model = lightModelFromPtm(bank.ptm);
         if (!head->embedded || blend.references.size() != head->references || blend.mask.inside.empty() ||
-            (blend.regions > 1) != !blend.labels.empty() || (bank.colour == ColourMode::Lrgb) != !blend.albedo.samples.empty() ||
-            bank.layers.size() != 1)
-            return fail("the references, mask, labels or albedo of a bank that blends references are missing or do not fit");
+            (blend.regions > 1) != !blend.labels.empty() ||
+            (bank.colour == ColourMode::Lrgb) != !blend.albedo.samples.empty() || bank.layers.size() != 1)
+            return fail(
+                "the references, mask, labels or albedo of a bank that blends references are missing or do not fit");
         for (std::uint8_t label : blend.labels)
             if (label >= blend.regions) return fail("a region label is beyond the bank's regions");
     }
@@ -565,8 +583,10 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
     for (const ViewLayer& l : bank.layers) views.push_back(toDisk(l.view));
     if (hasNearDuplicates(views, 1e-9)) return fail("two layers share one view direction");
     bank.buildTriangulations();
-    if (!bank.followsLight()) return fail("the bank's directions cannot follow the light (one light per view, and no "
-                                          "interpolation over the view)");
+    if (!bank.followsLight())
+        return fail(
+            "the bank's directions cannot follow the light (one light per view, and no "
+            "interpolation over the view)");
     return bank;
 }
 

@@ -70,10 +70,11 @@ Bytes encodePtm(const Ptm& ptm) {
 // its planes three to an RGB PNG and, in the LRGB layout, the albedo.
 Bytes encodeLightModel(const LightModel& m) {
     Writer w;
-    const std::array<std::uint32_t, 7> description{static_cast<std::uint32_t>(m.basis), static_cast<std::uint32_t>(m.planes),
-                                                   static_cast<std::uint32_t>(m.wide), static_cast<std::uint32_t>(m.channels),
-                                                   static_cast<std::uint32_t>(m.order), m.albedo.empty() ? 0u : 1u,
-                                                   static_cast<std::uint32_t>(m.grid)};
+    const std::array<std::uint32_t, 7> description{
+        static_cast<std::uint32_t>(m.basis), static_cast<std::uint32_t>(m.planes),
+        static_cast<std::uint32_t>(m.wide),  static_cast<std::uint32_t>(m.channels),
+        static_cast<std::uint32_t>(m.order), m.albedo.empty() ? 0u : 1u,
+        static_cast<std::uint32_t>(m.grid)};
     w.putBytes(description.data(), sizeof description);
     w.put(m.sigma);
     for (float v : m.scale) w.put(v);
@@ -120,8 +121,8 @@ Status checkBankSize(const LutBank& bank) {
     std::size_t nodes = 0;
     for (const ViewLayer& layer : bank.layers) nodes += layer.nodes.size();
     if (nodes > kMaxBankNodes)
-        return Error{"the bank would hold " + std::to_string(nodes) + " measured directions, over the format's limit of " +
-                     std::to_string(kMaxBankNodes)};
+        return Error{"the bank would hold " + std::to_string(nodes) +
+                     " measured directions, over the format's limit of " + std::to_string(kMaxBankNodes)};
     return success();
 }
 
@@ -154,7 +155,8 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         head.put(static_cast<std::uint32_t>(bank.blend.quantiles));
     }
     if (version >= 5) {
-        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.predictor : LutBank::Blend::Predictor::References));
+        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.predictor
+                                                             : LutBank::Blend::Predictor::References));
         head.put(bank.makesLuts() ? bank.blend.match : 1.f);
         head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.target : LutBank::Blend::Target::Measured));
     }
@@ -194,14 +196,18 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         }
         if (!blend.references.empty()) putChunk(file, kReferences, refs.bytes());
         putChunk(file, kMask, encodePng(byteImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
-        if (!blend.labels.empty()) putChunk(file, kLabels, encodePng(byteImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
+        if (!blend.labels.empty())
+            putChunk(file, kLabels, encodePng(byteImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
         if (!blend.albedo.samples.empty()) putChunk(file, kAlbedo, encodePng(blend.albedo, 8));
     }
     if (bank.makesLuts() && bank.blend.predictor == LutBank::Blend::Predictor::Model)
         putChunk(file, kLightModel, encodeLightModel(bank.blend.model));
     for (const ViewLayer& layer : bank.layers)  // version 5: every layer's or none
-        if (!layer.matchGridLuts.empty()) putChunk(file, kMatchGrid, Bytes(reinterpret_cast<const std::uint8_t*>(layer.matchGridLuts.data()),
-                                                                           reinterpret_cast<const std::uint8_t*>(layer.matchGridLuts.data() + layer.matchGridLuts.size())));
+        if (!layer.matchGridLuts.empty())
+            putChunk(
+                file, kMatchGrid,
+                Bytes(reinterpret_cast<const std::uint8_t*>(layer.matchGridLuts.data()),
+                      reinterpret_cast<const std::uint8_t*>(layer.matchGridLuts.data() + layer.matchGridLuts.size())));
     if (!bank.selection.empty()) {
         Writer w;
         w.putString(bank.selection);

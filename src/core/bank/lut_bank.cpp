@@ -12,10 +12,14 @@ namespace {
 
 int rank(Provenance p) {
     switch (p) {
-        case Provenance::Measured: return 0;
-        case Provenance::Interpolated: return 1;
-        case Provenance::Modelled: return 2;
-        case Provenance::Extrapolated: return 3;
+        case Provenance::Measured:
+            return 0;
+        case Provenance::Interpolated:
+            return 1;
+        case Provenance::Modelled:
+            return 2;
+        case Provenance::Extrapolated:
+            return 3;
     }
     return 3;
 }
@@ -32,9 +36,12 @@ Provenance provenanceOf(const Weights& w) {
 
 const char* colourName(ColourMode c) {
     switch (c) {
-        case ColourMode::Grey: return "grey";
-        case ColourMode::Rgb: return "rgb";
-        case ColourMode::Lrgb: return "lrgb";
+        case ColourMode::Grey:
+            return "grey";
+        case ColourMode::Rgb:
+            return "rgb";
+        case ColourMode::Lrgb:
+            return "lrgb";
     }
     return "?";
 }
@@ -55,10 +62,14 @@ Point3 isotropicPoint(Direction light, Direction view) {
 
 const char* provenanceName(Provenance p) {
     switch (p) {
-        case Provenance::Measured: return "measured";
-        case Provenance::Interpolated: return "interpolated";
-        case Provenance::Extrapolated: return "extrapolated";
-        case Provenance::Modelled: return "modelled";
+        case Provenance::Measured:
+            return "measured";
+        case Provenance::Interpolated:
+            return "interpolated";
+        case Provenance::Extrapolated:
+            return "extrapolated";
+        case Provenance::Modelled:
+            return "modelled";
     }
     return "?";
 }
@@ -117,7 +128,8 @@ void LutBank::fillGrids() {
                 const auto cell = static_cast<std::size_t>(j) * gridSize + i;
                 layer.gridProvenance[cell] = lut.lightProvenance;
                 for (std::size_t k = 0; k < length; ++k)
-                    layer.gridLuts[cell * length + k] = static_cast<std::uint16_t>(std::lround(lut.values[k] * 65535.0));
+                    layer.gridLuts[cell * length + k] =
+                        static_cast<std::uint16_t>(std::lround(lut.values[k] * 65535.0));
             }
     }
 }
@@ -132,8 +144,9 @@ double LutBank::lightCoverage(std::size_t layer) const {
             const DiskPoint p{-1 + (i + 0.5) * 2.0 / n, -1 + (j + 0.5) * 2.0 / n};
             if (p.x * p.x + p.y * p.y > 1) continue;
             ++total;
-            inside += domain == BankDomain::Isotropic ? pairs.weightsAt(isotropicPoint(fromDisk(p), layers[layer].view)).inside
-                                                      : layers[layer].lights.weightsAt(p).inside;
+            inside += domain == BankDomain::Isotropic
+                          ? pairs.weightsAt(isotropicPoint(fromDisk(p), layers[layer].view)).inside
+                          : layers[layer].lights.weightsAt(p).inside;
         }
     return static_cast<double>(inside) / total;
 }
@@ -191,7 +204,8 @@ LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
 
 std::vector<std::uint16_t> LutBank::gridTexels() const {
     const auto cells = static_cast<std::size_t>(gridSize) * gridSize, width = segmentLength();
-    const auto regions = static_cast<std::size_t>(makesLuts() ? blend.regions : 1), ch = static_cast<std::size_t>(channels());
+    const auto regions = static_cast<std::size_t>(makesLuts() ? blend.regions : 1),
+               ch = static_cast<std::size_t>(channels());
     std::vector<std::uint16_t> texels(layers.size() * cells * regions * width * ch);
     std::size_t at = 0;
     for (const ViewLayer& layer : layers)
@@ -207,7 +221,8 @@ namespace {
 
 // The bilinear read of a grid of unorm16 values (`length` per node) at a light's disk point,
 // as one filtered fetch of the exported 3D texture does.
-std::vector<float> bilinearOnGrid(const std::vector<std::uint16_t>& grid, int gridSize, std::size_t length, Direction light) {
+std::vector<float> bilinearOnGrid(const std::vector<std::uint16_t>& grid, int gridSize, std::size_t length,
+                                  Direction light) {
     const DiskPoint p = toDisk(light);
     const double last = gridSize - 1;
     const double gx = std::clamp((p.x + 1) / 2 * last, 0.0, last), gy = std::clamp((p.y + 1) / 2 * last, 0.0, last);
@@ -217,8 +232,9 @@ std::vector<float> bilinearOnGrid(const std::vector<std::uint16_t>& grid, int gr
     auto node = [&](int a, int b) { return &grid[(static_cast<std::size_t>(b) * gridSize + a) * length]; };
     const std::uint16_t *n00 = node(i, j), *n10 = node(i + 1, j), *n01 = node(i, j + 1), *n11 = node(i + 1, j + 1);
     for (std::size_t k = 0; k < length; ++k)
-        out[k] = static_cast<float>(((1 - fx) * (1 - fy) * n00[k] + fx * (1 - fy) * n10[k] + (1 - fx) * fy * n01[k] +
-                                     fx * fy * n11[k]) / 65535.0);
+        out[k] = static_cast<float>(
+            ((1 - fx) * (1 - fy) * n00[k] + fx * (1 - fy) * n10[k] + (1 - fx) * fy * n01[k] + fx * fy * n11[k]) /
+            65535.0);
     return out;
 }
 
@@ -360,18 +376,16 @@ Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::opt
     std::vector<std::vector<int>> mergedCount;
     for (const DirectionalLut& lut : luts) {
         BTFLUT_CHECK(lut.values.size() == length);
-        auto layer = std::find_if(bank.layers.begin(), bank.layers.end(), [&](const ViewLayer& l) {
-            return angleBetween(l.view, lut.view) < kSameDirection;
-        });
+        auto layer = std::find_if(bank.layers.begin(), bank.layers.end(),
+                                  [&](const ViewLayer& l) { return angleBetween(l.view, lut.view) < kSameDirection; });
         if (layer == bank.layers.end()) {
             bank.layers.push_back(ViewLayer{lut.view, {}, {}, {}, {}, {}});
             mergedCount.emplace_back();
             layer = std::prev(bank.layers.end());
         }
         auto& counts = mergedCount[static_cast<std::size_t>(layer - bank.layers.begin())];
-        auto node = std::find_if(layer->nodes.begin(), layer->nodes.end(), [&](const LightNode& n) {
-            return angleBetween(n.light, lut.light) < kSameDirection;
-        });
+        auto node = std::find_if(layer->nodes.begin(), layer->nodes.end(),
+                                 [&](const LightNode& n) { return angleBetween(n.light, lut.light) < kSameDirection; });
         if (node == layer->nodes.end()) {
             layer->nodes.push_back({lut.name, lut.light});
             layer->nodeLuts.insert(layer->nodeLuts.end(), lut.values.begin(), lut.values.end());
@@ -391,13 +405,14 @@ Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::opt
     bank.buildTriangulations();  // the layers' own, for the choice below
     const bool layersSpanTheDisk = std::all_of(bank.layers.begin(), bank.layers.end(),
                                                [](const ViewLayer& l) { return !l.lights.triangles().empty(); });
-    bank.domain = domain ? *domain
-                         : (bank.layers.size() == 1 || layersSpanTheDisk ? BankDomain::Layers : BankDomain::Isotropic);
+    bank.domain =
+        domain ? *domain : (bank.layers.size() == 1 || layersSpanTheDisk ? BankDomain::Layers : BankDomain::Isotropic);
     bank.buildTriangulations();
     if (!bank.followsLight()) {
         if (bank.domain == BankDomain::Layers && bank.layers.size() > 1)
-            return Error{source + ": each view direction has one light direction, so a bank over view layers cannot "
-                                  "follow the light; bake it with --domain isotropic (for isotropic materials)"};
+            return Error{source +
+                         ": each view direction has one light direction, so a bank over view layers cannot "
+                         "follow the light; bake it with --domain isotropic (for isotropic materials)"};
         return Error{source + ": the light directions do not vary" +
                      (bank.domain == BankDomain::Isotropic ? std::string(" relative to the view") : std::string()) +
                      ", so no bank baked from them can follow the light"};
@@ -411,8 +426,8 @@ float inputCode(const Image& image, ColourMode colour) {
     return 1.f / static_cast<float>(codes);
 }
 
-Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
-                int entries, float targetCode) {
+Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values, int entries,
+                float targetCode) {
     Image out = image;
     const auto width = static_cast<std::uint32_t>(image.width);
     const std::size_t n = image.pixelCount();
@@ -464,7 +479,8 @@ float brdfScale(const LutBank& bank, const LevelCounts& referenceGrey, const Ban
         // The target's mean grey: each region's quantile function's mean (trapezoids over
         // [0, 1]), weighted by its sample texels; rgb banks: the mean over their channels.
         const LutBank::Blend& blend = bank.blend;
-        const auto samples = static_cast<std::size_t>(blend.quantiles), channels = static_cast<std::size_t>(bank.channels());
+        const auto samples = static_cast<std::size_t>(blend.quantiles),
+                   channels = static_cast<std::size_t>(bank.channels());
         std::vector<double> texels(static_cast<std::size_t>(blend.regions), 0);
         for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
             texels[blend.labels.empty() ? 0 : blend.labels[i]] += blend.mask.inside[i];
@@ -474,8 +490,8 @@ float brdfScale(const LutBank& bank, const LevelCounts& referenceGrey, const Ban
                 const float* q = &lookup.values[(r * channels + c) * samples];
                 double integral = 0;
                 for (std::size_t m = 0; m + 1 < samples; ++m) integral += 0.5 * (q[m] + q[m + 1]);
-                mean += texels[r] / static_cast<double>(blend.mask.count()) * integral / static_cast<double>(samples - 1) /
-                        static_cast<double>(channels);
+                mean += texels[r] / static_cast<double>(blend.mask.count()) * integral /
+                        static_cast<double>(samples - 1) / static_cast<double>(channels);
             }
         target = mean * total;
     }

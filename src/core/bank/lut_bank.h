@@ -90,14 +90,14 @@ struct ViewLayer {
     /// prediction when the light moves. Empty for banks of LUTs.
     std::vector<std::uint16_t> matchGridLuts;
     std::vector<Provenance> gridProvenance;  ///< gridSize^2; node (i, j) at j * gridSize + i
-    Triangulation lights;                 ///< over the measured nodes' disk points (they come first)
-    Triangulation modelLights;            ///< over the modelled nodes' (index + measuredNodes); empty without
+    Triangulation lights;                    ///< over the measured nodes' disk points (they come first)
+    Triangulation modelLights;               ///< over the modelled nodes' (index + measuredNodes); empty without
     std::size_t measuredNodes = 0;
-    bool lutsLoaded = true;               ///< false: read without its LUTs (BankReadOptions::views)
+    bool lutsLoaded = true;  ///< false: read without its LUTs (BankReadOptions::views)
 };
 
 struct BankLookup {
-    std::vector<float> values;  ///< nodeLength(): LUTs, or quantile functions (LutBank::blend)
+    std::vector<float> values;                     ///< nodeLength(): LUTs, or quantile functions (LutBank::blend)
     Provenance provenance = Provenance::Measured;  ///< the worse of the two below
     Provenance lightProvenance = Provenance::Measured, viewProvenance = Provenance::Measured;
 };
@@ -113,7 +113,7 @@ struct LutBank {
     int gridSize = 17;
     BankDomain domain = BankDomain::Layers;
     std::vector<ViewLayer> layers;
-    Triangulation views;  ///< layers domain: over the layers' view directions
+    Triangulation views;   ///< layers domain: over the layers' view directions
     Triangulation3 pairs;  ///< isotropic domain: over the nodes' isotropicPoint
     /// isotropic domain: the nodes at each point of `pairs` (several where the symmetry
     /// maps measurements onto one point; they are averaged).
@@ -153,10 +153,10 @@ struct LutBank {
         /// level and spread. Both reproduce a measured node exactly; only Measured counts
         /// per light change.
         enum class Target : std::uint32_t { Measured = 0, Corrections = 1 } target = Target::Measured;
-        std::vector<Image> references;   ///< K, as blended: grey (lrgb) or as the source
-        std::vector<LightNode> lights;   ///< each reference's light and image
-        Triangulation triangulation;     ///< over their lights: the blend weights
-        Image albedo;                    ///< lrgb: the chroma, RGB 8-bit
+        std::vector<Image> references;     ///< K, as blended: grey (lrgb) or as the source
+        std::vector<LightNode> lights;     ///< each reference's light and image
+        Triangulation triangulation;       ///< over their lights: the blend weights
+        Image albedo;                      ///< lrgb: the chroma, RGB 8-bit
         std::vector<std::uint8_t> labels;  ///< per texel its region (all texels); empty: one region
         Mask mask;                         ///< the sample texels: the blend's statistics are theirs
         int regions = 1;
@@ -203,7 +203,8 @@ struct LutBank {
     std::vector<float> matchGridLookup(Direction light, std::size_t layer = 0) const;
     /// Values per node of matchGridLuts: regions x channels x entries.
     std::size_t matchLength() const {
-        return static_cast<std::size_t>(blend.regions) * static_cast<std::size_t>(channels()) * static_cast<std::size_t>(entries);
+        return static_cast<std::size_t>(blend.regions) * static_cast<std::size_t>(channels()) *
+               static_cast<std::size_t>(entries);
     }
 
     /// Every view layer's grid as one block of unorm16 texels, channels interleaved, ordered
@@ -269,8 +270,7 @@ float inputCode(const Image& image, ColourMode colour);
 /// rgb mode maps each channel by its own LUT. With `targetCode` > 0 (one code of the
 /// targets' values, e.g. 1/765) the LUT is applied dithered (lutInput/lutOutput in lut.h),
 /// which reproduces the target histogram closely; with 0, plainly.
-Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values,
-                int entries, float targetCode);
+Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>& values, int entries, float targetCode);
 
 /// The reference's grey levels over the texels the bank's targets describe: a bank that
 /// makes its LUTs at run time, its sample mask (its targets are the sample's distributions);

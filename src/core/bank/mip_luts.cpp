@@ -56,9 +56,11 @@ MipLuts::MipLuts(const Image& reference, ColourMode colour, int entries)
                     float sum = 0;
                     for (int dy = 0; dy < 2; ++dy)
                         for (int dx = 0; dx < 2; ++dx)
-                            sum += above.values[static_cast<std::size_t>(std::min(2 * y + dy, above.height - 1)) * static_cast<std::size_t>(above.width) +
+                            sum += above.values[static_cast<std::size_t>(std::min(2 * y + dy, above.height - 1)) *
+                                                    static_cast<std::size_t>(above.width) +
                                                 static_cast<std::size_t>(std::min(2 * x + dx, above.width - 1))];
-                    next.values[static_cast<std::size_t>(y) * static_cast<std::size_t>(next.width) + static_cast<std::size_t>(x)] = sum / 4;
+                    next.values[static_cast<std::size_t>(y) * static_cast<std::size_t>(next.width) +
+                                static_cast<std::size_t>(x)] = sum / 4;
                 }
             levels.push_back(std::move(next));
         }
@@ -70,8 +72,14 @@ MipLuts::MipLuts(const Image& reference, ColourMode colour, int entries)
             for (int y = 0; y < reference.height; ++y)
                 for (int x = 0; x < reference.width; ++x) {
                     const int ax = std::min(x >> m, level.width - 1), ay = std::min(y >> m, level.height - 1);
-                    const auto [row, rowNext] = entryOf(level.values[static_cast<std::size_t>(ay) * static_cast<std::size_t>(level.width) + static_cast<std::size_t>(ax)], m_size);
-                    const auto [column, columnNext] = entryOf(levels[0].values[static_cast<std::size_t>(y) * static_cast<std::size_t>(reference.width) + static_cast<std::size_t>(x)], m_size);
+                    const auto [row, rowNext] =
+                        entryOf(level.values[static_cast<std::size_t>(ay) * static_cast<std::size_t>(level.width) +
+                                             static_cast<std::size_t>(ax)],
+                                m_size);
+                    const auto [column, columnNext] = entryOf(
+                        levels[0].values[static_cast<std::size_t>(y) * static_cast<std::size_t>(reference.width) +
+                                         static_cast<std::size_t>(x)],
+                        m_size);
                     const auto r = static_cast<std::size_t>(row), k = static_cast<std::size_t>(column);
                     p[r * e + k] += (1.0 - rowNext) * (1.0 - columnNext);
                     p[r * e + k + 1] += (1.0 - rowNext) * columnNext;

@@ -6,9 +6,9 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "core/io/json_text.h"
 #include <regex>
 #include <sstream>
+#include "core/io/json_text.h"
 
 #include "core/io/file_io.h"
 #include "core/parallel.h"
@@ -43,7 +43,8 @@ Result<Direction> roundedLight(Vec3 v, const std::string& where, std::size_t& no
 }
 
 std::string normalisedNote(const std::string& file, std::size_t count) {
-    return file + ": " + std::to_string(count) + " light vector(s) up to " + std::to_string(static_cast<int>(kRoundedLightTolerance * 100)) +
+    return file + ": " + std::to_string(count) + " light vector(s) up to " +
+           std::to_string(static_cast<int>(kRoundedLightTolerance * 100)) +
            "% from unit length (rounded by another tool), normalised";
 }
 
@@ -57,8 +58,7 @@ std::vector<std::string> splitLines(const std::string& text) {
     std::istringstream in(text);
     std::string line;
     while (std::getline(in, line)) {
-        while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
-            line.pop_back();
+        while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
         lines.push_back(line);
     }
     return lines;
@@ -74,13 +74,11 @@ Result<std::vector<fs::path>> listFolder(const std::string& folder) {
 }
 
 bool isBlank(const std::string& line) {
-    return std::all_of(line.begin(), line.end(),
-                       [](unsigned char c) { return std::isspace(c) != 0; });
+    return std::all_of(line.begin(), line.end(), [](unsigned char c) { return std::isspace(c) != 0; });
 }
 
 // Reads "N" from the first non-blank line; returns the index of the line after it.
-Result<std::size_t> readCountLine(const std::vector<std::string>& lines, const std::string& file,
-                                  std::size_t& next) {
+Result<std::size_t> readCountLine(const std::vector<std::string>& lines, const std::string& file, std::size_t& next) {
     next = 0;
     while (next < lines.size() && isBlank(lines[next])) ++next;
     if (next == lines.size()) return Error{file + ": empty file, expected an image count"};
@@ -88,8 +86,8 @@ Result<std::size_t> readCountLine(const std::vector<std::string>& lines, const s
     long long count = -1;
     std::string rest;
     if (!(in >> count) || (in >> rest) || count <= 0)
-        return Error{file + ":" + std::to_string(next + 1) +
-                     ": expected a positive image count, got '" + lines[next] + "'"};
+        return Error{file + ":" + std::to_string(next + 1) + ": expected a positive image count, got '" + lines[next] +
+                     "'"};
     ++next;
     return static_cast<std::size_t>(count);
 }
@@ -146,8 +144,7 @@ Result<Dataset> openPsmFolder(const std::string& folder) {
             masks[m[1]] = entry.string();
         }
     }
-    if (byName.empty())
-        return Error{folder + ": photometric-stereo folder has lights.txt but no NAME.K images"};
+    if (byName.empty()) return Error{folder + ": photometric-stereo folder has lights.txt but no NAME.K images"};
     if (byName.size() > 1)
         return Error{folder + ": several image sets (" + byName.begin()->first + ", " +
                      std::next(byName.begin())->first + "); expected one NAME.K series"};
@@ -159,13 +156,13 @@ Result<Dataset> openPsmFolder(const std::string& folder) {
     for (std::size_t k = 0; k < lights->size(); ++k) {
         auto f = files.find(static_cast<long>(k));
         if (f == files.end())
-            return Error{folder + ": lights.txt lists " + std::to_string(lights->size()) +
-                         " lights but image " + name + "." + std::to_string(k) + ".* is missing"};
+            return Error{folder + ": lights.txt lists " + std::to_string(lights->size()) + " lights but image " + name +
+                         "." + std::to_string(k) + ".* is missing"};
         ds.images.push_back({stem(f->second), f->second, (*lights)[k], Direction{}});
     }
     if (files.size() != lights->size())
-        return Error{folder + ": " + std::to_string(files.size()) + " images " + name +
-                     ".K but lights.txt lists " + std::to_string(lights->size()) + " lights"};
+        return Error{folder + ": " + std::to_string(files.size()) + " images " + name + ".K but lights.txt lists " +
+                     std::to_string(lights->size()) + " lights"};
     if (normalised > 0) ds.notes.push_back(normalisedNote(lightsFile, normalised));
     return ds;
 }
@@ -217,7 +214,8 @@ Result<Dataset> openFile(const std::string& path, const std::string& ext) {
         ++moved;
     }
     if (moved > 0)
-        rti->notes.push_back(path + ": " + std::to_string(moved) + " image path(s) not found as written; their file names "
+        rti->notes.push_back(path + ": " + std::to_string(moved) +
+                             " image path(s) not found as written; their file names "
                              "beside the .lp file used instead");
     // RTI captures have no place for a mask in the .lp file: a mask.png beside it is the mask.
     if (fs::is_regular_file(fs::path(folder) / "mask.png", ec)) rti->maskPath = joinPath(folder, "mask.png");
@@ -227,12 +225,12 @@ Result<Dataset> openFile(const std::string& path, const std::string& ext) {
 }  // namespace
 
 bool Dataset::fixedView() const {
-    return std::all_of(images.begin(), images.end(), [&](const DatasetImage& im) {
-        return angleBetween(im.view, images.front().view) < 1e-9;
-    });
+    return std::all_of(images.begin(), images.end(),
+                       [&](const DatasetImage& im) { return angleBetween(im.view, images.front().view) < 1e-9; });
 }
 
-Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std::string& file, std::size_t* normalised) {
+Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std::string& file,
+                                              std::size_t* normalised) {
     std::size_t rounded = 0;
     std::vector<std::string> lines = splitLines(text);
     std::size_t next = 0;
@@ -243,8 +241,7 @@ Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std
         if (isBlank(lines[next])) continue;
         std::string where = file + ":" + std::to_string(next + 1);
         if (lights.size() == *count)
-            return Error{where + ": more light lines than the declared count " +
-                         std::to_string(*count)};
+            return Error{where + ": more light lines than the declared count " + std::to_string(*count)};
         Result<Vec3> v = parseVector(lines[next], where);
         if (!v) return Error{v.error()};
         Result<Direction> d = roundedLight(*v, where, rounded);
@@ -258,8 +255,7 @@ Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std
     return lights;
 }
 
-Result<Dataset> parseLpFile(const std::string& text, const std::string& file,
-                            const std::string& folder) {
+Result<Dataset> parseLpFile(const std::string& text, const std::string& file, const std::string& folder) {
     std::vector<std::string> lines = splitLines(text);
     std::size_t next = 0;
     Result<std::size_t> count = readCountLine(lines, file, next);
@@ -272,8 +268,7 @@ Result<Dataset> parseLpFile(const std::string& text, const std::string& file,
         if (isBlank(lines[next])) continue;
         std::string where = file + ":" + std::to_string(next + 1);
         if (ds.images.size() == *count)
-            return Error{where + ": more image lines than the declared count " +
-                         std::to_string(*count)};
+            return Error{where + ": more image lines than the declared count " + std::to_string(*count)};
         // "relative/path x y z": the path may hold spaces, so the vector is the last three
         // fields.
         std::string line = lines[next];
@@ -283,16 +278,15 @@ Result<Dataset> parseLpFile(const std::string& text, const std::string& file,
             while (cut > 0 && !std::isspace(static_cast<unsigned char>(line[cut - 1]))) --cut;
         }
         std::string path = line.substr(0, cut);
-        while (!path.empty() && std::isspace(static_cast<unsigned char>(path.back())))
-            path.pop_back();
-        while (!path.empty() && std::isspace(static_cast<unsigned char>(path.front())))
-            path.erase(0, 1);
+        while (!path.empty() && std::isspace(static_cast<unsigned char>(path.back()))) path.pop_back();
+        while (!path.empty() && std::isspace(static_cast<unsigned char>(path.front()))) path.erase(0, 1);
         if (path.empty()) return Error{where + ": expected 'path x y z', got '" + line + "'"};
         Result<Vec3> v = parseVector(line.substr(cut), where);
         if (!v) return Error{v.error()};
         Result<Direction> light = roundedLight(*v, where, rounded);
         if (!light) return Error{light.error()};
-        ds.images.push_back({stem(fileNameAsWritten(path)), joinPath(folder, path), *light, Direction{}, static_cast<int>(next + 1)});
+        ds.images.push_back(
+            {stem(fileNameAsWritten(path)), joinPath(folder, path), *light, Direction{}, static_cast<int>(next + 1)});
     }
     if (ds.images.size() != *count)
         return Error{file + ": declares " + std::to_string(*count) + " images but lists " +
@@ -301,8 +295,7 @@ Result<Dataset> parseLpFile(const std::string& text, const std::string& file,
     return ds;
 }
 
-Result<Dataset> parseManifest(const std::string& text, const std::string& file,
-                              const std::string& folder) {
+Result<Dataset> parseManifest(const std::string& text, const std::string& file, const std::string& folder) {
     using nlohmann::json;
     Result<json> parsed = parseJsonText(text, file);
     if (!parsed) return Error{parsed.error()};
@@ -322,16 +315,15 @@ Result<Dataset> parseManifest(const std::string& text, const std::string& file,
         if (!doc["mask"].is_string()) return Error{file + ": \"mask\" must be a file name"};
         ds.maskPath = joinPath(folder, doc["mask"].get<std::string>());
     }
-    auto readAngles = [&](const json& entry, const char* key, std::size_t index,
-                          Result<Direction>& out) {
+    auto readAngles = [&](const json& entry, const char* key, std::size_t index, Result<Direction>& out) {
         std::string where = file + ": images[" + std::to_string(index) + "]." + key;
         if (!entry.contains(key)) {
             out = Direction{};  // frontal
             return;
         }
         const json& d = entry[key];
-        if (!d.is_object() || !d.contains("theta") || !d.contains("phi") ||
-            !d["theta"].is_number() || !d["phi"].is_number()) {
+        if (!d.is_object() || !d.contains("theta") || !d.contains("phi") || !d["theta"].is_number() ||
+            !d["phi"].is_number()) {
             out = Error{where + ": expected {\"theta\": degrees, \"phi\": degrees}"};
             return;
         }
@@ -349,9 +341,8 @@ Result<Dataset> parseManifest(const std::string& text, const std::string& file,
         readAngles(entry, "view", i, view);
         if (!view) return Error{view.error()};
         std::string path = joinPath(folder, entry["file"].get<std::string>());
-        std::string name = entry.contains("name") && entry["name"].is_string()
-                               ? entry["name"].get<std::string>()
-                               : stem(path);
+        std::string name =
+            entry.contains("name") && entry["name"].is_string() ? entry["name"].get<std::string>() : stem(path);
         ds.images.push_back({name, path, *light, *view});
     }
     if (ds.images.empty()) return Error{file + ": manifest lists no images"};
@@ -380,9 +371,8 @@ Result<Mask> loadDatasetMask(const Dataset& dataset, int width, int height) {
 Status requireSameSize(const Image& image, const std::string& path, int width, int height,
                        const std::string& firstPath) {
     if (image.width == width && image.height == height) return success();
-    return Error{path + ": image is " + std::to_string(image.width) + "x" +
-                 std::to_string(image.height) + " but " + firstPath + " is " +
-                 std::to_string(width) + "x" + std::to_string(height)};
+    return Error{path + ": image is " + std::to_string(image.width) + "x" + std::to_string(image.height) + " but " +
+                 firstPath + " is " + std::to_string(width) + "x" + std::to_string(height)};
 }
 
 Result<Dataset> openDataset(const std::string& path) {
@@ -402,8 +392,7 @@ Result<Dataset> openDataset(const std::string& path) {
     for (const fs::path& entry : *entries)
         if (fileExtension(entry.string()) == "lp") lpFiles.push_back(entry.string());
     if (lpFiles.size() == 1) return openFile(lpFiles.front(), "lp");
-    if (lpFiles.size() > 1)
-        return Error{path + ": several .lp files; name the one to use"};
+    if (lpFiles.size() > 1) return Error{path + ": several .lp files; name the one to use"};
     return openBonnFolder(path);
 }
 
@@ -426,8 +415,7 @@ Result<std::vector<HistogramRow>> histogramsOf(const Dataset& dataset, int bins,
             errors[i] = image.error();
             return;
         }
-        Status size = requireSameSize(*image, info.path, firstImage->width, firstImage->height,
-                                      first.path);
+        Status size = requireSameSize(*image, info.path, firstImage->width, firstImage->height, first.path);
         if (!size) {
             errors[i] = size.error();
             return;

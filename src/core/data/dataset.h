@@ -73,12 +73,10 @@ Status requireSameSize(const Image& image, const std::string& path, int width, i
 
 // The parsers behind openDataset, exposed for tests. `file` names the source in errors;
 // `folder` is where relative image paths start.
-Result<Dataset> parseManifest(const std::string& text, const std::string& file,
-                              const std::string& folder);
+Result<Dataset> parseManifest(const std::string& text, const std::string& file, const std::string& folder);
 /// Light vectors within kRoundedLightTolerance of unit length are normalised (.lp: noted in
 /// Dataset::notes; lights.txt: counted in `normalised`).
-Result<Dataset> parseLpFile(const std::string& text, const std::string& file,
-                            const std::string& folder);
+Result<Dataset> parseLpFile(const std::string& text, const std::string& file, const std::string& folder);
 Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std::string& file,
                                               std::size_t* normalised = nullptr);
 

@@ -52,11 +52,16 @@ Result<double> readNumber(const json& parent, const char* key, double fallback, 
 
 const char* renderModeName(RenderMode mode) {
     switch (mode) {
-        case RenderMode::Lut: return "lut";
-        case RenderMode::Brdf: return "brdf";
-        case RenderMode::Ptm: return "ptm";
-        case RenderMode::Flat: return "flat";
-        case RenderMode::Nearest: return "nearest";
+        case RenderMode::Lut:
+            return "lut";
+        case RenderMode::Brdf:
+            return "brdf";
+        case RenderMode::Ptm:
+            return "ptm";
+        case RenderMode::Flat:
+            return "flat";
+        case RenderMode::Nearest:
+            return "nearest";
     }
     return "?";
 }
@@ -77,11 +82,13 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
     const std::string at = file + ": ";
     // Every key is one the scene format knows (docs/scene.md): a misspelt one is refused with
     // the nearest, not ignored.
-    if (Status s = requireKnownKeys(doc, {"btflut_scene", "image", "camera", "light", "materials", "interpolation", "dither", "quads"}, file); !s)
+    if (Status s = requireKnownKeys(
+            doc, {"btflut_scene", "image", "camera", "light", "materials", "interpolation", "dither", "quads"}, file);
+        !s)
         return Error{s.error()};
     if (doc.contains("btflut_scene") && doc["btflut_scene"] != kSceneVersion)
-        return Error{at + "btflut_scene " + jsonText(doc["btflut_scene"], -1) + " is not a scene version this btflut reads (" +
-                     std::to_string(kSceneVersion) + ")"};
+        return Error{at + "btflut_scene " + jsonText(doc["btflut_scene"], -1) +
+                     " is not a scene version this btflut reads (" + std::to_string(kSceneVersion) + ")"};
     for (const auto& [key, known] : {std::pair<const char*, std::vector<std::string>>{"image", {"width", "height"}},
                                      {"camera", {"position", "target", "up", "fov_degrees", "orthographic_height"}},
                                      {"light", {"direction"}}})
@@ -122,7 +129,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
     if (glm::length(forward) < 1e-12) return Error{at + "camera: position and target coincide"};
     if (glm::length(glm::cross(forward, g(scene.up))) < 1e-12 * glm::length(forward))
         return Error{at + "camera: up is parallel to the viewing direction"};
-    if (!(scene.fovDegrees > 0 && scene.fovDegrees < 180)) return Error{at + "camera.fov_degrees must be within (0, 180)"};
+    if (!(scene.fovDegrees > 0 && scene.fovDegrees < 180))
+        return Error{at + "camera.fov_degrees must be within (0, 180)"};
 
     if (!doc.contains("light") || !doc["light"].is_object() || !doc["light"].contains("direction"))
         return Error{at + "light: expected {\"direction\": [x, y, z]} (towards the light, world frame)"};
@@ -155,7 +163,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
     if (doc.contains("interpolation")) {
         const json& i = doc["interpolation"];
         if (i != "linear" && i != "nearest" && i != "exact")
-            return Error{at + "interpolation: expected \"linear\", \"exact\" or \"nearest\" (between the LUTs' directions)"};
+            return Error{at +
+                         "interpolation: expected \"linear\", \"exact\" or \"nearest\" (between the LUTs' directions)"};
         scene.interpolateLuts = i != "nearest";
         scene.exactMatch = i == "exact";
     }
@@ -169,14 +178,17 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
         const json& q = doc["quads"][i];
         const std::string where = at + "quads[" + std::to_string(i) + "]";
         if (!q.is_object()) return Error{where + ": expected an object"};
-        if (Status s = requireKnownKeys(q, {"material", "center", "normal", "tangent", "size", "uv_scale", "mode"}, where); !s)
+        if (Status s =
+                requireKnownKeys(q, {"material", "center", "normal", "tangent", "size", "uv_scale", "mode"}, where);
+            !s)
             return Error{s.error()};
         SceneQuad quad;
         if (!q.contains("material") || !q["material"].is_string()) return Error{where + ": no \"material\""};
         quad.material = q["material"].get<std::string>();
         if (!scene.materials.count(quad.material))
             return Error{where + ": material '" + quad.material + "' is not in \"materials\""};
-        for (auto [key, out] : {std::pair{"center", &quad.center}, {"normal", &quad.normal}, {"tangent", &quad.tangent}}) {
+        for (auto [key, out] :
+             {std::pair{"center", &quad.center}, {"normal", &quad.normal}, {"tangent", &quad.tangent}}) {
             if (!q.contains(key)) return Error{where + ": no \"" + key + "\""};
             Result<Vec3> v = readVector(q[key], where + "." + key);
             if (!v) return Error{v.error()};
@@ -190,7 +202,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
         quad.normal = *n;
         quad.tangent = v3(glm::normalize(tt));
         if (q.contains("size")) {
-            if (!q["size"].is_array() || q["size"].size() != 2 || !q["size"][0].is_number() || !q["size"][1].is_number())
+            if (!q["size"].is_array() || q["size"].size() != 2 || !q["size"][0].is_number() ||
+                !q["size"][1].is_number())
                 return Error{where + ".size: expected [width, height]"};
             quad.width = q["size"][0].get<double>();
             quad.height = q["size"][1].get<double>();
@@ -215,10 +228,15 @@ std::string sceneToJson(const Scene& scene, const std::string& folder) {
     auto vec = [](const Vec3& v) { return json::array({v.x, v.y, v.z}); };
     json doc{{"btflut_scene", kSceneVersion},
              {"image", {{"width", scene.width}, {"height", scene.height}}},
-             {"camera", {{"position", vec(scene.eye)}, {"target", vec(scene.target)}, {"up", vec(scene.up)},
-                         {"fov_degrees", scene.fovDegrees}}},
+             {"camera",
+              {{"position", vec(scene.eye)},
+               {"target", vec(scene.target)},
+               {"up", vec(scene.up)},
+               {"fov_degrees", scene.fovDegrees}}},
              {"light", {{"direction", vec(scene.light)}}},
-             {"interpolation", !scene.interpolateLuts ? "nearest" : scene.exactMatch ? "exact" : "linear"},
+             {"interpolation", !scene.interpolateLuts ? "nearest"
+                               : scene.exactMatch     ? "exact"
+                                                      : "linear"},
              {"dither", scene.dither},
              {"materials", json::object()},
              {"quads", json::array()}};
@@ -229,7 +247,8 @@ std::string sceneToJson(const Scene& scene, const std::string& folder) {
     auto path = [&](const std::string& p) {
         const std::filesystem::path absolute = std::filesystem::absolute(p).lexically_normal();
         if (folder.empty()) return absolute.string();
-        const std::filesystem::path relative = absolute.lexically_relative(std::filesystem::absolute(folder).lexically_normal());
+        const std::filesystem::path relative =
+            absolute.lexically_relative(std::filesystem::absolute(folder).lexically_normal());
         const bool inside = !relative.empty() && *relative.begin() != "..";
         return inside ? relative.string() : absolute.string();
     };
@@ -240,8 +259,12 @@ std::string sceneToJson(const Scene& scene, const std::string& folder) {
             doc["materials"][name] = {{"bank", path(m.bank)}, {"images", path(m.images)}};
     }
     for (const SceneQuad& q : scene.quads)
-        doc["quads"].push_back({{"material", q.material}, {"center", vec(q.center)}, {"normal", vec(q.normal)},
-                                {"tangent", vec(q.tangent)}, {"size", {q.width, q.height}}, {"uv_scale", q.uvScale},
+        doc["quads"].push_back({{"material", q.material},
+                                {"center", vec(q.center)},
+                                {"normal", vec(q.normal)},
+                                {"tangent", vec(q.tangent)},
+                                {"size", {q.width, q.height}},
+                                {"uv_scale", q.uvScale},
                                 {"mode", renderModeName(q.mode)}});
     return jsonText(doc);
 }
@@ -258,8 +281,9 @@ std::array<float, 16> viewProjection(const Scene& s) {
     const double distance = glm::length(g(s.target) - g(s.eye));
     const double aspect = static_cast<double>(s.width) / s.height, half = s.orthographicHeight / 2;
     const glm::dmat4 projection =
-        s.orthographicHeight > 0 ? glm::ortho(-half * aspect, half * aspect, -half, half, distance * 1e-3, distance * 1e3)
-                                 : glm::perspective(glm::radians(s.fovDegrees), aspect, distance * 1e-3, distance * 1e3);
+        s.orthographicHeight > 0
+            ? glm::ortho(-half * aspect, half * aspect, -half, half, distance * 1e-3, distance * 1e3)
+            : glm::perspective(glm::radians(s.fovDegrees), aspect, distance * 1e-3, distance * 1e3);
     const glm::mat4 m(projection * view);
     std::array<float, 16> out;
     std::copy(glm::value_ptr(m), glm::value_ptr(m) + 16, out.begin());

@@ -56,7 +56,7 @@ struct Scene {
     /// per light change, drawn in texture space only) rather than read from the bank's baked
     /// grid ("interpolation": "exact").
     bool exactMatch = false;
-    bool dither = true;           ///< mode lut dithers per texel (lut.h), so the histogram is the target's
+    bool dither = true;  ///< mode lut dithers per texel (lut.h), so the histogram is the target's
     std::vector<SceneQuad> quads;
 };
 

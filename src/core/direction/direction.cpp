@@ -70,8 +70,7 @@ double angleBetween(Direction a, Direction b) {
     Vec3 u = toVector(a), v = toVector(b);
     // atan2 of |u x v| and u.v stays accurate for tiny and near-opposite angles.
     Vec3 c{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
-    return std::atan2(std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z),
-                      u.x * v.x + u.y * v.y + u.z * v.z);
+    return std::atan2(std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z), u.x * v.x + u.y * v.y + u.z * v.z);
 }
 
 Result<Direction> directionFromMeasuredVector(Vec3 v, const std::string& what, double lengthTolerance) {
@@ -81,14 +80,12 @@ Result<Direction> directionFromMeasuredVector(Vec3 v, const std::string& what, d
     if (std::abs(len - 1) > lengthTolerance)
         return Error{what + ": direction " + formatVector(v) + " is not a unit vector (length " + formatNumber(len) +
                      ", more than " + formatNumber(lengthTolerance * 100) + "% from 1)"};
-    if (v.z / len <= 1e-9)
-        return Error{what + ": direction " + formatVector(v) + " is at or below the horizon"};
+    if (v.z / len <= 1e-9) return Error{what + ": direction " + formatVector(v) + " is at or below the horizon"};
     return fromVector(v);
 }
 
 Result<Direction> directionFromDegrees(double thetaDeg, double phiDeg, const std::string& what) {
-    if (!std::isfinite(thetaDeg) || !std::isfinite(phiDeg))
-        return Error{what + ": angle is not a finite number"};
+    if (!std::isfinite(thetaDeg) || !std::isfinite(phiDeg)) return Error{what + ": angle is not a finite number"};
     if (thetaDeg < 0 || thetaDeg >= 90)
         return Error{what + ": theta " + formatNumber(thetaDeg) +
                      " degrees is outside [0, 90) (90 and beyond is at or below the horizon)"};
@@ -102,13 +99,11 @@ Result<Direction> parseDirection(const std::string& text, const std::string& wha
     for (int i = 0; i < 2; ++i) {
         while (p < end && *p == ' ') ++p;
         auto [next, ec] = std::from_chars(p, end, values[i]);
-        if (ec != std::errc{})
-            return Error{what + ": expected THETA,PHI in degrees, got '" + text + "'"};
+        if (ec != std::errc{}) return Error{what + ": expected THETA,PHI in degrees, got '" + text + "'"};
         p = next;
         while (p < end && *p == ' ') ++p;
         if (i == 0) {
-            if (p == end || *p != ',')
-                return Error{what + ": expected THETA,PHI in degrees, got '" + text + "'"};
+            if (p == end || *p != ',') return Error{what + ": expected THETA,PHI in degrees, got '" + text + "'"};
             ++p;
         }
     }

@@ -3,8 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdint>
+#include <limits>
 #include <map>
 
 #include "core/check.h"
@@ -13,9 +13,7 @@ namespace btflut {
 
 namespace {
 
-double cross(DiskPoint o, DiskPoint a, DiskPoint b) {
-    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
+double cross(DiskPoint o, DiskPoint a, DiskPoint b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); }
 
 // Closest point to p on segment ab, as the parameter t in [0, 1] and the squared distance.
 std::pair<double, double> closestOnSegment(DiskPoint a, DiskPoint b, DiskPoint p) {
@@ -130,7 +128,8 @@ void SimplexBuckets::build(int dim, const std::vector<double>& points, const std
     simplices.assign(static_cast<std::size_t>(start[cells]), 0);
     std::vector<int> fill(start.begin(), start.end() - 1);
     for (std::size_t i = 0; i < list.size(); ++i)
-        forEachCell(list[i], [&](std::size_t c) { simplices[static_cast<std::size_t>(fill[c]++)] = static_cast<int>(i); });
+        forEachCell(list[i],
+                    [&](std::size_t c) { simplices[static_cast<std::size_t>(fill[c]++)] = static_cast<int>(i); });
 }
 
 std::pair<const int*, const int*> SimplexBuckets::near(const double* p) const {
@@ -140,7 +139,8 @@ std::pair<const int*, const int*> SimplexBuckets::near(const double* p) const {
         const double at = (p[d] - low[d]) / cellSize[d];
         // Outside the points' box is outside their hull (a hair of slack at its faces).
         if (!(at >= -1e-9 && at <= cellsPerSide + 1e-9)) return {nullptr, nullptr};
-        cell = cell * static_cast<std::size_t>(cellsPerSide) + static_cast<std::size_t>(std::clamp(static_cast<int>(at), 0, cellsPerSide - 1));
+        cell = cell * static_cast<std::size_t>(cellsPerSide) +
+               static_cast<std::size_t>(std::clamp(static_cast<int>(at), 0, cellsPerSide - 1));
     }
     return {simplices.data() + start[cell], simplices.data() + start[cell + 1]};
 }
@@ -174,7 +174,7 @@ Triangulation::Triangulation(std::vector<DiskPoint> points) : m_points(std::move
     for (std::array<int, 4> t : delaunaySimplices(2, coordinates)) {
         double area = cross(m_points[t[0]], m_points[t[1]], m_points[t[2]]);
         if (area < 0) std::swap(t[1], t[2]), area = -area;  // counter-clockwise
-        if (area <= kAreaEpsilon) continue;  // a sliver of cocircular points
+        if (area <= kAreaEpsilon) continue;                 // a sliver of cocircular points
         m_triangles.push_back({t[0], t[1], t[2]});
         kept.push_back(t);
         for (int e = 0; e < 3; ++e) {
@@ -229,7 +229,8 @@ Triangulation3::Triangulation3(std::vector<Point3> points) : m_points(std::move(
     for (const Point3& p : m_points) centre += vec(p);
     centre /= static_cast<double>(n);
     Eigen::MatrixXd centred(n, 3);
-    for (Eigen::Index i = 0; i < n; ++i) centred.row(i) = (vec(m_points[static_cast<std::size_t>(i)]) - centre).transpose();
+    for (Eigen::Index i = 0; i < n; ++i)
+        centred.row(i) = (vec(m_points[static_cast<std::size_t>(i)]) - centre).transpose();
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(centred, Eigen::ComputeThinV);
     const Eigen::Vector3d sigma = svd.singularValues();
     constexpr double kFlat = 1e-7;  // coordinates are O(1)
@@ -296,7 +297,8 @@ Weights Triangulation3::nearestOnBoundary(Point3 p) const {
     double best = std::numeric_limits<double>::infinity();
     Weights w;
     for (const auto& f : m_boundary) {
-        auto [coordinates, d2] = closestOnTriangle(vec(m_points[f[0]]), vec(m_points[f[1]]), vec(m_points[f[2]]), vec(p));
+        auto [coordinates, d2] =
+            closestOnTriangle(vec(m_points[f[0]]), vec(m_points[f[1]]), vec(m_points[f[2]]), vec(p));
         if (d2 < best) {
             best = d2;
             w = simplexWeights(f.data(), coordinates.data(), 3, false);

@@ -11,9 +11,9 @@ namespace btflut {
 
 namespace {
 
-constexpr int kPanelW = 420, kPanelH = 300;           // the plot area
+constexpr int kPanelW = 420, kPanelH = 300;                      // the plot area
 constexpr int kLeft = 76, kRight = 24, kTop = 40, kBottom = 52;  // around it: ticks, labels, title
-constexpr int kLegendW = 180;  // line panels: the legend, right of the plot
+constexpr int kLegendW = 180;                                    // line panels: the legend, right of the plot
 constexpr int kCellW = kLeft + kPanelW + kRight, kCellH = kTop + kPanelH + kBottom;
 
 std::string tickText(double v) {
@@ -31,7 +31,8 @@ struct Axis {
         a.log = log && std::all_of(values.begin(), values.end(), [](double v) { return !std::isfinite(v) || v > 0; });
         double lo = INFINITY, hi = -INFINITY;
         for (double v : values)
-            if (std::isfinite(v)) lo = std::min(lo, a.log ? std::log10(v) : v), hi = std::max(hi, a.log ? std::log10(v) : v);
+            if (std::isfinite(v))
+                lo = std::min(lo, a.log ? std::log10(v) : v), hi = std::max(hi, a.log ? std::log10(v) : v);
         if (!std::isfinite(lo)) lo = 0, hi = 1;
         const double pad = hi > lo ? 0.08 * (hi - lo) : std::max(0.5, std::abs(lo) * 0.1);
         a.lo = lo - pad, a.hi = hi + pad;
@@ -51,7 +52,8 @@ struct Axis {
         }
         const double raw = (hi - lo) / 5, step = std::pow(10.0, std::floor(std::log10(raw)));
         const double nice = raw / step < 2 ? step : raw / step < 5 ? 2 * step : 5 * step;
-        for (double t = std::ceil(lo / nice) * nice; t <= hi; t += nice) out.push_back(std::abs(t) < nice * 1e-9 ? 0 : t);
+        for (double t = std::ceil(lo / nice) * nice; t <= hi; t += nice)
+            out.push_back(std::abs(t) < nice * 1e-9 ? 0 : t);
         return out;
     }
 };
@@ -93,7 +95,8 @@ void drawPanel(Canvas& canvas, int left, int top, const ChartPanel& p) {
             for (std::size_t i = 0; i < s.x.size(); ++i) cost.push_back(s.x[i]), value.push_back(s.y[i]);
         const std::vector<std::size_t> front = paretoFront(cost, value, p.pareto);
         for (std::size_t k = 1; k < front.size(); ++k) {  // a staircase: each point is best up to the next's cost
-            const double xa = px(cost[front[k - 1]]), ya = py(value[front[k - 1]]), xb = px(cost[front[k]]), yb = py(value[front[k]]);
+            const double xa = px(cost[front[k - 1]]), ya = py(value[front[k - 1]]), xb = px(cost[front[k]]),
+                         yb = py(value[front[k]]);
             canvas.line(xa, ya, xb, ya, {0.8f, 0.8f, 0.8f}, 3);
             canvas.line(xb, ya, xb, yb, {0.8f, 0.8f, 0.8f}, 3);
         }

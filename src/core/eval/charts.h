@@ -24,8 +24,8 @@ struct ChartSeries {
 
 struct ChartPanel {
     std::string title, xLabel, yLabel;
-    bool logX = false;       ///< a logarithmic x axis (where every x > 0)
-    bool lines = false;      ///< each series a line through its points, a legend; else labelled points
+    bool logX = false;             ///< a logarithmic x axis (where every x > 0)
+    bool lines = false;            ///< each series a line through its points, a legend; else labelled points
     Better pareto = Better::None;  ///< points: draw the front (smaller x is better; y better as said)
     std::vector<ChartSeries> series;
 };

@@ -28,7 +28,8 @@ struct SsimKernel {
 // `out` (5 planes of w). `padded` is scratch of 5 * (w + 2 * kRadius) floats. Written as
 // plain loops over the columns so that the compiler vectorises them (with AVX2 where the
 // processor has it: the same arithmetic, element by element, so the same result).
-[[gnu::target_clones("avx2", "default")]] void horizontalSums(const float* x, const float* y, int w, const float* g, float* padded, float* out) {
+[[gnu::target_clones("avx2", "default")]] void horizontalSums(const float* x, const float* y, int w, const float* g,
+                                                              float* padded, float* out) {
     const int pw = w + 2 * kRadius;
     float* px = padded;
     float* py = padded + pw;
@@ -81,7 +82,7 @@ template <typename T>
 struct CodeView {
     const T* samples;
     int channels, stride;
-    float greyScale;                   // grey value of a sum of channel codes
+    float greyScale;                  // grey value of a sum of channel codes
     std::vector<std::uint8_t> binOf;  // histogram bin (of 64) of each sum of channel codes
 
     const T* pixel(std::size_t i) const { return samples + i * stride; }
@@ -93,7 +94,8 @@ struct CodeView {
             for (std::size_t i = 0; i < w; ++i)
                 out[i] = count == 1 ? s[i * step] : std::uint32_t{s[i * step]} + s[i * step + 1] + s[i * step + 2];
         };
-        if (channels == 3 && stride == 3) return sum(std::integral_constant<int, 3>{}, std::integral_constant<int, 3>{});
+        if (channels == 3 && stride == 3)
+            return sum(std::integral_constant<int, 3>{}, std::integral_constant<int, 3>{});
         if (channels == 3) return sum(std::integral_constant<int, 4>{}, std::integral_constant<int, 3>{});
         if (stride == 1) return sum(std::integral_constant<int, 1>{}, std::integral_constant<int, 1>{});
         return sum(std::integral_constant<int, 2>{}, std::integral_constant<int, 1>{});
@@ -102,18 +104,20 @@ struct CodeView {
 
 template <typename T>
 CodeView<T> viewOf(const ImageCodes& c, const T* samples) {
-    BTFLUT_CHECK((c.channels == 3 && (c.stride == 3 || c.stride == 4)) || (c.channels == 1 && (c.stride == 1 || c.stride == 2)));
+    BTFLUT_CHECK((c.channels == 3 && (c.stride == 3 || c.stride == 4)) ||
+                 (c.channels == 1 && (c.stride == 1 || c.stride == 2)));
     const auto last = static_cast<std::uint64_t>(c.channels) * static_cast<std::uint64_t>(c.maxCode());
     std::vector<std::uint8_t> bins(last + 1);
-    for (std::uint64_t k = 0; k <= last; ++k) bins[k] = static_cast<std::uint8_t>(std::min<std::uint64_t>(k * 64 / last, 63));  // as binHistogram
+    for (std::uint64_t k = 0; k <= last; ++k)
+        bins[k] = static_cast<std::uint8_t>(std::min<std::uint64_t>(k * 64 / last, 63));  // as binHistogram
     return {samples, c.channels, c.stride, static_cast<float>(1.0 / static_cast<double>(last)), std::move(bins)};
 }
 
 // What one band of rows adds to the figures; bands are added in order, so the result does
 // not depend on the threads.
 struct BandSums {
-    double squared = 0, absolute = 0, worst = 0;  // in codes
-    std::uint64_t pixels = 0;                     // pixels compared
+    double squared = 0, absolute = 0, worst = 0;   // in codes
+    std::uint64_t pixels = 0;                      // pixels compared
     std::uint64_t binsP[64] = {}, binsQ[64] = {};  // grey histograms, 64 bins
     double ssim = 0;
 };
@@ -161,7 +165,8 @@ ImageErrors compareViews(const CodeView<T>& p, const CodeView<T>& q, int w, int 
                         const double grey = greyP[c] / static_cast<double>(p.channels);
                         for (int k = 0; k < q.channels; ++k) {
                             const double d = grey - b[k];
-                            out.squared += d * d, out.absolute += std::abs(d), out.worst = std::max(out.worst, std::abs(d));
+                            out.squared += d * d, out.absolute += std::abs(d),
+                                out.worst = std::max(out.worst, std::abs(d));
                         }
                     }
                     ++out.pixels;
@@ -201,16 +206,15 @@ ImageErrors compareViews(const CodeView<T>& p, const CodeView<T>& q, int w, int 
 }
 
 // Codes at another bit depth (8 <-> 16), rounded.
-ImageCodes recoded(const ImageCodes& c, int bitDepth) {
-    return toCodes(toImage(c), bitDepth);
-}
+ImageCodes recoded(const ImageCodes& c, int bitDepth) { return toCodes(toImage(c), bitDepth); }
 
 }  // namespace
 
 Image quantised(const Image& image, int bitDepth) {
     Image out = image;
     const double scale = bitDepth == 16 ? 65535.0 : 255.0;
-    for (float& v : out.samples) v = static_cast<float>(std::round(std::clamp(static_cast<double>(v), 0.0, 1.0) * scale) / scale);
+    for (float& v : out.samples)
+        v = static_cast<float>(std::round(std::clamp(static_cast<double>(v), 0.0, 1.0) * scale) / scale);
     out.bitDepth = bitDepth;
     return out;
 }
@@ -219,9 +223,11 @@ ImageErrors compareCodes(const ImageCodes& predicted, const ImageCodes& photo, c
     BTFLUT_CHECK(predicted.width == photo.width && predicted.height == photo.height);
     BTFLUT_CHECK(mask.inside.size() == photo.pixelCount());
     ImageCodes converted;
-    const ImageCodes& p = predicted.bitDepth == photo.bitDepth ? predicted : (converted = recoded(predicted, photo.bitDepth));
+    const ImageCodes& p =
+        predicted.bitDepth == photo.bitDepth ? predicted : (converted = recoded(predicted, photo.bitDepth));
     if (photo.bitDepth == 16)
-        return compareViews(viewOf(p, p.sixteen()), viewOf(photo, photo.sixteen()), photo.width, photo.height, 65535.0, mask);
+        return compareViews(viewOf(p, p.sixteen()), viewOf(photo, photo.sixteen()), photo.width, photo.height, 65535.0,
+                            mask);
     return compareViews(viewOf(p, p.eight()), viewOf(photo, photo.eight()), photo.width, photo.height, 255.0, mask);
 }
 

@@ -17,9 +17,7 @@ std::uint64_t LevelCounts::total() const {
 
 namespace {
 // Integer code of a sample: the float holds code / maxCode exactly enough to round back.
-inline std::uint32_t codeOf(float v, float maxCode) {
-    return static_cast<std::uint32_t>(v * maxCode + 0.5f);
-}
+inline std::uint32_t codeOf(float v, float maxCode) { return static_cast<std::uint32_t>(v * maxCode + 0.5f); }
 }  // namespace
 
 std::size_t LevelCounts::presentCodes() const {
@@ -39,9 +37,7 @@ LevelCounts countGreyLevels(const Image& image, const Mask& mask) {
             if (in[i]) ++levels.counts[codeOf(s[i], maxCode)];
     } else {
         for (std::size_t i = 0; i < n; ++i, s += 3)
-            if (in[i])
-                ++levels.counts[codeOf(s[0], maxCode) + codeOf(s[1], maxCode) +
-                                codeOf(s[2], maxCode)];
+            if (in[i]) ++levels.counts[codeOf(s[0], maxCode) + codeOf(s[1], maxCode) + codeOf(s[2], maxCode)];
     }
     return levels;
 }
@@ -67,8 +63,8 @@ std::vector<double> binHistogram(const LevelCounts& levels, int bins) {
     if (total == 0) return h;
     for (std::uint64_t k = 0; k <= last; ++k) {
         // Bin of value k / last, computed exactly in integers: floor(k * bins / last).
-        std::uint64_t b = std::min<std::uint64_t>(k * static_cast<std::uint64_t>(bins) / last,
-                                                  static_cast<std::uint64_t>(bins) - 1);
+        std::uint64_t b =
+            std::min<std::uint64_t>(k * static_cast<std::uint64_t>(bins) / last, static_cast<std::uint64_t>(bins) - 1);
         h[b] += static_cast<double>(levels.counts[k]);
     }
     for (double& v : h) v /= static_cast<double>(total);
@@ -103,8 +99,8 @@ std::string histogramsToCsv(const std::vector<HistogramRow>& rows) {
     for (const HistogramRow& row : rows) {
         BTFLUT_CHECK(row.bins.size() == bins);
         out += row.name;
-        for (double a : {row.light.thetaDegrees(), row.light.phiDegrees(),
-                         row.view.thetaDegrees(), row.view.phiDegrees()})
+        for (double a :
+             {row.light.thetaDegrees(), row.light.phiDegrees(), row.view.thetaDegrees(), row.view.phiDegrees()})
             (out += ',') += number(a);
         for (double v : row.bins) (out += ',') += number(v);
         out += '\n';
@@ -130,8 +126,7 @@ Status saveHistograms(const std::vector<HistogramRow>& rows, const std::string& 
     return writeFileAtomically(path, fileExtension(path) == "csv" ? histogramsToCsv(rows) : histogramsToJson(rows));
 }
 
-Result<std::vector<HistogramRow>> parseHistogramCsv(const std::string& text,
-                                                    const std::string& file) {
+Result<std::vector<HistogramRow>> parseHistogramCsv(const std::string& text, const std::string& file) {
     std::istringstream in(text);
     std::string line;
     auto split = [](const std::string& s) {
@@ -151,8 +146,7 @@ Result<std::vector<HistogramRow>> parseHistogramCsv(const std::string& text,
     for (std::size_t i = 5; headerOk && i < header.size(); ++i)
         headerOk = header[i].size() > 1 && header[i][0] == 'b' &&
                    header[i].compare(1, std::string::npos, std::to_string(i - 5)) == 0;
-    if (!headerOk)
-        return Error{file + ":1: expected header name,theta_i,phi_i,theta_r,phi_r,b0,b1,..."};
+    if (!headerOk) return Error{file + ":1: expected header name,theta_i,phi_i,theta_r,phi_r,b0,b1,..."};
     const std::size_t bins = header.size() - 5;
     std::vector<HistogramRow> rows;
     for (int lineNo = 2; std::getline(in, line); ++lineNo) {
@@ -168,8 +162,7 @@ Result<std::vector<HistogramRow>> parseHistogramCsv(const std::string& text,
             char* end = nullptr;
             double v = std::strtod(f[i].c_str(), &end);
             if (f[i].empty() || *end != '\0' || !std::isfinite(v))
-                return Error{where + ": field " + header[i] + " '" + f[i] +
-                             "' is not a finite number"};
+                return Error{where + ": field " + header[i] + " '" + f[i] + "' is not a finite number"};
             if (i >= 5 && v < 0) return Error{where + ": negative bin " + header[i]};
             values.push_back(v);
         }

@@ -65,8 +65,7 @@ Status saveHistograms(const std::vector<HistogramRow>& rows, const std::string& 
 
 /// Reads the CSV form back; `file` names the source in errors. Rows must all have the
 /// header's bin count and finite, non-negative values.
-Result<std::vector<HistogramRow>> parseHistogramCsv(const std::string& text,
-                                                    const std::string& file);
+Result<std::vector<HistogramRow>> parseHistogramCsv(const std::string& text, const std::string& file);
 
 /// Earth mover's distance between two normalised histograms on [0, 1] (equal bins): the L1
 /// distance of their cumulative sums times the bin width.

@@ -21,9 +21,7 @@ std::vector<double> massBelow(std::span<const double> mass) {
     return below;
 }
 
-std::vector<double> asMass(const LevelCounts& levels) {
-    return {levels.counts.begin(), levels.counts.end()};
-}
+std::vector<double> asMass(const LevelCounts& levels) { return {levels.counts.begin(), levels.counts.end()}; }
 
 // c_ref at the LUT's entries: u = c_ref(v_e) for v_e = e / (entries - 1), non-decreasing.
 std::vector<double> referenceCdfAtEntries(std::span<const double> reference, int entries) {
@@ -96,13 +94,13 @@ Lut matchToQuantiles(const LevelCounts& reference, std::span<const float> quanti
     for (std::size_t e = 0; e < u.size(); ++e) {
         const double at = std::clamp(u[e], 0.0, 1.0) * last;
         const auto m = std::min(static_cast<std::size_t>(at), quantiles.size() - 2);
-        lut.values[e] = static_cast<float>(std::lerp(double{quantiles[m]}, double{quantiles[m + 1]}, at - static_cast<double>(m)));
+        lut.values[e] =
+            static_cast<float>(std::lerp(double{quantiles[m]}, double{quantiles[m + 1]}, at - static_cast<double>(m)));
     }
     return lut;
 }
 
-void blendLuts(std::span<const float* const> luts, std::span<const double> weights,
-               std::size_t length, float* out) {
+void blendLuts(std::span<const float* const> luts, std::span<const double> weights, std::size_t length, float* out) {
     BTFLUT_CHECK(luts.size() == weights.size() && !luts.empty());
     for (std::size_t k = 0; k < length; ++k) {
         double sum = 0;

@@ -108,8 +108,7 @@ inline float lutOutput(float lutValue, float targetCode) {
 
 /// Weighted sum of LUT value arrays of equal length: out[k] = sum_i w_i * luts[i][k].
 /// Weights must be non-negative and sum to 1.
-void blendLuts(std::span<const float* const> luts, std::span<const double> weights,
-               std::size_t length, float* out);
+void blendLuts(std::span<const float* const> luts, std::span<const double> weights, std::size_t length, float* out);
 
 /// True when every value is finite, in [0, 1] and non-decreasing.
 bool isValidLut(const float* values, std::size_t entries);

@@ -68,7 +68,8 @@ Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay) {
         canvas.text(8, y0 + 20, label, marked ? kMark : kInk);
         double overall = 0;  // overlay: one scale for the panel
         for (const PlotColumn& c : columns)
-            if (r < c.rows.size()) overall = std::max(overall, *std::max_element(c.rows[r].bins.begin(), c.rows[r].bins.end()));
+            if (r < c.rows.size())
+                overall = std::max(overall, *std::max_element(c.rows[r].bins.begin(), c.rows[r].bins.end()));
         for (std::size_t c = 0; c < columns.size(); ++c) {
             const int x0 = left + (overlay ? 0 : static_cast<int>(c) * (kPanelW + kGapX));
             canvas.fill(x0, y0 + kPanelH, x0 + kPanelW, y0 + kPanelH + 1, kAxis);  // baseline
@@ -80,14 +81,17 @@ Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay) {
             const auto n = static_cast<int>(bins.size());
             int previous = -1;
             for (int b = 0; b < n; ++b) {
-                const int bx0 = x0 + 1 + b * (kPanelW - 1) / n, bx1 = std::max(x0 + 1 + (b + 1) * (kPanelW - 1) / n, bx0 + 1);
-                const int barHeight = static_cast<int>(bins[static_cast<std::size_t>(b)] / rowMax * (kPanelH - 4) + 0.5);
+                const int bx0 = x0 + 1 + b * (kPanelW - 1) / n,
+                          bx1 = std::max(x0 + 1 + (b + 1) * (kPanelW - 1) / n, bx0 + 1);
+                const int barHeight =
+                    static_cast<int>(bins[static_cast<std::size_t>(b)] / rowMax * (kPanelH - 4) + 0.5);
                 const int y = y0 + kPanelH - barHeight;
                 if (!overlay || c == 0) {
                     canvas.fill(bx0, y, bx1, y0 + kPanelH, kBar);
                 } else {  // a step outline: the bin's top, and the rise from the previous one
                     canvas.fill(bx0, y - 1, bx1, y + 1, colourOf(c));
-                    if (previous >= 0) canvas.fill(bx0, std::min(previous, y) - 1, bx0 + 2, std::max(previous, y) + 1, colourOf(c));
+                    if (previous >= 0)
+                        canvas.fill(bx0, std::min(previous, y) - 1, bx0 + 2, std::max(previous, y) + 1, colourOf(c));
                 }
                 previous = y;
             }
@@ -107,7 +111,8 @@ Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay) {
             const int x = x0 + static_cast<int>(t * (kPanelW - 1));
             canvas.fill(x, axisY - 6, x + 1, axisY, kAxis);
             const std::string tick = t == 0 ? "0" : t == 1 ? "1" : format("%.2g", t);
-            canvas.text(std::clamp(x - Canvas::textWidth(tick) / 2, 0, width - Canvas::textWidth(tick)), axisY + 2, tick, kInk);
+            canvas.text(std::clamp(x - Canvas::textWidth(tick) / 2, 0, width - Canvas::textWidth(tick)), axisY + 2,
+                        tick, kInk);
         }
         canvas.text(x0 + (kPanelW - Canvas::textWidth("grey value")) / 2, axisY + 22, "grey value", kAxis);
     }

@@ -16,8 +16,8 @@
 namespace btflut {
 
 Rgb paletteColour(std::size_t i) {
-    static const Rgb kPalette[] = {{0.25f, 0.4f, 0.7f},  {0.85f, 0.3f, 0.1f}, {0.1f, 0.6f, 0.3f},  {0.6f, 0.2f, 0.7f},
-                                   {0.9f, 0.6f, 0.0f},   {0.1f, 0.6f, 0.7f},  {0.7f, 0.45f, 0.2f}, {0.85f, 0.3f, 0.55f}};
+    static const Rgb kPalette[] = {{0.25f, 0.4f, 0.7f}, {0.85f, 0.3f, 0.1f}, {0.1f, 0.6f, 0.3f},  {0.6f, 0.2f, 0.7f},
+                                   {0.9f, 0.6f, 0.0f},  {0.1f, 0.6f, 0.7f},  {0.7f, 0.45f, 0.2f}, {0.85f, 0.3f, 0.55f}};
     return kPalette[i % 8];
 }
 
@@ -43,7 +43,8 @@ void Canvas::line(double x0, double y0, double x1, double y1, Rgb c, int thickne
 }
 
 void Canvas::dot(double x, double y, int size, Rgb c) {
-    const int x0 = static_cast<int>(std::floor(x - size / 2.0 + 0.5)), y0 = static_cast<int>(std::floor(y - size / 2.0 + 0.5));
+    const int x0 = static_cast<int>(std::floor(x - size / 2.0 + 0.5)),
+              y0 = static_cast<int>(std::floor(y - size / 2.0 + 0.5));
     fill(x0, y0, x0 + size, y0 + size, c);
 }
 

@@ -67,7 +67,8 @@ Status checkSize(std::uint64_t width, std::uint64_t height, const Request& r) {
         return Error{r.name + ": image is " + sizeText(width, height) + " pixels, over the limit of " +
                      std::to_string(limit) + " pixels (raise it with --max-pixels)"};
     if (r.width > 0 && (width != static_cast<std::uint64_t>(r.width) || height != static_cast<std::uint64_t>(r.height)))
-        return Error{r.name + ": image is " + sizeText(width, height) + ", expected " + sizeText(static_cast<std::uint64_t>(r.width), static_cast<std::uint64_t>(r.height))};
+        return Error{r.name + ": image is " + sizeText(width, height) + ", expected " +
+                     sizeText(static_cast<std::uint64_t>(r.width), static_cast<std::uint64_t>(r.height))};
     return success();
 }
 
@@ -89,7 +90,8 @@ Result<ImageCodes> decodePng(const Bytes& b, const Request& r) {
     spng_ihdr ihdr{};
     if (int e = spng_get_ihdr(ctx.get(), &ihdr)) return fail(e);
     if (Status s = checkSize(ihdr.width, ihdr.height, r); !s) return Error{s.error()};
-    const bool grey = ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE || ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA;
+    const bool grey =
+        ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE || ihdr.color_type == SPNG_COLOR_TYPE_GRAYSCALE_ALPHA;
     const bool sixteen = ihdr.bit_depth == 16;
     int format = 0, stride = 0;
     if (grey && !sixteen)
@@ -104,11 +106,16 @@ Result<ImageCodes> decodePng(const Bytes& b, const Request& r) {
     if (int e = spng_decoded_image_size(ctx.get(), format, &size)) return fail(e);
     // Left uninitialised: pages a failing decode never reaches are never touched.
     std::unique_ptr<std::uint8_t[]> pixels(new (std::nothrow) std::uint8_t[size]);
-    if (!pixels) return Error{name + ": out of memory for a " + std::to_string(ihdr.width) + "x" +
-                              std::to_string(ihdr.height) + " image"};
+    if (!pixels)
+        return Error{name + ": out of memory for a " + std::to_string(ihdr.width) + "x" + std::to_string(ihdr.height) +
+                     " image"};
     if (int e = spng_decode_image(ctx.get(), pixels.get(), size, format, 0)) return fail(e);
-    return ImageCodes{static_cast<int>(ihdr.width), static_cast<int>(ihdr.height), grey ? 1 : 3, sixteen ? 16 : 8,
-                      stride, std::move(pixels)};
+    return ImageCodes{static_cast<int>(ihdr.width),
+                      static_cast<int>(ihdr.height),
+                      grey ? 1 : 3,
+                      sixteen ? 16 : 8,
+                      stride,
+                      std::move(pixels)};
 }
 
 static_assert(sizeof(unsigned long) >= sizeof(std::size_t), "libjpeg-turbo takes the file length as unsigned long");
@@ -130,14 +137,17 @@ Result<ImageCodes> decodeJpeg(const Bytes& b, const Request& r) {
     if (tjDecompressHeader3(tj.get(), b.data(), static_cast<unsigned long>(b.size()), &width, &height, &subsampling,
                             &colourspace) != 0)
         return fail();
-    if (Status s = checkSize(static_cast<std::uint64_t>(std::max(width, 0)), static_cast<std::uint64_t>(std::max(height, 0)), r); !s)
+    if (Status s = checkSize(static_cast<std::uint64_t>(std::max(width, 0)),
+                             static_cast<std::uint64_t>(std::max(height, 0)), r);
+        !s)
         return Error{s.error()};
     if (colourspace == TJCS_CMYK || colourspace == TJCS_YCCK)
         return Error{name + ": CMYK JPEG images are not supported (convert it to RGB)"};
     const int channels = colourspace == TJCS_GRAY ? 1 : 3;
-    std::unique_ptr<std::uint8_t[]> pixels(
-        new (std::nothrow) std::uint8_t[static_cast<std::size_t>(width) * height * channels]);
-    if (!pixels) return Error{name + ": out of memory for a " + std::to_string(width) + "x" + std::to_string(height) + " image"};
+    std::unique_ptr<std::uint8_t[]> pixels(new (std::nothrow)
+                                               std::uint8_t[static_cast<std::size_t>(width) * height * channels]);
+    if (!pixels)
+        return Error{name + ": out of memory for a " + std::to_string(width) + "x" + std::to_string(height) + " image"};
     // A warning (a corrupt or cut stream) is an error, and a progressive image may have
     // at most 500 scans (a CPU bomb otherwise).
     if (tjDecompress2(tj.get(), b.data(), static_cast<unsigned long>(b.size()), pixels.get(), width, 0, height,
@@ -228,17 +238,20 @@ Status checkImageSize(std::uint64_t width, std::uint64_t height, const std::stri
 }
 
 std::size_t Mask::count() const {
-    return static_cast<std::size_t>(std::count_if(inside.begin(), inside.end(),
-                                                  [](std::uint8_t v) { return v != 0; }));
+    return static_cast<std::size_t>(std::count_if(inside.begin(), inside.end(), [](std::uint8_t v) { return v != 0; }));
 }
 
-Result<ImageCodes> decodeImageCodes(const Bytes& bytes, const std::string& name, int expectedWidth, int expectedHeight) {
+Result<ImageCodes> decodeImageCodes(const Bytes& bytes, const std::string& name, int expectedWidth,
+                                    int expectedHeight) {
     if (bytes.empty()) return Error{name + ": empty file"};
     const Request request{name, expectedWidth, expectedHeight};
     switch (const Format format = formatOf(bytes)) {
-        case Format::Png: return decodePng(bytes, request);
-        case Format::Jpeg: return decodeJpeg(bytes, request);
-        default: return decodeWithStb(bytes, request, format);
+        case Format::Png:
+            return decodePng(bytes, request);
+        case Format::Jpeg:
+            return decodeJpeg(bytes, request);
+        default:
+            return decodeWithStb(bytes, request, format);
     }
 }
 
@@ -268,8 +281,9 @@ Image toImage(const ImageCodes& codes) {
 ImageCodes toCodes(const Image& image, int bitDepth) {
     BTFLUT_CHECK(bitDepth == 8 || bitDepth == 16);
     const std::size_t n = image.samples.size();
-    ImageCodes codes{image.width, image.height, image.channels, bitDepth, image.channels,
-                     std::make_unique_for_overwrite<std::uint8_t[]>(n * (bitDepth == 16 ? 2 : 1))};
+    ImageCodes codes{image.width,    image.height,
+                     image.channels, bitDepth,
+                     image.channels, std::make_unique_for_overwrite<std::uint8_t[]>(n * (bitDepth == 16 ? 2 : 1))};
     // Each sample to the nearest code; NaN and below 0 to 0, above 1 to the top code.
     auto code = [](float v, float top) { return static_cast<int>((v >= 0.f ? std::min(v, 1.f) : 0.f) * top + 0.5f); };
     if (bitDepth == 16) {
@@ -297,9 +311,8 @@ Result<Mask> loadMask(const std::string& path, int width, int height) {
     Result<Image> image = loadImage(path);
     if (!image) return Error{image.error()};
     if (image->width != width || image->height != height)
-        return Error{path + ": mask is " + std::to_string(image->width) + "x" +
-                     std::to_string(image->height) + " but the images are " +
-                     std::to_string(width) + "x" + std::to_string(height)};
+        return Error{path + ": mask is " + std::to_string(image->width) + "x" + std::to_string(image->height) +
+                     " but the images are " + std::to_string(width) + "x" + std::to_string(height)};
     Mask mask{width, height, std::vector<std::uint8_t>(image->pixelCount())};
     for (std::size_t i = 0; i < mask.inside.size(); ++i)
         for (int c = 0; c < image->channels; ++c)
@@ -323,22 +336,17 @@ Bytes encodePng(const Image& image, int bitDepth) {
     BTFLUT_CHECK(bitDepth == 8 || bitDepth == 16);
     BTFLUT_CHECK(image.channels == 1 || image.channels == 3 || image.channels == 4);
     const double scale = bitDepth == 16 ? 65535.0 : 255.0;
-    auto code = [scale](float v) {
-        return std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * scale);
-    };
+    auto code = [scale](float v) { return std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * scale); };
     std::vector<std::uint8_t> raw8;
     std::vector<std::uint16_t> raw16;
     if (bitDepth == 8) {
         raw8.resize(image.samples.size());
-        for (std::size_t i = 0; i < raw8.size(); ++i)
-            raw8[i] = static_cast<std::uint8_t>(code(image.samples[i]));
+        for (std::size_t i = 0; i < raw8.size(); ++i) raw8[i] = static_cast<std::uint8_t>(code(image.samples[i]));
     } else {
         raw16.resize(image.samples.size());
-        for (std::size_t i = 0; i < raw16.size(); ++i)
-            raw16[i] = static_cast<std::uint16_t>(code(image.samples[i]));
+        for (std::size_t i = 0; i < raw16.size(); ++i) raw16[i] = static_cast<std::uint16_t>(code(image.samples[i]));
     }
-    std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> ctx(spng_ctx_new(SPNG_CTX_ENCODER),
-                                                       spng_ctx_free);
+    std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> ctx(spng_ctx_new(SPNG_CTX_ENCODER), spng_ctx_free);
     BTFLUT_CHECK(ctx);
     spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1);
     spng_ihdr ihdr{};
@@ -354,8 +362,7 @@ Bytes encodePng(const Image& image, int bitDepth) {
     int err = spng_encode_image(ctx.get(), raw, rawSize, SPNG_FMT_PNG, SPNG_ENCODE_FINALIZE);
     BTFLUT_CHECK(err == 0);
     std::size_t pngSize = 0;
-    std::unique_ptr<void, void (*)(void*)> png(spng_get_png_buffer(ctx.get(), &pngSize, &err),
-                                               std::free);
+    std::unique_ptr<void, void (*)(void*)> png(spng_get_png_buffer(ctx.get(), &pngSize, &err), std::free);
     BTFLUT_CHECK(png && err == 0);
     const auto* p = static_cast<const std::uint8_t*>(png.get());
     return Bytes(p, p + pngSize);

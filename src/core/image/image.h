@@ -21,19 +21,16 @@ namespace btflut {
 struct Image {
     int width = 0;
     int height = 0;
-    int channels = 0;  ///< 1 (grey) or 3 (RGB)
-    int bitDepth = 8;  ///< precision of the source: 8 or 16 bits per sample
+    int channels = 0;            ///< 1 (grey) or 3 (RGB)
+    int bitDepth = 8;            ///< precision of the source: 8 or 16 bits per sample
     std::vector<float> samples;  ///< width * height * channels, interleaved
 
     Image() = default;
     Image(int w, int h, int c, int depth = 8)
-        : width(w), height(h), channels(c), bitDepth(depth),
-          samples(static_cast<std::size_t>(w) * h * c, 0.f) {}
+        : width(w), height(h), channels(c), bitDepth(depth), samples(static_cast<std::size_t>(w) * h * c, 0.f) {}
 
     std::size_t pixelCount() const { return static_cast<std::size_t>(width) * height; }
-    float& at(int x, int row, int c) {
-        return samples[(static_cast<std::size_t>(row) * width + x) * channels + c];
-    }
+    float& at(int x, int row, int c) { return samples[(static_cast<std::size_t>(row) * width + x) * channels + c]; }
     float at(int x, int row, int c) const {
         return samples[(static_cast<std::size_t>(row) * width + x) * channels + c];
     }
@@ -90,8 +87,7 @@ Result<Image> loadImage(const std::string& path);
 
 /// Decodes an image held in memory; `name` is used in error messages. With an expected
 /// size, a file declaring another is refused from its header, before decoding.
-Result<Image> decodeImage(const Bytes& bytes, const std::string& name, int expectedWidth = 0,
-                          int expectedHeight = 0);
+Result<Image> decodeImage(const Bytes& bytes, const std::string& name, int expectedWidth = 0, int expectedHeight = 0);
 
 /// Decodes an image file (or bytes) into its codes; the same checks and errors as loadImage.
 Result<ImageCodes> loadImageCodes(const std::string& path);

@@ -26,7 +26,8 @@ MaterialMatch matchMaterial(const std::vector<double>& histogram, const Material
     const double target = mean(histogram);
     auto score = [&](DiskPoint p, int nodes) {
         const std::vector<double> predicted = material.at(fromDisk(p), view, bins, nodes);
-        return metric == Metric::Histogram ? earthMoversDistance(histogram, predicted) : std::abs(mean(predicted) - target);
+        return metric == Metric::Histogram ? earthMoversDistance(histogram, predicted)
+                                           : std::abs(mean(predicted) - target);
     };
     // A grid over the disk (lights up to the horizon), then a pattern search from the best.
     constexpr int kGrid = 21;
@@ -62,8 +63,8 @@ MaterialMatch matchMaterial(const std::vector<double>& histogram, const Material
     return {0, bestScore, fromDisk(best)};
 }
 
-std::vector<MaterialMatch> classify(const std::vector<double>& histogram, const std::vector<MaterialHistograms>& library,
-                                    Direction view, Metric metric) {
+std::vector<MaterialMatch> classify(const std::vector<double>& histogram,
+                                    const std::vector<MaterialHistograms>& library, Direction view, Metric metric) {
     std::vector<MaterialMatch> matches(library.size());
     parallelFor(library.size(), 0, [&](std::size_t m) {
         matches[m] = matchMaterial(histogram, library[m], view, metric);

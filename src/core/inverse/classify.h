@@ -29,7 +29,7 @@ MaterialMatch matchMaterial(const std::vector<double>& histogram, const Material
                             Metric metric);
 
 /// Every material of the library matched, best first (materials in parallel).
-std::vector<MaterialMatch> classify(const std::vector<double>& histogram, const std::vector<MaterialHistograms>& library,
-                                    Direction view, Metric metric);
+std::vector<MaterialMatch> classify(const std::vector<double>& histogram,
+                                    const std::vector<MaterialHistograms>& library, Direction view, Metric metric);
 
 }  // namespace btflut

@@ -12,9 +12,12 @@ namespace {
 
 std::vector<std::string> parameterNames(FitBrdf brdf) {
     switch (brdf) {
-        case FitBrdf::Lambert: return {"roughness", "gain", "smoothing"};
-        case FitBrdf::TorranceSparrow: return {"roughness", "gain", "sigma", "ior", "smoothing"};
-        case FitBrdf::Mix: return {"roughness", "gain", "ks", "sigma", "ior", "smoothing"};
+        case FitBrdf::Lambert:
+            return {"roughness", "gain", "smoothing"};
+        case FitBrdf::TorranceSparrow:
+            return {"roughness", "gain", "sigma", "ior", "smoothing"};
+        case FitBrdf::Mix:
+            return {"roughness", "gain", "ks", "sigma", "ior", "smoothing"};
     }
     return {};
 }
@@ -44,8 +47,11 @@ SurfaceModel modelOf(FitBrdf brdf, const double* p, double& smoothing) {
 
 std::vector<double> simulated(const SurfaceModel& model, double smoothing, const HistogramRow& row, int nodes) {
     return simulateHistogram(model, row.light, row.view,
-                             {.method = SimulationMethod::Quadrature, .bins = static_cast<int>(row.bins.size()),
-                              .nodes = nodes, .smooth = smoothing, .threads = 1});
+                             {.method = SimulationMethod::Quadrature,
+                              .bins = static_cast<int>(row.bins.size()),
+                              .nodes = nodes,
+                              .smooth = smoothing,
+                              .threads = 1});
 }
 
 // One direction's residuals: model bins minus measured bins.
@@ -90,7 +96,9 @@ std::vector<double> startValues(FitBrdf brdf, const std::vector<HistogramRow>& r
     };
     for (double r : {0.1, 0.2, 0.3, 0.45, 0.6, 0.8, 1.1})
         for (double gain : {0.4, 0.7, 1.0, 1.5, 2.5}) switch (brdf) {
-                case FitBrdf::Lambert: consider({r, gain, 1.0}); break;
+                case FitBrdf::Lambert:
+                    consider({r, gain, 1.0});
+                    break;
                 case FitBrdf::TorranceSparrow:
                     for (double sigma : {0.1, 0.3}) consider({r, gain, sigma, 1.5, 1.0});
                     break;
@@ -113,9 +121,12 @@ Result<FitBrdf> parseFitBrdf(const std::string& name) {
 
 const char* fitBrdfName(FitBrdf brdf) {
     switch (brdf) {
-        case FitBrdf::Lambert: return "lambert";
-        case FitBrdf::TorranceSparrow: return "ts";
-        case FitBrdf::Mix: return "mix";
+        case FitBrdf::Lambert:
+            return "lambert";
+        case FitBrdf::TorranceSparrow:
+            return "ts";
+        case FitBrdf::Mix:
+            return "mix";
     }
     return "";
 }
@@ -136,8 +147,9 @@ Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, Fi
         values += bins;
     }
     if (measured.size() < names.size())
-        return Error{std::to_string(measured.size()) + " histogram(s) cannot determine the " + std::to_string(names.size()) +
-                     " parameters of " + fitBrdfName(brdf) + ": one direction per parameter at least"};
+        return Error{std::to_string(measured.size()) + " histogram(s) cannot determine the " +
+                     std::to_string(names.size()) + " parameters of " + fitBrdfName(brdf) +
+                     ": one direction per parameter at least"};
 
     std::vector<double> p = startValues(brdf, measured);
     ceres::Problem problem;
@@ -148,13 +160,13 @@ Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, Fi
         cost->SetNumResiduals(static_cast<int>(bins));
         problem.AddResidualBlock(cost, nullptr, p.data());
     }
-    problem.SetParameterLowerBound(p.data(), 0, 1e-3);  // roughness
-    problem.SetParameterLowerBound(p.data(), 1, 1e-4);  // gain
+    problem.SetParameterLowerBound(p.data(), 0, 1e-3);                              // roughness
+    problem.SetParameterLowerBound(p.data(), 1, 1e-4);                              // gain
     problem.SetParameterLowerBound(p.data(), static_cast<int>(p.size()) - 1, 0.0);  // smoothing
     if (brdf != FitBrdf::Lambert) {
         const int sigma = brdf == FitBrdf::Mix ? 3 : 2;
         problem.SetParameterLowerBound(p.data(), sigma, 1e-3);
-        problem.SetParameterUpperBound(p.data(), sigma, 1.0);  // facet slopes beyond 45 degrees rms are no mirror
+        problem.SetParameterUpperBound(p.data(), sigma, 1.0);      // facet slopes beyond 45 degrees rms are no mirror
         problem.SetParameterLowerBound(p.data(), sigma + 1, 1.0);  // ior
         problem.SetParameterUpperBound(p.data(), sigma + 1, 4.0);
         if (brdf == FitBrdf::Mix) problem.SetParameterLowerBound(p.data(), 2, 0.0);  // ks

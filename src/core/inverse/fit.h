@@ -48,17 +48,18 @@ struct SurfaceFit {
     double rms = 0;                        ///< over every bin of every direction
     int iterations = 0;
     double seconds = 0;
-    int nodes = 0;                         ///< the quadrature's, as fitted
+    int nodes = 0;  ///< the quadrature's, as fitted
 };
 
 struct FitOptions {
-    int nodes = 32;       ///< quadrature nodes per axis and piece while fitting
+    int nodes = 32;  ///< quadrature nodes per axis and piece while fitting
     int maxIterations = 100;
 };
 
 /// Fits the model; errors: fewer directions than parameters, histograms of different bin
 /// counts, directions below the horizon, a fit that does not converge.
-Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, FitBrdf brdf, const FitOptions& options = {});
+Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, FitBrdf brdf,
+                                   const FitOptions& options = {});
 
 /// The fitted model as bank parameters (bake --model, --fill model): the smoothing, fitted
 /// in the histograms' `bins`, rescaled to the bins the bank is simulated at.

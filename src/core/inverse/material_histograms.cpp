@@ -33,13 +33,15 @@ std::vector<double> MaterialHistograms::at(Direction light, Direction view, int 
     if (bank->makesLuts()) {  // regions x quantiles: each quantile sample an equal share of its region
         const auto q = static_cast<std::size_t>(bank->blend.quantiles);
         for (std::size_t r = 0; r < regionShares.size(); ++r)
-            for (std::size_t m = 0; m < q; ++m) deposit(histogram, lookup.values[r * q + m], regionShares[r] / static_cast<double>(q));
+            for (std::size_t m = 0; m < q; ++m)
+                deposit(histogram, lookup.values[r * q + m], regionShares[r] / static_cast<double>(q));
         return histogram;
     }
     const double total = static_cast<double>(referenceGrey.total());
     for (std::size_t k = 0; k < referenceGrey.counts.size(); ++k)
         if (referenceGrey.counts[k])
-            deposit(histogram, Lut::applyLut(lookup.values.data(), bank->entries, static_cast<float>(referenceGrey.valueOf(k))),
+            deposit(histogram,
+                    Lut::applyLut(lookup.values.data(), bank->entries, static_cast<float>(referenceGrey.valueOf(k))),
                     static_cast<double>(referenceGrey.counts[k]) / total);
     return histogram;
 }
@@ -59,8 +61,10 @@ Result<MaterialHistograms> loadMaterial(const std::string& path) {
     Result<LutBank> bank = loadBank(path, {.ptm = false, .grids = false});
     if (!bank) return Error{bank.error()};
     if (bank->colour == ColourMode::Rgb)
-        return Error{path + ": an rgb bank has no grey LUTs to compare histograms with (bake with --colour grey or lrgb)"};
-    if (bank->reference.samples.empty()) return Error{path + ": the bank holds no reference image (baked with --no-reference)"};
+        return Error{path +
+                     ": an rgb bank has no grey LUTs to compare histograms with (bake with --colour grey or lrgb)"};
+    if (bank->reference.samples.empty())
+        return Error{path + ": the bank holds no reference image (baked with --no-reference)"};
     if (bank->makesLuts()) {
         const LutBank::Blend& blend = bank->blend;
         material.regionShares.assign(static_cast<std::size_t>(blend.regions), 0.0);
@@ -69,7 +73,8 @@ Result<MaterialHistograms> loadMaterial(const std::string& path) {
         const double total = static_cast<double>(blend.mask.count());
         for (double& share : material.regionShares) share /= total;
     } else {
-        material.referenceGrey = countGreyLevels(bank->reference, fullMask(bank->reference.width, bank->reference.height));
+        material.referenceGrey =
+            countGreyLevels(bank->reference, fullMask(bank->reference.width, bank->reference.height));
     }
     material.bank = std::make_shared<const LutBank>(std::move(*bank));
     return material;

@@ -25,7 +25,8 @@ std::vector<Direction> unmeasuredLights(const LutBank& bank, const ViewLayer& la
     std::vector<char> outside(static_cast<std::size_t>(n) * n, 0);
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i)
-            outside[static_cast<std::size_t>(j) * n + i] = inDisk(i, j) && !layer.lights.weightsAt(bank.gridPoint(i, j)).inside;
+            outside[static_cast<std::size_t>(j) * n + i] =
+                inDisk(i, j) && !layer.lights.weightsAt(bank.gridPoint(i, j)).inside;
     std::vector<Direction> lights;
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
@@ -44,7 +45,8 @@ constexpr int kTransportEntries = 4096;
 
 // The model's histogram as masses per code: bin b covers [b, b + 1) / bins, the cell of code
 // b + 1 on a bins + 1 code scale.
-std::vector<double> modelMass(const SurfaceModel& model, Direction light, Direction view, const SimulationOptions& options) {
+std::vector<double> modelMass(const SurfaceModel& model, Direction light, Direction view,
+                              const SimulationOptions& options) {
     const std::vector<double> histogram = simulateHistogram(model, light, view, options);
     std::vector<double> mass(histogram.size() + 1, 0.0);
     std::copy(histogram.begin(), histogram.end(), mass.begin() + 1);
@@ -53,11 +55,11 @@ std::vector<double> modelMass(const SurfaceModel& model, Direction light, Direct
 
 }  // namespace
 
-Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& params,
-                                      const std::string& description) {
+Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& params, const std::string& description) {
     if (bank.domain != BankDomain::Layers)
-        return Error{"--fill model fills each view's light disk; this bank interpolates in the isotropic domain "
-                     "(bake it with --domain layers, or leave it clamped)"};
+        return Error{
+            "--fill model fills each view's light disk; this bank interpolates in the isotropic domain "
+            "(bake it with --domain layers, or leave it clamped)"};
     if (bank.colour == ColourMode::Rgb)
         return Error{"--fill model: the model gives grey histograms; bake with --colour grey or lrgb"};
     if (bank.makesLuts() && bank.blend.regions > 1)
@@ -74,7 +76,8 @@ Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& para
         std::vector<Direction> lights = unmeasuredLights(bank, layer);
         // A measured light at a modelled direction keeps its measurement.
         std::erase_if(lights, [&](Direction d) {
-            return std::ranges::any_of(layer.nodes, [&](const LightNode& m) { return angleBetween(m.light, d) < 1e-6; });
+            return std::ranges::any_of(layer.nodes,
+                                       [&](const LightNode& m) { return angleBetween(m.light, d) < 1e-6; });
         });
         std::vector<float> values(lights.size() * length);
         parallelFor(lights.size(), 0, [&](std::size_t i) {
@@ -90,8 +93,9 @@ Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& para
                 anchor = {anchor.x + w.weight[k] * p.x, anchor.y + w.weight[k] * p.y};
                 for (std::size_t e = 0; e < length; ++e) measured[e] += w.weight[k] * layer.nodeLuts[node * length + e];
             }
-            const Lut transport = matchLut(modelMass(params.model, fromDisk(anchor), layer.view, simulation),
-                                           modelMass(params.model, lights[i], layer.view, simulation), kTransportEntries);
+            const Lut transport =
+                matchLut(modelMass(params.model, fromDisk(anchor), layer.view, simulation),
+                         modelMass(params.model, lights[i], layer.view, simulation), kTransportEntries);
             for (std::size_t e = 0; e < length; ++e)
                 values[i * length + e] = transport.apply(static_cast<float>(measured[e]));
         });

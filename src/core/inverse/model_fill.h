@@ -25,7 +25,7 @@
 namespace btflut {
 
 struct ModelFillReport {
-    std::size_t nodes = 0;  ///< modelled nodes added over every layer
+    std::size_t nodes = 0;          ///< modelled nodes added over every layer
     std::optional<SurfaceFit> fit;  ///< fillFromDataset without parameters: the fit
 };
 

@@ -33,7 +33,8 @@ struct Evaluation {
 
 class Search {
 public:
-    Search(const std::vector<double>& histogram, const MaterialHistograms& material, Direction known, Known which, int bins)
+    Search(const std::vector<double>& histogram, const MaterialHistograms& material, Direction known, Known which,
+           int bins)
         : m_histogram(histogram), m_material(material), m_known(toVector(known)), m_which(which), m_bins(bins) {}
 
     Evaluation at(double tilt, double azimuth, int nodes) const {
@@ -59,12 +60,14 @@ private:
 
 Result<Orientation> estimateOrientation(const std::vector<double>& histogram, const MaterialHistograms& material,
                                         Direction known, Known which, double tolerance, const OrientOptions& options) {
-    if (histogram.size() != static_cast<std::size_t>(options.bins)) return Error{"the histogram has the wrong number of bins"};
+    if (histogram.size() != static_cast<std::size_t>(options.bins))
+        return Error{"the histogram has the wrong number of bins"};
     double mass = 0;
     for (double v : histogram) mass += v;
     if (!(mass > 0)) return Error{"the histogram is empty (no sample pixels)"};
     if (!(known.theta >= 0 && known.theta < 90 * kDegree))
-        return Error{std::string("the known ") + (which == Known::Light ? "light" : "view") + " must be above the horizon"};
+        return Error{std::string("the known ") + (which == Known::Light ? "light" : "view") +
+                     " must be above the horizon"};
     const Search search(histogram, material, known, which, options.bins);
 
     // The grid: tilt rows (row 0 is the pole, one normal) by azimuth columns.
@@ -120,7 +123,8 @@ Result<Orientation> estimateOrientation(const std::vector<double>& histogram, co
     Orientation out;
     out.tolerance = tolerance;
     for (const std::vector<std::size_t>& cells : regions) {
-        const std::size_t start = *std::min_element(cells.begin(), cells.end(), [&](auto a, auto b) { return cost[a] < cost[b]; });
+        const std::size_t start =
+            *std::min_element(cells.begin(), cells.end(), [&](auto a, auto b) { return cost[a] < cost[b]; });
         double tilt = tiltOf(static_cast<int>(start) / columns), azimuth = azimuthOf(static_cast<int>(start) % columns);
         Evaluation e = search.at(tilt, azimuth, 32);
         for (double step = options.tiltStep / 2; step > 0.02 * kDegree; step /= 2) {
@@ -149,7 +153,8 @@ Result<Orientation> estimateOrientation(const std::vector<double>& histogram, co
         candidate.cells = cells;
         out.candidates.push_back(candidate);
     }
-    std::sort(out.candidates.begin(), out.candidates.end(), [](const auto& a, const auto& b) { return a.distance < b.distance; });
+    std::sort(out.candidates.begin(), out.candidates.end(),
+              [](const auto& a, const auto& b) { return a.distance < b.distance; });
 
     // Spreads over each candidate's region; a region within another's spread is one answer
     // with it (the costs' noise splits regions the histogram cannot tell apart either).

@@ -30,12 +30,12 @@ namespace btflut {
 enum class Known { Light, View };
 
 struct OrientationCandidate {
-    Direction normal;       ///< in the known direction's frame (see above)
-    Direction light, view;  ///< in the sample's frame
-    double distance = 0;    ///< earth mover's distance of the histograms
-    double uncertainty = 0;  ///< radians: the largest angle to another normal of its region
-    double tiltUncertainty = 0;  ///< radians: the largest tilt difference within its region
-    bool azimuthDetermined = true;  ///< false: its region runs round the pole (a light at the camera, say)
+    Direction normal;                ///< in the known direction's frame (see above)
+    Direction light, view;           ///< in the sample's frame
+    double distance = 0;             ///< earth mover's distance of the histograms
+    double uncertainty = 0;          ///< radians: the largest angle to another normal of its region
+    double tiltUncertainty = 0;      ///< radians: the largest tilt difference within its region
+    bool azimuthDetermined = true;   ///< false: its region runs round the pole (a light at the camera, say)
     std::vector<std::size_t> cells;  ///< while searching: the region's grid cells
 };
 
@@ -55,7 +55,8 @@ struct OrientOptions {
 /// distance the image's own sampling allows (histogramTolerance). Errors: a histogram of
 /// the wrong size or empty, a known direction below the horizon.
 Result<Orientation> estimateOrientation(const std::vector<double>& histogram, const MaterialHistograms& material,
-                                        Direction known, Known which, double tolerance, const OrientOptions& options = {});
+                                        Direction known, Known which, double tolerance,
+                                        const OrientOptions& options = {});
 
 /// How far an image's histogram could be from the material's by chance: half the mean earth
 /// mover's distance between the histograms of its halves (left against right, top against

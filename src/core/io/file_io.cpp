@@ -54,15 +54,13 @@ Result<TempFile> createTempBeside(const std::string& path) {
 
 Result<Bytes> readFile(const std::string& path) {
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        return Error{path + ": is a directory, expected a file"};
+    if (std::filesystem::is_directory(path, ec)) return Error{path + ": is a directory, expected a file"};
     std::FILE* f = std::fopen(path.c_str(), "rb");
     if (!f) return Error{path + ": cannot open (" + std::strerror(errno) + ")"};
     Bytes bytes;
     std::uint8_t buffer[1 << 16];
     std::size_t n;
-    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0)
-        bytes.insert(bytes.end(), buffer, buffer + n);
+    while ((n = std::fread(buffer, 1, sizeof buffer, f)) > 0) bytes.insert(bytes.end(), buffer, buffer + n);
     bool failed = std::ferror(f);
     std::fclose(f);
     if (failed) return Error{path + ": read error"};

@@ -28,8 +28,7 @@ std::vector<Geometry> curetC2() {
 
 std::vector<Geometry> curetSpecular() {
     std::vector<Geometry> g;
-    for (int k = 1; k <= 7; ++k)
-        g.push_back({"s" + std::to_string(k), inPlane(-11.25 * k), inPlane(11.25 * k)});
+    for (int k = 1; k <= 7; ++k) g.push_back({"s" + std::to_string(k), inPlane(-11.25 * k), inPlane(11.25 * k)});
     return g;
 }
 
@@ -63,13 +62,15 @@ Result<std::vector<Geometry>> parseGeometry(const std::string& spec) {
     if (spec.rfind("rti-", 0) == 0) {
         char* end = nullptr;
         const long n = std::strtol(spec.c_str() + 4, &end, 10);
-        if (*end != '\0' || n < 1 || n > 10000) return Error{"--geometry " + spec + ": expected rti-N with N in 1..10000"};
+        if (*end != '\0' || n < 1 || n > 10000)
+            return Error{"--geometry " + spec + ": expected rti-N with N in 1..10000"};
         return rtiDome(static_cast<int>(n));
     }
     if (spec.rfind("btf-", 0) == 0) {
         char* end = nullptr;
         const long n = std::strtol(spec.c_str() + 4, &end, 10);
-        if (*end != '\0' || n < 1 || n > 100) return Error{"--geometry " + spec + ": expected btf-N with N in 1..100 (N views x N lights)"};
+        if (*end != '\0' || n < 1 || n > 100)
+            return Error{"--geometry " + spec + ": expected btf-N with N in 1..100 (N views x N lights)"};
         return btfDome(static_cast<int>(n));
     }
     if (spec.find(',') != std::string::npos && spec.find('/') == std::string::npos) {
@@ -80,8 +81,8 @@ Result<std::vector<Geometry>> parseGeometry(const std::string& spec) {
             double a[4];
             char sep[3];
             std::istringstream fields(item);
-            if (!(fields >> a[0] >> sep[0] >> a[1] >> sep[1] >> a[2] >> sep[2] >> a[3]) ||
-                sep[0] != ',' || sep[1] != ',' || sep[2] != ',' || !(fields >> std::ws).eof())
+            if (!(fields >> a[0] >> sep[0] >> a[1] >> sep[1] >> a[2] >> sep[2] >> a[3]) || sep[0] != ',' ||
+                sep[1] != ',' || sep[2] != ',' || !(fields >> std::ws).eof())
                 return Error{"--geometry: expected THETA_I,PHI_I,THETA_R,PHI_R[;...], got '" + item + "'"};
             for (double v : a)
                 if (!std::isfinite(v)) return Error{"--geometry: '" + item + "' has a non-finite angle"};
@@ -94,8 +95,9 @@ Result<std::vector<Geometry>> parseGeometry(const std::string& spec) {
         return g;
     }
     Result<Dataset> ds = openDataset(spec);
-    if (!ds) return Error{"--geometry '" + spec + "' is not curet-c2, curet-specular, rti-N, btf-N, a list or a dataset (" +
-                          ds.error() + ")"};
+    if (!ds)
+        return Error{"--geometry '" + spec + "' is not curet-c2, curet-specular, rti-N, btf-N, a list or a dataset (" +
+                     ds.error() + ")"};
     std::vector<Geometry> g;
     for (const DatasetImage& im : ds->images) g.push_back({im.name, im.light, im.view});
     return g;

@@ -108,8 +108,9 @@ Result<LutBank> bakeModelBank(const ModelBankParams& params, const Image& refere
                               const ModelReference& about) {
     LevelCounts refLevels = countGreyLevels(reference, mask);
     if (refLevels.presentCodes() < 2)
-        return Error{about.name + ": reference image is constant over the sample, so no LUT can give it "
-                                  "another histogram"};
+        return Error{about.name +
+                     ": reference image is constant over the sample, so no LUT can give it "
+                     "another histogram"};
     LutBank bank;
     bank.colour = ColourMode::Grey;
     bank.gridSize = about.gridSize;

@@ -66,12 +66,12 @@ double normalDensity(double x, double sd) {
 double normalCdf(double x) { return 0.5 * std::erfc(-x / std::numbers::sqrt2); }
 
 double normalQuantile(double u) {
-    static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02, -2.759285104469687e+02,
-                               1.383577518672690e+02, -3.066479806614716e+01, 2.506628277459239e+00};
+    static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
+                               1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
     static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
                                6.680131188771972e+01, -1.328068155288572e+01};
     static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
-                               -2.549732539343734e+00, 4.374664141464968e+00, 2.938163982698783e+00};
+                               -2.549732539343734e+00, 4.374664141464968e+00,  2.938163982698783e+00};
     static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
                                3.754408661907416e+00};
     double x;
@@ -141,9 +141,7 @@ void spreadOverBins(std::vector<double>& h, double value, double x, double y, do
     }
 }
 
-int binOf(double value, int bins) {
-    return std::clamp(static_cast<int>(value * bins), 0, bins - 1);
-}
+int binOf(double value, int bins) { return std::clamp(static_cast<int>(value * bins), 0, bins - 1); }
 
 Vec3 facetNormal(double p, double q) {
     const double len = std::sqrt(1 + p * p + q * q);
@@ -156,8 +154,8 @@ std::uint64_t blockSeed(std::uint64_t seed, std::uint64_t block) {
 
 // ---- The two histogram integrators ------------------------------------------------------
 
-std::vector<double> monteCarlo(const SurfaceModel& model, Direction light, Direction view,
-                               const SimulationOptions& o, bool areaWeighted) {
+std::vector<double> monteCarlo(const SurfaceModel& model, Direction light, Direction view, const SimulationOptions& o,
+                               bool areaWeighted) {
     const Vec3 l = toVector(light), v = toVector(view);
     const double pIll = smithUnoccluded(model.roughness, light.theta);
     const std::uint64_t blocks = (o.samples + kBlock - 1) / kBlock;
@@ -194,8 +192,8 @@ std::vector<double> monteCarlo(const SurfaceModel& model, Direction light, Direc
     return h;
 }
 
-std::vector<double> quadrature(const SurfaceModel& model, Direction light, Direction view,
-                               const SimulationOptions& o, bool areaWeighted) {
+std::vector<double> quadrature(const SurfaceModel& model, Direction light, Direction view, const SimulationOptions& o,
+                               bool areaWeighted) {
     const Vec3 l = toVector(light), v = toVector(view);
     const double r = model.roughness;
     const double pIll = smithUnoccluded(r, light.theta);
@@ -289,10 +287,14 @@ Result<SimulationMethod> parseSimulationMethod(const std::string& name) {
 
 const char* simulationMethodName(SimulationMethod m) {
     switch (m) {
-        case SimulationMethod::McPaper: return "mc-paper";
-        case SimulationMethod::Mc: return "mc";
-        case SimulationMethod::Quadrature: return "quadrature";
-        case SimulationMethod::QuadraturePaper: return "quadrature-paper";
+        case SimulationMethod::McPaper:
+            return "mc-paper";
+        case SimulationMethod::Mc:
+            return "mc";
+        case SimulationMethod::Quadrature:
+            return "quadrature";
+        case SimulationMethod::QuadraturePaper:
+            return "quadrature-paper";
     }
     return "?";
 }
@@ -320,10 +322,18 @@ std::vector<double> simulateHistogram(const SurfaceModel& model, Direction light
     BTFLUT_CHECK(o.bins >= 2 && o.nodes >= 1);
     std::vector<double> h;
     switch (o.method) {
-        case SimulationMethod::McPaper: h = monteCarlo(model, light, view, o, false); break;
-        case SimulationMethod::Mc: h = monteCarlo(model, light, view, o, true); break;
-        case SimulationMethod::Quadrature: h = quadrature(model, light, view, o, true); break;
-        case SimulationMethod::QuadraturePaper: h = quadrature(model, light, view, o, false); break;
+        case SimulationMethod::McPaper:
+            h = monteCarlo(model, light, view, o, false);
+            break;
+        case SimulationMethod::Mc:
+            h = monteCarlo(model, light, view, o, true);
+            break;
+        case SimulationMethod::Quadrature:
+            h = quadrature(model, light, view, o, true);
+            break;
+        case SimulationMethod::QuadraturePaper:
+            h = quadrature(model, light, view, o, false);
+            break;
     }
     double total = 0;
     for (double v : h) total += v;

@@ -38,9 +38,9 @@ struct SimulationOptions {
     int bins = 64;
     std::uint64_t samples = 50000;  ///< Monte Carlo points binned
     std::uint64_t seed = 1;
-    int nodes = 64;       ///< quadrature nodes per axis and piece
-    double smooth = 0;    ///< Gaussian smoothing width in bins (0: none)
-    int threads = 0;      ///< 0: all cores
+    int nodes = 64;     ///< quadrature nodes per axis and piece
+    double smooth = 0;  ///< Gaussian smoothing width in bins (0: none)
+    int threads = 0;    ///< 0: all cores
 };
 
 /// The normalised histogram (options.bins bins, sums to 1) for one light and view direction

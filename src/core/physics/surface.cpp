@@ -103,8 +103,8 @@ double facetRadiance(const SurfaceModel& model, const Vec3& m, const Vec3& l, co
                 // integrates to 1 (the same form as eq. 3).
                 const double s2 = model.brdf.sigma * model.brdf.sigma;
                 const double tan2 = (1 - cosAlpha * cosAlpha) / (cosAlpha * cosAlpha);
-                const double d = std::exp(-tan2 / (2 * s2)) /
-                                 (2 * std::numbers::pi * s2 * cosAlpha * cosAlpha * cosAlpha);
+                const double d =
+                    std::exp(-tan2 / (2 * s2)) / (2 * std::numbers::pi * s2 * cosAlpha * cosAlpha * cosAlpha);
                 const double f = fresnelFromCos(model.brdf.ior, dot(l, h)).unpolarised();
                 // pi * f_r * cos i with f_r = F D / (4 cos i cos r)
                 value += model.brdf.ks * std::numbers::pi * f * d / (4 * cosR);

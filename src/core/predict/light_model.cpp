@@ -33,10 +33,14 @@ GridCell gridCell(int grid, DiskPoint p) {
 
 const char* lightBasisName(LightBasis basis) {
     switch (basis) {
-        case LightBasis::Ptm: return "ptm";
-        case LightBasis::Hsh: return "hsh";
-        case LightBasis::Rbf: return "rbf";
-        case LightBasis::Bilinear: return "bln";
+        case LightBasis::Ptm:
+            return "ptm";
+        case LightBasis::Hsh:
+            return "hsh";
+        case LightBasis::Rbf:
+            return "rbf";
+        case LightBasis::Bilinear:
+            return "bln";
     }
     return "?";
 }
@@ -63,9 +67,10 @@ std::optional<Result<LightModelOptions>> lightModelNamed(const std::string& name
             const long n = std::strtol(number.c_str(), &end, 10);
             const bool hsh = b == LightBasis::Hsh;
             if (*end != '\0' || !(hsh ? n == 2 || n == 3 : n >= 1 && n <= LightModel::kMaxPlanes))
-                return Result<LightModelOptions>(Error{
-                    "'" + name + "': " + (hsh ? std::string("hsh2 or hsh3 (the order)")
-                                              : prefix + "N with N planes from 1 to " + std::to_string(LightModel::kMaxPlanes))});
+                return Result<LightModelOptions>(
+                    Error{"'" + name + "': " +
+                          (hsh ? std::string("hsh2 or hsh3 (the order)")
+                               : prefix + "N with N planes from 1 to " + std::to_string(LightModel::kMaxPlanes))});
             (hsh ? o.order : o.planes) = static_cast<int>(n);
         }
         return Result<LightModelOptions>(o);
@@ -209,7 +214,8 @@ LightModelFixed lightModelFixed(const LightModel& model, Direction light) {
     double bound = 0;  // the largest |S_c| (codes at most maxCode)
     for (std::size_t c = 0; c < C; ++c) {
         double sum = 0;
-        for (std::size_t p = 0; p < P; ++p) sum += model.maxCode(static_cast<int>(p)) * std::abs(folded.weights[p * C + c]);
+        for (std::size_t p = 0; p < P; ++p)
+            sum += model.maxCode(static_cast<int>(p)) * std::abs(folded.weights[p * C + c]);
         bound = std::max(bound, std::abs(folded.offset[c]) + sum);
     }
     // The most fraction bits that keep |S_c| below 2^23 (exact in a float, fused or not).
@@ -236,7 +242,8 @@ std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightMod
     for (std::size_t c = 0; c < C; ++c) {
         std::int64_t sum = fixed.offset[c];
         for (std::size_t p = 0; p < P; ++p) sum += std::int64_t{bytes[p]} * fixed.weights[p * C + c];
-        value[c] = static_cast<std::int64_t>(std::clamp(std::floor(static_cast<double>(sum) * fixed.scale), -0x1p40, 0x1p40));
+        value[c] =
+            static_cast<std::int64_t>(std::clamp(std::floor(static_cast<double>(sum) * fixed.scale), -0x1p40, 0x1p40));
     }
     std::array<std::int64_t, 3> out{};
     const std::size_t outputs = model.albedo.empty() ? C : 3;
@@ -253,7 +260,8 @@ std::vector<Image> lightModelImages(const LightModel& m) {
     for (std::size_t first = 0; first < wide; first += 3) {
         Image image(m.width, m.height, 3);
         for (std::size_t i = 0; i < m.texels(); ++i)
-            for (std::size_t c = 0; c < 3 && first + c < wide; ++c) image.samples[i * 3 + c] = m.coefficients[i * P + first + c] / 255.f;
+            for (std::size_t c = 0; c < 3 && first + c < wide; ++c)
+                image.samples[i * 3 + c] = m.coefficients[i * P + first + c] / 255.f;
         images.push_back(std::move(image));
     }
     for (std::size_t first = wide; first < P; first += 6) {
@@ -261,14 +269,16 @@ std::vector<Image> lightModelImages(const LightModel& m) {
         for (std::size_t i = 0; i < m.texels(); ++i)
             for (std::size_t c = 0; c < 3; ++c) {
                 const std::size_t high = first + 2 * c, low = high + 1;
-                const int code = (high < P ? m.coefficients[i * P + high] : 0) * 16 + (low < P ? m.coefficients[i * P + low] : 0);
+                const int code =
+                    (high < P ? m.coefficients[i * P + high] : 0) * 16 + (low < P ? m.coefficients[i * P + low] : 0);
                 image.samples[i * 3 + c] = static_cast<float>(code) / 255.f;
             }
         images.push_back(std::move(image));
     }
     if (!m.albedo.empty()) {
         Image image(m.width, m.height, 3);
-        std::transform(m.albedo.begin(), m.albedo.end(), image.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
+        std::transform(m.albedo.begin(), m.albedo.end(), image.samples.begin(),
+                       [](std::uint8_t b) { return b / 255.f; });
         images.push_back(std::move(image));
     }
     return images;

@@ -51,13 +51,13 @@ struct LightModel {
 
     LightBasis basis = LightBasis::Ptm;
     int width = 0, height = 0;
-    int planes = 0;    ///< P, 1..kMaxPlanes
+    int planes = 0;  ///< P, 1..kMaxPlanes
     /// The leading planes stored with 8 bits (codes 0..255); the others, the components of
     /// least variance, with 4 bits (codes 0..15, two to a byte in files and textures).
     int wide = 0;
-    int channels = 1;  ///< output channels: 1 (grey) or 3
-    int order = 0;     ///< hsh: 2 or 3
-    std::vector<float> scale, bias;        ///< per plane: v_p = (byte_p - bias_p) * scale_p, scale > 0
+    int channels = 1;                        ///< output channels: 1 (grey) or 3
+    int order = 0;                           ///< hsh: 2 or 3
+    std::vector<float> scale, bias;          ///< per plane: v_p = (byte_p - bias_p) * scale_p, scale > 0
     std::vector<std::uint8_t> coefficients;  ///< P codes per texel (one byte each in memory), rows top first
     std::vector<std::uint8_t> albedo;        ///< LRGB layout: RGB bytes per texel; empty otherwise
 
@@ -98,7 +98,7 @@ std::vector<double> basisTerms(LightBasis basis, int order, Direction light);
 /// L_c = floor(S_c * scale) = the channel's value before the albedo, times kWeightUnit; a
 /// channel is clamp(a_c L_c, 0, 255 kWeightUnit) with a_c the albedo byte (255 without).
 struct LightModelFixed {
-    std::vector<std::int32_t> weights;      ///< [p * channels + c]
+    std::vector<std::int32_t> weights;  ///< [p * channels + c]
     std::array<std::int32_t, 3> offset{};
     float scale = 1;  ///< a power of two
 };
@@ -118,12 +118,12 @@ LightModel lightModelFromPtm(const Ptm& ptm);
 
 struct LightModelOptions {
     LightBasis basis = LightBasis::Rbf;
-    int order = 3;    ///< hsh
-    int planes = 9;   ///< rbf, bln: principal components kept (8-bit); with `packed`, bytes per texel
+    int order = 3;   ///< hsh
+    int planes = 9;  ///< rbf, bln: principal components kept (8-bit); with `packed`, bytes per texel
     /// rbf, bln: as many components as `planes` bytes hold, the leading ones 8-bit, the rest
     /// 4-bit, split where the training images are reconstructed best.
     bool packed = false;
-    int grid = 8;     ///< bln: grid nodes per side over the light disk
+    int grid = 8;        ///< bln: grid nodes per side over the light disk
     bool colour = true;  ///< rbf, bln: predict RGB (the images' colour); else grey
     int threads = 0;
 };

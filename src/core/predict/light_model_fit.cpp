@@ -85,7 +85,8 @@ Result<LightModel> fitFixedBasis(const std::vector<const Image*>& images, const 
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(normal);
     const double top = svd.singularValues()(0);
     if (!(top > 0) || !std::isfinite(top))
-        return Error{what + ": the light directions determine none of the " + std::string(lightBasisName(o.basis)) + " terms"};
+        return Error{what + ": the light directions determine none of the " + std::string(lightBasisName(o.basis)) +
+                     " terms"};
     const double condition = top / std::max(svd.singularValues()(K - 1), 1e-300);
     if (condition > 1e3) normal += Eigen::MatrixXd::Identity(K, K) * (top * 1e-3);
     const Eigen::MatrixXd solve = normal.inverse() * A.transpose();  // K x lights
@@ -212,15 +213,16 @@ std::vector<float> resampleOnGrid(const LightModel& rbf, int grid) {
     const double k = 0.1;
     const Eigen::MatrixXd prior = B * T;
     const Eigen::MatrixXd V =
-        prior + (A.transpose() * A + k * Eigen::MatrixXd::Identity(nodes, nodes)).ldlt().solve(A.transpose() * (T - A * prior));
+        prior +
+        (A.transpose() * A + k * Eigen::MatrixXd::Identity(nodes, nodes)).ldlt().solve(A.transpose() * (T - A * prior));
     std::vector<float> out(nodes * row);
     for (std::size_t i = 0; i < nodes; ++i)
         for (std::size_t c = 0; c < row; ++c) out[i * row + c] = static_cast<float>(V(i, c));
     return out;
 }
 
-Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::vector<Direction>& lights, const Mask& mask,
-                          const LightModelOptions& o, const std::string& what) {
+Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
+                          const Mask& mask, const LightModelOptions& o, const std::string& what) {
     const Image& first = *images.front();
     LightModel m;
     m.basis = o.basis;
@@ -234,8 +236,9 @@ Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::ve
                      std::to_string(LightModel::kMaxPlanes)};
     // Packed: up to two components per byte; the split between 8-bit and 4-bit ones is chosen
     // below, from the components' variances and quantisation errors.
-    const std::size_t most = o.packed ? std::min<std::size_t>(2 * static_cast<std::size_t>(o.planes), LightModel::kMaxPlanes)
-                                      : static_cast<std::size_t>(o.planes);
+    const std::size_t most = o.packed
+                                 ? std::min<std::size_t>(2 * static_cast<std::size_t>(o.planes), LightModel::kMaxPlanes)
+                                 : static_cast<std::size_t>(o.planes);
     m.planes = m.wide = static_cast<int>(std::min(most, D));
     const auto P = static_cast<std::size_t>(m.planes);
     auto value = [&](std::size_t texel, std::size_t d) -> double {
@@ -315,7 +318,8 @@ Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::ve
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t c = 0; c < C; ++c) {
             m.table[i * row + c] = static_cast<float>(mean(i * C + c));
-            for (std::size_t p = 0; p < kept; ++p) m.table[i * row + (1 + p) * C + c] = static_cast<float>(E(i * C + c, p));
+            for (std::size_t p = 0; p < kept; ++p)
+                m.table[i * row + (1 + p) * C + c] = static_cast<float>(E(i * C + c, p));
         }
     // sigma: the multiple of the lights' median spacing that predicts each light's row best
     // from the others.
@@ -326,7 +330,8 @@ Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::ve
         for (std::size_t j = 0; j < n; ++j) {
             if (j == i) continue;
             const Vec3 b = toVector(lights[j]);
-            const double d = std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
+            const double d =
+                std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
             if (d > 1e-9) nearest = std::min(nearest, d);
         }
         if (std::isfinite(nearest)) spacing.push_back(nearest);
@@ -358,7 +363,8 @@ Result<LightModel> fitLightModel(const std::vector<const Image*>& images, const 
     for (const Image* image : images)
         BTFLUT_CHECK(image->width == images.front()->width && image->height == images.front()->height &&
                      image->channels == images.front()->channels);
-    if (options.basis == LightBasis::Ptm || options.basis == LightBasis::Hsh) return fitFixedBasis(images, lights, options, what);
+    if (options.basis == LightBasis::Ptm || options.basis == LightBasis::Hsh)
+        return fitFixedBasis(images, lights, options, what);
     return fitPca(images, lights, mask, options, what);
 }
 

@@ -28,8 +28,7 @@ Image Ptm::render(Direction light) const {
         for (int k = 0; k < kTerms; ++k)
             luminance += (coefficients[i * kTerms + k] - double{bias[k]}) * scale[k] * t[k];
         for (int c = 0; c < 3; ++c)
-            out.samples[i * 3 + c] =
-                static_cast<float>(std::clamp(albedo[i * 3 + c] / 255.0 * luminance, 0.0, 1.0));
+            out.samples[i * 3 + c] = static_cast<float>(std::clamp(albedo[i * 3 + c] / 255.0 * luminance, 0.0, 1.0));
     }
     return out;
 }
@@ -48,7 +47,8 @@ PtmWeights ptmWeights(const std::array<float, Ptm::kTerms>& scale, const std::ar
 }
 
 PtmFitter::PtmFitter(int width, int height)
-    : m_width(width), m_height(height),
+    : m_width(width),
+      m_height(height),
       m_moments(static_cast<std::size_t>(width) * height * Ptm::kTerms),
       m_colour(static_cast<std::size_t>(width) * height * 3) {}
 
@@ -63,7 +63,8 @@ void PtmFitter::add(const Image& image, Direction light) {
     for (std::size_t i = 0; i < image.pixelCount(); ++i) {
         const float grey = image.grey(i);
         for (int k = 0; k < Ptm::kTerms; ++k) m_moments[i * Ptm::kTerms + k] += tf[k] * grey;
-        for (int c = 0; c < 3; ++c) m_colour[i * 3 + c] += image.samples[i * image.channels + (image.channels == 3 ? c : 0)];
+        for (int c = 0; c < 3; ++c)
+            m_colour[i * 3 + c] += image.samples[i * image.channels + (image.channels == 3 ? c : 0)];
     }
 }
 
@@ -73,8 +74,10 @@ Result<Ptm> PtmFitter::finish(const std::string& what) const {
     Eigen::JacobiSVD<Eigen::Matrix<double, Ptm::kTerms, Ptm::kTerms>> svd(normal);
     const double condition = svd.singularValues()(0) / svd.singularValues()(Ptm::kTerms - 1);
     if (m_images < Ptm::kTerms || !std::isfinite(condition) || condition > 1e8)
-        return Error{what + ": a PTM needs at least six light directions spread enough to fit u^2, v^2, uv, "
-                            "u, v and 1; these " + std::to_string(m_images) + " do not determine them"};
+        return Error{what +
+                     ": a PTM needs at least six light directions spread enough to fit u^2, v^2, uv, "
+                     "u, v and 1; these " +
+                     std::to_string(m_images) + " do not determine them"};
     const Eigen::Matrix<double, Ptm::kTerms, Ptm::kTerms> inverse = normal.inverse();
 
     // Least squares on the grey value; the albedo carries the texel's colour, scaled so its
@@ -108,8 +111,8 @@ Result<Ptm> PtmFitter::finish(const std::string& what) const {
     ptm.coefficients.resize(texels * Ptm::kTerms);
     for (std::size_t i = 0; i < texels * Ptm::kTerms; ++i) {
         const int k = static_cast<int>(i % Ptm::kTerms);
-        ptm.coefficients[i] = static_cast<std::uint8_t>(
-            std::clamp<long>(std::lround(fitted[i] / ptm.scale[k] + ptm.bias[k]), 0, 255));
+        ptm.coefficients[i] =
+            static_cast<std::uint8_t>(std::clamp<long>(std::lround(fitted[i] / ptm.scale[k] + ptm.bias[k]), 0, 255));
     }
     return ptm;
 }

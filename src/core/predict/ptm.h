@@ -72,8 +72,8 @@ private:
     mutable std::mutex m_mutex;
     std::size_t m_images = 0;
     std::array<double, Ptm::kTerms * Ptm::kTerms> m_normal{};  ///< sum of t t^T (same for all texels)
-    std::vector<float> m_moments;  ///< per texel: sum of t * grey (kTerms)
-    std::vector<float> m_colour;   ///< per texel: sum of R, G, B
+    std::vector<float> m_moments;                              ///< per texel: sum of t * grey (kTerms)
+    std::vector<float> m_colour;                               ///< per texel: sum of R, G, B
 };
 
 }  // namespace btflut

@@ -26,7 +26,8 @@ Bytes encodePtmFile(const Ptm& ptm) {
         bias[k] = std::lround(ptm.bias[k]);
         shift[k] = static_cast<double>(bias[k]) - ptm.bias[k];
     }
-    std::string header = "PTM_1.2\nPTM_FORMAT_LRGB\n" + std::to_string(ptm.width) + "\n" + std::to_string(ptm.height) + "\n";
+    std::string header =
+        "PTM_1.2\nPTM_FORMAT_LRGB\n" + std::to_string(ptm.width) + "\n" + std::to_string(ptm.height) + "\n";
     char number[32];
     for (int k = 0; k < Ptm::kTerms; ++k) {
         std::snprintf(number, sizeof number, "%.9g%s", 255.0 * ptm.scale[k], k + 1 < Ptm::kTerms ? " " : "\n");
@@ -51,7 +52,8 @@ Result<Ptm> decodePtmFile(const Bytes& bytes, const std::string& name) {
         while (pos < bytes.size() && std::isspace(bytes[pos])) ++pos;
         const std::size_t start = pos;
         while (pos < bytes.size() && !std::isspace(bytes[pos]) && pos - start < 64) ++pos;
-        return std::string(bytes.begin() + static_cast<std::ptrdiff_t>(start), bytes.begin() + static_cast<std::ptrdiff_t>(pos));
+        return std::string(bytes.begin() + static_cast<std::ptrdiff_t>(start),
+                           bytes.begin() + static_cast<std::ptrdiff_t>(pos));
     };
     if (word() != "PTM_1.2") return fail("not a PTM 1.2 file");
     if (const std::string format = word(); format != "PTM_FORMAT_LRGB")
@@ -85,13 +87,15 @@ Result<Ptm> decodePtmFile(const Bytes& bytes, const std::string& name) {
     ++pos;
     const std::size_t texels = ptm.texels();
     if (bytes.size() - pos != texels * 9)
-        return fail("holds " + std::to_string(bytes.size() - pos) + " bytes of data, not the " + std::to_string(texels * 9) +
-                    " a " + std::to_string(ptm.width) + "x" + std::to_string(ptm.height) + " LRGB PTM needs");
+        return fail("holds " + std::to_string(bytes.size() - pos) + " bytes of data, not the " +
+                    std::to_string(texels * 9) + " a " + std::to_string(ptm.width) + "x" + std::to_string(ptm.height) +
+                    " LRGB PTM needs");
     auto flipped = [&](std::size_t offset, std::size_t record) {
         std::vector<std::uint8_t> out(texels * record);
         const std::size_t rowBytes = static_cast<std::size_t>(ptm.width) * record;
         for (int row = 0; row < ptm.height; ++row)
-            std::copy_n(bytes.begin() + static_cast<std::ptrdiff_t>(offset + static_cast<std::size_t>(ptm.height - 1 - row) * rowBytes),
+            std::copy_n(bytes.begin() + static_cast<std::ptrdiff_t>(
+                                            offset + static_cast<std::size_t>(ptm.height - 1 - row) * rowBytes),
                         rowBytes, out.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(row) * rowBytes));
         return out;
     };

@@ -59,8 +59,8 @@ Result<Regions> segmentRegions(const Responses& responses, const Mask& mask, int
         if (mask.inside[i]) inside.push_back(i);
     const std::size_t minimum = std::max<std::size_t>(64, inside.size() / 100);
     if (inside.size() < minimum * static_cast<std::size_t>(count))
-        return Error{what + ": " + std::to_string(inside.size()) + " sample pixels are too few for " + std::to_string(count) +
-                     " regions (each needs at least " + std::to_string(minimum) + ")"};
+        return Error{what + ": " + std::to_string(inside.size()) + " sample pixels are too few for " +
+                     std::to_string(count) + " regions (each needs at least " + std::to_string(minimum) + ")"};
     // Centres from at most 65536 sample texels (a fixed seed: baking is deterministic).
     std::mt19937_64 rng(20261126);
     std::vector<std::size_t> fit = inside;
@@ -79,11 +79,13 @@ Result<Regions> segmentRegions(const Responses& responses, const Mask& mask, int
         std::copy_n(&points[pick * d], d, &centres[static_cast<std::size_t>(c) * d]);
         double total = 0;
         for (std::size_t i = 0; i < fit.size(); ++i) {
-            nearest[i] = std::min(nearest[i], squaredDistance(&points[i * d], &centres[static_cast<std::size_t>(c) * d], d));
+            nearest[i] =
+                std::min(nearest[i], squaredDistance(&points[i * d], &centres[static_cast<std::size_t>(c) * d], d));
             total += nearest[i];
         }
         double target = std::uniform_real_distribution<double>(0, total)(rng);
-        for (pick = 0; pick + 1 < fit.size() && (target -= nearest[pick]) > 0; ++pick) {}
+        for (pick = 0; pick + 1 < fit.size() && (target -= nearest[pick]) > 0; ++pick) {
+        }
     }
     auto assign = [&](const float* x) {
         int best = 0;
@@ -113,7 +115,8 @@ Result<Regions> segmentRegions(const Responses& responses, const Mask& mask, int
             if (members[static_cast<std::size_t>(c)])  // an emptied centre stays where it was
                 for (int k = 0; k < d; ++k)
                     centres[static_cast<std::size_t>(c) * d + k] =
-                        static_cast<float>(sum[static_cast<std::size_t>(c) * d + k] / static_cast<double>(members[static_cast<std::size_t>(c)]));
+                        static_cast<float>(sum[static_cast<std::size_t>(c) * d + k] /
+                                           static_cast<double>(members[static_cast<std::size_t>(c)]));
     }
     Regions regions{count, std::vector<std::uint8_t>(texels)};
     std::vector<std::size_t> members(static_cast<std::size_t>(count), 0);
@@ -132,7 +135,8 @@ Result<Regions> segmentRegions(const Responses& responses, const Mask& mask, int
     return regions;
 }
 
-Result<Regions> regionsFromLabels(const Image& labels, const Mask& mask, int width, int height, const std::string& path) {
+Result<Regions> regionsFromLabels(const Image& labels, const Mask& mask, int width, int height,
+                                  const std::string& path) {
     if (labels.width != width || labels.height != height)
         return Error{path + ": label image is " + std::to_string(labels.width) + "x" + std::to_string(labels.height) +
                      " but the images are " + std::to_string(width) + "x" + std::to_string(height)};
@@ -158,7 +162,8 @@ Result<Regions> regionsFromLabels(const Image& labels, const Mask& mask, int wid
     }
     for (int c = 0; c < count; ++c)
         if (members[static_cast<std::size_t>(c)] == 0)
-            return Error{path + ": region " + std::to_string(c) + " of the label image has no sample pixels (inside the mask)"};
+            return Error{path + ": region " + std::to_string(c) +
+                         " of the label image has no sample pixels (inside the mask)"};
     return regions;
 }
 
@@ -169,7 +174,8 @@ void AlbedoAccumulator::add(const Image& image) {
     BTFLUT_CHECK(image.width == m_width && image.height == m_height);
     std::lock_guard lock(m_mutex);
     for (std::size_t i = 0; i < image.pixelCount(); ++i)
-        for (int c = 0; c < 3; ++c) m_sum[i * 3 + c] += image.samples[i * image.channels + (image.channels == 3 ? c : 0)];
+        for (int c = 0; c < 3; ++c)
+            m_sum[i * 3 + c] += image.samples[i * image.channels + (image.channels == 3 ? c : 0)];
 }
 
 Image AlbedoAccumulator::finish() const {

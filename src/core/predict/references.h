@@ -51,7 +51,8 @@ Result<Regions> segmentRegions(const Responses& responses, const Mask& mask, int
 
 /// Regions from a label image: each distinct grey value is a region, in increasing order.
 /// It must be width x height; refuses more than 255 regions and regions without sample texels.
-Result<Regions> regionsFromLabels(const Image& labels, const Mask& mask, int width, int height, const std::string& path);
+Result<Regions> regionsFromLabels(const Image& labels, const Mask& mask, int width, int height,
+                                  const std::string& path);
 
 /// Sums RGB per texel over images (any thread), for an albedo: the mean colour scaled so its
 /// largest channel is 1 (only its chroma is used).

@@ -15,14 +15,16 @@ namespace {
 // in the 3D texture's order, [region][j][i][entry][channel].
 std::vector<std::uint16_t> matchGridTexels(const LutBank& bank, const std::vector<std::uint16_t>& grid) {
     const auto g = static_cast<std::size_t>(bank.gridSize), entries = static_cast<std::size_t>(bank.entries),
-               channels = static_cast<std::size_t>(bank.channels()), regions = static_cast<std::size_t>(bank.blend.regions);
+               channels = static_cast<std::size_t>(bank.channels()),
+               regions = static_cast<std::size_t>(bank.blend.regions);
     BTFLUT_CHECK(grid.size() == g * g * regions * channels * entries);
     std::vector<std::uint16_t> texels(grid.size());
     std::size_t at = 0;
     for (std::size_t r = 0; r < regions; ++r)
         for (std::size_t cell = 0; cell < g * g; ++cell)
             for (std::size_t k = 0; k < entries; ++k)
-                for (std::size_t c = 0; c < channels; ++c) texels[at++] = grid[((cell * regions + r) * channels + c) * entries + k];
+                for (std::size_t c = 0; c < channels; ++c)
+                    texels[at++] = grid[((cell * regions + r) * channels + c) * entries + k];
     return texels;
 }
 
@@ -48,8 +50,11 @@ std::vector<float> modelWeightGrid(const LightModel& m, int& size) {
     std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * row);
     for (int j = 0; j < size; ++j)
         for (int i = 0; i < size; ++i) {
-            const LightModel::Weights w = m.weightsAt(fromDisk(diskGridPoint(i, j, size)));  // beyond the rim: the horizon's
-            float* node = &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * row];
+            const LightModel::Weights w =
+                m.weightsAt(fromDisk(diskGridPoint(i, j, size)));  // beyond the rim: the horizon's
+            float* node =
+                &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) *
+                      row];
             std::copy_n(w.offset.begin(), C, node);
             std::copy(w.weight.begin(), w.weight.end(), node + C);
         }
@@ -64,7 +69,8 @@ std::vector<Image> fourToAnImage(int width, int height, std::size_t count, Value
     for (std::size_t first = 0; first < count; first += 4) {
         Image image(width, height, 4);
         for (std::size_t i = 0; i < texels; ++i)
-            for (std::size_t c = 0; c < 4 && first + c < count; ++c) image.samples[i * 4 + c] = static_cast<float>(value(i, first + c)) / 255.f;
+            for (std::size_t c = 0; c < 4 && first + c < count; ++c)
+                image.samples[i * 4 + c] = static_cast<float>(value(i, first + c)) / 255.f;
         images.push_back(std::move(image));
     }
     return images;
@@ -76,7 +82,8 @@ Image rgba(const Image& image) {
     const auto channels = static_cast<std::size_t>(image.channels);
     for (std::size_t i = 0; i < image.pixelCount(); ++i) {
         for (std::size_t c = 0; c < 3; ++c)
-            out.samples[i * 4 + c] = std::round(image.samples[i * channels + std::min(c, channels - 1)] * 255.f) / 255.f;
+            out.samples[i * 4 + c] =
+                std::round(image.samples[i * channels + std::min(c, channels - 1)] * 255.f) / 255.f;
         out.samples[i * 4 + 3] = 1.f;
     }
     return out;
@@ -100,7 +107,8 @@ void setModel(EngineMaterial& out, const LightModel& m) {
     });
     if (!m.albedo.empty()) {
         out.albedo = Image(m.width, m.height, 3);
-        std::transform(m.albedo.begin(), m.albedo.end(), out.albedo.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
+        std::transform(m.albedo.begin(), m.albedo.end(), out.albedo.samples.begin(),
+                       [](std::uint8_t b) { return b / 255.f; });
         out.albedoMultiplies = true;
     }
     if (m.basis == LightBasis::Rbf || m.basis == LightBasis::Bilinear) {
@@ -113,7 +121,8 @@ void setModel(EngineMaterial& out, const LightModel& m) {
 }  // namespace
 
 Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& name) {
-    if (bank.reference.samples.empty()) return Error{name + ": the bank holds no reference image (baked with --no-reference)"};
+    if (bank.reference.samples.empty())
+        return Error{name + ": the bank holds no reference image (baked with --no-reference)"};
     EngineMaterial out;
     out.colour = bank.colour;
     out.entries = bank.entries;
@@ -154,7 +163,8 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     if (bank.colour == ColourMode::Lrgb) out.albedo = blend.albedo;
     out.weights = out.planes;
     out.weightGridSize = kEngineWeightGrid;
-    out.weightGrid = inLayers(referenceWeightGrid(bank, kEngineWeightGrid), static_cast<std::size_t>(out.weights), kEngineWeightGrid);
+    out.weightGrid = inLayers(referenceWeightGrid(bank, kEngineWeightGrid), static_cast<std::size_t>(out.weights),
+                              kEngineWeightGrid);
     return out;
 }
 

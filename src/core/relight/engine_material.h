@@ -35,9 +35,9 @@ struct EngineMaterial {
     // The LUT grid (every kind).
     int entries = 0, gridSize = 0, blocks = 1, lutChannels = 1;
     std::vector<std::uint16_t> lutTexels;  ///< [block][j][i][entry][channel]
-    float inputCode = 0;   ///< one code of the LUTs' input
-    float outputCode = 0;  ///< one code of the values they map to
-    int outputChannels = 1;  ///< of the relit image: 1 (grey) or 3
+    float inputCode = 0;                   ///< one code of the LUTs' input
+    float outputCode = 0;                  ///< one code of the values they map to
+    int outputChannels = 1;                ///< of the relit image: 1 (grey) or 3
 
     // Luts: the reference, relit by the LUTs directly.
     Image reference;
@@ -50,11 +50,12 @@ struct EngineMaterial {
     std::vector<float> scale, bias;      ///< Model, per plane, on the exported codes
     std::vector<Image> images;           ///< RGBA8: the planes four to an image, or one reference each
     Image albedo;                        ///< RGB8, empty when none
-    bool albedoMultiplies = false;       ///< Model: the albedo times the value; References (lrgb): the chroma after the match
-    int codes = 255;                     ///< codes of a prediction: 255, or 765 (the grey of RGB8)
-    int weightGridSize = 0, weights = 0; ///< 0: the weights in closed form (ptm, hsh)
-    std::vector<float> weightGrid;       ///< [layer][j][i][4], ceil(weights / 4) layers
-    Image labels;                        ///< 8-bit region per texel, empty with one region
+    bool albedoMultiplies =
+        false;        ///< Model: the albedo times the value; References (lrgb): the chroma after the match
+    int codes = 255;  ///< codes of a prediction: 255, or 765 (the grey of RGB8)
+    int weightGridSize = 0, weights = 0;  ///< 0: the weights in closed form (ptm, hsh)
+    std::vector<float> weightGrid;        ///< [layer][j][i][4], ceil(weights / 4) layers
+    Image labels;                         ///< 8-bit region per texel, empty with one region
     int regions = 1;
 
     int weightLayers() const { return (weights + 3) / 4; }

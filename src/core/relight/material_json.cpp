@@ -32,19 +32,21 @@ nlohmann::json predictorJson(const EngineMaterial& m) {
         p["scale"] = m.scale;
         p["bias"] = m.bias;
     }
-    if (albedo)
-        p["albedo"] = {{"file", "albedo.png"}, {"use", m.albedoMultiplies ? "multiplies" : "chroma"}};
-    if (labels) p["labels"] = {{"file", "labels.png"}, {"texture", "R8, nearest: each texel's region (value = region)"}};
+    if (albedo) p["albedo"] = {{"file", "albedo.png"}, {"use", m.albedoMultiplies ? "multiplies" : "chroma"}};
+    if (labels)
+        p["labels"] = {{"file", "labels.png"}, {"texture", "R8, nearest: each texel's region (value = region)"}};
     if (m.weights > 0)
-        p["weights"] = {{"file", "weights.bin"},
-                        {"format", "float32, little-endian, [layer][j][i][4]: a 2D array texture of RGBA32F layers"},
-                        {"grid_size", m.weightGridSize},
-                        {"count", m.weights},
-                        {"layers", m.weightLayers()},
-                        {"row", model ? "the channels' offsets, then each plane's channel weights ((1 + planes) x channels)"
-                                      : "one weight per reference"},
-                        {"grid_mapping", "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise; read "
-                                         "bilinearly between nodes (btflutWeightLayer)"}};
+        p["weights"] = {
+            {"file", "weights.bin"},
+            {"format", "float32, little-endian, [layer][j][i][4]: a 2D array texture of RGBA32F layers"},
+            {"grid_size", m.weightGridSize},
+            {"count", m.weights},
+            {"layers", m.weightLayers()},
+            {"row", model ? "the channels' offsets, then each plane's channel weights ((1 + planes) x channels)"
+                          : "one weight per reference"},
+            {"grid_mapping",
+             "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise; read "
+             "bilinearly between nodes (btflutWeightLayer)"}};
     else
         p["weights"] = nullptr;  // ptm, hsh: closed form in btflut.glsl
     return p;
@@ -55,35 +57,39 @@ nlohmann::json predictorJson(const EngineMaterial& m) {
 nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
     const bool predictor = m.kind != EngineMaterial::Kind::Luts;
     const int g = m.gridSize;
-    nlohmann::json side{
-        // Banks of LUTs keep version 1, so that loaders written for it still read them.
-        {"format", "btflut-material"},
-        {"version", predictor ? 2 : 1},
-        {"kind", predictor ? (m.kind == EngineMaterial::Kind::Model ? "model" : "references") : "luts"},
-        {"shader", "btflut.glsl"},
-        {"shader_version", predictor ? 2 : 1},
-        {"reference", {{"file", "reference.png"},
-                       {"width", b.reference.width},
-                       {"height", b.reference.height},
-                       {"channels", b.reference.channels},
-                       {"bit_depth", b.reference.bitDepth},
-                       {"name", b.referenceName},
-                       {"light", directionJson(b.referenceLight)},
-                       {"view", directionJson(b.referenceView)}}},
-        {"luts", {{"file", "luts.png"},
-                  {"texture", "3D, width entries, height grid_size, depth grid_size x " + std::string(predictor ? "regions" : "layers") +
-                                  "; 16-bit unorm, " + (m.lutChannels == 3 ? "RGB (one LUT per colour channel)" : "one channel")},
-                  {"entries", m.entries},
-                  {"grid_size", g},
-                  {"layers", predictor ? 1 : m.blocks},
-                  {"row_of_node", predictor ? "(region * grid_size + j) * grid_size + i" : "(layer * grid_size + j) * grid_size + i"}}},
-        {"colour", colourName(b.colour)},
-        {"lut_input_code", m.inputCode},
-        {"lut_output_code", m.outputCode},
-        {"grid_mapping", "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise with j; a direction "
+    nlohmann::json side{// Banks of LUTs keep version 1, so that loaders written for it still read them.
+                        {"format", "btflut-material"},
+                        {"version", predictor ? 2 : 1},
+                        {"kind", predictor ? (m.kind == EngineMaterial::Kind::Model ? "model" : "references") : "luts"},
+                        {"shader", "btflut.glsl"},
+                        {"shader_version", predictor ? 2 : 1},
+                        {"reference",
+                         {{"file", "reference.png"},
+                          {"width", b.reference.width},
+                          {"height", b.reference.height},
+                          {"channels", b.reference.channels},
+                          {"bit_depth", b.reference.bitDepth},
+                          {"name", b.referenceName},
+                          {"light", directionJson(b.referenceLight)},
+                          {"view", directionJson(b.referenceView)}}},
+                        {"luts",
+                         {{"file", "luts.png"},
+                          {"texture", "3D, width entries, height grid_size, depth grid_size x " +
+                                          std::string(predictor ? "regions" : "layers") + "; 16-bit unorm, " +
+                                          (m.lutChannels == 3 ? "RGB (one LUT per colour channel)" : "one channel")},
+                          {"entries", m.entries},
+                          {"grid_size", g},
+                          {"layers", predictor ? 1 : m.blocks},
+                          {"row_of_node", predictor ? "(region * grid_size + j) * grid_size + i"
+                                                    : "(layer * grid_size + j) * grid_size + i"}}},
+                        {"colour", colourName(b.colour)},
+                        {"lut_input_code", m.inputCode},
+                        {"lut_output_code", m.outputCode},
+                        {"grid_mapping",
+                         "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise with j; a direction "
                          "(theta, phi) maps to sqrt(2) sin(theta / 2) (cos phi, sin phi); z = surface normal, x = "
                          "texture +u (image right), y = texture +v (image up)"},
-        {"views", nlohmann::json::array()}};
+                        {"views", nlohmann::json::array()}};
     if (predictor) side["luts"]["regions"] = m.regions;
     for (const ViewLayer& layer : b.layers) {
         nlohmann::json provenance = nlohmann::json::array();
@@ -94,7 +100,8 @@ nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
             light["modelled"] = node.modelled;
             lights.push_back(light);
         }
-        side["views"].push_back({{"view", directionJson(layer.view)}, {"node_provenance", provenance}, {"lights", lights}});
+        side["views"].push_back(
+            {{"view", directionJson(layer.view)}, {"node_provenance", provenance}, {"lights", lights}});
     }
     if (!b.modelFill.empty()) side["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
 

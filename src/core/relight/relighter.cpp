@@ -50,13 +50,15 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
         corrections->blend.quantiles = bank.entries;  // its node values: regions x channels x entries
         const auto samples = static_cast<std::size_t>(blend.quantiles);
         for (const ViewLayer& layer : bank.layers) {
-            ViewLayer copy{layer.view, layer.nodes, {}, {}, {}, {}, layer.lights, layer.modelLights, layer.measuredNodes, true};
+            ViewLayer copy{layer.view,        layer.nodes,         {},  {}, {}, {}, layer.lights,
+                           layer.modelLights, layer.measuredNodes, true};
             for (std::size_t n = 0; n < layer.nodes.size(); ++n) {
                 const RelightFrame f = predictionFrame(layer.nodes[n].light);
                 const float* targets = &layer.nodeLuts[n * bank.nodeLength()];
                 for (std::size_t r = 0; r < m_regionTexels.size(); ++r)
                     for (int c = 0; c < m_counted; ++c) {
-                        const float* q = targets + (r * static_cast<std::size_t>(m_counted) + static_cast<std::size_t>(c)) * samples;
+                        const float* q =
+                            targets + (r * static_cast<std::size_t>(m_counted) + static_cast<std::size_t>(c)) * samples;
                         const Lut lut = matchToQuantiles(predictedCounts(f, r, c), std::span(q, samples), bank.entries);
                         copy.nodeLuts.insert(copy.nodeLuts.end(), lut.values.begin(), lut.values.end());
                     }
@@ -98,7 +100,8 @@ std::size_t Relighter::predictedCode(const RelightFrame& frame, std::size_t texe
     } else {
         for (int k = 0; k < frame.count; ++k)
             sum += std::int64_t{frame.weights[static_cast<std::size_t>(k)]} *
-                   m_referenceCodes[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])][texel * m_counted + channel];
+                   m_referenceCodes[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])]
+                                   [texel * m_counted + channel];
     }
     return static_cast<std::size_t>(std::clamp<std::int64_t>((sum + kWeightUnit / 2) / kWeightUnit, 0, m_codes));
 }
@@ -185,7 +188,8 @@ void bakeMatchGrid(LutBank& bank, int threads) {
             // Beyond the horizon: the horizon's LUT (fromDisk pulls the point onto it).
             const RelightFrame f = relighter.frame(fromDisk(bank.gridPoint(i, j)), layer.view);
             for (std::size_t k = 0; k < length; ++k)
-                grid[cell * length + k] = static_cast<std::uint16_t>(std::lround(std::clamp(f.luts[k], 0.f, 1.f) * 65535.0));
+                grid[cell * length + k] =
+                    static_cast<std::uint16_t>(std::lround(std::clamp(f.luts[k], 0.f, 1.f) * 65535.0));
         });
         layer.matchGridLuts = std::move(grid);
     }
@@ -197,10 +201,13 @@ std::vector<float> referenceWeightGrid(const LutBank& bank, int size) {
     std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * k, 0.f);
     for (int j = 0; j < size; ++j)
         for (int i = 0; i < size; ++i) {
-            const Weights w = bank.blend.triangulation.weightsAt(toDisk(fromDisk(diskGridPoint(i, j, size))));  // beyond the rim: on it
-            float* node = &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * k];
+            const Weights w = bank.blend.triangulation.weightsAt(
+                toDisk(fromDisk(diskGridPoint(i, j, size))));  // beyond the rim: on it
+            float* node =
+                &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * k];
             for (int n = 0; n < w.count; ++n)
-                node[static_cast<std::size_t>(w.index[static_cast<std::size_t>(n)])] += static_cast<float>(w.weight[static_cast<std::size_t>(n)]);
+                node[static_cast<std::size_t>(w.index[static_cast<std::size_t>(n)])] +=
+                    static_cast<float>(w.weight[static_cast<std::size_t>(n)]);
         }
     return grid;
 }
@@ -245,13 +252,15 @@ float Relighter::identity(float v) const {
 // the region's target quantile function (with a match below 1, to its blend with the
 // prediction's own).
 std::vector<float> Relighter::lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const {
-    const auto entries = static_cast<std::size_t>(m_bank.entries), samples = static_cast<std::size_t>(m_bank.blend.quantiles);
+    const auto entries = static_cast<std::size_t>(m_bank.entries),
+               samples = static_cast<std::size_t>(m_bank.blend.quantiles);
     const float match = m_bank.blend.match;
     std::vector<float> luts;
     for (std::size_t r = 0; r < m_regionTexels.size(); ++r)
         for (int c = 0; c < m_counted; ++c) {
             const LevelCounts counts = predictedCounts(frame, r, c);
-            const float* q = &quantiles[(r * static_cast<std::size_t>(m_counted) + static_cast<std::size_t>(c)) * samples];
+            const float* q =
+                &quantiles[(r * static_cast<std::size_t>(m_counted) + static_cast<std::size_t>(c)) * samples];
             std::vector<float> target(q, q + samples);
             if (match < 1) {
                 const std::vector<float> own = quantileFunction(ownValues(counts), static_cast<int>(samples));
@@ -279,9 +288,11 @@ Image Relighter::apply(const RelightFrame& frame, bool dither) const {
         const auto x = static_cast<std::uint32_t>(i % width), y = static_cast<std::uint32_t>(i / width);
         auto map = [&](int c) {
             const float v = static_cast<float>(predictedCode(frame, i, c) + 1) * code;
-            const float* lut = &frame.luts[(region * static_cast<std::size_t>(m_counted) + static_cast<std::size_t>(c)) * entries];
+            const float* lut =
+                &frame.luts[(region * static_cast<std::size_t>(m_counted) + static_cast<std::size_t>(c)) * entries];
             if (!dither) return Lut::applyLut(lut, m_bank.entries, v);
-            return lutOutput(Lut::applyLut(lut, m_bank.entries, lutInput(v, x, y, code, static_cast<std::uint32_t>(c))), targetCode);
+            return lutOutput(Lut::applyLut(lut, m_bank.entries, lutInput(v, x, y, code, static_cast<std::uint32_t>(c))),
+                             targetCode);
         };
         float* p = &out.samples[i * static_cast<std::size_t>(outChannels)];
         if (colour == ColourMode::Rgb) {
@@ -299,8 +310,10 @@ Image Relighter::apply(const RelightFrame& frame, bool dither) const {
                 for (int c = 0; c < 3; ++c) {
                     p[c] = 0;
                     for (int k = 0; k < frame.count; ++k)
-                        p[c] += static_cast<float>(frame.weights[static_cast<std::size_t>(k)]) / kWeightUnit *
-                                blend.references[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])].samples[i * 3 + c];
+                        p[c] +=
+                            static_cast<float>(frame.weights[static_cast<std::size_t>(k)]) / kWeightUnit *
+                            blend.references[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])]
+                                .samples[i * 3 + c];
                 }
             }
             setGrey(p, (p[0] + p[1] + p[2]) * (1.f / 3.f), map(0));

@@ -29,16 +29,16 @@
 namespace btflut {
 
 struct RelightFrame {
-    Direction light;                     ///< what the frame is for
-    int count = 1;                       ///< references blended, 1 to 3 (0 for a light model)
+    Direction light;  ///< what the frame is for
+    int count = 1;    ///< references blended, 1 to 3 (0 for a light model)
     std::array<int, 3> references{0, 0, 0};
     std::array<std::int32_t, 3> weights{kWeightUnit, 0, 0};  ///< in 1 / kWeightUnit, summing to kWeightUnit
-    LightModelFixed model;               ///< a light model's per-light integers
-    std::vector<float> luts;             ///< regions x channels x entries
+    LightModelFixed model;                                   ///< a light model's per-light integers
+    std::vector<float> luts;                                 ///< regions x channels x entries
     /// Of the target (LutBank::lookup): the worse of the light's and the view's.
     Provenance provenance = Provenance::Measured, lightProvenance = Provenance::Measured,
                viewProvenance = Provenance::Measured;
-    BankLookup target;                   ///< the bank's lookup: LUTs, or quantile functions (blend)
+    BankLookup target;  ///< the bank's lookup: LUTs, or quantile functions (blend)
 };
 
 class Relighter {
@@ -85,10 +85,10 @@ private:
     bool usesModel() const { return m_bank.predictsWithModel(); }
 
     const LutBank& m_bank;
-    int m_codes = 255;                       // codes of a predicted value (765 for the grey of RGB8)
-    int m_counted = 1;                       // channels counted: 3 for rgb, else 1 (grey)
+    int m_codes = 255;                                        // codes of a predicted value (765 for the grey of RGB8)
+    int m_counted = 1;                                        // channels counted: 3 for rgb, else 1 (grey)
     std::vector<std::vector<std::int32_t>> m_referenceCodes;  // [reference][texel * counted + c]
-    std::vector<std::vector<std::uint32_t>> m_regionTexels;    // sample texels of each region
+    std::vector<std::vector<std::uint32_t>> m_regionTexels;   // sample texels of each region
     /// Corrections (LutBank::Blend::Target::Corrections): the bank's nodes with, instead of
     /// their targets, the LUTs from the prediction at their lights to their targets.
     std::shared_ptr<const LutBank> m_corrections;

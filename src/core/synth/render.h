@@ -25,8 +25,8 @@ struct RenderOptions {
     int threads = 0;         ///< 0: all cores
     /// Surface albedo per field pixel (size x size, in [0, 1]); empty: 1 everywhere.
     const std::vector<double>* albedo = nullptr;
-    double ambient = 0;      ///< constant diffuse irradiance (interreflection, sky), lit or not
-    double noise = 0;        ///< sensor noise: standard deviation per pixel, before clipping
+    double ambient = 0;  ///< constant diffuse irradiance (interreflection, sky), lit or not
+    double noise = 0;    ///< sensor noise: standard deviation per pixel, before clipping
     std::uint64_t noiseSeed = 1;
 };
 

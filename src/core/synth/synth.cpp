@@ -134,31 +134,46 @@ Status writeSynthDataset(const SynthMaterial& m, const std::vector<Geometry>& ge
     while (pattern.size() > 1 && pattern.back() == '/') pattern.pop_back();
     if (const fs::path parent = fs::path(pattern).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
     pattern += ".tmp.XXXXXX";
-    if (!::mkdtemp(pattern.data())) return Error{folder + ": cannot create a folder beside it (" + std::strerror(errno) + ")"};
+    if (!::mkdtemp(pattern.data()))
+        return Error{folder + ": cannot create a folder beside it (" + std::strerror(errno) + ")"};
     const fs::path tmp = pattern;
     auto fail = [&](const std::string& message) {
         fs::remove_all(tmp, ec);
         return Error{message};
     };
     // Every image is rendered in the frontal frame (the mean plane's grid), whatever its view.
-    nlohmann::json manifest{{"btflut_dataset", 1}, {"mask", "mask.png"}, {"rectified", true}, {"images", nlohmann::json::array()}};
-    manifest["synth"] = {{"size", m.surface.size},          {"roughness", m.surface.roughness},
-                         {"roughness_across", m.surface.roughnessAcross}, {"angle_degrees", m.surface.angle / kDegree},
-                         {"correlation_length", m.surface.correlationLength}, {"seed", m.surface.seed},
-                         {"kd", model.brdf.kd}, {"ks", model.brdf.ks}, {"sigma", model.brdf.sigma},
-                         {"ior", model.brdf.ior}, {"gain", model.gain}, {"albedo_variation", m.albedoVariation},
-                         {"ambient", m.ambient}, {"noise", m.noise}, {"samples_per_axis", out.samplesPerAxis}};
+    nlohmann::json manifest{
+        {"btflut_dataset", 1}, {"mask", "mask.png"}, {"rectified", true}, {"images", nlohmann::json::array()}};
+    manifest["synth"] = {{"size", m.surface.size},
+                         {"roughness", m.surface.roughness},
+                         {"roughness_across", m.surface.roughnessAcross},
+                         {"angle_degrees", m.surface.angle / kDegree},
+                         {"correlation_length", m.surface.correlationLength},
+                         {"seed", m.surface.seed},
+                         {"kd", model.brdf.kd},
+                         {"ks", model.brdf.ks},
+                         {"sigma", model.brdf.sigma},
+                         {"ior", model.brdf.ior},
+                         {"gain", model.gain},
+                         {"albedo_variation", m.albedoVariation},
+                         {"ambient", m.ambient},
+                         {"noise", m.noise},
+                         {"samples_per_axis", out.samplesPerAxis}};
     bool fixedView = true;
     std::string lp = std::to_string(geometry.size()) + "\n";
     for (std::size_t k = 0; k < geometry.size(); ++k) {
         const Geometry& g = geometry[k];
-        RenderOptions options{.samplesPerAxis = out.samplesPerAxis, .threads = out.threads,
-                              .albedo = albedo.empty() ? nullptr : &albedo, .ambient = m.ambient,
-                              .noise = m.noise, .noiseSeed = m.surface.seed * 1000003 + k};
+        RenderOptions options{.samplesPerAxis = out.samplesPerAxis,
+                              .threads = out.threads,
+                              .albedo = albedo.empty() ? nullptr : &albedo,
+                              .ambient = m.ambient,
+                              .noise = m.noise,
+                              .noiseSeed = m.surface.seed * 1000003 + k};
         Image image = renderHeightField(*field, model, g.light, g.view, options);
         const std::string file = g.name + ".png";
         if (Status s = savePng(image, (tmp / file).string(), out.bitDepth); !s) return fail(s.error());
-        manifest["images"].push_back({{"file", file}, {"name", g.name},
+        manifest["images"].push_back({{"file", file},
+                                      {"name", g.name},
                                       {"light", {{"theta", g.light.thetaDegrees()}, {"phi", g.light.phiDegrees()}}},
                                       {"view", {{"theta", g.view.thetaDegrees()}, {"phi", g.view.phiDegrees()}}}});
         fixedView = fixedView && angleBetween(g.view, geometry.front().view) < 1e-12;
@@ -183,7 +198,9 @@ Status writeSynthDataset(const SynthMaterial& m, const std::vector<Geometry>& ge
     for (fs::directory_iterator it(tmp, ec), end; !ec && it != end; it.increment(ec)) {
         std::error_code moved;
         fs::rename(it->path(), fs::path(folder) / it->path().filename(), moved);
-        if (moved) return fail(folder + ": cannot move " + it->path().filename().string() + " into place (" + moved.message() + ")");
+        if (moved)
+            return fail(folder + ": cannot move " + it->path().filename().string() + " into place (" + moved.message() +
+                        ")");
     }
     fs::remove_all(tmp, ec);
     return success();

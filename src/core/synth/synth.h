@@ -21,11 +21,11 @@
 namespace btflut {
 
 struct SynthMaterial {
-    HeightFieldSpec surface;       ///< size, rms slopes, anisotropy, correlation length, seed
-    SurfaceModel model;            ///< local BRDF and gain (roughness follows surface.roughness)
-    double albedoVariation = 0;    ///< 0..1: albedo = 1 - variation * u, u a smooth random field in [0, 1]
-    double ambient = 0;            ///< constant diffuse irradiance added to every surface point
-    double noise = 0;              ///< sensor noise, standard deviation per pixel
+    HeightFieldSpec surface;     ///< size, rms slopes, anisotropy, correlation length, seed
+    SurfaceModel model;          ///< local BRDF and gain (roughness follows surface.roughness)
+    double albedoVariation = 0;  ///< 0..1: albedo = 1 - variation * u, u a smooth random field in [0, 1]
+    double ambient = 0;          ///< constant diffuse irradiance added to every surface point
+    double noise = 0;            ///< sensor noise, standard deviation per pixel
 };
 
 /// concrete (Lambertian r 0.4), foil (Torrance-Sparrow r 0.4, sigma 0.13), plastic (0.7

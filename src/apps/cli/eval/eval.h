@@ -18,8 +18,8 @@
 #include "core/bank/lut_bank.h"
 #include "core/data/dataset.h"
 #include "core/data/scene.h"
-#include "core/eval/holdout.h"
 #include "core/eval/charts.h"
+#include "core/eval/holdout.h"
 #include "core/eval/metrics.h"
 #include "core/histogram/plot.h"
 #include "core/predict/light_model.h"
@@ -47,7 +47,7 @@ struct EvalOptions {
     bool quiet = false;
     bool noGl = false;
     int frames = 6;
-    std::string grids = "17";    ///< banks' grid sizes, a list
+    std::string grids = "17";          ///< banks' grid sizes, a list
     std::string lutSources = "exact";  ///< lut: exact (made at the light), grid (read from the bank's grid), a list
     std::string domains = "auto";      ///< the banks' domains: auto (bake's choice), layers, isotropic, a list
     int sheetLights = 4;
@@ -69,9 +69,9 @@ struct Variant {
     bool filled = false;       // bake --fill model (fitted to the training images)
     int grid = 17;             // the bank's grid size
     bool fromGrid = false;     // lut: the LUT read from the bank's grid (as an engine does), not made at the light
-    bool corrections = false;     // lut with a predictor: the nodes' corrections blended (LutBank::Blend::Target)
+    bool corrections = false;  // lut with a predictor: the nodes' corrections blended (LutBank::Blend::Target)
     bool blendedLuts = false;  // the alternative: per-reference LUTs blended
-    std::optional<BankDomain> domain;  // the bank's domain (and nearest's distance); empty: bake's choice
+    std::optional<BankDomain> domain;            // the bank's domain (and nearest's distance); empty: bake's choice
     BankDomain bankDomain = BankDomain::Layers;  // what the bank has: `domain`, or bake's choice
     /// An RTI basis on its own, unmatched (modes hsh, rbf, bln; a number after the name is
     /// the hsh order or the planes): fitted to the fold's training images.
@@ -105,16 +105,16 @@ double bytesPerTexel(const Variant& v, const LutBank& bank);
 /// Bakes each fold's banks from its training images and predicts its held-out images in
 /// every variant (errors, bake and relight times, the contact sheet's cells). Fold 0's banks
 /// are saved into `scratch` for the GL figures (bankFiles: variant name to path).
-Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds, const Image& first,
-                    const Mask& mask, bool ptm, const EvalOptions& o, const std::filesystem::path& scratch,
-                    std::map<std::string, std::string>& bankFiles, std::vector<std::vector<SheetCell>>& sheet,
-                    std::vector<PlotColumn>& sheetHistograms);
+Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds,
+                    const Image& first, const Mask& mask, bool ptm, const EvalOptions& o,
+                    const std::filesystem::path& scratch, std::map<std::string, std::string>& bankFiles,
+                    std::vector<std::vector<SheetCell>>& sheet, std::vector<PlotColumn>& sheetHistograms);
 
 /// GL figures per variant: frame times (interleaved rounds, the light moving every frame),
 /// texture bytes per texel, and for lut the largest difference of the native renderer from
 /// the CPU relighting. `context` gets the GL context's description.
-Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std::string>& bankFiles, const Dataset& dataset,
-                 const EvalOptions& o, std::string& context);
+Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std::string>& bankFiles,
+                 const Dataset& dataset, const EvalOptions& o, std::string& context);
 
 struct Report {
     std::string text;

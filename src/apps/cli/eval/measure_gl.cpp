@@ -12,8 +12,8 @@
 
 namespace btflut::cli::eval {
 
-Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std::string>& bankFiles, const Dataset& dataset,
-                 const EvalOptions& o, std::string& context) {
+Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std::string>& bankFiles,
+                 const Dataset& dataset, const EvalOptions& o, std::string& context) {
     Result<GlBackend> backend = parseGlBackend(o.backend);
     if (!backend) return Error{backend.error()};
     Result<std::unique_ptr<HeadlessContext>> gl = createHeadlessContext(*backend);
@@ -35,7 +35,8 @@ Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std
         for (std::size_t i = 0; i < variants.size(); ++i)
             for (int f = 0; f < o.frames && renderers[i]; ++f) {
                 const auto start = Clock::now();
-                if (Status s = renderers[i]->draw(benchLights()[static_cast<std::size_t>(f % 2)], variants[i].mode); !s) return s;
+                if (Status s = renderers[i]->draw(benchLights()[static_cast<std::size_t>(f % 2)], variants[i].mode); !s)
+                    return s;
                 renderers[i]->finish();
                 if (round > 0 || f > 0) times[i].push_back(seconds(start) * 1e3);  // the first frame uploads
             }
@@ -51,12 +52,21 @@ Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std
         double bytes = 0;
         switch (v.mode) {
             case RenderMode::Lut:  // what it reads, and one relit texture (per light direction)
-                bytes = static_cast<double>(bank->makesLuts() ? b.blend : b.reference) + static_cast<double>(b.luts) / quads +
-                        static_cast<double>(b.relit) / static_cast<double>(std::max<std::size_t>(stats.relitTextures, 1));
+                bytes =
+                    static_cast<double>(bank->makesLuts() ? b.blend : b.reference) +
+                    static_cast<double>(b.luts) / quads +
+                    static_cast<double>(b.relit) / static_cast<double>(std::max<std::size_t>(stats.relitTextures, 1));
                 break;
-            case RenderMode::Ptm: bytes = static_cast<double>(b.ptm); break;
-            case RenderMode::Nearest: bytes = static_cast<double>(b.images) / static_cast<double>(std::max<std::size_t>(stats.imagesLoaded, 1)); break;
-            default: bytes = static_cast<double>(b.reference); break;
+            case RenderMode::Ptm:
+                bytes = static_cast<double>(b.ptm);
+                break;
+            case RenderMode::Nearest:
+                bytes =
+                    static_cast<double>(b.images) / static_cast<double>(std::max<std::size_t>(stats.imagesLoaded, 1));
+                break;
+            default:
+                bytes = static_cast<double>(b.reference);
+                break;
         }
         v.gpuBytesPerTexel = bytes / texels;
         if (v.mode == RenderMode::Lut && !v.blendedLuts) {

@@ -17,10 +17,10 @@
 
 namespace btflut::cli::eval {
 
-Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds, const Image& first,
-                    const Mask& mask, bool ptm, const EvalOptions& o, const std::filesystem::path& scratch,
-                    std::map<std::string, std::string>& bankFiles, std::vector<std::vector<SheetCell>>& sheet,
-                    std::vector<PlotColumn>& sheetHistograms) {
+Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds,
+                    const Image& first, const Mask& mask, bool ptm, const EvalOptions& o,
+                    const std::filesystem::path& scratch, std::map<std::string, std::string>& bankFiles,
+                    std::vector<std::vector<SheetCell>>& sheet, std::vector<PlotColumn>& sheetHistograms) {
     // Histograms of the contact sheet's bins: the photograph's, then each variant's prediction.
     sheetHistograms.assign(1, {"measured", {}});
     for (const Variant& v : variants) sheetHistograms.push_back({v.name, {}});
@@ -44,24 +44,26 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
         std::map<Variant::Setting, std::unique_ptr<Relighter>> relighters;
         auto bankFor = [&](Variant& v) -> Result<LutBank*> {
             const auto key = v.mode == RenderMode::Lut ? v.setting()
-                                                       : Variant::Setting{"references", 1, 1, ColourMode::Grey, false, false, v.grid, v.domain};
+                                                       : Variant::Setting{"references", 1,     1,      ColourMode::Grey,
+                                                                          false,        false, v.grid, v.domain};
             if (!banks.count(key)) {
                 Variant setting = v;
-                std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled, setting.corrections,
-                         setting.grid, setting.domain) = key;
+                std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled,
+                         setting.corrections, setting.grid, setting.domain) = key;
                 const auto start = Clock::now();
                 const BakeOptions options = bakeOptionsOf(setting, ptm && setting.base());
                 // lut auto: bake's validated choice, from the fold's training images alone
-                Result<LutBank> bank = setting.predictor == "auto" ? bakeAuto(train, {.base = options}) : bakeBank(train, options);
+                Result<LutBank> bank =
+                    setting.predictor == "auto" ? bakeAuto(train, {.base = options}) : bakeBank(train, options);
                 if (!bank) return Error{bank.error()};
                 if (setting.filled)  // fitted to the training images only
-                    if (Result<ModelFillReport> fill = fillFromDataset(*bank, train, nullptr); !fill) return Error{fill.error()};
+                    if (Result<ModelFillReport> fill = fillFromDataset(*bank, train, nullptr); !fill)
+                        return Error{fill.error()};
                 const double took = seconds(start);
                 banks[key] = std::make_unique<LutBank>(std::move(*bank));
                 relighters[key] = std::make_unique<Relighter>(*banks[key]);
                 for (Variant& other : variants)
-                    if (other.mode == RenderMode::Lut && other.setting() == key)
-                        other.bakeSeconds.push_back(took);
+                    if (other.mode == RenderMode::Lut && other.setting() == key) other.bakeSeconds.push_back(took);
             }
             LutBank* bank = banks[key].get();
             if (f == 0 && !bankFiles.count(v.name)) {
@@ -107,7 +109,8 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
             const DatasetImage& info = dataset.images[t];
             Result<Image> photo = loadImage(info.path);
             if (!photo) return Error{photo.error()};
-            if (Status s = requireSameSize(*photo, info.path, first.width, first.height, dataset.images.front().path); !s)
+            if (Status s = requireSameSize(*photo, info.path, first.width, first.height, dataset.images.front().path);
+                !s)
                 return Error{s.error()};
             const bool sheetRow = onSheet.count(t) > 0;
             if (sheetRow) {
@@ -128,7 +131,8 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                     if (v.fromGrid && bank.makesLuts())  // the prediction, the LUT from the match grid
                         predicted = relighter.apply(relighter.gridFrame(info.light), true);
                     else if (v.fromGrid)  // the classic grid, as an engine reads it
-                        predicted = applyLuts(bank.reference, bank.colour, bank.gridLookup(info.light), bank.entries, bank.targetCode());
+                        predicted = applyLuts(bank.reference, bank.colour, bank.gridLookup(info.light), bank.entries,
+                                              bank.targetCode());
                     else
                         predicted = v.blendedLuts ? relighter.applyBlendingLuts(info.light, info.view, true)
                                                   : relighter.apply(relighter.frame(info.light, info.view), true);
@@ -155,7 +159,8 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 } else {
                     predicted = bank.reference;
                     if (v.mode == RenderMode::Brdf) {
-                        const float scale = brdfScale(bank, brdfReferenceGrey(bank), bank.lookup(info.light, info.view));
+                        const float scale =
+                            brdfScale(bank, brdfReferenceGrey(bank), bank.lookup(info.light, info.view));
                         for (float& s : predicted.samples) s = std::min(1.f, s * scale);
                     }
                 }
@@ -165,7 +170,8 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 auto beyond = [](Provenance p) { return p == Provenance::Extrapolated || p == Provenance::Modelled; };
                 v.outside.push_back(beyond(at.lightProvenance) || beyond(at.viewProvenance));
                 if (sheetRow) {
-                    sheetHistograms[static_cast<std::size_t>(&v - variants.data()) + 1].rows.push_back(histogramOf(predicted, info));
+                    sheetHistograms[static_cast<std::size_t>(&v - variants.data()) + 1].rows.push_back(
+                        histogramOf(predicted, info));
                     sheet.back().push_back({v.name, std::move(predicted)});
                 }
             }

@@ -37,9 +37,11 @@ void addTradeoff(Report& r) {
     nlohmann::json fronts = nlohmann::json::object();
     for (const Figure& f : kFigures)
         for (const Cost& c : kCosts) {
-            ChartPanel panel{.title = std::string(f.label) + " against " + c.label, .xLabel = c.axis,
+            ChartPanel panel{.title = std::string(f.label) + " against " + c.label,
+                             .xLabel = c.axis,
                              .yLabel = f.better == Better::Higher ? "dB, higher is better" : "lower is better",
-                             .logX = true, .pareto = f.better};
+                             .logX = true,
+                             .pareto = f.better};
             std::vector<double> cost, figure;
             for (const nlohmann::json& m : r.json["modes"]) {
                 cost.push_back(value(m, c.key));
@@ -64,18 +66,26 @@ void addByTheta(Report& r) {
     for (const nlohmann::json& row : r.json["rows"])
         rows[row["mode"]][static_cast<int>(row["theta"].get<double>() / kBand)].push_back(&row);
     nlohmann::json out{{"band_degrees", kBand}, {"modes", nlohmann::json::array()}};
-    ChartPanel psnr{.title = "PSNR against the held-out light's theta", .xLabel = "theta (degrees), 10-degree bands",
-                    .yLabel = "dB", .lines = true};
-    ChartPanel l1{.title = "histogram L1 against the held-out light's theta", .xLabel = "theta (degrees), 10-degree bands",
-                  .yLabel = "L1", .lines = true};
+    ChartPanel psnr{.title = "PSNR against the held-out light's theta",
+                    .xLabel = "theta (degrees), 10-degree bands",
+                    .yLabel = "dB",
+                    .lines = true};
+    ChartPanel l1{.title = "histogram L1 against the held-out light's theta",
+                  .xLabel = "theta (degrees), 10-degree bands",
+                  .yLabel = "L1",
+                  .lines = true};
     for (const std::string& name : modes) {
-        nlohmann::json mode{{"name", name}, {"theta", nlohmann::json::array()}, {"psnr", nlohmann::json::array()},
-                            {"l1", nlohmann::json::array()}, {"count", nlohmann::json::array()}};
+        nlohmann::json mode{{"name", name},
+                            {"theta", nlohmann::json::array()},
+                            {"psnr", nlohmann::json::array()},
+                            {"l1", nlohmann::json::array()},
+                            {"count", nlohmann::json::array()}};
         ChartSeries p{name, {}, {}}, l{name, {}, {}};
         for (const auto& [band, members] : rows[name]) {
             double sumPsnr = 0, sumL1 = 0;
             for (const nlohmann::json* row : members)
-                sumPsnr += (*row)["psnr"].is_number() ? (*row)["psnr"].get<double>() : std::nan(""), sumL1 += (*row)["l1"].get<double>();
+                sumPsnr += (*row)["psnr"].is_number() ? (*row)["psnr"].get<double>() : std::nan(""),
+                    sumL1 += (*row)["l1"].get<double>();
             const double n = static_cast<double>(members.size()), centre = (band + 0.5) * kBand;
             mode["theta"].push_back(centre);
             mode["psnr"].push_back(std::isfinite(sumPsnr) ? nlohmann::json(sumPsnr / n) : nlohmann::json(nullptr));
@@ -98,22 +108,30 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
               const std::vector<Fold>& folds, std::size_t maskPixels, const std::string& context) {
     std::size_t tests = 0;
     for (const Fold& f : folds) tests += f.test.size();
-    nlohmann::json json{{"dataset", dataset.source}, {"images", dataset.images.size()}, {"holdout", o.holdout},
-                        {"folds", folds.size()}, {"held_out", tests}, {"mask_pixels", maskPixels}, {"context", context},
-                        {"modes", nlohmann::json::array()}, {"rows", nlohmann::json::array()},
-                        {"fixed_view", dataset.fixedView()}, {"rectified", dataset.rectified}};
+    nlohmann::json json{{"dataset", dataset.source},
+                        {"images", dataset.images.size()},
+                        {"holdout", o.holdout},
+                        {"folds", folds.size()},
+                        {"held_out", tests},
+                        {"mask_pixels", maskPixels},
+                        {"context", context},
+                        {"modes", nlohmann::json::array()},
+                        {"rows", nlohmann::json::array()},
+                        {"fixed_view", dataset.fixedView()},
+                        {"rectified", dataset.rectified}};
     // Pixels compare where every image shares one frame: a fixed camera, or a rectified BTF.
     const bool pixels = dataset.fixedView() || dataset.rectified;
     if (!pixels) json["pixels"] = "not compared: the views' images are not rectified to one frame (PSNR, SSIM null)";
     char line[512];
-    std::snprintf(line, sizeof line,
-                  "btflut eval %s: %zu images, hold-out %s (%zu fold(s), %zu predictions per mode), %zu sample pixels\n",
-                  dataset.source.c_str(), dataset.images.size(), o.holdout.c_str(), folds.size(), tests, maskPixels);
+    std::snprintf(
+        line, sizeof line,
+        "btflut eval %s: %zu images, hold-out %s (%zu fold(s), %zu predictions per mode), %zu sample pixels\n",
+        dataset.source.c_str(), dataset.images.size(), o.holdout.c_str(), folds.size(), tests, maskPixels);
     std::string text = line;
     std::map<std::string, const DatasetImage*> byName;  // each held-out image's light and view, for the rows
     for (const DatasetImage& image : dataset.images) byName[image.name] = &image;
-    std::snprintf(line, sizeof line, "%-30s %7s %7s %7s %6s %9s %9s %8s %9s %8s %8s\n", "mode", "L1", "EMD", "PSNR", "SSIM",
-                  "bytes/tx", "GPU B/tx", "bake s", "relight", "frame ms", "GPU-CPU");
+    std::snprintf(line, sizeof line, "%-30s %7s %7s %7s %6s %9s %9s %8s %9s %8s %8s\n", "mode", "L1", "EMD", "PSNR",
+                  "SSIM", "bytes/tx", "GPU B/tx", "bake s", "relight", "frame ms", "GPU-CPU");
     text += line;
     for (const Variant& v : variants) {
         // The mean over the predictions inside (0), outside (1) the hull, or all (-1).
@@ -136,35 +154,55 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         // A figure a mode has none of (no GL, no bake) is "-", not nan.
         auto cell = [](double x, int width, int decimals, const char* unit = "") {
             char c[64];
-            if (std::isfinite(x)) std::snprintf(c, sizeof c, "%*.*f%s", width, decimals, x, unit);
-            else std::snprintf(c, sizeof c, "%*s%*s", width, "-", static_cast<int>(std::string(unit).size()), "");
+            if (std::isfinite(x))
+                std::snprintf(c, sizeof c, "%*.*f%s", width, decimals, x, unit);
+            else
+                std::snprintf(c, sizeof c, "%*s%*s", width, "-", static_cast<int>(std::string(unit).size()), "");
             return std::string(c);
         };
         char name[64];
         std::snprintf(name, sizeof name, "%-30s", v.name.c_str());
-        text += std::string(name) + " " + cell(l1, 7, 4) + " " + cell(emd, 7, 4) + " " + cell(psnr, 7, 2) + " " + cell(ssim, 6, 3) +
-                " " + cell(v.bytesPerTexel, 9, 2) + " " + cell(v.gpuBytesPerTexel, 9, 2) + " " + cell(bake, 8, 3) + " " +
-                cell(relight, 6, 2, " ms") + " " + cell(v.frameMs, 8, 2) + " " + cell(v.gpuMaxDiff, 8, 1) + "\n";
+        text += std::string(name) + " " + cell(l1, 7, 4) + " " + cell(emd, 7, 4) + " " + cell(psnr, 7, 2) + " " +
+                cell(ssim, 6, 3) + " " + cell(v.bytesPerTexel, 9, 2) + " " + cell(v.gpuBytesPerTexel, 9, 2) + " " +
+                cell(bake, 8, 3) + " " + cell(relight, 6, 2, " ms") + " " + cell(v.frameMs, 8, 2) + " " +
+                cell(v.gpuMaxDiff, 8, 1) + "\n";
         auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
-        json["modes"].push_back({{"name", v.name}, {"mode", v.modeName()}, {"domain", domainName(v.bankDomain)}, {"references", v.references},
-                                 {"regions", v.regions}, {"colour", colourName(v.colour)}, {"luts_blended", v.blendedLuts}, {"fill", v.filled ? "model" : "clamp"},
-                                 {"l1", number(l1)}, {"emd", number(emd)}, {"psnr", number(psnr)}, {"ssim", number(ssim)},
-                                 {"bytes_per_texel", v.bytesPerTexel}, {"gpu_bytes_per_texel", number(v.gpuBytesPerTexel)},
-                                 {"bake_seconds", number(bake)}, {"relight_ms", number(relight)},
-                                 {"frame_ms", number(v.frameMs)}, {"gpu_max_diff_255", number(v.gpuMaxDiff)}});
+        json["modes"].push_back({{"name", v.name},
+                                 {"mode", v.modeName()},
+                                 {"domain", domainName(v.bankDomain)},
+                                 {"references", v.references},
+                                 {"regions", v.regions},
+                                 {"colour", colourName(v.colour)},
+                                 {"luts_blended", v.blendedLuts},
+                                 {"fill", v.filled ? "model" : "clamp"},
+                                 {"l1", number(l1)},
+                                 {"emd", number(emd)},
+                                 {"psnr", number(psnr)},
+                                 {"ssim", number(ssim)},
+                                 {"bytes_per_texel", v.bytesPerTexel},
+                                 {"gpu_bytes_per_texel", number(v.gpuBytesPerTexel)},
+                                 {"bake_seconds", number(bake)},
+                                 {"relight_ms", number(relight)},
+                                 {"frame_ms", number(v.frameMs)},
+                                 {"gpu_max_diff_255", number(v.gpuMaxDiff)}});
         const auto outside = static_cast<std::size_t>(std::count(v.outside.begin(), v.outside.end(), true));
         nlohmann::json& mode = json["modes"].back();
         for (int where : {0, 1})
-            mode[where ? "outside_hull" : "inside_hull"] = {
-                {"count", where ? outside : v.errors.size() - outside},
-                {"l1", number(mean(&ImageErrors::l1, where))}, {"emd", number(mean(&ImageErrors::emd, where))},
-                {"psnr", number(mean(&ImageErrors::psnr, where))}};
+            mode[where ? "outside_hull" : "inside_hull"] = {{"count", where ? outside : v.errors.size() - outside},
+                                                            {"l1", number(mean(&ImageErrors::l1, where))},
+                                                            {"emd", number(mean(&ImageErrors::emd, where))},
+                                                            {"psnr", number(mean(&ImageErrors::psnr, where))}};
         for (std::size_t i = 0; i < v.errors.size(); ++i) {
             const DatasetImage& image = *byName.at(v.images[i]);
-            json["rows"].push_back({{"image", v.images[i]}, {"mode", v.name}, {"theta", image.light.thetaDegrees()},
-                                    {"phi", image.light.phiDegrees()}, {"view_theta", image.view.thetaDegrees()},
-                                    {"view_phi", image.view.phiDegrees()}, {"outside_hull", static_cast<bool>(v.outside[i])},
-                                    {"l1", v.errors[i].l1}, {"emd", v.errors[i].emd},
+            json["rows"].push_back({{"image", v.images[i]},
+                                    {"mode", v.name},
+                                    {"theta", image.light.thetaDegrees()},
+                                    {"phi", image.light.phiDegrees()},
+                                    {"view_theta", image.view.thetaDegrees()},
+                                    {"view_phi", image.view.phiDegrees()},
+                                    {"outside_hull", static_cast<bool>(v.outside[i])},
+                                    {"l1", v.errors[i].l1},
+                                    {"emd", v.errors[i].emd},
                                     {"psnr", pixels ? nlohmann::json(v.errors[i].psnr) : nlohmann::json(nullptr)},
                                     {"ssim", pixels ? nlohmann::json(v.errors[i].ssim) : nlohmann::json(nullptr)}});
         }
@@ -181,9 +219,11 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
             for (const char* where : {"inside_hull", "outside_hull"}) {
                 const nlohmann::json& part = m[where];
                 char c[96];
-                if (part["count"] == 0) std::snprintf(c, sizeof c, "  %-8s %7s %7s (0)", where[0] == 'i' ? "inside" : "outside", "-", "-");
-                else std::snprintf(c, sizeof c, "  %-8s %7.4f %7.4f (%zu)", where[0] == 'i' ? "inside" : "outside",
-                                   figure(part["l1"]), figure(part["emd"]), part["count"].get<std::size_t>());
+                if (part["count"] == 0)
+                    std::snprintf(c, sizeof c, "  %-8s %7s %7s (0)", where[0] == 'i' ? "inside" : "outside", "-", "-");
+                else
+                    std::snprintf(c, sizeof c, "  %-8s %7.4f %7.4f (%zu)", where[0] == 'i' ? "inside" : "outside",
+                                  figure(part["l1"]), figure(part["emd"]), part["count"].get<std::size_t>());
                 cells += c;
             }
             std::snprintf(row, sizeof row, "%-30s%s\n", m["name"].get<std::string>().c_str(), cells.c_str());
@@ -191,10 +231,13 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         }
         text += "\n";
     }
-    text += "L1, EMD: masked 64-bin grey histograms against the photograph's; PSNR (dB, RGB) and SSIM (grey) over the mask;\n"
-            "bytes/tx: data per texel a mode draws from (GPU B/tx: as allocated, padding and mipmaps included); bake s per\n"
-            "bank; relight: CPU, one light change (LUTs and image); frame ms: GL, 4 quads at 1024x1024, the light moving;\n"
-            "GPU-CPU: the largest difference of render --native from relight, in 1/255.\n";
+    text +=
+        "L1, EMD: masked 64-bin grey histograms against the photograph's; PSNR (dB, RGB) and SSIM (grey) over the "
+        "mask;\n"
+        "bytes/tx: data per texel a mode draws from (GPU B/tx: as allocated, padding and mipmaps included); bake s "
+        "per\n"
+        "bank; relight: CPU, one light change (LUTs and image); frame ms: GL, 4 quads at 1024x1024, the light moving;\n"
+        "GPU-CPU: the largest difference of render --native from relight, in 1/255.\n";
     if (!context.empty()) text += "GL: " + context + "\n";
     Report r{text, json, {}, {}};
     addTradeoff(r);
@@ -215,13 +258,15 @@ Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& s
     };
     std::string csv = "image,mode,theta,phi,view_theta,view_phi,outside_hull,l1,emd,psnr,ssim\n";
     for (const nlohmann::json& row : r.json["rows"])
-        csv += row["image"].get<std::string>() + "," + row["mode"].get<std::string>() + "," + field(row["theta"], "%.2f") + "," +
-               field(row["phi"], "%.2f") + "," + field(row["view_theta"], "%.2f") + "," + field(row["view_phi"], "%.2f") + "," +
-               (row["outside_hull"].get<bool>() ? "1" : "0") + "," + field(row["l1"], "%.6f") + "," + field(row["emd"], "%.6f") +
-               "," + field(row["psnr"], "%.4f") + "," + field(row["ssim"], "%.5f") + "\n";
+        csv += row["image"].get<std::string>() + "," + row["mode"].get<std::string>() + "," +
+               field(row["theta"], "%.2f") + "," + field(row["phi"], "%.2f") + "," + field(row["view_theta"], "%.2f") +
+               "," + field(row["view_phi"], "%.2f") + "," + (row["outside_hull"].get<bool>() ? "1" : "0") + "," +
+               field(row["l1"], "%.6f") + "," + field(row["emd"], "%.6f") + "," + field(row["psnr"], "%.4f") + "," +
+               field(row["ssim"], "%.5f") + "\n";
     const std::string jsonText_ = jsonText(r.json);
     const Bytes png = encodePng(contactSheet(sheet, 192), 8), tradeoff = encodePng(drawCharts(r.tradeoff, 3), 8),
-                byTheta = encodePng(drawCharts(r.byTheta, 1), 8), histograms = encodePng(plotHistograms(sheetHistograms), 8);
+                byTheta = encodePng(drawCharts(r.byTheta, 1), 8),
+                histograms = encodePng(plotHistograms(sheetHistograms), 8);
     const std::string dir = o.output;
     if (Status s = writeFilesAtomically({{dir + "/eval.txt", r.text.data(), r.text.size()},
                                          {dir + "/eval.json", jsonText_.data(), jsonText_.size()},

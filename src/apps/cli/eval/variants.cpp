@@ -47,8 +47,8 @@ Result<std::vector<std::string>> parseChoices(const std::string& text, const std
 }  // namespace
 
 Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
-    Result<std::vector<int>> ks = parseList(o.references, "references", 1, 255), rs = parseList(o.regions, "regions", 1, 255),
-                             gs = parseList(o.grids, "grid", 2, 257);
+    Result<std::vector<int>> ks = parseList(o.references, "references", 1, 255),
+                             rs = parseList(o.regions, "regions", 1, 255), gs = parseList(o.grids, "grid", 2, 257);
     if (!ks) return Error{ks.error()};
     if (!rs) return Error{rs.error()};
     if (!gs) return Error{gs.error()};
@@ -78,13 +78,16 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
                 continue;
             }
             std::optional<Result<LightModelOptions>> model = lightModelNamed(predictor);
-            if (!model) return Error{"--predictor '" + predictor + "' is not auto, references or a basis (ptm, hsh, rbf, bln)"};
+            if (!model)
+                return Error{"--predictor '" + predictor + "' is not auto, references or a basis (ptm, hsh, rbf, bln)"};
             if (!*model) return Error{"--predictor " + model->error()};
             for (const std::string& colourText : split(o.colours)) {
-                if (colourText != "grey" && colourText != "rgb") continue;  // a model's colour is its own or matched per channel
+                if (colourText != "grey" && colourText != "rgb")
+                    continue;  // a model's colour is its own or matched per channel
                 for (int r : *rs)
-                    variants.push_back({"lut " + predictor + " R" + std::to_string(r) + " " + colourText, RenderMode::Lut, predictor, 1,
-                                        r, colourText == "rgb" ? ColourMode::Rgb : ColourMode::Grey});
+                    variants.push_back({"lut " + predictor + " R" + std::to_string(r) + " " + colourText,
+                                        RenderMode::Lut, predictor, 1, r,
+                                        colourText == "rgb" ? ColourMode::Rgb : ColourMode::Grey});
             }
         }
         const std::vector<std::string> predictors = split(o.predictors);
@@ -92,11 +95,17 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
         for (const std::string& colourText : split(o.colours)) {
             if (colourText != "grey" && colourText != "rgb" && colourText != "lrgb")
                 return Error{"--colour '" + colourText + "' is not grey, rgb or lrgb"};
-            const ColourMode colour = colourText == "rgb" ? ColourMode::Rgb : colourText == "lrgb" ? ColourMode::Lrgb : ColourMode::Grey;
+            const ColourMode colour = colourText == "rgb"    ? ColourMode::Rgb
+                                      : colourText == "lrgb" ? ColourMode::Lrgb
+                                                             : ColourMode::Grey;
             for (int k : *ks)
                 for (int r : *rs) {
-                    Variant v{"lut K" + std::to_string(k) + " R" + std::to_string(r) + " " + colourText, RenderMode::Lut,
-                              "references", k, r, colour};
+                    Variant v{"lut K" + std::to_string(k) + " R" + std::to_string(r) + " " + colourText,
+                              RenderMode::Lut,
+                              "references",
+                              k,
+                              r,
+                              colour};
                     variants.push_back(v);
                     if (o.blendedLuts && k > 1) {
                         v.name += " (LUTs blended)";
@@ -127,8 +136,9 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
     all.clear();
     for (const Variant& v : variants)
         for (const std::string& t : targets) {
-            const bool predicts = v.mode == RenderMode::Lut && v.predictor != "auto" &&
-                                  (v.predictor != "references" || v.references > 1 || v.regions > 1 || v.colour == ColourMode::Lrgb);
+            const bool predicts =
+                v.mode == RenderMode::Lut && v.predictor != "auto" &&
+                (v.predictor != "references" || v.references > 1 || v.regions > 1 || v.colour == ColourMode::Lrgb);
             if (!predicts && t != targets.front()) continue;
             Variant r = v;
             r.corrections = predicts && t == "corrections";
@@ -157,7 +167,8 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
     const std::vector<std::string> domains = split(o.domains);
     if (domains.empty()) return Error{"--domain is empty"};
     for (const std::string& d : domains)
-        if (d != "auto" && d != "layers" && d != "isotropic") return Error{"--domain '" + d + "' is not auto, layers or isotropic"};
+        if (d != "auto" && d != "layers" && d != "isotropic")
+            return Error{"--domain '" + d + "' is not auto, layers or isotropic"};
     all.clear();
     for (const Variant& v : variants)
         for (const std::string& d : domains) {
@@ -179,7 +190,8 @@ Status adaptToViews(EvalOptions& o, const Dataset& dataset) {
     std::size_t views = 0;
     for (std::size_t i = 0; i < dataset.images.size(); ++i) {
         bool seen = false;
-        for (std::size_t j = 0; j < i && !seen; ++j) seen = angleBetween(dataset.images[i].view, dataset.images[j].view) < 1e-9;
+        for (std::size_t j = 0; j < i && !seen; ++j)
+            seen = angleBetween(dataset.images[i].view, dataset.images[j].view) < 1e-9;
         views += !seen;
     }
     const std::string where = dataset.source + " has " + std::to_string(views) + " views";
@@ -190,8 +202,8 @@ Status adaptToViews(EvalOptions& o, const Dataset& dataset) {
         if (mode != "lut" && mode != "nearest" && mode != "brdf" && mode != "flat")
             return Error{"--modes " + mode + ": predicts a fixed camera's images only; " + where +
                          " (eval's modes there: lut, nearest, brdf, flat)"};
-    if (o.predictors != "references" || o.references != "1" || o.regions != "1" || o.colours == "lrgb" || o.blendedLuts ||
-        o.targets != defaults.targets)
+    if (o.predictors != "references" || o.references != "1" || o.regions != "1" || o.colours == "lrgb" ||
+        o.blendedLuts || o.targets != defaults.targets)
         return Error{"lut across views is the paper's bank of one reference (--references 1, no predictor); " + where};
     if (o.lutSources != defaults.lutSources) return Error{"--luts grid reads a fixed camera's grid; " + where};
     return success();
@@ -218,8 +230,10 @@ double bytesPerTexel(const Variant& v, const LutBank& bank) {
             if (bank.predictsWithModel()) return bank.blend.model.bytesPerTexel() + (bank.blend.regions > 1 ? 1 : 0);
             return static_cast<double>(bank.blend.references.size()) * bank.blend.references.front().channels +
                    (bank.colour == ColourMode::Lrgb ? 3 : 0) + (bank.blend.regions > 1 ? 1 : 0);
-        case RenderMode::Ptm: return 9;
-        default: return reference;
+        case RenderMode::Ptm:
+            return 9;
+        default:
+            return reference;
     }
 }
 
