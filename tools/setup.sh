@@ -22,6 +22,7 @@ packages=(
   chromium libjs-three  # WebGL2 tests in headless Chromium: the three.js recipe
   parallel              # GNU parallel: tools/bake-library.sh bakes materials side by side
   clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (tools/fuzz.sh)
+  clang-format          # the code's format (tools/format.sh; tools/test.sh checks it)
 )
 
 missing=()

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sets up, builds with warnings as errors, and runs every test: the scikit-image agreement
+# Sets up, checks the format, builds with warnings as errors, and runs every test: the scikit-image agreement
 # check, then the doctest suite, the viewer under Xvfb and the hostile inputs through CTest.
 # Tests that need ../shared/data skip when it is missing, unless BTFLUT_REQUIRE_DATA=1 (CI
 # sets it), which makes that a failure.
@@ -21,6 +21,7 @@ if [ "${1:-}" = "--sanitize" ]; then
   export BTFLUT_SANITIZED=1  # tests/bombs.py: shadow memory is not the program's
 fi
 bash tools/setup.sh
+bash tools/format.sh --check  # clang-format --dry-run --Werror: the code as .clang-format lays it out
 BTFLUT_BUILD_DIR="$build" bash tools/build.sh "${configure[@]}"
 data="${BTFLUT_DATA:-../shared/data}"
 folders=("$build/assets/default")
