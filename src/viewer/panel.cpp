@@ -285,7 +285,7 @@ bool Viewer::panel(int width, int height) {
         if (m_bank->makesLuts()) {
             const LutBank::Blend& blend = m_bank->blend;
             if (m_bank->predictsWithModel())
-                ImGui::Text("lut: %s relit, matched (%.2f) in %d region(s)", lightModelName(blend.model).c_str(),
+                ImGui::Text("lut: %s relit, matched (%.2f) in %d region(s)", m_bank->predictorName().c_str(),
                             static_cast<double>(blend.match), blend.regions);
             else
                 ImGui::Text("lut: %zu references blended, matched in %d region(s)", blend.references.size(),

@@ -134,13 +134,9 @@ Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, 
 std::string predictorSummary(const LutBank& bank) {
     if (!bank.makesLuts()) return "";
     const LutBank::Blend& b = bank.blend;
-    std::string s = bank.predictsWithModel()
-                        ? ", " + std::string(lightBasisName(b.model.basis)) +
-                              (b.model.basis == LightBasis::Rbf || b.model.basis == LightBasis::Bilinear
-                                   ? std::to_string(b.model.planes)
-                               : b.model.basis == LightBasis::Hsh ? std::to_string(b.model.order)
-                                                                  : "")
-                        : ", " + std::to_string(b.references.size()) + " reference(s)";
+    // The name `--predictor` takes (bln9c, not the planes it unpacks to), as info prints it.
+    std::string s = bank.predictsWithModel() ? ", " + bank.predictorName()
+                                             : ", " + std::to_string(b.references.size()) + " reference(s)";
     char match[32];
     std::snprintf(match, sizeof match, "%.2f", static_cast<double>(b.match));
     return s +
@@ -195,8 +191,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     options.quantiles = o.quantiles;
     options.labelsPath = o.labels;
     if (!o.labels.empty() && o.regions > 1) return Error{"give --regions or --labels, not both"};
-    if (o.noReference && (o.references > 1 || o.regions > 1 || !o.labels.empty() ||
-                          options.colour == ColourMode::Lrgb || options.model || o.predictor == "auto"))
+    if (o.noReference && (options.predicts() || o.predictor == "auto"))
         return Error{
             "--no-reference: a bank that predicts (the default --predictor auto, references, a model) keeps "
             "what it predicts from; give --references 1 for the paper's bank"};

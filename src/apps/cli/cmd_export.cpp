@@ -112,7 +112,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
                 "channel, the first in the high nibble), then the albedo if the model has one; value = (code - bias) * "
                 "scale; table rows (per rbf light or bln grid node j * grid + i): the channels' offsets, then each "
                 "plane's channel weights";
-            blend["predictor"] = lightModelName(m);
+            blend["predictor"] = b.predictorName();
             blend["model"] = model;
         } else if (bl.predictor == LutBank::Blend::Predictor::Ptm) {
             blend["predictor"] = "ptm";
@@ -125,7 +125,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
                 blend["ptm_planes"].push_back(texture("ptm-" + std::to_string(p), plane));
             }
         } else {
-            blend["predictor"] = "references";
+            blend["predictor"] = b.predictorName();
             for (std::size_t k = 0; k < bl.references.size(); ++k)
                 blend["references"].push_back({{"file", texture("reference-" + std::to_string(k), bl.references[k])},
                                                {"light", directionJson(bl.lights[k].light)}});

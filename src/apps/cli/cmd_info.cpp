@@ -103,7 +103,7 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
                        {"ptm", !b.ptm.empty()},
                        {"layers", nlohmann::json::array()}};
     if (b.makesLuts()) {
-        out["blend"] = {{"predictor", b.predictsWithModel() ? lightModelName(b.blend.model) : "references"},
+        out["blend"] = {{"predictor", b.predictorName()},
                         {"references", b.blend.references.size()},
                         {"regions", b.blend.regions},
                         {"quantiles", b.blend.quantiles},
@@ -155,9 +155,10 @@ Status runInfo(const InfoOptions& o) {
               << b.reference.bitDepth << "-bit, " << (b.reference.samples.empty() ? "not embedded" : "embedded")
               << "\n";
     if (b.makesLuts()) {
+        // "relit per light" only: how far it is matched is the next line's (0: not at all).
         if (b.predictsWithModel())
-            std::cout << "  predictor: " << lightModelName(b.blend.model) << " (" << b.blend.model.bytesPerTexel()
-                      << " bytes per texel), relit per light and matched, LUTs made at run time from ";
+            std::cout << "  predictor: " << b.predictorName() << " (" << b.blend.model.bytesPerTexel()
+                      << " bytes per texel), relit per light, LUTs made at run time from ";
         else
             std::cout << "  predictor: " << b.blend.references.size()
                       << " reference(s) blended per light, LUTs made at run "

@@ -257,8 +257,7 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options, con
 
     // Banks that make their LUTs at run time keep each image's target per region as a
     // quantile function; classic banks keep each image's LUT from the reference.
-    const bool makesLuts = options.references > 1 || options.regions > 1 || !options.labelsPath.empty() ||
-                           options.colour == ColourMode::Lrgb || options.model;
+    const bool makesLuts = options.predicts();
     if (options.model && (options.references > 1 || options.colour == ColourMode::Lrgb))
         return Error{
             "--predictor " + std::string(lightBasisName(options.model->basis)) +

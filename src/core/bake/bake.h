@@ -15,6 +15,13 @@
 
 namespace btflut {
 
+/// The rule in one place: a bank predicts (makes its LUTs at run time) when it blends
+/// several references, has regions (segmented or labelled), takes lrgb's albedo, or relights
+/// with a light model; else it is the paper's bank of one reference's LUTs.
+inline bool bakePredicts(int references, int regions, bool labels, ColourMode colour, bool model) {
+    return references > 1 || regions > 1 || labels || colour == ColourMode::Lrgb || model;
+}
+
 struct BakeOptions {
     /// Empty: the image nearest to frontal view, then light, among those whose most common
     /// grey level holds at most a quarter of the sample (else the least tied; bake.cpp).
@@ -38,6 +45,10 @@ struct BakeOptions {
     int quantiles = 1024;    ///< samples of the targets' quantile functions (banks that make LUTs)
     /// Called after each image with (done, total); may be empty.
     std::function<void(std::size_t, std::size_t)> progress;
+
+    /// True when these options bake a bank with a predictor (one that makes its LUTs at run
+    /// time: LutBank::makesLuts), false for the paper's bank of one reference's LUTs.
+    bool predicts() const { return bakePredicts(references, regions, !labelsPath.empty(), colour, model.has_value()); }
 };
 
 /// Supplies image `index` of a dataset: decodes it into `storage` and returns &storage, or

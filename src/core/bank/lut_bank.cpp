@@ -1,5 +1,8 @@
 #include "core/bank/lut_bank.h"
 
+#include "core/predict/model_predictor.h"
+#include "core/predict/reference_blend.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -456,6 +459,21 @@ Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>&
         setGrey(&out.samples[i * 3], grey, map(values.data(), grey, i, 0));
     }
     return out;
+}
+
+std::unique_ptr<const Predictor> LutBank::makePredictor() const {
+    BTFLUT_CHECK(makesLuts());
+    const bool perChannel = colour == ColourMode::Rgb;
+    if (predictsWithModel()) return std::make_unique<ModelPredictor>(blend.model, perChannel);
+    return std::make_unique<ReferenceBlend>(blend.references, blend.triangulation, perChannel,
+                                            colour == ColourMode::Lrgb ? &blend.albedo : nullptr);
+}
+
+std::string LutBank::predictorName() const { return makesLuts() ? makePredictor()->name() : ""; }
+
+double LutBank::predictorBytesPerTexel() const {
+    if (!makesLuts()) return reference.channels * (reference.bitDepth / 8.0);
+    return makePredictor()->bytesPerTexel() + (blend.regions > 1 ? 1 : 0);
 }
 
 LevelCounts brdfReferenceGrey(const LutBank& bank) {

@@ -27,6 +27,7 @@
 //     light/view pairs; synth's curet-c2), where a layer holds one light or a few.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,6 +37,7 @@
 #include "core/histogram/lut.h"
 #include "core/image/image.h"
 #include "core/predict/light_model.h"
+#include "core/predict/predictor.h"
 #include "core/predict/ptm.h"
 
 namespace btflut {
@@ -171,6 +173,15 @@ struct LutBank {
     bool makesLuts() const { return blend.quantiles > 0; }
     /// True for banks whose prediction is a light model (Blend::model), not a blend of references.
     bool predictsWithModel() const { return makesLuts() && blend.predictor != Blend::Predictor::References; }
+    /// The predictor of a bank that makes its LUTs (predictor.h: a reference blend, or the
+    /// light model), over this bank's data: the bank must outlive it.
+    std::unique_ptr<const Predictor> makePredictor() const;
+    /// The predictor's name as the command line gives it (`--predictor`): the light model's
+    /// (ptm, hsh2, rbf9, bln9c, ...) or "references"; "" for a bank of LUTs.
+    std::string predictorName() const;
+    /// Bytes per texel the predictor stores (Predictor::bytesPerTexel), with regions one more
+    /// for the labels; a bank of LUTs: its reference's.
+    double predictorBytesPerTexel() const;
     int channels() const { return colour == ColourMode::Rgb ? 3 : 1; }
     /// One code of the values the LUTs map to (those of the reference's format: 1/765 for
     /// the grey of 8-bit RGB), the unit of the dithered output shift.

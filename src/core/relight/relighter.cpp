@@ -27,14 +27,9 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
         if (blend.mask.inside[i])
             m_regionTexels[blend.labels.empty() ? 0 : blend.labels[i]].push_back(static_cast<std::uint32_t>(i));
-    if (usesModel()) {  // its grey on the scale of its channels' codes (765 for RGB8's grey)
-        const LightModel& model = bank.blend.model;
-        BTFLUT_CHECK(!model.empty());
-        m_counted = bank.colour == ColourMode::Rgb ? 3 : 1;  // rgb: each channel matched apart
-        m_codes = predictionCodes(bank);
-    } else {
-        setUpReferenceCodes();
-    }
+    m_predictor = bank.makePredictor();
+    m_counted = m_predictor->channels();  // rgb: each channel matched apart
+    m_codes = m_predictor->codes();       // the grey of RGB8 on its channels' codes' scale: 765
     if (blend.target == LutBank::Blend::Target::Corrections) {
         // Each node's LUT from the prediction at its light to its target, in a bank of the
         // same nodes (its lookups blend them as a classic bank's).
@@ -67,43 +62,6 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
         }
         m_corrections = std::move(corrections);
     }
-}
-
-void Relighter::setUpReferenceCodes() {
-    const LutBank::Blend& blend = m_bank.blend;
-    BTFLUT_CHECK(!blend.references.empty());
-    const Image& first = blend.references.front();
-    BTFLUT_CHECK(first.bitDepth == 8);  // the blend's codes are 8-bit (bakeBank's blendForm)
-    m_counted = m_bank.colour == ColourMode::Rgb ? 3 : 1;
-    m_codes = predictionCodes(m_bank);
-    auto code = [](float v) { return static_cast<std::int32_t>(std::lround(v * 255.f)); };
-    for (const Image& reference : blend.references) {
-        std::vector<std::int32_t> codes(reference.pixelCount() * static_cast<std::size_t>(m_counted));
-        for (std::size_t i = 0; i < reference.pixelCount(); ++i) {
-            const float* p = &reference.samples[i * static_cast<std::size_t>(reference.channels)];
-            if (m_counted == 3 || reference.channels == 1) {
-                for (int c = 0; c < m_counted; ++c) codes[i * m_counted + c] = code(p[c]);
-            } else {  // the grey of RGB on its exact code scale: the sum of the channel codes
-                codes[i] = code(p[0]) + code(p[1]) + code(p[2]);
-            }
-        }
-        m_referenceCodes.push_back(std::move(codes));
-    }
-}
-
-std::size_t Relighter::predictedCode(const RelightFrame& frame, std::size_t texel, int channel) const {
-    // floor(sum / kWeightUnit + 1/2): exact in float too, the sum being an integer below 2^24.
-    std::int64_t sum = 0;
-    if (usesModel()) {
-        const std::array<std::int64_t, 3> c = predictFixed(m_bank.blend.model, frame.model, texel);
-        sum = m_counted == 3 ? c[static_cast<std::size_t>(channel)] : c[0] + c[1] + c[2];
-    } else {
-        for (int k = 0; k < frame.count; ++k)
-            sum += std::int64_t{frame.weights[static_cast<std::size_t>(k)]} *
-                   m_referenceCodes[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])]
-                                   [texel * m_counted + channel];
-    }
-    return static_cast<std::size_t>(std::clamp<std::int64_t>((sum + kWeightUnit / 2) / kWeightUnit, 0, m_codes));
 }
 
 RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate) const {
@@ -168,11 +126,7 @@ RelightFrame Relighter::gridFrame(Direction light) const {
 
 int predictionCodes(const LutBank& bank) {
     BTFLUT_CHECK(bank.makesLuts());
-    // rgb matches each channel apart; grey one code, of one channel (grey references, a grey
-    // model without albedo) or the sum of three.
-    if (bank.colour == ColourMode::Rgb) return 255;
-    if (bank.predictsWithModel()) return bank.blend.model.albedo.empty() && bank.blend.model.channels == 1 ? 255 : 765;
-    return 255 * bank.blend.references.front().channels;
+    return bank.makePredictor()->codes();
 }
 
 void bakeMatchGrid(LutBank& bank, int threads) {
@@ -214,26 +168,8 @@ std::vector<float> referenceWeightGrid(const LutBank& bank, int size) {
 
 RelightFrame Relighter::predictionFrame(Direction light) const {
     RelightFrame frame;
+    static_cast<PredictorFrame&>(frame) = m_predictor->frameAt(light);
     frame.light = light;
-    frame.count = 0;
-    if (usesModel()) {
-        frame.model = lightModelFixed(m_bank.blend.model, light);
-        return frame;
-    }
-    // Barycentric weights in 1 / kWeightUnit; the largest takes the rounding so they sum to it.
-    const Weights w = m_bank.blend.triangulation.weightsAt(toDisk(light));
-    std::int32_t total = 0;
-    std::size_t largest = 0;
-    for (int k = 0; k < w.count; ++k) {
-        const auto weight = static_cast<std::int32_t>(std::lround(w.weight[static_cast<std::size_t>(k)] * kWeightUnit));
-        if (weight <= 0) continue;
-        if (weight > frame.weights[largest] || frame.count == 0) largest = static_cast<std::size_t>(frame.count);
-        frame.references[static_cast<std::size_t>(frame.count)] = w.index[static_cast<std::size_t>(k)];
-        frame.weights[static_cast<std::size_t>(frame.count)] = weight;
-        total += weight;
-        ++frame.count;
-    }
-    frame.weights[largest] += kWeightUnit - total;
     return frame;
 }
 
@@ -276,7 +212,7 @@ Image Relighter::apply(const RelightFrame& frame, bool dither) const {
     const float targetCode = dither ? m_bank.targetCode() : 0.f;
     if (!m_bank.makesLuts()) return applyLuts(m_bank.reference, m_bank.colour, frame.luts, m_bank.entries, targetCode);
     const LutBank::Blend& blend = m_bank.blend;
-    const Image& first = usesModel() ? m_bank.reference : blend.references.front();
+    const Image& first = m_bank.predictsWithModel() ? m_bank.reference : blend.references.front();
     const ColourMode colour = m_bank.colour;
     const int outChannels = colour == ColourMode::Grey ? first.channels : 3;
     Image out(first.width, first.height, outChannels, m_bank.reference.bitDepth);
@@ -301,21 +237,7 @@ Image Relighter::apply(const RelightFrame& frame, bool dither) const {
             p[0] = map(0);
         } else {
             // The chroma: the blended references' (grey), the albedo's (lrgb) or the model's.
-            if (usesModel()) {
-                const std::array<std::int64_t, 3> c = predictFixed(blend.model, frame.model, i);
-                for (std::size_t k = 0; k < 3; ++k) p[k] = static_cast<float>(c[k]) / (255.f * kWeightUnit);
-            } else if (colour == ColourMode::Lrgb) {
-                std::copy_n(&blend.albedo.samples[i * 3], 3, p);
-            } else {
-                for (int c = 0; c < 3; ++c) {
-                    p[c] = 0;
-                    for (int k = 0; k < frame.count; ++k)
-                        p[c] +=
-                            static_cast<float>(frame.weights[static_cast<std::size_t>(k)]) / kWeightUnit *
-                            blend.references[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])]
-                                .samples[i * 3 + c];
-                }
-            }
+            m_predictor->colour(frame, i, p);
             setGrey(p, (p[0] + p[1] + p[2]) * (1.f / 3.f), map(0));
         }
     }

@@ -25,16 +25,14 @@
 #include <vector>
 
 #include "core/bank/lut_bank.h"
+#include "core/predict/predictor.h"
 
 namespace btflut {
 
-struct RelightFrame {
-    Direction light;  ///< what the frame is for
-    int count = 1;    ///< references blended, 1 to 3 (0 for a light model)
-    std::array<int, 3> references{0, 0, 0};
-    std::array<std::int32_t, 3> weights{kWeightUnit, 0, 0};  ///< in 1 / kWeightUnit, summing to kWeightUnit
-    LightModelFixed model;                                   ///< a light model's per-light integers
-    std::vector<float> luts;                                 ///< regions x channels x entries
+/// A light's frame: the predictor's integers there (PredictorFrame: its weights) and the LUTs.
+struct RelightFrame : PredictorFrame {
+    Direction light;          ///< what the frame is for
+    std::vector<float> luts;  ///< regions x channels x entries
     /// Of the target (LutBank::lookup): the worse of the light's and the view's.
     Provenance provenance = Provenance::Measured, lightProvenance = Provenance::Measured,
                viewProvenance = Provenance::Measured;
@@ -69,8 +67,6 @@ public:
     float inputCode() const { return 1.f / static_cast<float>(m_codes + 1); }
 
 private:
-    /// The references' codes per texel (banks that blend references).
-    void setUpReferenceCodes();
     /// The prediction's part of a frame (blend weights or the model's integers), no LUTs.
     RelightFrame predictionFrame(Direction light) const;
     std::vector<float> lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const;
@@ -80,15 +76,16 @@ private:
     /// A region's and channel's predicted codes as counts (code q at index q + 1, value
     /// (q + 1) / (codes + 1): every cell inside [0, 1]).
     LevelCounts predictedCounts(const RelightFrame& frame, std::size_t region, int channel) const;
-    /// A texel's predicted code, 0 .. codes: the blend, or the light model's grey.
-    std::size_t predictedCode(const RelightFrame& frame, std::size_t texel, int channel) const;
-    bool usesModel() const { return m_bank.predictsWithModel(); }
+    /// A texel's predicted code, 0 .. codes: the predictor's.
+    std::size_t predictedCode(const RelightFrame& frame, std::size_t texel, int channel) const {
+        return m_predictor->code(frame, texel, channel);
+    }
 
     const LutBank& m_bank;
-    int m_codes = 255;                                        // codes of a predicted value (765 for the grey of RGB8)
-    int m_counted = 1;                                        // channels counted: 3 for rgb, else 1 (grey)
-    std::vector<std::vector<std::int32_t>> m_referenceCodes;  // [reference][texel * counted + c]
-    std::vector<std::vector<std::uint32_t>> m_regionTexels;   // sample texels of each region
+    std::unique_ptr<const Predictor> m_predictor;            // banks that make their LUTs
+    int m_codes = 255;                                       // codes of a predicted value (765 for the grey of RGB8)
+    int m_counted = 1;                                       // channels counted: 3 for rgb, else 1 (grey)
+    std::vector<std::vector<std::uint32_t>> m_regionTexels;  // sample texels of each region
     /// Corrections (LutBank::Blend::Target::Corrections): the bank's nodes with, instead of
     /// their targets, the LUTs from the prediction at their lights to their targets.
     std::shared_ptr<const LutBank> m_corrections;

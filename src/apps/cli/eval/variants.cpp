@@ -136,9 +136,8 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
     all.clear();
     for (const Variant& v : variants)
         for (const std::string& t : targets) {
-            const bool predicts =
-                v.mode == RenderMode::Lut && v.predictor != "auto" &&
-                (v.predictor != "references" || v.references > 1 || v.regions > 1 || v.colour == ColourMode::Lrgb);
+            const bool predicts = v.mode == RenderMode::Lut && v.predictor != "auto" &&
+                                  bakePredicts(v.references, v.regions, false, v.colour, v.predictor != "references");
             if (!predicts && t != targets.front()) continue;
             Variant r = v;
             r.corrections = predicts && t == "corrections";
@@ -226,10 +225,7 @@ double bytesPerTexel(const Variant& v, const LutBank& bank) {
     const double reference = bank.reference.channels * (bank.reference.bitDepth / 8.0);
     switch (v.mode) {
         case RenderMode::Lut:
-            if (!bank.makesLuts()) return reference;
-            if (bank.predictsWithModel()) return bank.blend.model.bytesPerTexel() + (bank.blend.regions > 1 ? 1 : 0);
-            return static_cast<double>(bank.blend.references.size()) * bank.blend.references.front().channels +
-                   (bank.colour == ColourMode::Lrgb ? 3 : 0) + (bank.blend.regions > 1 ? 1 : 0);
+            return bank.predictorBytesPerTexel();
         case RenderMode::Ptm:
             return 9;
         default:

@@ -1,0 +1,30 @@
+#pragma once
+// A linear light model (light_model.h: ptm, hsh, rbf, bln; a bank's PTM as one) as a bank's
+// predictor: its per-light integers and each texel's fixed-point prediction.
+
+#include "core/predict/light_model.h"
+#include "core/predict/predictor.h"
+
+namespace btflut {
+
+class ModelPredictor final : public Predictor {
+public:
+    /// `model` outlives the predictor. `perChannel`: its RGB matched per channel (rgb banks);
+    /// else its grey, on the scale of the summed channel codes when it has colour.
+    ModelPredictor(const LightModel& model, bool perChannel);
+
+    std::string name() const override { return lightModelName(m_model); }
+    double bytesPerTexel() const override { return m_model.bytesPerTexel(); }
+    int codes() const override { return m_codes; }
+    int channels() const override { return m_channels; }
+    PredictorFrame frameAt(Direction light) const override;
+    std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
+    void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;
+
+private:
+    const LightModel& m_model;
+    int m_channels = 1;
+    int m_codes = 255;
+};
+
+}  // namespace btflut

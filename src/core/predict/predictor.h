@@ -1,0 +1,66 @@
+#pragma once
+// The predictor of a bank that makes its LUTs at run time (LutBank::makesLuts): what places
+// shadows and highlights per texel before each light's LUT matches the histogram
+// (docs/predictors.md). One class per kind, each answering what relighting asks of it, so
+// the relighter (relight/relighter.h) never branches on the kind and a new kind is a new
+// file here, not a branch in every evaluator:
+//   reference_blend.h   K references blended with the light's barycentric weights
+//   model_predictor.h   a linear light model (ptm, hsh, rbf, bln; a bank's PTM as one)
+//
+//   std::unique_ptr<const Predictor> p = bank.makePredictor();      // lut_bank.h
+//   PredictorFrame f = p->frameAt(light);            // per light change: integers
+//   std::size_t q = p->code(f, texel, channel);      // 0 .. p->codes(), what the GPU computes
+//
+// Predictions are exact integer arithmetic (kWeightUnit, light_model.h), so the CPU and the
+// GPU's shaders (shaders/lut_common.glsl) get the same codes.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "core/direction/direction.h"
+#include "core/predict/light_model.h"
+
+namespace btflut {
+
+/// A predictor's integers at one light: the references blended and their weights (a
+/// reference blend), or the light model's per-light integers.
+struct PredictorFrame {
+    int count = 1;  ///< references blended, 1 to 3 (0 for a light model)
+    std::array<int, 3> references{0, 0, 0};
+    std::array<std::int32_t, 3> weights{kWeightUnit, 0, 0};  ///< in 1 / kWeightUnit, summing to kWeightUnit
+    LightModelFixed model;                                   ///< a light model's per-light integers
+};
+
+class Predictor {
+public:
+    virtual ~Predictor() = default;
+
+    /// The name `--predictor` takes: "references", or the light model's (ptm, hsh2, bln9c).
+    virtual std::string name() const = 0;
+    /// Bytes per texel it stores (the region labels, a bank's, not counted).
+    virtual double bytesPerTexel() const = 0;
+    /// Codes of a predicted value: 255 (a channel) or 765 (the grey of RGB8, three channels'
+    /// codes summed).
+    virtual int codes() const = 0;
+    /// Channels predicted and matched apart: 3 (rgb banks) or 1 (the grey).
+    virtual int channels() const = 0;
+
+    /// Its integers at a light.
+    virtual PredictorFrame frameAt(Direction light) const = 0;
+    /// A texel's predicted code, 0 .. codes(), of `channel` (< channels()).
+    virtual std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const = 0;
+    /// A texel's colour before a grey LUT (RGB in [0, 1]): its chroma is what a grey bank of
+    /// RGB keeps.
+    virtual void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const = 0;
+};
+
+/// A fixed-point sum (in 1 / kWeightUnit) rounded to a code, 0 .. codes: floor(sum /
+/// kWeightUnit + 1/2), exact in float too, the sum being an integer below 2^24.
+inline std::size_t roundedCode(std::int64_t sum, int codes) {
+    const std::int64_t code = (sum + kWeightUnit / 2) / kWeightUnit;
+    return static_cast<std::size_t>(code < 0 ? 0 : code > codes ? codes : code);
+}
+
+}  // namespace btflut

@@ -1,0 +1,79 @@
+#include "core/predict/reference_blend.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.h"
+
+namespace btflut {
+
+ReferenceBlend::ReferenceBlend(const std::vector<Image>& references, const Triangulation& lights, bool perChannel,
+                               const Image* albedo)
+    : m_references(references), m_lights(lights), m_albedo(albedo) {
+    BTFLUT_CHECK(!references.empty());
+    BTFLUT_CHECK(references.front().bitDepth == 8);  // the blend's codes are 8-bit (bakeBank's blendForm)
+    m_channels = perChannel ? 3 : 1;
+    m_codes = perChannel ? 255 : 255 * references.front().channels;
+    auto code = [](float v) { return static_cast<std::int32_t>(std::lround(v * 255.f)); };
+    for (const Image& reference : references) {
+        std::vector<std::int32_t> codes(reference.pixelCount() * static_cast<std::size_t>(m_channels));
+        for (std::size_t i = 0; i < reference.pixelCount(); ++i) {
+            const float* p = &reference.samples[i * static_cast<std::size_t>(reference.channels)];
+            if (m_channels == 3 || reference.channels == 1) {
+                for (int c = 0; c < m_channels; ++c) codes[i * m_channels + c] = code(p[c]);
+            } else {  // the grey of RGB on its exact code scale: the sum of the channel codes
+                codes[i] = code(p[0]) + code(p[1]) + code(p[2]);
+            }
+        }
+        m_referenceCodes.push_back(std::move(codes));
+    }
+}
+
+double ReferenceBlend::bytesPerTexel() const {
+    return static_cast<double>(m_references.size()) * m_references.front().channels + (m_albedo ? 3 : 0);
+}
+
+PredictorFrame ReferenceBlend::frameAt(Direction light) const {
+    PredictorFrame frame;
+    frame.count = 0;
+    // Barycentric weights in 1 / kWeightUnit; the largest takes the rounding so they sum to it.
+    const Weights w = m_lights.weightsAt(toDisk(light));
+    std::int32_t total = 0;
+    std::size_t largest = 0;
+    for (int k = 0; k < w.count; ++k) {
+        const auto weight = static_cast<std::int32_t>(std::lround(w.weight[static_cast<std::size_t>(k)] * kWeightUnit));
+        if (weight <= 0) continue;
+        if (weight > frame.weights[largest] || frame.count == 0) largest = static_cast<std::size_t>(frame.count);
+        frame.references[static_cast<std::size_t>(frame.count)] = w.index[static_cast<std::size_t>(k)];
+        frame.weights[static_cast<std::size_t>(frame.count)] = weight;
+        total += weight;
+        ++frame.count;
+    }
+    frame.weights[largest] += kWeightUnit - total;
+    return frame;
+}
+
+std::size_t ReferenceBlend::code(const PredictorFrame& frame, std::size_t texel, int channel) const {
+    std::int64_t sum = 0;
+    for (int k = 0; k < frame.count; ++k)
+        sum += std::int64_t{frame.weights[static_cast<std::size_t>(k)]} *
+               m_referenceCodes[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])]
+                               [texel * m_channels + channel];
+    return roundedCode(sum, m_codes);
+}
+
+void ReferenceBlend::colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const {
+    if (m_albedo) {  // lrgb: the albedo's chroma
+        std::copy_n(&m_albedo->samples[texel * 3], 3, rgb);
+        return;
+    }
+    for (int c = 0; c < 3; ++c) {  // the blend's own (RGB references)
+        rgb[c] = 0;
+        for (int k = 0; k < frame.count; ++k)
+            rgb[c] += static_cast<float>(frame.weights[static_cast<std::size_t>(k)]) / kWeightUnit *
+                      m_references[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])]
+                          .samples[texel * 3 + c];
+    }
+}
+
+}  // namespace btflut
