@@ -202,7 +202,7 @@ void SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
         }
         (perFragment ? m_stats.quadsPerFragment : m_stats.quadsTextureSpace) += quads.size();
     }
-    for (QuadState& q : m_quads) q.lastFrameLight = q.unlit ? Vec3{0, 0, -2} : q.light;
+    for (QuadState& q : m_quads) q.lastFrameLight = q.unlit ? kNoLight : q.light;
 }
 
 double SceneRenderer::coveredPixels(const SceneQuad& quad) const {
@@ -268,7 +268,7 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
             bytes.luts += static_cast<std::size_t>(material.bank.entries) * kViewGrid * kViewGrid *
                           static_cast<std::size_t>(levels) * 4;
         }
-        q.lightUploaded = {0, 0, -2};
+        q.lightUploaded = kNoLight;
         update(q, light, mode);
     }
     if (mode == RenderMode::Ptm && !material.ptmLoaded) {
@@ -282,7 +282,7 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
         material.ptmLoaded = true;
         m_stats.loadedPtms.push_back(quad.material);
         for (QuadState& other : m_quads)  // their PTM weights are due
-            if (m_scene.quads[other.index].material == quad.material) other.lightUploaded = {0, 0, -2};
+            if (m_scene.quads[other.index].material == quad.material) other.lightUploaded = kNoLight;
         update(q, light, mode);
     }
     if (mode == RenderMode::Nearest && !q.unlit && !material.imageTextures.count(q.nearestImage)) {

@@ -96,8 +96,8 @@ void SceneRenderer::setCamera(const Vec3& eye, const Vec3& target, const Vec3& u
 void SceneRenderer::setInterpolation(bool interpolate) {
     if (interpolate == m_interpolate) return;
     m_interpolate = interpolate;
-    for (QuadState& q : m_quads) q.lightUploaded = {0, 0, -2};  // blend again
-    for (auto& [name, m] : m_materials) m.relit.clear();        // relight again
+    for (QuadState& q : m_quads) q.lightUploaded = kNoLight;  // blend again
+    for (auto& [name, m] : m_materials) m.relit.clear();      // relight again
 }
 
 const LutBank* SceneRenderer::bank(const std::string& material) const {

@@ -155,18 +155,22 @@ private:
         std::optional<Dataset> images;
         std::map<std::string, GlTexture> imageTextures;  ///< by dataset image name
     };
+    /// A light below the horizon, which no quad is ever lit by: "none yet", or "compute again"
+    /// where a quad's state records the light it was computed for.
+    static constexpr Vec3 kNoLight{0, 0, -2};
+
     struct QuadState {
         std::size_t index;
         /// banks with view layers: per channel, 3D over the view grid and mip levels; of one view
         /// layer drawn per fragment: the frame's LUTs (RelightPass::makeLuts)
         std::vector<GlTexture> luts;
-        Vec3 light;                     ///< in the quad's frame
-        std::size_t relit = 0;          ///< mode lut of a bank of one view layer: its material's relit texture
-        bool perFragment = false;       ///< ... or relit per fragment this frame (choosePaths)
-        Vec3 lastFrameLight{0, 0, -2};  ///< the light in its frame at the previous frame (none yet: below the horizon)
-        RelightFrame frame;             ///< per fragment: the frame in `luts`
-        Vec3 frameLight{0, 0, -2};      ///< ... and the light (in the quad's frame) it is for
-        Vec3 lightUploaded{0, 0, -2}, eyeUploaded;  ///< what its state was computed for
+        Vec3 light;                      ///< in the quad's frame
+        std::size_t relit = 0;           ///< mode lut of a bank of one view layer: its material's relit texture
+        bool perFragment = false;        ///< ... or relit per fragment this frame (choosePaths)
+        Vec3 lastFrameLight = kNoLight;  ///< the light in its frame at the previous frame
+        RelightFrame frame;              ///< per fragment: the frame in `luts`
+        Vec3 frameLight = kNoLight;      ///< ... and the light (in the quad's frame) it is for
+        Vec3 lightUploaded = kNoLight, eyeUploaded;  ///< what its state was computed for
         RenderMode modeUploaded = RenderMode::Flat;
         float brightness = 1;  ///< brdf mode
         bool unlit = false;

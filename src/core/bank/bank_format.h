@@ -19,14 +19,14 @@ constexpr std::uint32_t kMaxEntries = 65536;
 constexpr std::uint32_t kMaxGrid = 257;
 constexpr std::uint64_t kMaxChunk = 0xFFFFFFFFu;  // a chunk's length is a u32
 
-inline std::uint32_t tagOf(const char (&t)[5]) {
+constexpr std::uint32_t tagOf(const char (&t)[5]) {
     return static_cast<std::uint32_t>(t[0]) | static_cast<std::uint32_t>(t[1]) << 8 |
            static_cast<std::uint32_t>(t[2]) << 16 | static_cast<std::uint32_t>(t[3]) << 24;
 }
-const std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
-                    kEnd = tagOf("END "), kReferences = tagOf("REFS"), kMask = tagOf("MASK"), kLabels = tagOf("LABL"),
-                    kAlbedo = tagOf("ALBD"), kFill = tagOf("FILL"), kLightModel = tagOf("LMDL"),
-                    kSelection = tagOf("CHOS"), kMatchGrid = tagOf("MGRD");
+constexpr std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
+                        kEnd = tagOf("END "), kReferences = tagOf("REFS"), kMask = tagOf("MASK"),
+                        kLabels = tagOf("LABL"), kAlbedo = tagOf("ALBD"), kFill = tagOf("FILL"),
+                        kLightModel = tagOf("LMDL"), kSelection = tagOf("CHOS"), kMatchGrid = tagOf("MGRD");
 
 inline std::string tagName(std::uint32_t tag) {
     std::string s;

@@ -382,166 +382,240 @@ Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, co
 
 }  // namespace
 
-Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const BankReadOptions& options) {
-    auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
-    Result<Chunks> chunks = splitChunks(bytes, name);
-    if (!chunks) return Error{chunks.error()};
-    LutBank bank;
-    Result<Head> head = readHead(chunks->list.front(), chunks->version, name, bank);
-    if (!head) return Error{head.error()};
+namespace {
 
-    // Which layers' LUTs to decode: from the layers' view directions alone (their first 16
-    // bytes). In the isotropic domain every layer takes part in every lookup.
-    std::vector<bool> wanted;
-    if (!options.views.empty() && bank.domain == BankDomain::Layers) {
-        LutBank views;
-        for (const Chunk& chunk : chunks->list) {
-            if (chunk.tag != kLayer) continue;
-            Reader in(chunk.payload, chunk.length);
-            Result<Direction> view = getDirection(in, name, "layer view");
-            if (!view || views.layers.size() == head->layerCount) {
-                views.layers.clear();  // malformed: decode everything, and let the checks below say what is wrong
-                break;
-            }
-            views.layers.push_back({*view, {}, {}, {}, {}, {}});
-        }
-        if (!views.layers.empty()) {
-            std::vector<DiskPoint> points;
-            for (const ViewLayer& layer : views.layers) points.push_back(toDisk(layer.view));
-            if (!hasNearDuplicates(points, 1e-9)) {
-                views.views = Triangulation(std::move(points));
-                wanted.assign(views.layers.size(), false);
-                for (Direction v : options.views)
-                    for (std::size_t l : views.layersFor(v)) wanted[l] = true;
-            }
+// Which layers' LUTs to decode for `options.views`: from the layers' view directions alone
+// (their first 16 bytes). Empty: every layer (no views asked, the isotropic domain, where
+// every layer takes part in every lookup, or layers too malformed to tell; the checks of
+// the chunks then say what is wrong).
+std::vector<bool> wantedLayers(const Chunks& chunks, const Head& head, const LutBank& bank, const std::string& name,
+                               const BankReadOptions& options) {
+    if (options.views.empty() || bank.domain != BankDomain::Layers) return {};
+    LutBank views;
+    for (const Chunk& chunk : chunks.list) {
+        if (chunk.tag != kLayer) continue;
+        Reader in(chunk.payload, chunk.length);
+        Result<Direction> view = getDirection(in, name, "layer view");
+        if (!view || views.layers.size() == head.layerCount) return {};
+        views.layers.push_back({*view, {}, {}, {}, {}, {}});
+    }
+    if (views.layers.empty()) return {};
+    std::vector<DiskPoint> points;
+    for (const ViewLayer& layer : views.layers) points.push_back(toDisk(layer.view));
+    if (hasNearDuplicates(points, 1e-9)) return {};
+    views.views = Triangulation(std::move(points));
+    std::vector<bool> wanted(views.layers.size(), false);
+    for (Direction v : options.views)
+        for (std::size_t l : views.layersFor(v)) wanted[l] = true;
+    return wanted;
+}
+
+// One decode after HEAD: a method per chunk after it (each may say the file is wrong), then
+// the checks of the whole.
+class BankDecoder {
+public:
+    BankDecoder(const Chunks& chunks, const Head& head, const std::string& name, const BankReadOptions& options,
+                LutBank& bank)
+        : m_chunks(chunks),
+          m_head(head),
+          m_name(name),
+          m_options(options),
+          m_bank(bank),
+          m_wanted(wantedLayers(chunks, head, bank, name, options)) {}
+
+    Status chunk(const Chunk& chunk) {
+        Reader in(chunk.payload, chunk.length);
+        switch (chunk.tag) {
+            case kHead:
+                return fail("two HEAD chunks");
+            case kLayer:
+                return layer(in);
+            case kFill:
+                if (m_chunks.version < 4 || m_fill) return fail("unexpected FILL chunk");
+                m_fill = &chunk;
+                return success();
+            case kReference:
+                return reference(chunk);
+            case kReferences:
+            case kMask:
+            case kLabels:
+            case kAlbedo:
+                if (!m_bank.makesLuts()) return fail("unexpected chunk " + tagName(chunk.tag));
+                return readBlendChunk(chunk.tag, in, m_name, m_head, m_bank);
+            case kLightModel:
+                return lightModel(in);
+            case kMatchGrid:
+                return matchGrid(chunk);
+            case kSelection:
+                return selection(in);
+            case kPtm:
+                return ptm(chunk);
+            default:
+                return fail("unknown chunk " + tagName(chunk.tag));
         }
     }
 
-    bool haveReference = false, havePtm = false, haveModel = false, haveSelection = false;
-    std::size_t matchGrids = 0;
-    std::size_t totalNodes = 0;
-    const Chunk* fill = nullptr;
-    for (std::size_t c = 1; c < chunks->list.size(); ++c) {
-        const auto& [tag, payload, length] = chunks->list[c];
-        Reader in(payload, length);
-        if (tag == kHead) {
-            return fail("two HEAD chunks");
-        } else if (tag == kLayer) {
-            if (bank.layers.size() == head->layerCount)
-                return fail("more LAYR chunks than the " + std::to_string(head->layerCount) + " declared");
-            const std::string which = "layer " + std::to_string(bank.layers.size());
-            const std::size_t length1 = bank.nodeLength();
-            const auto cells = static_cast<std::size_t>(bank.gridSize) * bank.gridSize;
-            ViewLayer layer;
-            Result<Direction> view = getDirection(in, name, "layer view");
-            if (!view) return Error{view.error()};
-            layer.view = *view;
-            auto nodes = in.get<std::uint32_t>();
-            if (!in.ok() || nodes == 0 || nodes > in.remaining() / 20)
-                return fail(which + " has an invalid node count");
-            totalNodes += nodes;
-            if (totalNodes > kMaxBankNodes)
-                return fail("more than " + std::to_string(kMaxBankNodes) + " measured directions (the format's limit)");
-            for (std::uint32_t n = 0; n < nodes; ++n) {
-                Result<Direction> light = getDirection(in, name, "node light");
-                if (!light) return Error{light.error()};
-                std::string nodeName = in.getString();
-                layer.nodes.push_back({nodeName, *light});
-            }
-            const std::uint8_t* luts = in.getBytes(nodes * length1 * sizeof(float));
-            const std::uint8_t* kinds = in.getBytes(cells);
-            const std::uint8_t* grid = in.getBytes(cells * length1 * sizeof(std::uint16_t));
-            if (!in.ok() || in.remaining() != 0)
-                return fail("LAYR chunk " + std::to_string(bank.layers.size()) + " has the wrong size");
-            std::vector<DiskPoint> lights;
-            for (const LightNode& node : layer.nodes) lights.push_back(toDisk(node.light));
-            if (hasNearDuplicates(lights, 1e-9)) return fail("two nodes share one light direction");
-            if (!wanted.empty() && !wanted[bank.layers.size()]) {
-                layer.lutsLoaded = false;
-                bank.layers.push_back(std::move(layer));
-                continue;
-            }
-            layer.nodeLuts.resize(nodes * length1);
-            std::memcpy(layer.nodeLuts.data(), luts, layer.nodeLuts.size() * sizeof(float));
-            for (std::size_t k = 0; k < layer.nodeLuts.size(); k += bank.segmentLength())
-                if (!isValidLut(&layer.nodeLuts[k], bank.segmentLength()))
-                    return fail(std::string(bank.makesLuts() ? "a quantile function" : "a LUT") +
-                                " is not monotonic in [0, 1] (file is corrupted)");
-            for (std::size_t g = 0; g < cells; ++g) {
-                if (kinds[g] > (chunks->version >= 4 ? 3 : 2)) return fail("invalid grid node provenance");
-                if (options.grids) layer.gridProvenance.push_back(static_cast<Provenance>(kinds[g]));
-            }
-            if (options.grids) {
-                layer.gridLuts.resize(cells * length1);
-                std::memcpy(layer.gridLuts.data(), grid, layer.gridLuts.size() * sizeof(std::uint16_t));
-            }
-            bank.layers.push_back(std::move(layer));
-        } else if (tag == kFill) {
-            if (chunks->version < 4 || fill) return fail("unexpected FILL chunk");
-            fill = &chunks->list[c];
-        } else if (tag == kReference) {
-            if (!head->embedded || haveReference) return fail("unexpected REFI chunk");
-            haveReference = true;
-            Result<Image> image = decodeImage(Bytes(payload, payload + length), name + " (reference image)",
-                                              static_cast<int>(head->refWidth), static_cast<int>(head->refHeight));
-            if (!image) return Error{image.error()};
-            if (static_cast<std::uint32_t>(image->channels) != head->refChannels)
-                return fail("reference image does not match the header");
-            bank.reference = std::move(*image);
-        } else if (tag == kReferences || tag == kMask || tag == kLabels || tag == kAlbedo) {
-            if (!bank.makesLuts()) return fail("unexpected chunk " + tagName(tag));
-            if (Status st = readBlendChunk(tag, in, name, *head, bank); !st) return Error{st.error()};
-        } else if (tag == kLightModel) {
-            if (haveModel || bank.blend.predictor != LutBank::Blend::Predictor::Model)
-                return fail("unexpected LMDL chunk");
-            haveModel = true;
-            Result<LightModel> model = decodeLightModel(in, name, *head);
-            if (!model) return Error{model.error()};
-            bank.blend.model = std::move(*model);
-        } else if (tag == kMatchGrid) {
-            // One per layer, in order, after the layers: the LUTs over the grid of a bank with a predictor.
-            const std::size_t cells = static_cast<std::size_t>(bank.gridSize) * static_cast<std::size_t>(bank.gridSize);
-            const std::size_t lutLength = static_cast<std::size_t>(bank.entries);
-            if (chunks->version < 5 || !bank.makesLuts() || matchGrids >= bank.layers.size() ||
-                length != cells * bank.matchLength() * sizeof(std::uint16_t))
-                return fail("unexpected MGRD chunk, or one of the wrong size");
-            ViewLayer& layer = bank.layers[matchGrids++];
-            if (!options.matchGrids || !layer.lutsLoaded) continue;
-            layer.matchGridLuts.resize(length / sizeof(std::uint16_t));
-            std::memcpy(layer.matchGridLuts.data(), payload, length);
-            for (std::size_t at = 0; at < layer.matchGridLuts.size(); at += lutLength)
-                if (!std::is_sorted(layer.matchGridLuts.begin() + static_cast<std::ptrdiff_t>(at),
-                                    layer.matchGridLuts.begin() + static_cast<std::ptrdiff_t>(at + lutLength)))
-                    return fail("a LUT of the match grid is not monotonic (file is corrupted)");
-        } else if (tag == kSelection) {
-            if (haveSelection || chunks->version < 5) return fail("unexpected CHOS chunk");
-            haveSelection = true;
-            bank.selection = in.getString();
-            if (!in.ok() || in.remaining() != 0) return fail("CHOS chunk has the wrong size");
-            if (Result<nlohmann::json> parsed = parseJsonText(bank.selection, name + " (CHOS chunk)"); !parsed)
-                return Error{parsed.error()};
-        } else if (tag == kPtm) {
-            if (havePtm) return fail("two PTMC chunks");
-            havePtm = true;
-            bank.ptmInFile = true;
-            if (!options.ptm && bank.blend.predictor != LutBank::Blend::Predictor::Ptm)
-                continue;  // the predictor's is needed
-            Result<Ptm> ptm = decodePtm({tag, payload, length}, name, head->refWidth, head->refHeight);
-            if (!ptm) return Error{ptm.error()};
-            bank.ptm = std::move(*ptm);
-        } else {
-            return fail("unknown chunk " + tagName(tag));
+    /// After every chunk: what must be there, the FILL flags, the predictor, the directions.
+    Status finish() {
+        if (m_bank.layers.size() != m_head.layerCount)
+            return fail("declares " + std::to_string(m_head.layerCount) + " layers but holds " +
+                        std::to_string(m_bank.layers.size()));
+        if (m_head.embedded && !m_haveReference) return fail("reference image chunk is missing");
+        if (m_matchGrids != 0 && m_matchGrids != m_bank.layers.size())
+            return fail("a match grid (MGRD) for some layers only");
+        if (m_fill)
+            if (Status s = fillFlags(); !s) return s;
+        if (!m_head.embedded) {  // keep the description, without pixels
+            m_bank.reference.width = static_cast<int>(m_head.refWidth);
+            m_bank.reference.height = static_cast<int>(m_head.refHeight);
+            m_bank.reference.channels = static_cast<int>(m_head.refChannels);
+            m_bank.reference.bitDepth = static_cast<int>(m_head.refDepth);
         }
+        if (m_bank.colour != ColourMode::Grey && m_head.refChannels != 3)
+            return fail(std::string(colourName(m_bank.colour)) + " bank with a grey reference image");
+        if (m_bank.makesLuts())
+            if (Status s = predictor(); !s) return s;
+        std::vector<DiskPoint> views;
+        for (const ViewLayer& l : m_bank.layers) views.push_back(toDisk(l.view));
+        if (hasNearDuplicates(views, 1e-9)) return fail("two layers share one view direction");
+        m_bank.buildTriangulations();
+        if (!m_bank.followsLight())
+            return fail(
+                "the bank's directions cannot follow the light (one light per view, and no "
+                "interpolation over the view)");
+        return success();
     }
-    if (bank.layers.size() != head->layerCount)
-        return fail("declares " + std::to_string(head->layerCount) + " layers but holds " +
-                    std::to_string(bank.layers.size()));
-    if (head->embedded && !haveReference) return fail("reference image chunk is missing");
-    if (matchGrids != 0 && matchGrids != bank.layers.size()) return fail("a match grid (MGRD) for some layers only");
-    if (fill) {
-        Reader in(fill->payload, fill->length);
-        bank.modelFill = in.getString();
-        for (ViewLayer& layer : bank.layers) {
+
+private:
+    Error fail(const std::string& what) const { return Error{m_name + ": " + what}; }
+
+    // LAYR: a view direction, its nodes' lights and names, their LUTs (or quantile
+    // functions), the grid's provenance and LUTs.
+    Status layer(Reader& in) {
+        if (m_bank.layers.size() == m_head.layerCount)
+            return fail("more LAYR chunks than the " + std::to_string(m_head.layerCount) + " declared");
+        const std::string which = "layer " + std::to_string(m_bank.layers.size());
+        const std::size_t length1 = m_bank.nodeLength();
+        const auto cells = static_cast<std::size_t>(m_bank.gridSize) * m_bank.gridSize;
+        ViewLayer layer;
+        Result<Direction> view = getDirection(in, m_name, "layer view");
+        if (!view) return Error{view.error()};
+        layer.view = *view;
+        auto nodes = in.get<std::uint32_t>();
+        if (!in.ok() || nodes == 0 || nodes > in.remaining() / 20) return fail(which + " has an invalid node count");
+        m_totalNodes += nodes;
+        if (m_totalNodes > kMaxBankNodes)
+            return fail("more than " + std::to_string(kMaxBankNodes) + " measured directions (the format's limit)");
+        for (std::uint32_t n = 0; n < nodes; ++n) {
+            Result<Direction> light = getDirection(in, m_name, "node light");
+            if (!light) return Error{light.error()};
+            std::string nodeName = in.getString();
+            layer.nodes.push_back({nodeName, *light});
+        }
+        const std::uint8_t* luts = in.getBytes(nodes * length1 * sizeof(float));
+        const std::uint8_t* kinds = in.getBytes(cells);
+        const std::uint8_t* grid = in.getBytes(cells * length1 * sizeof(std::uint16_t));
+        if (!in.ok() || in.remaining() != 0)
+            return fail("LAYR chunk " + std::to_string(m_bank.layers.size()) + " has the wrong size");
+        std::vector<DiskPoint> lights;
+        for (const LightNode& node : layer.nodes) lights.push_back(toDisk(node.light));
+        if (hasNearDuplicates(lights, 1e-9)) return fail("two nodes share one light direction");
+        if (!m_wanted.empty() && !m_wanted[m_bank.layers.size()]) {
+            layer.lutsLoaded = false;
+            m_bank.layers.push_back(std::move(layer));
+            return success();
+        }
+        layer.nodeLuts.resize(nodes * length1);
+        std::memcpy(layer.nodeLuts.data(), luts, layer.nodeLuts.size() * sizeof(float));
+        for (std::size_t k = 0; k < layer.nodeLuts.size(); k += m_bank.segmentLength())
+            if (!isValidLut(&layer.nodeLuts[k], m_bank.segmentLength()))
+                return fail(std::string(m_bank.makesLuts() ? "a quantile function" : "a LUT") +
+                            " is not monotonic in [0, 1] (file is corrupted)");
+        for (std::size_t g = 0; g < cells; ++g) {
+            if (kinds[g] > (m_chunks.version >= 4 ? 3 : 2)) return fail("invalid grid node provenance");
+            if (m_options.grids) layer.gridProvenance.push_back(static_cast<Provenance>(kinds[g]));
+        }
+        if (m_options.grids) {
+            layer.gridLuts.resize(cells * length1);
+            std::memcpy(layer.gridLuts.data(), grid, layer.gridLuts.size() * sizeof(std::uint16_t));
+        }
+        m_bank.layers.push_back(std::move(layer));
+        return success();
+    }
+
+    // REFI: the reference image, a PNG of HEAD's size and channels.
+    Status reference(const Chunk& chunk) {
+        if (!m_head.embedded || m_haveReference) return fail("unexpected REFI chunk");
+        m_haveReference = true;
+        Result<Image> image =
+            decodeImage(Bytes(chunk.payload, chunk.payload + chunk.length), m_name + " (reference image)",
+                        static_cast<int>(m_head.refWidth), static_cast<int>(m_head.refHeight));
+        if (!image) return Error{image.error()};
+        if (static_cast<std::uint32_t>(image->channels) != m_head.refChannels)
+            return fail("reference image does not match the header");
+        m_bank.reference = std::move(*image);
+        return success();
+    }
+
+    // LMDL: the light model of a bank predicted by one.
+    Status lightModel(Reader& in) {
+        if (m_haveModel || m_bank.blend.predictor != LutBank::Blend::Predictor::Model)
+            return fail("unexpected LMDL chunk");
+        m_haveModel = true;
+        Result<LightModel> model = decodeLightModel(in, m_name, m_head);
+        if (!model) return Error{model.error()};
+        m_bank.blend.model = std::move(*model);
+        return success();
+    }
+
+    // MGRD: one per layer, in order, after the layers: the LUTs over the grid of a bank with
+    // a predictor.
+    Status matchGrid(const Chunk& chunk) {
+        const std::size_t cells = static_cast<std::size_t>(m_bank.gridSize) * static_cast<std::size_t>(m_bank.gridSize);
+        const std::size_t lutLength = static_cast<std::size_t>(m_bank.entries);
+        if (m_chunks.version < 5 || !m_bank.makesLuts() || m_matchGrids >= m_bank.layers.size() ||
+            chunk.length != cells * m_bank.matchLength() * sizeof(std::uint16_t))
+            return fail("unexpected MGRD chunk, or one of the wrong size");
+        ViewLayer& layer = m_bank.layers[m_matchGrids++];
+        if (!m_options.matchGrids || !layer.lutsLoaded) return success();
+        layer.matchGridLuts.resize(chunk.length / sizeof(std::uint16_t));
+        std::memcpy(layer.matchGridLuts.data(), chunk.payload, chunk.length);
+        for (std::size_t at = 0; at < layer.matchGridLuts.size(); at += lutLength)
+            if (!std::is_sorted(layer.matchGridLuts.begin() + static_cast<std::ptrdiff_t>(at),
+                                layer.matchGridLuts.begin() + static_cast<std::ptrdiff_t>(at + lutLength)))
+                return fail("a LUT of the match grid is not monotonic (file is corrupted)");
+        return success();
+    }
+
+    // CHOS: how --predictor auto chose (JSON).
+    Status selection(Reader& in) {
+        if (m_haveSelection || m_chunks.version < 5) return fail("unexpected CHOS chunk");
+        m_haveSelection = true;
+        m_bank.selection = in.getString();
+        if (!in.ok() || in.remaining() != 0) return fail("CHOS chunk has the wrong size");
+        if (Result<nlohmann::json> parsed = parseJsonText(m_bank.selection, m_name + " (CHOS chunk)"); !parsed)
+            return Error{parsed.error()};
+        return success();
+    }
+
+    // PTMC: the baseline PTM, decoded when asked for or when it is the predictor.
+    Status ptm(const Chunk& chunk) {
+        if (m_havePtm) return fail("two PTMC chunks");
+        m_havePtm = true;
+        m_bank.ptmInFile = true;
+        if (!m_options.ptm && m_bank.blend.predictor != LutBank::Blend::Predictor::Ptm)
+            return success();  // the predictor's is needed
+        Result<Ptm> ptm = decodePtm(chunk, m_name, m_head.refWidth, m_head.refHeight);
+        if (!ptm) return Error{ptm.error()};
+        m_bank.ptm = std::move(*ptm);
+        return success();
+    }
+
+    // FILL (after the layers): which nodes the model filled, and its parameters.
+    Status fillFlags() {
+        Reader in(m_fill->payload, m_fill->length);
+        m_bank.modelFill = in.getString();
+        for (ViewLayer& layer : m_bank.layers) {
             bool seen = false;  // a modelled node: every later one must be too
             for (LightNode& node : layer.nodes) {
                 const auto modelled = in.get<std::uint8_t>();
@@ -553,40 +627,53 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
             if (!layer.nodes.empty() && layer.nodes.front().modelled)
                 return fail("FILL chunk: a view layer without measured nodes");
         }
-        if (!in.ok() || in.remaining() != 0 || bank.modelFill.empty()) return fail("FILL chunk has the wrong size");
+        if (!in.ok() || in.remaining() != 0 || m_bank.modelFill.empty()) return fail("FILL chunk has the wrong size");
+        return success();
     }
-    if (!head->embedded) {  // keep the description, without pixels
-        bank.reference.width = static_cast<int>(head->refWidth);
-        bank.reference.height = static_cast<int>(head->refHeight);
-        bank.reference.channels = static_cast<int>(head->refChannels);
-        bank.reference.bitDepth = static_cast<int>(head->refDepth);
-    }
-    if (bank.colour != ColourMode::Grey && head->refChannels != 3)
-        return fail(std::string(colourName(bank.colour)) + " bank with a grey reference image");
-    if (bank.makesLuts()) {
-        const LutBank::Blend& blend = bank.blend;
+
+    // A bank with a predictor: its parts all there and consistent; a PTM-predicted bank's
+    // PTM folded into a light model.
+    Status predictor() {
+        LutBank::Blend& blend = m_bank.blend;
         const bool ptmPredictor = blend.predictor == LutBank::Blend::Predictor::Ptm;
-        if (ptmPredictor && (!havePtm || bank.colour != ColourMode::Grey))
+        if (ptmPredictor && (!m_havePtm || m_bank.colour != ColourMode::Grey))
             return fail("a PTM-predicted bank without its PTM");
-        if (blend.predictor == LutBank::Blend::Predictor::Model && (!haveModel || bank.colour == ColourMode::Lrgb))
+        if (blend.predictor == LutBank::Blend::Predictor::Model && (!m_haveModel || m_bank.colour == ColourMode::Lrgb))
             return fail("a bank predicted by a light model without its model (LMDL chunk)");
-        if (ptmPredictor) bank.blend.model = lightModelFromPtm(bank.ptm);
-        if (!head->embedded || blend.references.size() != head->references || blend.mask.inside.empty() ||
+        if (ptmPredictor) blend.model = lightModelFromPtm(m_bank.ptm);
+        if (!m_head.embedded || blend.references.size() != m_head.references || blend.mask.inside.empty() ||
             (blend.regions > 1) != !blend.labels.empty() ||
-            (bank.colour == ColourMode::Lrgb) != !blend.albedo.samples.empty() || bank.layers.size() != 1)
+            (m_bank.colour == ColourMode::Lrgb) != !blend.albedo.samples.empty() || m_bank.layers.size() != 1)
             return fail(
                 "the references, mask, labels or albedo of a bank that blends references are missing or do not fit");
         for (std::uint8_t label : blend.labels)
             if (label >= blend.regions) return fail("a region label is beyond the bank's regions");
+        return success();
     }
-    std::vector<DiskPoint> views;
-    for (const ViewLayer& l : bank.layers) views.push_back(toDisk(l.view));
-    if (hasNearDuplicates(views, 1e-9)) return fail("two layers share one view direction");
-    bank.buildTriangulations();
-    if (!bank.followsLight())
-        return fail(
-            "the bank's directions cannot follow the light (one light per view, and no "
-            "interpolation over the view)");
+
+    const Chunks& m_chunks;
+    const Head& m_head;
+    const std::string& m_name;
+    const BankReadOptions& m_options;
+    LutBank& m_bank;
+    const std::vector<bool> m_wanted;  // empty: every layer's LUTs
+    bool m_haveReference = false, m_havePtm = false, m_haveModel = false, m_haveSelection = false;
+    std::size_t m_matchGrids = 0, m_totalNodes = 0;
+    const Chunk* m_fill = nullptr;
+};
+
+}  // namespace
+
+Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const BankReadOptions& options) {
+    Result<Chunks> chunks = splitChunks(bytes, name);
+    if (!chunks) return Error{chunks.error()};
+    LutBank bank;
+    Result<Head> head = readHead(chunks->list.front(), chunks->version, name, bank);
+    if (!head) return Error{head.error()};
+    BankDecoder decoder(*chunks, *head, name, options, bank);
+    for (std::size_t c = 1; c < chunks->list.size(); ++c)
+        if (Status s = decoder.chunk(chunks->list[c]); !s) return Error{s.error()};
+    if (Status s = decoder.finish(); !s) return Error{s.error()};
     return bank;
 }
 
