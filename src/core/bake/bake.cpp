@@ -200,16 +200,8 @@ Image blendForm(const Image& image, ColourMode colour) {
     return out;
 }
 
-}  // namespace
-
-Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options, const ImageProvider& provider) {
-    const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {
-        Result<Image> image = loadImage(dataset.images[i].path);
-        if (!image) return Error{image.error()};
-        storage = std::move(*image);
-        return &storage;
-    };
-    const ImageProvider& images = provider ? provider : decode;
+// Options that no dataset can satisfy, refused before anything is decoded.
+Status checkOptions(const Dataset& dataset, const BakeOptions& options) {
     if (dataset.images.empty()) return Error{dataset.source + ": dataset has no images"};
     if (options.gridSize < 2 || options.gridSize > 257)
         return Error{"--grid " + std::to_string(options.gridSize) + " is outside [2, 257]"};
@@ -219,174 +211,238 @@ Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options, con
         return Error{"--regions " + std::to_string(options.regions) + " is outside [1, 255]"};
     if (options.quantiles < 2 || options.quantiles > 65536)
         return Error{"--quantiles " + std::to_string(options.quantiles) + " is outside [2, 65536]"};
+    return success();
+}
 
-    std::size_t refIndex = 0;
-    Image referenceStorage;
-    const Image* reference = nullptr;
-    if (options.referenceName.empty()) {
-        Result<std::pair<std::size_t, const Image*>> chosen = chooseReference(dataset, images, referenceStorage);
-        if (!chosen) return Error{chosen.error()};
-        std::tie(refIndex, reference) = *chosen;
-    } else {
-        auto it = std::find_if(dataset.images.begin(), dataset.images.end(), [&](const DatasetImage& im) {
-            return im.name == options.referenceName || im.path == options.referenceName;
-        });
-        if (it == dataset.images.end())
-            return Error{dataset.source + ": no image named '" + options.referenceName + "' for --reference"};
-        refIndex = static_cast<std::size_t>(it - dataset.images.begin());
-        Result<const Image*> decoded = images(refIndex, referenceStorage);
-        if (!decoded) return Error{decoded.error()};
-        reference = *decoded;
+// One bake, step by step (bakeBank): the reference and the bank's header, what the
+// predictor needs (the blend's references and regions, or the fitted light model), one
+// streaming pass over the images, then the predictor and the nodes.
+class Baking {
+public:
+    Baking(const Dataset& dataset, const BakeOptions& options, const ImageProvider& images)
+        : m_dataset(dataset), m_options(options), m_images(images), m_makesLuts(options.predicts()) {}
+
+    // The reference (--reference, or the default) decoded, its mask, and the bank's header.
+    Status chooseReference() {
+        const Image* reference = nullptr;
+        if (m_options.referenceName.empty()) {
+            Result<std::pair<std::size_t, const Image*>> chosen =
+                btflut::chooseReference(m_dataset, m_images, m_referenceStorage);
+            if (!chosen) return Error{chosen.error()};
+            std::tie(m_refIndex, reference) = *chosen;
+        } else {
+            auto it = std::find_if(m_dataset.images.begin(), m_dataset.images.end(), [&](const DatasetImage& im) {
+                return im.name == m_options.referenceName || im.path == m_options.referenceName;
+            });
+            if (it == m_dataset.images.end())
+                return Error{m_dataset.source + ": no image named '" + m_options.referenceName + "' for --reference"};
+            m_refIndex = static_cast<std::size_t>(it - m_dataset.images.begin());
+            Result<const Image*> decoded = m_images(m_refIndex, m_referenceStorage);
+            if (!decoded) return Error{decoded.error()};
+            reference = *decoded;
+        }
+        m_ref = reference;
+        const DatasetImage& refInfo = m_dataset.images[m_refIndex];
+        if (m_options.colour != ColourMode::Grey && m_ref->channels != 3)
+            return Error{refInfo.path + ": --colour " + colourName(m_options.colour) +
+                         " needs colour images, this one is grey"};
+        Result<Mask> loadedMask = loadDatasetMask(m_dataset, m_ref->width, m_ref->height);
+        if (!loadedMask) return Error{loadedMask.error()};
+        m_mask = std::move(*loadedMask);
+        m_bank.colour = m_options.colour;
+        m_bank.gridSize = m_options.gridSize;
+        m_bank.entries = m_options.entries ? m_options.entries : (m_ref->bitDepth == 16 ? 1024 : 256);
+        m_bank.referenceName = refInfo.name;
+        m_bank.referenceLight = refInfo.light;
+        m_bank.referenceView = refInfo.view;
+        return success();
     }
-    const DatasetImage& refInfo = dataset.images[refIndex];
-    const Image& ref = *reference;
-    if (options.colour != ColourMode::Grey && ref.channels != 3)
-        return Error{refInfo.path + ": --colour " + colourName(options.colour) +
-                     " needs colour images, this one is grey"};
-    Result<Mask> loadedMask = loadDatasetMask(dataset, ref.width, ref.height);
-    if (!loadedMask) return Error{loadedMask.error()};
-    const Mask& mask = *loadedMask;
-
-    LutBank bank;
-    bank.colour = options.colour;
-    bank.gridSize = options.gridSize;
-    bank.entries = options.entries ? options.entries : (ref.bitDepth == 16 ? 1024 : 256);
-    bank.referenceName = refInfo.name;
-    bank.referenceLight = refInfo.light;
-    bank.referenceView = refInfo.view;
 
     // Banks that make their LUTs at run time keep each image's target per region as a
-    // quantile function; classic banks keep each image's LUT from the reference.
-    const bool makesLuts = options.predicts();
-    if (options.model && (options.references > 1 || options.colour == ColourMode::Lrgb))
-        return Error{
-            "--predictor " + std::string(lightBasisName(options.model->basis)) +
-            " relights with a light model: it takes no --references, and its colour is the model's (grey or rgb)"};
-    if (!(options.match >= 0 && options.match <= 1)) return Error{"--match must be from 0 (not at all) to 1 (fully)"};
-    BlendSetup blend;
-    std::vector<LevelCounts> refLevels;
-    if (makesLuts) {
-        Result<BlendSetup> setup = setUpBlend(dataset, options, refIndex, ref, mask, images);
-        if (!setup) return Error{setup.error()};
-        blend = std::move(*setup);
-        bank.blend.regions = blend.regions.count;
-        bank.blend.quantiles = options.quantiles;
-    } else {
-        refLevels = countLevels(ref, mask, options.colour);
-        for (const LevelCounts& levels : refLevels)
-            if (levels.presentCodes() < 2)
-                return Error{refInfo.path +
-                             ": reference image is constant over the sample, so no "
-                             "LUT can give it another histogram; choose another "
-                             "with --reference"};
-    }
-    const std::size_t length = bank.nodeLength();
-
-    // A light model is fitted to every image of the view at once: they are decoded first and
-    // kept, and the pass below reads them from memory.
-    std::vector<Image> decoded;
-    ImageProvider fromMemory;
-    if (options.model) {
-        Result<LightModel> model = fitModel(dataset, options, refIndex, ref, mask, images, decoded);
-        if (!model) return Error{model.error()};
-        bank.blend.model = std::move(*model);
-        fromMemory = [&](std::size_t i, Image&) -> Result<const Image*> { return &decoded[i]; };
-    }
-    const ImageProvider& pass = options.model ? fromMemory : images;
-
-    // Stream through the images: decode, count, match (or keep the quantiles), forget.
-    std::vector<ImageLuts> results(dataset.images.size());
-    std::mutex progressMutex;
-    std::size_t done = 0;
-    std::optional<PtmFitter> ptm;
-    if (options.ptm) ptm.emplace(ref.width, ref.height);
-    std::optional<AlbedoAccumulator> albedo;
-    if (options.colour == ColourMode::Lrgb) albedo.emplace(ref.width, ref.height);
-    // The references as the blend keeps them, in pick order.
-    std::vector<Image> blendReferences(blend.references.size());
-    parallelFor(dataset.images.size(), options.threads, [&](std::size_t i) {
-        const DatasetImage& info = dataset.images[i];
-        ImageLuts& out = results[i];
-        Image storage;
-        Result<const Image*> image = i == refIndex ? Result<const Image*>(&ref) : pass(i, storage);
-        if (!image) {
-            out.error = image.error();
-        } else if (Status size =
-                       requireSameSize(**image, info.path, ref.width, ref.height, refInfo.path + " (the reference)");
-                   !size) {
-            out.error = size.error();
-        } else if (options.colour != ColourMode::Grey && (*image)->channels != 3) {
-            out.error = info.path + ": --colour " + std::string(colourName(options.colour)) +
-                        " needs colour images, this one is grey";
+    // quantile function: their references and regions are chosen, or their light model
+    // fitted to every image (decoded first and kept, so the pass reads them from memory).
+    // Classic banks keep each image's LUT from the reference: its levels are counted.
+    Status preparePredictor() {
+        const DatasetImage& refInfo = m_dataset.images[m_refIndex];
+        if (m_options.model && (m_options.references > 1 || m_options.colour == ColourMode::Lrgb))
+            return Error{"--predictor " + std::string(lightBasisName(m_options.model->basis)) +
+                         " relights with a light model: it takes no --references, and its colour is the model's (grey "
+                         "or rgb)"};
+        if (!(m_options.match >= 0 && m_options.match <= 1))
+            return Error{"--match must be from 0 (not at all) to 1 (fully)"};
+        if (m_makesLuts) {
+            Result<BlendSetup> setup = setUpBlend(m_dataset, m_options, m_refIndex, *m_ref, m_mask, m_images);
+            if (!setup) return Error{setup.error()};
+            m_blend = std::move(*setup);
+            m_bank.blend.regions = m_blend.regions.count;
+            m_bank.blend.quantiles = m_options.quantiles;
         } else {
-            if (ptm && angleBetween(info.view, refInfo.view) < 1e-9) ptm->add(**image, info.light);
-            if (albedo) albedo->add(**image);
-            out.values.reserve(length);
-            if (makesLuts) {
-                const ColourMode counted = options.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey;
-                for (const Mask& region : blend.regionMasks)
-                    for (const LevelCounts& levels : countLevels(**image, region, counted)) {
-                        const std::vector<float> q = quantileFunction(levels, options.quantiles);
-                        out.values.insert(out.values.end(), q.begin(), q.end());
-                    }
-                for (std::size_t k = 0; k < blend.references.size(); ++k)
-                    if (blend.references[k] == i) blendReferences[k] = blendForm(**image, options.colour);
-            } else {
-                std::vector<LevelCounts> levels = countLevels(**image, mask, options.colour);
-                for (std::size_t c = 0; c < levels.size(); ++c) {
-                    Lut lut = matchLut(refLevels[c], levels[c], bank.entries);
-                    out.values.insert(out.values.end(), lut.values.begin(), lut.values.end());
-                }
-            }
+            m_refLevels = countLevels(*m_ref, m_mask, m_options.colour);
+            for (const LevelCounts& levels : m_refLevels)
+                if (levels.presentCodes() < 2)
+                    return Error{refInfo.path +
+                                 ": reference image is constant over the sample, so no "
+                                 "LUT can give it another histogram; choose another "
+                                 "with --reference"};
         }
-        if (options.progress) {
-            std::lock_guard lock(progressMutex);
-            options.progress(++done, dataset.images.size());
+        if (m_options.model) {
+            Result<LightModel> model = fitModel(m_dataset, m_options, m_refIndex, *m_ref, m_mask, m_images, m_decoded);
+            if (!model) return Error{model.error()};
+            m_bank.blend.model = std::move(*model);
         }
-    });
-    for (const ImageLuts& r : results)
-        if (!r.error.empty()) return Error{r.error};
-
-    std::vector<DirectionalLut> luts;
-    for (std::size_t i = 0; i < dataset.images.size(); ++i) {
-        const DatasetImage& info = dataset.images[i];
-        luts.push_back({info.name, info.light, info.view, std::move(results[i].values)});
+        return success();
     }
-    // The decoded reference is ours to keep; a provider's image is copied.
-    if (&ref == &referenceStorage)
-        bank.reference = std::move(referenceStorage);
-    else
-        bank.reference = ref;
-    bank.blend.match = makesLuts ? options.match : 1.f;
-    if (makesLuts) bank.blend.target = options.target;
-    if (makesLuts && options.model) {
-        bank.blend.predictor = LutBank::Blend::Predictor::Model;
-        bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
-        bank.blend.mask = mask;
-    } else if (makesLuts) {
-        bank.blend.references = std::move(blendReferences);
-        for (std::size_t k : blend.references)
-            bank.blend.lights.push_back({dataset.images[k].name, dataset.images[k].light});
-        bank.blend.labels = blend.regions.count > 1 ? std::move(blend.regions.labels) : std::vector<std::uint8_t>{};
-        if (albedo) bank.blend.albedo = albedo->finish();
-        bank.blend.mask = mask;
-        for (const Image& r : bank.blend.references) {
+
+    // Streams through the images: decode, count, match (or keep the quantiles), forget; the
+    // PTM and the lrgb albedo accumulate on the way, the blend's references are kept.
+    Result<std::vector<DirectionalLut>> measure() {
+        const ImageProvider fromMemory = [&](std::size_t i, Image&) -> Result<const Image*> { return &m_decoded[i]; };
+        const ImageProvider& pass = m_options.model ? fromMemory : m_images;
+        const DatasetImage& refInfo = m_dataset.images[m_refIndex];
+        const Image& ref = *m_ref;
+        const std::size_t length = m_bank.nodeLength();
+        std::vector<ImageLuts> results(m_dataset.images.size());
+        std::mutex progressMutex;
+        std::size_t done = 0;
+        if (m_options.ptm) m_ptm.emplace(ref.width, ref.height);
+        if (m_options.colour == ColourMode::Lrgb) m_albedo.emplace(ref.width, ref.height);
+        m_blendReferences.resize(m_blend.references.size());  // as the blend keeps them, in pick order
+        parallelFor(m_dataset.images.size(), m_options.threads, [&](std::size_t i) {
+            const DatasetImage& info = m_dataset.images[i];
+            ImageLuts& out = results[i];
+            Image storage;
+            Result<const Image*> image = i == m_refIndex ? Result<const Image*>(&ref) : pass(i, storage);
+            if (!image) {
+                out.error = image.error();
+            } else if (Status size = requireSameSize(**image, info.path, ref.width, ref.height,
+                                                     refInfo.path + " (the reference)");
+                       !size) {
+                out.error = size.error();
+            } else if (m_options.colour != ColourMode::Grey && (*image)->channels != 3) {
+                out.error = info.path + ": --colour " + std::string(colourName(m_options.colour)) +
+                            " needs colour images, this one is grey";
+            } else {
+                if (m_ptm && angleBetween(info.view, refInfo.view) < 1e-9) m_ptm->add(**image, info.light);
+                if (m_albedo) m_albedo->add(**image);
+                out.values.reserve(length);
+                measureOne(**image, i, out.values);
+            }
+            if (m_options.progress) {
+                std::lock_guard lock(progressMutex);
+                m_options.progress(++done, m_dataset.images.size());
+            }
+        });
+        for (const ImageLuts& r : results)
+            if (!r.error.empty()) return Error{r.error};
+        std::vector<DirectionalLut> luts;
+        for (std::size_t i = 0; i < m_dataset.images.size(); ++i) {
+            const DatasetImage& info = m_dataset.images[i];
+            luts.push_back({info.name, info.light, info.view, std::move(results[i].values)});
+        }
+        return luts;
+    }
+
+    // The reference, the predictor's parts, the nodes, the PTM and the match grid.
+    Result<LutBank> finish(const std::vector<DirectionalLut>& luts) {
+        // The decoded reference is ours to keep; a provider's image is copied.
+        if (m_ref == &m_referenceStorage)
+            m_bank.reference = std::move(m_referenceStorage);
+        else
+            m_bank.reference = *m_ref;
+        if (Status s = setPredictor(); !s) return Error{s.error()};
+        if (Status s = setNodes(m_bank, luts, m_options.domain, m_dataset.source); !s) return Error{s.error()};
+        if (m_ptm) {
+            Result<Ptm> fitted = m_ptm->finish(m_dataset.source);
+            if (!fitted) return Error{fitted.error()};
+            m_bank.ptm = std::move(*fitted);
+        }
+        if (m_bank.makesLuts() && m_options.matchGrid)
+            bakeMatchGrid(m_bank, m_options.threads);  // the LUTs an engine or a moving light reads
+        return std::move(m_bank);
+    }
+
+private:
+    // One image's node values: per region its quantile functions (a bank that makes its
+    // LUTs), or the LUT from the reference to it per channel.
+    void measureOne(const Image& image, std::size_t index, std::vector<float>& values) {
+        if (m_makesLuts) {
+            const ColourMode counted = m_options.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey;
+            for (const Mask& region : m_blend.regionMasks)
+                for (const LevelCounts& levels : countLevels(image, region, counted)) {
+                    const std::vector<float> q = quantileFunction(levels, m_options.quantiles);
+                    values.insert(values.end(), q.begin(), q.end());
+                }
+            for (std::size_t k = 0; k < m_blend.references.size(); ++k)
+                if (m_blend.references[k] == index) m_blendReferences[k] = blendForm(image, m_options.colour);
+            return;
+        }
+        std::vector<LevelCounts> levels = countLevels(image, m_mask, m_options.colour);
+        for (std::size_t c = 0; c < levels.size(); ++c) {
+            Lut lut = matchLut(m_refLevels[c], levels[c], m_bank.entries);
+            values.insert(values.end(), lut.values.begin(), lut.values.end());
+        }
+    }
+
+    // The predictor's parts in the bank: the model, or the references, their lights and the
+    // albedo; the regions' labels and the sample mask.
+    Status setPredictor() {
+        LutBank::Blend& blend = m_bank.blend;
+        blend.match = m_makesLuts ? m_options.match : 1.f;
+        if (!m_makesLuts) return success();
+        blend.target = m_options.target;
+        blend.labels = m_blend.regions.count > 1 ? std::move(m_blend.regions.labels) : std::vector<std::uint8_t>{};
+        blend.mask = m_mask;
+        if (m_options.model) {
+            blend.predictor = LutBank::Blend::Predictor::Model;
+            return success();
+        }
+        blend.references = std::move(m_blendReferences);
+        for (std::size_t k : m_blend.references)
+            blend.lights.push_back({m_dataset.images[k].name, m_dataset.images[k].light});
+        if (m_albedo) blend.albedo = m_albedo->finish();
+        for (const Image& r : blend.references) {
             const std::vector<LevelCounts> levels =
-                countLevels(r, mask, bank.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey);
+                countLevels(r, m_mask, m_bank.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey);
             for (const LevelCounts& l : levels)
                 if (l.presentCodes() < 2)
-                    return Error{dataset.source + ": a reference image is constant over the sample"};
+                    return Error{m_dataset.source + ": a reference image is constant over the sample"};
         }
+        return success();
     }
-    if (Status s = setNodes(bank, luts, options.domain, dataset.source); !s) return Error{s.error()};
-    if (ptm) {
-        Result<Ptm> fitted = ptm->finish(dataset.source);
-        if (!fitted) return Error{fitted.error()};
-        bank.ptm = std::move(*fitted);
-    }
-    if (bank.makesLuts() && options.matchGrid)
-        bakeMatchGrid(bank, options.threads);  // the LUTs an engine or a moving light reads
-    return bank;
+
+    const Dataset& m_dataset;
+    const BakeOptions& m_options;
+    const ImageProvider& m_images;
+    const bool m_makesLuts;
+    LutBank m_bank;
+    std::size_t m_refIndex = 0;
+    Image m_referenceStorage;  // the reference when decoded here
+    const Image* m_ref = nullptr;
+    Mask m_mask;
+    BlendSetup m_blend;
+    std::vector<LevelCounts> m_refLevels;  // classic banks: the reference's levels per channel
+    std::vector<Image> m_decoded;          // a light model's images, decoded once for the fit and the pass
+    std::vector<Image> m_blendReferences;
+    std::optional<PtmFitter> m_ptm;
+    std::optional<AlbedoAccumulator> m_albedo;
+};
+
+}  // namespace
+
+Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options, const ImageProvider& provider) {
+    const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {
+        Result<Image> image = loadImage(dataset.images[i].path);
+        if (!image) return Error{image.error()};
+        storage = std::move(*image);
+        return &storage;
+    };
+    if (Status s = checkOptions(dataset, options); !s) return Error{s.error()};
+    Baking baking(dataset, options, provider ? provider : decode);
+    if (Status s = baking.chooseReference(); !s) return Error{s.error()};
+    if (Status s = baking.preparePredictor(); !s) return Error{s.error()};
+    Result<std::vector<DirectionalLut>> luts = baking.measure();
+    if (!luts) return Error{luts.error()};
+    return baking.finish(*luts);
 }
 
 }  // namespace btflut
