@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Checks that a change left btflut's outputs byte for byte as they were: bakes of every kind
-# (--threads 1), relight, render --native, export folders and the --web page, made by an old
-# and a new binary from the same inputs and compared with cmp. For refactors that promise
+# (--threads 1), relight, render --native, export folders and the --web page's data (the
+# material, its files and the include; not the page's own scripts), made by an old and a new
+# binary from the same inputs and compared byte for byte. For refactors that promise
 # "behaviour unchanged" (issue 32); prints each output that differs and exits 1 if any does.
 #
 #   cp build/btflut /tmp/btflut-before        # before the change
@@ -52,7 +53,15 @@ for d in "${datasets[@]}"; do
       "$bin" relight "$out/m.btflut" --light 62,300 -o "$out/relit-far.png" -q
       "$bin" render "$out/m.btflut" --native --light 35,120 -o "$out/native.png" -q
       "$bin" export "$out/m.btflut" -o "$out/export/" -q
-      "$bin" export "$out/m.btflut" --web "$out/page.html" -q
+      "$bin" export "$out/m.btflut" --web "$work/page.html" -q
+      # The page's data without its scripts ("code"), which a refactor of src/web/ may change.
+      /usr/bin/python3 - "$work/page.html" "$out/page-data.json" <<'PY'
+import json, re, sys
+text = open(sys.argv[1]).read()
+data = json.loads(re.search(r'<script type="application/json" id="btflut-data">(.*?)</script>', text, re.S).group(1))
+data.pop("code")
+json.dump(data, open(sys.argv[2], "w"), sort_keys=True)
+PY
     done
     check "$name-$k"
   done

@@ -59,8 +59,11 @@ std::string webPage(const std::string& name, const nlohmann::json& material,
     }
     BTFLUT_CHECK(data.contains("include"));
     data["bytes"] = bytes;  // the engine export's files, as the page says
-    const std::string code =
-        std::string(embeddedWebFile("btflut_material.js")) + "\n" + std::string(embeddedWebFile("page.js"));
+    // The reader, then the page's parts by job in one strict function: they share its names.
+    std::string code = std::string(embeddedWebFile("btflut_material.js")) + "\n(function () {\n'use strict';\n";
+    for (const char* part : {"page_state.js", "page_draw.js", "page_panel.js", "page_input.js"})
+        code += std::string(embeddedWebFile(part)) + "\n";
+    code += "})();\n";
     data["code"] = base64(deflated(code));  // run by the page's first script
     // JSON inside <script>: "</" written as "<\/" (the same string), so no tag ends it.
     std::string text = data.dump();

@@ -1,0 +1,178 @@
+// page_draw.js: WebGL2 drawing: the program from the include's GLSL ES form, the material's
+// textures (load), the 2D view and the sphere (draw). Second of the page's parts (page_state.js).
+// --- WebGL2 ----------------------------------------------------------------------------------
+const gl = view.getContext('webgl2', {antialias: false, preserveDrawingBuffer: true});
+if (!gl) {
+  showMessage('This page needs WebGL2 to relight the material, and this browser does not offer it ' +
+              '(it may be switched off, or the graphics driver blocked). Try another browser, or enable hardware acceleration.');
+  return;
+}
+const vertexSource = `#version 300 es
+void main() {
+  vec2 corner = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);  // one triangle covers the view
+  gl_Position = vec4(corner, 0.0, 1.0);
+}`;
+const fragmentMain = btflutMaterial.fragmentHead + `
+uniform int mode;            // 0: 2D, 1: sphere
+uniform vec2 origin;         // 2D: the view pixel of texel (0, 0)'s corner, GL's y up
+uniform float zoom;          // 2D: view pixels per texel
+uniform vec3 sphere;         // centre (view pixels) and radius
+uniform vec2 tiles;          // sphere: the texture's repeats around and up
+uniform vec3 light;          // 2D: the direction; sphere: towards the point light (from the centre)
+uniform float lightDistance; // sphere: the point light's distance from the centre, in radii
+uniform float exposure;
+out vec4 colour;
+
+void main() {
+  colour = vec4(0.0, 0.0, 0.0, 1.0);
+  if (mode == 0) {
+      vec2 t = (gl_FragCoord.xy - origin) / zoom;  // texture texels, rows bottom first
+      if (any(lessThan(t, vec2(0.0))) || any(greaterThanEqual(t, size))) return;
+      vec2 texel = floor(t);
+      uvec2 pixel = uvec2(texel.x, size.y - 1.0 - texel.y);  // image rows top first: btflut's dither
+      colour.rgb = min(relight(t / size, light, pixel) * exposure, 1.0);
+      return;
+  }
+  vec2 p = (gl_FragCoord.xy - sphere.xy) / sphere.z;
+  float rr = dot(p, p);
+  if (rr >= 1.0) return;
+  vec3 n = vec3(p, sqrt(1.0 - rr));
+  float longitude = atan(n.x, n.z), latitude = asin(clamp(n.y, -1.0, 1.0));
+  vec2 uv = vec2(longitude / 6.2831853 * tiles.x, (latitude / 3.1415927 + 0.5) * tiles.y);
+  vec3 u = vec3(cos(longitude), 0.0, -sin(longitude)), v = cross(n, u);  // the tangent frame: +u, +v, the normal
+  vec3 towards = light * lightDistance - n;
+  float d = length(towards);
+  vec3 l = towards / d;
+  float falloff = pow((lightDistance - 1.0) / d, 2.0);  // 1 at the surface point nearest the light
+  colour.rgb = min(relight(uv, vec3(dot(l, u), dot(l, v), dot(l, n)), uvec2(gl_FragCoord.xy)) * falloff * exposure, 1.0);
+}`;
+
+function compile(type, source) {
+  const shader = gl.createShader(type);
+  gl.shaderSource(shader, source);
+  gl.compileShader(shader);
+  if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) throw new Error('shader: ' + gl.getShaderInfoLog(shader));
+  return shader;
+}
+let program = null, uniforms = {};
+const textures = [];
+
+function texture(target, unit, setup) {
+  const t = gl.createTexture();
+  gl.activeTexture(gl.TEXTURE0 + unit);
+  gl.bindTexture(target, t);
+  setup();
+  textures.push(t);
+  return t;
+}
+function parameters(target, filter, wrap) {
+  gl.texParameteri(target, gl.TEXTURE_MIN_FILTER, filter);
+  gl.texParameteri(target, gl.TEXTURE_MAG_FILTER, filter);
+  for (const p of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T, gl.TEXTURE_WRAP_R]) gl.texParameteri(target, p, wrap);
+}
+function image2D(unit, image, filter) {
+  texture(gl.TEXTURE_2D, unit, () => {
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    const half = image.rgba instanceof Uint16Array;
+    gl.texImage2D(gl.TEXTURE_2D, 0, half ? gl.RGBA16F : gl.RGBA8, image.width, image.height, 0, gl.RGBA,
+                  half ? gl.HALF_FLOAT : gl.UNSIGNED_BYTE, image.rgba);
+    parameters(gl.TEXTURE_2D, filter, gl.REPEAT);
+  });
+}
+function array2D(unit, width, height, layers, internal, type, pixels, filter) {
+  texture(gl.TEXTURE_2D_ARRAY, unit, () => {
+    gl.texImage3D(gl.TEXTURE_2D_ARRAY, 0, internal, width, height, layers, 0, gl.RGBA, type, pixels);
+    parameters(gl.TEXTURE_2D_ARRAY, filter, gl.REPEAT);
+  });
+}
+
+async function load() {
+  const read = async (file) => {
+    const url = data.files[file];
+    if (!url) throw new Error(file + ': not in this page');
+    const text = atob(url.slice(url.indexOf(',') + 1)), bytes = new Uint8Array(text.length);
+    for (let i = 0; i < text.length; ++i) bytes[i] = text.charCodeAt(i);
+    return bytes;
+  };
+  const m = await btflutMaterial.prepare(json, read);
+  program = gl.createProgram();
+  gl.attachShader(program, compile(gl.VERTEX_SHADER, vertexSource));
+  gl.attachShader(program, compile(gl.FRAGMENT_SHADER, '#version 300 es\n' + data.include + fragmentMain));
+  gl.linkProgram(program);
+  if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error('program: ' + gl.getProgramInfoLog(program));
+  gl.useProgram(program);
+  const at = (name) => gl.getUniformLocation(program, name);
+  // Units: 0 luts, 1 reference, 2 planes, 3 weights, 4 labels; a 1-texel stand-in where unused.
+  texture(gl.TEXTURE_3D, 0, () => {
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 2);
+    const one = m.luts.channels === 1;
+    gl.texImage3D(gl.TEXTURE_3D, 0, one ? gl.R16F : gl.RGBA16F, m.luts.width, m.luts.height, m.luts.depth, 0,
+                  one ? gl.RED : gl.RGBA, gl.HALF_FLOAT, m.luts.halves);
+    parameters(gl.TEXTURE_3D, gl.LINEAR, gl.CLAMP_TO_EDGE);
+  });
+  const none = {width: 1, height: 1, rgba: new Uint8Array(4)};
+  image2D(1, m.reference || none, gl.LINEAR);
+  if (m.planes) array2D(2, m.planes.width, m.planes.height, m.planes.layers, gl.RGBA8, gl.UNSIGNED_BYTE, m.planes.rgba, gl.LINEAR);
+  else array2D(2, 1, 1, 1, gl.RGBA8, gl.UNSIGNED_BYTE, new Uint8Array(4), gl.NEAREST);
+  if (m.weights) array2D(3, m.weights.size, m.weights.size, m.weights.layers, gl.RGBA32F, gl.FLOAT, m.weights.data, gl.NEAREST);
+  else array2D(3, 1, 1, 1, gl.RGBA32F, gl.FLOAT, new Float32Array(4), gl.NEAREST);
+  image2D(4, m.labels || none, gl.NEAREST);
+  ['luts', 'reference', 'planes', 'weights', 'labels'].forEach((name, unit) => gl.uniform1i(at(name), unit));
+  const floats = ['inputCode', 'outputCode', 'codes'];  // the structs' other fields are ints and bools
+  for (const [struct, values] of [['material', m.material], ['predictor', m.predictor]])
+    for (const [key, value] of Object.entries(values)) {
+      const location = at(struct + '.' + key + (Array.isArray(value) ? '[0]' : ''));
+      if (Array.isArray(value)) gl.uniform1fv(location, value);
+      else if (floats.includes(key)) gl.uniform1f(location, value);
+      else gl.uniform1i(location, Number(value));
+    }
+  gl.uniform1i(at('hasPredictor'), m.kind !== 'luts');
+  gl.uniform2f(at('size'), m.size[0], m.size[1]);
+  for (const name of ['mode', 'origin', 'zoom', 'sphere', 'tiles', 'light', 'lightDistance', 'exposure']) uniforms[name] = at(name);
+  state.size = m.size;
+  const error = gl.getError();
+  if (error !== gl.NO_ERROR) throw new Error('WebGL error ' + error + ' while uploading the material');
+}
+
+// --- Drawing ---------------------------------------------------------------------------------
+function lightVector() {
+  const t = state.theta * Math.PI / 180, p = state.phi * Math.PI / 180;
+  return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)];
+}
+function fitZoom() {
+  const [w, h] = state.size;
+  return Math.min(view.width / w, view.height / h) * 0.95;
+}
+let pending = false;
+function redraw() {
+  if (pending) return;
+  pending = true;
+  requestAnimationFrame(() => { pending = false; draw(); });
+}
+function draw() {
+  const dpr = window.devicePixelRatio || 1;
+  const width = Math.max(1, Math.round(view.clientWidth * dpr)), height = Math.max(1, Math.round(view.clientHeight * dpr));
+  if (view.width !== width || view.height !== height) view.width = width, view.height = height;
+  gl.viewport(0, 0, width, height);
+  const [w, h] = state.size;
+  const zoom = state.zoom === null ? fitZoom() : state.zoom;
+  if (!state.centre) state.centre = [w / 2, h / 2];
+  let origin = [width / 2 - state.centre[0] * zoom, height / 2 - state.centre[1] * zoom];
+  if (state.anchored) origin = [0, height - h * zoom];  // the image's top left at the view's
+  if (Number.isInteger(zoom)) origin = origin.map(Math.round);  // texel centres on pixel centres
+  const radius = Math.min(width, height) * 0.42;
+  gl.uniform1i(uniforms.mode, state.view === 'sphere' ? 1 : 0);
+  gl.uniform2f(uniforms.origin, origin[0], origin[1]);
+  gl.uniform1f(uniforms.zoom, zoom);
+  gl.uniform3f(uniforms.sphere, width / 2, height / 2, radius);
+  gl.uniform2f(uniforms.tiles, Math.max(1, Math.round(2 * Math.PI * radius / w)), Math.max(1, Math.round(Math.PI * radius / h)));
+  gl.uniform3f(uniforms.light, ...lightVector());
+  gl.uniform1f(uniforms.lightDistance, 4);
+  gl.uniform1f(uniforms.exposure, state.exposure);
+  gl.drawArrays(gl.TRIANGLES, 0, 3);
+  const error = gl.getError();
+  if (error !== gl.NO_ERROR) console.error('WebGL error ' + error + ' while drawing');
+  updatePanel();
+  drawDisk();
+  writeHash();
+}
