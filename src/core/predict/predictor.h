@@ -17,7 +17,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "core/direction/direction.h"
 #include "core/predict/light_model.h"
@@ -54,7 +56,18 @@ public:
     /// A texel's colour before a grey LUT (RGB in [0, 1]): its chroma is what a grey bank of
     /// RGB keeps.
     virtual void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const = 0;
+    /// The codes of `texels` counted, code q at counts[q + 1] (codes() + 2 counts): what
+    /// matching reads per light, one call for a region rather than one per texel.
+    virtual void countCodes(const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,
+                            std::vector<std::uint64_t>& counts) const = 0;
 };
+
+/// countCodes for a kind whose code() is final: the loop, its calls inlined.
+template <class Kind>
+void countCodesOf(const Kind& kind, const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,
+                  std::vector<std::uint64_t>& counts) {
+    for (std::uint32_t texel : texels) ++counts[kind.Kind::code(frame, texel, channel) + 1];
+}
 
 /// A fixed-point sum (in 1 / kWeightUnit) rounded to a code, 0 .. codes: floor(sum /
 /// kWeightUnit + 1/2), exact in float too, the sum being an integer below 2^24.

@@ -28,6 +28,10 @@ public:
     PredictorFrame frameAt(Direction light) const override;
     std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;
+    void countCodes(const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,
+                    std::vector<std::uint64_t>& counts) const override {
+        countCodesOf(*this, frame, texels, channel, counts);
+    }
 
 private:
     const std::vector<Image>& m_references;

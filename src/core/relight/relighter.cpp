@@ -176,7 +176,7 @@ RelightFrame Relighter::predictionFrame(Direction light) const {
 LevelCounts Relighter::predictedCounts(const RelightFrame& frame, std::size_t region, int channel) const {
     LevelCounts counts;
     counts.counts.assign(static_cast<std::size_t>(m_codes) + 2, 0);
-    for (std::uint32_t texel : m_regionTexels[region]) ++counts.counts[predictedCode(frame, texel, channel) + 1];
+    m_predictor->countCodes(frame, m_regionTexels[region], channel, counts.counts);
     return counts;
 }
 
