@@ -4,11 +4,11 @@
 
 namespace btflut {
 
-ModelPredictor::ModelPredictor(const LightModel& model, bool perChannel) : m_model(model) {
+// Grey: one channel's codes (a grey model without albedo), or the sum of three.
+ModelPredictor::ModelPredictor(const LightModel& model, bool perChannel)
+    : Predictor(perChannel ? 3 : 1, perChannel || (model.albedo.empty() && model.channels == 1) ? 255 : 765),
+      m_model(model) {
     BTFLUT_CHECK(!model.empty());
-    m_channels = perChannel ? 3 : 1;
-    // Grey: one channel's codes (a grey model without albedo), or the sum of three.
-    m_codes = perChannel || (model.albedo.empty() && model.channels == 1) ? 255 : 765;
 }
 
 PredictorFrame ModelPredictor::frameAt(Direction light) const {
@@ -20,7 +20,7 @@ PredictorFrame ModelPredictor::frameAt(Direction light) const {
 
 std::size_t ModelPredictor::code(const PredictorFrame& frame, std::size_t texel, int channel) const {
     const std::array<std::int64_t, 3> c = predictFixed(m_model, frame.model, texel);
-    return roundedCode(m_channels == 3 ? c[static_cast<std::size_t>(channel)] : c[0] + c[1] + c[2], m_codes);
+    return roundedCode(channels() == 3 ? c[static_cast<std::size_t>(channel)] : c[0] + c[1] + c[2], codes());
 }
 
 void ModelPredictor::colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const {

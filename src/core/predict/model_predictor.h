@@ -15,8 +15,6 @@ public:
 
     std::string name() const override { return lightModelName(m_model); }
     double bytesPerTexel() const override { return m_model.bytesPerTexel(); }
-    int codes() const override { return m_codes; }
-    int channels() const override { return m_channels; }
     PredictorFrame frameAt(Direction light) const override;
     std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;
@@ -27,8 +25,6 @@ public:
 
 private:
     const LightModel& m_model;
-    int m_channels = 1;
-    int m_codes = 255;
 };
 
 }  // namespace btflut

@@ -45,9 +45,9 @@ public:
     virtual double bytesPerTexel() const = 0;
     /// Codes of a predicted value: 255 (a channel) or 765 (the grey of RGB8, three channels'
     /// codes summed).
-    virtual int codes() const = 0;
+    int codes() const { return m_codes; }
     /// Channels predicted and matched apart: 3 (rgb banks) or 1 (the grey).
-    virtual int channels() const = 0;
+    int channels() const { return m_channels; }
 
     /// Its integers at a light.
     virtual PredictorFrame frameAt(Direction light) const = 0;
@@ -60,6 +60,13 @@ public:
     /// matching reads per light, one call for a region rather than one per texel.
     virtual void countCodes(const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,
                             std::vector<std::uint64_t>& counts) const = 0;
+
+protected:
+    Predictor(int matchedChannels, int codeCount) : m_channels(matchedChannels), m_codes(codeCount) {}
+
+private:
+    int m_channels;
+    int m_codes;
 };
 
 /// countCodes for a kind whose code() is final: the loop, its calls inlined.

@@ -9,18 +9,19 @@ namespace btflut {
 
 ReferenceBlend::ReferenceBlend(const std::vector<Image>& references, const Triangulation& lights, bool perChannel,
                                const Image* albedo)
-    : m_references(references), m_lights(lights), m_albedo(albedo) {
-    BTFLUT_CHECK(!references.empty());
+    : Predictor(perChannel ? 3 : 1, perChannel ? 255 : 255 * references.at(0).channels),
+      m_references(references),
+      m_lights(lights),
+      m_albedo(albedo) {
     BTFLUT_CHECK(references.front().bitDepth == 8);  // the blend's codes are 8-bit (bakeBank's blendForm)
-    m_channels = perChannel ? 3 : 1;
-    m_codes = perChannel ? 255 : 255 * references.front().channels;
+    const int counted = channels();
     auto code = [](float v) { return static_cast<std::int32_t>(std::lround(v * 255.f)); };
     for (const Image& reference : references) {
-        std::vector<std::int32_t> codes(reference.pixelCount() * static_cast<std::size_t>(m_channels));
+        std::vector<std::int32_t> codes(reference.pixelCount() * static_cast<std::size_t>(counted));
         for (std::size_t i = 0; i < reference.pixelCount(); ++i) {
             const float* p = &reference.samples[i * static_cast<std::size_t>(reference.channels)];
-            if (m_channels == 3 || reference.channels == 1) {
-                for (int c = 0; c < m_channels; ++c) codes[i * m_channels + c] = code(p[c]);
+            if (counted == 3 || reference.channels == 1) {
+                for (int c = 0; c < counted; ++c) codes[i * counted + c] = code(p[c]);
             } else {  // the grey of RGB on its exact code scale: the sum of the channel codes
                 codes[i] = code(p[0]) + code(p[1]) + code(p[2]);
             }
@@ -58,8 +59,8 @@ std::size_t ReferenceBlend::code(const PredictorFrame& frame, std::size_t texel,
     for (int k = 0; k < frame.count; ++k)
         sum += std::int64_t{frame.weights[static_cast<std::size_t>(k)]} *
                m_referenceCodes[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])]
-                               [texel * m_channels + channel];
-    return roundedCode(sum, m_codes);
+                               [texel * channels() + channel];
+    return roundedCode(sum, codes());
 }
 
 void ReferenceBlend::colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const {

@@ -23,8 +23,6 @@ public:
 
     std::string name() const override { return "references"; }
     double bytesPerTexel() const override;
-    int codes() const override { return m_codes; }
-    int channels() const override { return m_channels; }
     PredictorFrame frameAt(Direction light) const override;
     std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;
@@ -37,8 +35,6 @@ private:
     const std::vector<Image>& m_references;
     const Triangulation& m_lights;
     const Image* m_albedo;
-    int m_channels = 1;
-    int m_codes = 255;
     std::vector<std::vector<std::int32_t>> m_referenceCodes;  // [reference][texel * channels + c]
 };
 
