@@ -131,11 +131,12 @@ void BlendTextures::updateLuts(const std::vector<GlTexture>& tables, const Relig
     }
 }
 
-void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<GlTexture>& tables, int first) const {
+void BlendTextures::bind(const ShaderProgram& p, const RelightFrame& frame, const std::vector<GlTexture>& tables,
+                         int first) const {
     auto unit = [&](int offset, GLenum target, GLuint texture, const char* name) {
         gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + offset));
         gl.BindTexture(target, texture);
-        gl.Uniform1i(gl.GetUniformLocation(p, name), first + offset);
+        gl.Uniform1i(p[name], first + offset);
     };
     unit(0, GL_TEXTURE_2D_ARRAY, m_references.id(), "blendReferences");
     if (m_albedo.id()) unit(1, GL_TEXTURE_2D, m_albedo.id(), "blendAlbedo");
@@ -147,12 +148,10 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
     }
     const LutBank& bank = *m_bank;
     const bool model = bank.predictsWithModel();
-    gl.Uniform1f(gl.GetUniformLocation(p, "blendCodes"), static_cast<float>(predictionCodes(bank)));
-    gl.Uniform1i(gl.GetUniformLocation(p, "blendEntries"), bank.entries);
-    gl.Uniform1i(gl.GetUniformLocation(p, "blendRegions"), bank.blend.regions);
-    if (m_lutsAsUniforms)
-        gl.Uniform1fv(gl.GetUniformLocation(p, "lutValues"), static_cast<GLsizei>(bank.matchLength()),
-                      frame.luts.data());
+    gl.Uniform1f(p["blendCodes"], static_cast<float>(predictionCodes(bank)));
+    gl.Uniform1i(p["blendEntries"], bank.entries);
+    gl.Uniform1i(p["blendRegions"], bank.blend.regions);
+    if (m_lutsAsUniforms) gl.Uniform1fv(p["lutValues"], static_cast<GLsizei>(bank.matchLength()), frame.luts.data());
     if (model) {
         // The frame's integers (LightModelFixed; the CPU twin: predictFixed), per layer of three
         // planes and per channel.
@@ -170,22 +169,19 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
                 nibbles[(((k / 6) * C + c) * 2 + k % 2) * 3 + (k % 6) / 2] =
                     static_cast<float>(frame.model.weights[q * C + c]);
             }
-        if (layers > 0)
-            gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelWeights"), static_cast<GLsizei>(layers * C),
-                          weights.data());
+        if (layers > 0) gl.Uniform3fv(p["blendModelWeights"], static_cast<GLsizei>(layers * C), weights.data());
         if (nibbleLayers > 0)
-            gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelNibbleWeights"),
-                          static_cast<GLsizei>(nibbleLayers * C * 2), nibbles.data());
+            gl.Uniform3fv(p["blendModelNibbleWeights"], static_cast<GLsizei>(nibbleLayers * C * 2), nibbles.data());
         const float offset[3] = {static_cast<float>(frame.model.offset[0]), static_cast<float>(frame.model.offset[1]),
                                  static_cast<float>(frame.model.offset[2])};
-        gl.Uniform3fv(gl.GetUniformLocation(p, "blendModelOffset"), 1, offset);
-        gl.Uniform1f(gl.GetUniformLocation(p, "blendModelScale"), frame.model.scale);
+        gl.Uniform3fv(p["blendModelOffset"], 1, offset);
+        gl.Uniform1f(p["blendModelScale"], frame.model.scale);
     } else if (bank.colour == ColourMode::Lrgb) {
         std::vector<float> weights(static_cast<std::size_t>(m_layers) * 4, 0.f);
         for (int k = 0; k < frame.count; ++k)
             weights[static_cast<std::size_t>(frame.references[static_cast<std::size_t>(k)])] =
                 static_cast<float>(frame.weights[static_cast<std::size_t>(k)]);
-        gl.Uniform4fv(gl.GetUniformLocation(p, "blendWeights"), m_layers, weights.data());
+        gl.Uniform4fv(p["blendWeights"], m_layers, weights.data());
     } else {
         const auto fetches = static_cast<GLsizei>(std::min<std::size_t>(bank.blend.references.size(), 3));
         GLint layers[3] = {0, 0, 0};
@@ -194,8 +190,8 @@ void BlendTextures::bind(GLuint p, const RelightFrame& frame, const std::vector<
             layers[k] = frame.references[static_cast<std::size_t>(k)];
             weights[k] = static_cast<float>(frame.weights[static_cast<std::size_t>(k)]);
         }
-        gl.Uniform1iv(gl.GetUniformLocation(p, "blendLayer"), fetches, layers);
-        gl.Uniform1fv(gl.GetUniformLocation(p, "blendWeight"), fetches, weights);
+        gl.Uniform1iv(p["blendLayer"], fetches, layers);
+        gl.Uniform1fv(p["blendWeight"], fetches, weights);
     }
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/relight/relighter.h"
 #include "gl/objects.h"
+#include "gl/shader.h"
 
 namespace btflut {
 
@@ -40,7 +41,8 @@ public:
     void updateLuts(const std::vector<GlTexture>& tables, const RelightFrame& frame) const;
     /// Binds the textures and `tables` to units first .. first + kUnits - 1 and sets the
     /// frame's uniforms.
-    void bind(GLuint program, const RelightFrame& frame, const std::vector<GlTexture>& tables, int first) const;
+    void bind(const ShaderProgram& program, const RelightFrame& frame, const std::vector<GlTexture>& tables,
+              int first) const;
 
 private:
     const LutBank* m_bank = nullptr;

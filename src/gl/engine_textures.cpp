@@ -85,8 +85,8 @@ EngineTextures EngineTextures::upload(const EngineMaterial& m, std::size_t& byte
     return t;
 }
 
-void EngineTextures::bind(GLuint program, const EngineMaterial& m, int first) const {
-    auto location = [&](const std::string& name) { return gl.GetUniformLocation(program, name.c_str()); };
+void EngineTextures::bind(const ShaderProgram& program, const EngineMaterial& m, int first) const {
+    auto location = [&](std::string_view name) { return program[name]; };
     auto unit = [&](int k, GLenum target, const GlTexture& texture, const char* name) {
         gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + k));
         gl.BindTexture(target, texture.id());
@@ -103,9 +103,9 @@ void EngineTextures::bind(GLuint program, const EngineMaterial& m, int first) co
     gl.Uniform1i(location("predictor.planes"), m.planes);
     gl.Uniform1i(location("predictor.channels"), m.channels);
     gl.Uniform1i(location("predictor.albedo"), m.albedo.samples.empty() ? 0 : m.albedoMultiplies ? 1 : 2);
-    for (std::size_t p = 0; p < m.scale.size(); ++p) {
-        gl.Uniform1f(location("predictor.scale[" + std::to_string(p) + "]"), m.scale[p]);
-        gl.Uniform1f(location("predictor.bias[" + std::to_string(p) + "]"), m.bias[p]);
+    if (!m.scale.empty()) {
+        gl.Uniform1fv(location("predictor.scale"), static_cast<GLsizei>(m.scale.size()), m.scale.data());
+        gl.Uniform1fv(location("predictor.bias"), static_cast<GLsizei>(m.bias.size()), m.bias.data());
     }
     gl.Uniform1i(location("predictor.regions"), m.regions);
     gl.Uniform1f(location("predictor.codes"), static_cast<float>(m.codes));

@@ -9,6 +9,7 @@
 
 #include "core/relight/engine_material.h"
 #include "gl/objects.h"
+#include "gl/shader.h"
 
 namespace btflut {
 
@@ -18,7 +19,7 @@ struct EngineTextures {
     static EngineTextures upload(const EngineMaterial& material, std::size_t& bytes);
     /// Binds `luts`, and for a predictor `planes`, `weights` and `labels`, to units first ..
     /// first + 3, and sets the sampler uniforms of those names and `predictor`.
-    void bind(GLuint program, const EngineMaterial& material, int first) const;
+    void bind(const ShaderProgram& program, const EngineMaterial& material, int first) const;
 };
 
 }  // namespace btflut

@@ -57,6 +57,7 @@ typedef void(APIENTRYP PFNGLTEXSUBIMAGE2DPROC)(GLenum target, GLint level, GLint
     X(PFNGLDELETEPROGRAMPROC, DeleteProgram)                   \
     X(PFNGLUSEPROGRAMPROC, UseProgram)                         \
     X(PFNGLGETUNIFORMLOCATIONPROC, GetUniformLocation)         \
+    X(PFNGLGETACTIVEUNIFORMPROC, GetActiveUniform)             \
     X(PFNGLUNIFORM1IPROC, Uniform1i)                           \
     X(PFNGLUNIFORM1FPROC, Uniform1f)                           \
     X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)               \

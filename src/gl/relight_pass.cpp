@@ -32,17 +32,18 @@ std::size_t RelightPass::lutBytes() const {
     return static_cast<std::size_t>(m_bank->channels()) * static_cast<std::size_t>(m_bank->entries) * 4;
 }
 
-Result<GLuint> RelightPass::program(bool dither) {
+Result<const ShaderProgram*> RelightPass::program(bool dither) {
     auto found = m_programs.find(dither);
     if (found == m_programs.end()) {
         const LutBank& bank = *m_bank;
         std::vector<std::string> defines = m_blend ? BlendTextures::defines(bank) : mapsReferenceDefines(bank);
         if (dither) defines.push_back("DITHER");
-        Result<GlProgram> p = buildProgram({"quad.vert"}, {"btflut.glsl", "lut_common.glsl", "native.frag"}, defines);
+        Result<ShaderProgram> p =
+            buildProgram({"quad.vert"}, {"btflut.glsl", "lut_common.glsl", "native.frag"}, defines);
         if (!p) return Error{p.error()};
         found = m_programs.emplace(dither, std::move(*p)).first;
     }
-    return found->second.id();
+    return &found->second;
 }
 
 void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlTexture>& luts) const {
@@ -58,43 +59,44 @@ void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlText
     }
 }
 
-void RelightPass::bindLuts(GLuint p, const RelightFrame& frame, const std::vector<GlTexture>& luts, int first) const {
+void RelightPass::bindLuts(const ShaderProgram& p, const RelightFrame& frame, const std::vector<GlTexture>& luts,
+                           int first) const {
     const LutBank& bank = *m_bank;
     if (m_blend) {
         m_blend->bind(p, frame, luts, first);
     } else if (m_lutsAsUniforms) {
-        gl.Uniform1fv(gl.GetUniformLocation(p, "lutValues"), static_cast<GLsizei>(bank.lutLength()), frame.luts.data());
+        gl.Uniform1fv(p["lutValues"], static_cast<GLsizei>(bank.lutLength()), frame.luts.data());
     } else {
         for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
             gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + c));
             gl.BindTexture(GL_TEXTURE_1D, luts[static_cast<std::size_t>(std::min(c, bank.channels() - 1))].id());
             const std::string name = "lut[" + std::to_string(c) + "]";
-            gl.Uniform1i(gl.GetUniformLocation(p, name.c_str()), first + c);
+            gl.Uniform1i(p[name], first + c);
         }
     }
     if (!m_blend) {
-        gl.Uniform1i(gl.GetUniformLocation(p, "entries"), bank.entries);
-        gl.Uniform1f(gl.GetUniformLocation(p, "inCode"), inputCode(bank.reference, bank.colour));
+        gl.Uniform1i(p["entries"], bank.entries);
+        gl.Uniform1f(p["inCode"], inputCode(bank.reference, bank.colour));
     }
-    gl.Uniform1f(gl.GetUniformLocation(p, "outCode"), bank.targetCode());
+    gl.Uniform1f(p["outCode"], bank.targetCode());
 }
 
 Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither) {
     const Image& ref = m_bank->reference;
-    Result<GLuint> program = this->program(dither);
+    Result<const ShaderProgram*> program = this->program(dither);
     if (!program) return Error{program.error()};
-    const GLuint p = *program;
+    const ShaderProgram& p = **program;
     uploadLuts(frame, luts);
     gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
     if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return Error{"the GL driver cannot render into the relit texture's format"};
-    gl.UseProgram(p);
+    gl.UseProgram(p.id());
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, m_reference);
-    gl.Uniform1i(gl.GetUniformLocation(p, "reference"), 0);
+    gl.Uniform1i(p["reference"], 0);
     bindLuts(p, frame, luts, m_blend ? 4 : 1);
-    gl.Uniform1i(gl.GetUniformLocation(p, "referenceChannels"), ref.channels);
+    gl.Uniform1i(p["referenceChannels"], ref.channels);
     gl.BindVertexArray(m_vertexArray.id());
     gl.Disable(GL_DEPTH_TEST);
     gl.Viewport(0, 0, ref.width, ref.height);

@@ -49,16 +49,17 @@ public:
     /// Binds `luts` from texture unit `first` (BlendTextures::kUnits, or 3) and sets the
     /// uniforms lut_common.glsl's LUT functions read (and the blend's weights): what
     /// native.frag and scene.frag's LUT_FRAGMENT share.
-    void bindLuts(GLuint program, const RelightFrame& frame, const std::vector<GlTexture>& luts, int first) const;
+    void bindLuts(const ShaderProgram& program, const RelightFrame& frame, const std::vector<GlTexture>& luts,
+                  int first) const;
 
 private:
-    Result<GLuint> program(bool dither);
+    Result<const ShaderProgram*> program(bool dither);
 
     const LutBank* m_bank;
     bool m_lutsAsUniforms;  ///< lutsAsUniforms(bank), asked of GL once
     GLuint m_reference;
     const BlendTextures* m_blend;
-    std::map<bool, GlProgram> m_programs;  // by dither
+    std::map<bool, ShaderProgram> m_programs;  // by dither
     GlFramebuffer m_framebuffer;
     GlVertexArray m_vertexArray;
 };

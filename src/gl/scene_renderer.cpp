@@ -105,7 +105,8 @@ const LutBank* SceneRenderer::bank(const std::string& material) const {
     return it == m_materials.end() ? nullptr : &it->second.bank;
 }
 
-Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool unlit, bool perFragment) {
+Result<const ShaderProgram*> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool unlit,
+                                                    bool perFragment) {
     std::vector<std::string> defines{unlit ? "UNLIT" : modeDefine(mode)};
     if (!unlit && mode == RenderMode::Lut && bank.layers.size() == 1) {
         // A bank of one view layer: its relit texture, drawn flat; or relit per fragment.
@@ -129,11 +130,12 @@ Result<GLuint> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool
     }
     auto found = m_programs.find(defines);
     if (found == m_programs.end()) {
-        Result<GlProgram> p = buildProgram({"scene.vert"}, {"btflut.glsl", "lut_common.glsl", "scene.frag"}, defines);
+        Result<ShaderProgram> p =
+            buildProgram({"scene.vert"}, {"btflut.glsl", "lut_common.glsl", "scene.frag"}, defines);
         if (!p) return Error{p.error()};
         found = m_programs.emplace(defines, std::move(*p)).first;
     }
-    return found->second.id();
+    return &found->second;
 }
 
 Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOverride) {
@@ -160,13 +162,14 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
         const RenderMode mode = modes[i];
         const Material& material = m_materials.at(quad.material);
         const bool unlit = mode != RenderMode::Flat && q.unlit;
-        Result<GLuint> p = program(mode, material.bank, unlit, q.perFragment);
-        if (!p) return Error{p.error()};
-        gl.UseProgram(*p);
+        Result<const ShaderProgram*> program = this->program(mode, material.bank, unlit, q.perFragment);
+        if (!program) return Error{program.error()};
+        const ShaderProgram& p = **program;
+        gl.UseProgram(p.id());
         auto bind = [&](int unit, GLenum target, GLuint texture, const char* name) {
             gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
             gl.BindTexture(target, texture);
-            gl.Uniform1i(gl.GetUniformLocation(*p, name), unit);
+            gl.Uniform1i(p[name], unit);
         };
         if (unlit) {
             // black: nothing to bind
@@ -175,15 +178,15 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
             bind(1, GL_TEXTURE_2D, material.ptm[1].id(), "ptmHigh");
             bind(2, GL_TEXTURE_2D, material.ptm[2].id(), "ptmAlbedo");
             const std::array<float, 7>& w = q.ptmWeights;
-            gl.Uniform3f(gl.GetUniformLocation(*p, "ptmWeightsLow"), w[0], w[1], w[2]);
-            gl.Uniform3f(gl.GetUniformLocation(*p, "ptmWeightsHigh"), w[3], w[4], w[5]);
-            gl.Uniform1f(gl.GetUniformLocation(*p, "ptmOffset"), w[6]);
+            gl.Uniform3f(p["ptmWeightsLow"], w[0], w[1], w[2]);
+            gl.Uniform3f(p["ptmWeightsHigh"], w[3], w[4], w[5]);
+            gl.Uniform1f(p["ptmOffset"], w[6]);
         } else if (mode == RenderMode::Nearest) {
             bind(0, GL_TEXTURE_2D, material.imageTextures.at(q.nearestImage).id(), "reference");
         } else if (relitInTextureSpace(q, mode)) {
             bind(0, GL_TEXTURE_2D, material.relit[q.relit].texture.id(), "reference");
         } else if (oneLayerLut(q, mode)) {
-            bindPerFragment(*p, q, material);
+            bindPerFragment(p, q, material);
         } else {
             bind(0, GL_TEXTURE_2D, material.reference.id(), "reference");
         }
@@ -194,22 +197,20 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
                      q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id(), name.c_str());
             }
             const auto n = static_cast<float>(material.bank.entries);
-            gl.Uniform2f(gl.GetUniformLocation(*p, "lutCoordinate"), (n - 1) / n, 0.5f / n);
-            gl.Uniform1i(gl.GetUniformLocation(*p, "viewGrid"), kViewGrid);
-            gl.Uniform1i(gl.GetUniformLocation(*p, "mipLevels"), material.mipLuts->levels());
-            gl.Uniform2f(gl.GetUniformLocation(*p, "referenceSize"), static_cast<float>(material.bank.reference.width),
+            gl.Uniform2f(p["lutCoordinate"], (n - 1) / n, 0.5f / n);
+            gl.Uniform1i(p["viewGrid"], kViewGrid);
+            gl.Uniform1i(p["mipLevels"], material.mipLuts->levels());
+            gl.Uniform2f(p["referenceSize"], static_cast<float>(material.bank.reference.width),
                          static_cast<float>(material.bank.reference.height));
         }
-        gl.Uniform1f(gl.GetUniformLocation(*p, "brightness"), q.brightness);
-        gl.UniformMatrix4fv(gl.GetUniformLocation(*p, "viewProjection"), 1, GL_FALSE, matrix.data());
+        gl.Uniform1f(p["brightness"], q.brightness);
+        gl.UniformMatrix4fv(p["viewProjection"], 1, GL_FALSE, matrix.data());
         const Vec3 t = quad.tangent, b = bitangentOf(quad);
         auto f = [](double v) { return static_cast<float>(v); };
-        gl.Uniform3f(gl.GetUniformLocation(*p, "center"), f(quad.center.x), f(quad.center.y), f(quad.center.z));
-        gl.Uniform3f(gl.GetUniformLocation(*p, "halfTangent"), f(t.x * quad.width / 2), f(t.y * quad.width / 2),
-                     f(t.z * quad.width / 2));
-        gl.Uniform3f(gl.GetUniformLocation(*p, "halfBitangent"), f(b.x * quad.height / 2), f(b.y * quad.height / 2),
-                     f(b.z * quad.height / 2));
-        gl.Uniform1f(gl.GetUniformLocation(*p, "uvScale"), f(quad.uvScale));
+        gl.Uniform3f(p["center"], f(quad.center.x), f(quad.center.y), f(quad.center.z));
+        gl.Uniform3f(p["halfTangent"], f(t.x * quad.width / 2), f(t.y * quad.width / 2), f(t.z * quad.width / 2));
+        gl.Uniform3f(p["halfBitangent"], f(b.x * quad.height / 2), f(b.y * quad.height / 2), f(b.z * quad.height / 2));
+        gl.Uniform1f(p["uvScale"], f(quad.uvScale));
         gl.DrawArrays(GL_TRIANGLES, 0, 6);
         ++m_stats.quadsDrawn;
         m_stats.quadsUnlit += unlit;
@@ -222,15 +223,15 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
 
 // LUT_FRAGMENT's textures and uniforms: the reference (unit 0) or the blend's textures, and
 // the quad's frame (its LUTs, and a predictor's weights), from unit 1.
-void SceneRenderer::bindPerFragment(GLuint p, const QuadState& q, const Material& material) const {
+void SceneRenderer::bindPerFragment(const ShaderProgram& p, const QuadState& q, const Material& material) const {
     const LutBank& bank = material.bank;
     if (!bank.makesLuts()) {
         gl.ActiveTexture(GL_TEXTURE0);
         gl.BindTexture(GL_TEXTURE_2D, material.reference.id());
-        gl.Uniform1i(gl.GetUniformLocation(p, "reference"), 0);
+        gl.Uniform1i(p["reference"], 0);
     }
     material.pass->bindLuts(p, q.frame, q.luts, 1);
-    gl.Uniform2i(gl.GetUniformLocation(p, "texels"), bank.reference.width, bank.reference.height);
+    gl.Uniform2i(p["texels"], bank.reference.width, bank.reference.height);
 }
 
 void SceneRenderer::finish() const { gl.Finish(); }

@@ -178,7 +178,7 @@ private:
         std::string nearestImage;
     };
     SceneRenderer() = default;
-    Result<GLuint> program(RenderMode mode, const LutBank& bank, bool unlit, bool perFragment);
+    Result<const ShaderProgram*> program(RenderMode mode, const LutBank& bank, bool unlit, bool perFragment);
     Vec3 viewAt(const SceneQuad& quad, double x, double y) const;
     std::vector<Direction> viewGridDirections(const SceneQuad& quad) const;
     std::vector<Direction> viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const;
@@ -194,7 +194,7 @@ private:
     double coveredPixels(const SceneQuad& quad) const;
     /// A frame of a material's LUTs for a light and view, as the scene asks (grid, exact, nearest).
     RelightFrame frameFor(const Material& material, Direction light, Direction view) const;
-    void bindPerFragment(GLuint program, const QuadState& q, const Material& material) const;
+    void bindPerFragment(const ShaderProgram& program, const QuadState& q, const Material& material) const;
 
     Scene m_scene;
     bool m_interpolate = true;
@@ -206,7 +206,7 @@ private:
     std::uint64_t m_frame = 0;
     std::map<std::string, Material> m_materials;
     std::vector<QuadState> m_quads;
-    std::map<std::vector<std::string>, GlProgram> m_programs;  ///< by defines
+    std::map<std::vector<std::string>, ShaderProgram> m_programs;  ///< by defines
     GlTexture m_target, m_depth;
     ColourDepthTarget m_samples;  ///< sampleFrame's, at its last size
     int m_samplesWidth = 0, m_samplesHeight = 0;

@@ -53,8 +53,9 @@ Result<GLuint> compile(GLenum stage, const std::vector<ShaderFile>& files, const
 
 }  // namespace
 
-Result<GlProgram> buildProgram(const std::vector<std::string>& vertexFiles,
-                               const std::vector<std::string>& fragmentFiles, const std::vector<std::string>& defines) {
+Result<ShaderProgram> buildProgram(const std::vector<std::string>& vertexFiles,
+                                   const std::vector<std::string>& fragmentFiles,
+                                   const std::vector<std::string>& defines) {
     std::vector<ShaderFile> stages[2];
     for (int s = 0; s < 2; ++s)
         for (const std::string& name : s == 0 ? vertexFiles : fragmentFiles) {
@@ -65,9 +66,9 @@ Result<GlProgram> buildProgram(const std::vector<std::string>& vertexFiles,
     return buildProgramFromSources(stages[0], stages[1], defines);
 }
 
-Result<GlProgram> buildProgramFromSources(const std::vector<ShaderFile>& vertexFiles,
-                                          const std::vector<ShaderFile>& fragmentFiles,
-                                          const std::vector<std::string>& defines) {
+Result<ShaderProgram> buildProgramFromSources(const std::vector<ShaderFile>& vertexFiles,
+                                              const std::vector<ShaderFile>& fragmentFiles,
+                                              const std::vector<std::string>& defines) {
     Result<GLuint> vs = compile(GL_VERTEX_SHADER, vertexFiles, defines);
     if (!vs) return Error{vs.error()};
     Result<GLuint> fs = compile(GL_FRAGMENT_SHADER, fragmentFiles, defines);
@@ -88,7 +89,39 @@ Result<GlProgram> buildProgramFromSources(const std::vector<ShaderFile>& vertexF
         gl.GetProgramInfoLog(program.id(), sizeof log, nullptr, log);
         return Error{std::string("shader program does not link: ") + log};
     }
-    return program;
+    return ShaderProgram(std::move(program));
+}
+
+ShaderProgram::ShaderProgram(GlProgram program) : m_program(std::move(program)) {
+    GLint count = 0, longest = 0;
+    gl.GetProgramiv(id(), GL_ACTIVE_UNIFORMS, &count);
+    gl.GetProgramiv(id(), GL_ACTIVE_UNIFORM_MAX_LENGTH, &longest);
+    std::string name(static_cast<std::size_t>(std::max(longest, 1)), '\0');
+    for (GLint u = 0; u < count; ++u) {
+        GLsizei length = 0;
+        GLint size = 0;
+        GLenum type = 0;
+        gl.GetActiveUniform(id(), static_cast<GLuint>(u), longest, &length, &size, &type, name.data());
+        std::string uniform = name.substr(0, static_cast<std::size_t>(length));
+        // An array is listed once, as "a[0]": each element by name (their locations need not
+        // be consecutive), and the array by its bare name too.
+        const bool array = uniform.size() > 3 && uniform.ends_with("[0]");
+        const std::string base = array ? uniform.substr(0, uniform.size() - 3) : uniform;
+        if (!array) {
+            m_locations[uniform] = gl.GetUniformLocation(id(), uniform.c_str());
+            continue;
+        }
+        m_locations[base] = gl.GetUniformLocation(id(), uniform.c_str());
+        for (GLint i = 0; i < size; ++i) {
+            const std::string element = base + "[" + std::to_string(i) + "]";
+            m_locations[element] = gl.GetUniformLocation(id(), element.c_str());
+        }
+    }
+}
+
+GLint ShaderProgram::operator[](std::string_view name) const {
+    const auto found = m_locations.find(name);
+    return found == m_locations.end() ? -1 : found->second;
 }
 
 }  // namespace btflut

@@ -51,7 +51,7 @@ Result<std::unique_ptr<ShapeRenderer>> ShapeRenderer::create(const std::string& 
     if (!material) return Error{material.error()};
     std::vector<std::string> defines;
     if (bank.makesLuts()) defines.push_back("PREDICTOR");
-    Result<GlProgram> program = buildProgram({"shape.vert"}, {"btflut.glsl", "shape.frag"}, defines);
+    Result<ShaderProgram> program = buildProgram({"shape.vert"}, {"btflut.glsl", "shape.frag"}, defines);
     if (!program) return Error{program.error()};
     std::unique_ptr<ShapeRenderer> r(new ShapeRenderer);
     r->m_program = std::move(*program);
@@ -90,9 +90,9 @@ Status ShapeRenderer::draw(const ShapeFrame& frame, int width, int height) {
     gl.ClearColor(0, 0, 0, 1);
     gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl.Enable(GL_DEPTH_TEST);
-    const GLuint p = m_program.id();
-    gl.UseProgram(p);
-    auto location = [&](const char* name) { return gl.GetUniformLocation(p, name); };
+    const ShaderProgram& p = m_program;
+    gl.UseProgram(p.id());
+    auto location = [&](const char* name) { return p[name]; };
     gl.UniformMatrix4fv(location("viewProjection"), 1, GL_FALSE, m.data());
     gl.Uniform1i(location("shape"), frame.shape == Shape::Sphere ? 0 : 1);
     gl.Uniform1i(location("around"), kAround);

@@ -56,7 +56,7 @@ public:
 private:
     ShapeRenderer() = default;
     LutBank m_bank;
-    GlProgram m_program;
+    ShaderProgram m_program;
     GlVertexArray m_vertexArray;
     EngineMaterial m_material;  ///< the bank as btflut.glsl draws it (its images dropped once uploaded)
     GlTexture m_reference;

@@ -42,22 +42,22 @@ Status PresentPass::draw(CompositeImage a, CompositeImage b, const PresentSettin
     if (s.toned()) defines.push_back("TONE");
     auto found = m_programs.find(defines);
     if (found == m_programs.end()) {
-        Result<GlProgram> program = buildProgram({"present.vert"}, {"present.frag"}, defines);
+        Result<ShaderProgram> program = buildProgram({"present.vert"}, {"present.frag"}, defines);
         if (!program) return Error{program.error()};
         found = m_programs.emplace(defines, std::move(*program)).first;
     }
     if (!m_vertexArray.id()) m_vertexArray = makeVertexArray();
-    const GLuint p = found->second.id();
-    gl.UseProgram(p);
+    const ShaderProgram& p = found->second;
+    gl.UseProgram(p.id());
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, a.texture);
     gl.ActiveTexture(GL_TEXTURE1);
     gl.BindTexture(GL_TEXTURE_2D, s.compare == PresentSettings::Compare::Off ? a.texture : b.texture);
-    gl.Uniform1i(gl.GetUniformLocation(p, "imageA"), 0);
-    gl.Uniform1i(gl.GetUniformLocation(p, "imageB"), 1);
-    gl.Uniform1f(gl.GetUniformLocation(p, "wipeX"), s.wipeX);
-    gl.Uniform2f(gl.GetUniformLocation(p, "lensCentre"), s.lensX, s.lensY);
-    gl.Uniform1f(gl.GetUniformLocation(p, "lensRadius"), s.lensRadius);
+    gl.Uniform1i(p["imageA"], 0);
+    gl.Uniform1i(p["imageB"], 1);
+    gl.Uniform1f(p["wipeX"], s.wipeX);
+    gl.Uniform2f(p["lensCentre"], s.lensX, s.lensY);
+    gl.Uniform1f(p["lensRadius"], s.lensRadius);
     if (s.toned()) {
         if (!m_tone.id() || s.exposure != m_toneExposure || s.gamma != m_toneGamma) {
             const std::vector<float> table = toneTable(s.exposure, s.gamma);
@@ -66,7 +66,7 @@ Status PresentPass::draw(CompositeImage a, CompositeImage b, const PresentSettin
         }
         gl.ActiveTexture(GL_TEXTURE2);
         gl.BindTexture(GL_TEXTURE_1D, m_tone.id());
-        gl.Uniform1i(gl.GetUniformLocation(p, "tone"), 2);
+        gl.Uniform1i(p["tone"], 2);
     }
     gl.BindVertexArray(m_vertexArray.id());
     gl.DrawArrays(GL_TRIANGLES, 0, 3);

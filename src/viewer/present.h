@@ -9,6 +9,7 @@
 
 #include "core/result.h"
 #include "gl/objects.h"
+#include "gl/shader.h"
 
 namespace btflut {
 
@@ -34,7 +35,7 @@ public:
     Status draw(CompositeImage a, CompositeImage b, const PresentSettings& settings, int width, int height);
 
 private:
-    std::map<std::vector<std::string>, GlProgram> m_programs;  ///< by defines, made when first needed
+    std::map<std::vector<std::string>, ShaderProgram> m_programs;  ///< by defines, made when first needed
     GlVertexArray m_vertexArray;
     GlTexture m_tone;  ///< the tone table, for the exposure and gamma below
     float m_toneExposure = 0, m_toneGamma = 1;
