@@ -18,6 +18,8 @@
 
 #define BTFLUT_GLSL_VERSION 2  // 2: banks with a predictor (btflutPredict, the second btflutRelight)
 
+// btflut: constants (src/core/predict/gpu_constants.h; written here when btflut is built)
+
 // Uniform in [-1/2, 1/2) for pixel (x, y) and channel c: a fixed integer hash (btflut's
 // CPU relighting uses the same one, so both agree bit for bit).
 float btflutDitherOffset(uint x, uint y, uint c) {
@@ -104,14 +106,10 @@ vec3 btflutRelight(sampler3D luts, BtflutMaterial m, vec3 reference, vec3 lightT
 // of RGBA32F layers over the light disk (read exactly with texelFetch; unused by ptm and
 // hsh, whose weights are computed here); `labels`, R8 (nearest): each texel's region * 1/255.
 
-#ifndef BTFLUT_MAX_PLANES
-#define BTFLUT_MAX_PLANES 32
-#endif
-
 // What the sidecar's "predictor" says.
 struct BtflutPredictor {
-    int kind;       // 1: a light model; 2: references
-    int basis;      // model: 0 ptm, 1 hsh (closed form), 2 rbf, 3 bln (the weight texture)
+    int kind;       // BTFLUT_KIND_MODEL (a light model) or BTFLUT_KIND_REFERENCES
+    int basis;      // model: BTFLUT_BASIS_PTM, _HSH (closed form), _RBF, _BLN (the weight texture)
     int order;      // hsh: 2 or 3
     int planes;     // model: its planes P; references: their count K
     int channels;   // the prediction's channels before any albedo: 1 or 3
@@ -144,7 +142,7 @@ void btflutBasisTerms(int basis, vec3 light, out float t[9]) {
     vec3 l = normalize(light);
     if (l.z < 0.0) l = normalize(vec3(l.xy, 0.0));  // below the horizon: the horizon's
     for (int k = 0; k < 9; ++k) t[k] = 0.0;
-    if (basis == 0) {
+    if (basis == BTFLUT_BASIS_PTM) {
         t[0] = l.x * l.x; t[1] = l.y * l.y; t[2] = l.x * l.y; t[3] = l.x; t[4] = l.y; t[5] = 1.0;
         return;
     }
@@ -163,7 +161,7 @@ void btflutBasisTerms(int basis, vec3 light, out float t[9]) {
 }
 
 // The layer of `planes` that holds the albedo.
-int btflutAlbedoLayer(BtflutPredictor p) { return p.kind == 1 ? (p.planes + 3) / 4 : p.planes; }
+int btflutAlbedoLayer(BtflutPredictor p) { return p.kind == BTFLUT_KIND_MODEL ? (p.planes + 3) / 4 : p.planes; }
 
 // The prediction at texture coordinate `uv` for a light in the tangent frame, in codes (0 ..
 // 255 a channel, not yet rounded): what btflut's CPU relighting rounds before its match LUT.
@@ -171,16 +169,16 @@ vec3 btflutPredict(sampler2DArray planes, sampler2DArray weights, BtflutPredicto
     vec2 disk = btflutDiskPoint(lightTangent);
     vec3 value = vec3(0.0);
     vec4 w4 = vec4(0.0);
-    if (p.kind == 2) {  // references: one weight each
+    if (p.kind == BTFLUT_KIND_REFERENCES) {  // references: one weight each
         for (int k = 0; k < p.planes; ++k) {
             if (k % 4 == 0) w4 = btflutWeightLayer(weights, disk, k / 4);
-            float w = floor(w4[k % 4] * 4096.0 + 0.5) / 4096.0;  // btflut's CPU blends in 1/4096
+            float w = floor(w4[k % 4] * float(BTFLUT_WEIGHT_UNIT) + 0.5) / float(BTFLUT_WEIGHT_UNIT);  // as btflut's CPU
             if (w != 0.0) value += w * texture(planes, vec3(uv, float(k))).rgb;
         }
         return 255.0 * value;
     }
     // A light model: rows (1 + P) x channels, the offsets, then each plane's channel weights.
-    bool closed = p.basis < 2;
+    bool closed = p.basis == BTFLUT_BASIS_PTM || p.basis == BTFLUT_BASIS_HSH;
     float terms[9];
     if (closed) btflutBasisTerms(p.basis, lightTangent, terms);
     int rows = (p.planes + 1) * p.channels;
@@ -200,9 +198,9 @@ vec3 btflutPredict(sampler2DArray planes, sampler2DArray weights, BtflutPredicto
         }
         value[c] += v * w;
     }
-    // btflut rounds as here: the value down to 1/4096, times the albedo's byte (or 255), to
+    // btflut rounds as here: the value down to 1 / BTFLUT_WEIGHT_UNIT, times the albedo's byte (or 255), to
     // the nearest code; so CPU and GPU codes agree but where float sums sit on a step.
-    value = floor((p.channels == 1 ? vec3(value.x) : value) * 4096.0) / 4096.0;
+    value = floor((p.channels == 1 ? vec3(value.x) : value) * float(BTFLUT_WEIGHT_UNIT)) / float(BTFLUT_WEIGHT_UNIT);
     vec3 bytes = p.albedo == 1 ? floor(texture(planes, vec3(uv, float(btflutAlbedoLayer(p)))).rgb * 255.0 + 0.5) : vec3(255.0);
     return clamp(bytes * value, 0.0, 255.0);
 }

@@ -29,34 +29,25 @@ float btflutUniformLut(int lut, int count, float v) {
 }
 #endif
 
-// Banks that blend references (src/core/relight/relighter.h; defines BLEND, BLEND_PACKED for lrgb,
-// BLEND_MODEL for a light model, REGIONS). The blend is exact integer arithmetic in float
-// (8-bit codes times integer weights, sums below 2^24), so its code is the CPU's; the LUT
-// of the texel's region is applied to it.
+// Banks with a predictor (src/core/predict/predictor.h; defines BLEND, the predictor's own
+// from Predictor::shaderDefines, REGIONS). The prediction is exact integer arithmetic in float
+// (8-bit codes times integer weights, sums below 2^24), so its code is the CPU's; the LUT of
+// the texel's region is applied to it.
 #if defined(BLEND)
-// grey and rgb: one reference per layer (grey references in all three channels:
-// BLEND_GREY_REFERENCES); lrgb: four per RGBA layer; BLEND_MODEL: the light
-// model's 8-bit planes three to a layer (BLEND_MODEL_LAYERS), its 4-bit planes six to a layer
-// (BLEND_MODEL_NIBBLE_LAYERS: two to a channel, the first in the high nibble), then its albedo
-// (BLEND_MODEL_ALBEDO)
-uniform sampler2DArray blendReferences;
+// The predictor's planes as engines get them (Predictor::planes): RGBA8 layers, a light
+// model's planes four to a layer (its 4-bit codes n as 17 n), or one reference to a layer (a
+// grey one in R, G and B); then the albedo at BLEND_ALBEDO_LAYER (BLEND_MODEL_ALBEDO: it
+// multiplies the model's value; BLEND_ALBEDO_CHROMA: lrgb's chroma after the match).
+uniform sampler2DArray blendPlanes;
 #if defined(BLEND_MODEL)
-// src/core/predict/light_model.h, LightModelFixed: per layer and channel, the integer weights
-// of its three planes (4-bit layers: of their high, then their low nibbles); per channel the
-// integer offset; the power of two to value * 4096.
-#if BLEND_MODEL_LAYERS > 0
-uniform vec3 blendModelWeights[BLEND_MODEL_LAYERS * BLEND_MODEL_CHANNELS];
-#endif
-#if BLEND_MODEL_NIBBLE_LAYERS > 0
-uniform vec3 blendModelNibbleWeights[BLEND_MODEL_NIBBLE_LAYERS * BLEND_MODEL_CHANNELS * 2];
-#endif
+// light_model.h, LightModelFixed: per layer and channel, the integer weights of its four
+// planes; per channel the integer offset; the power of two to value * BTFLUT_WEIGHT_UNIT.
+uniform vec4 blendModelWeights[BLEND_MODEL_LAYERS * BLEND_MODEL_CHANNELS];
 uniform vec3 blendModelOffset;
 uniform float blendModelScale;
-#elif defined(BLEND_PACKED)
-uniform vec4 blendWeights[BLEND_LAYERS]; // per layer, the integer weights of its four references (BLEND_LAYERS: 1 to 4)
 #else
 uniform int blendLayer[BLEND_FETCHES];   // the references around the light (BLEND_FETCHES: min(K, 3))
-uniform float blendWeight[BLEND_FETCHES]; // integers summing to 4096
+uniform float blendWeight[BLEND_FETCHES]; // integers summing to BTFLUT_WEIGHT_UNIT
 #endif
 uniform float blendCodes;                // codes of a blended value: 765 for the grey of RGB8, 255 for one channel
 uniform sampler2D blendLuts[3];          // per channel: a LUT per region (row)
@@ -65,17 +56,37 @@ uniform int blendRegions;
 #if defined(REGIONS)
 uniform usampler2D blendLabels;
 #endif
-#if defined(BLEND_PACKED)
-uniform sampler2D blendAlbedo;           // lrgb: the chroma
-#endif
 
-// A reference layer's texel at btflutBlendAt (below).
+const float btflutUnit = float(BTFLUT_WEIGHT_UNIT);
+
+// The texel the prediction reads (texelFetch at level 0): set by each shader's main.
+// BLEND_FILTERED (the scene's per-fragment path) samples bilinearly at btflutBlendUv instead,
+// so a magnified quad is smooth while the light moves, as its relit texture is once it stops:
+// the prediction of filtered planes, each rounded to 8 bits (4-bit planes fetched as they are).
+ivec2 btflutBlendAt;
+vec2 btflutBlendUv;
+
+// A plane layer's texel there (below).
 vec4 btflutBlendTexel(int layer);
 
 vec4 btflutBytes(vec4 texel) { return floor(texel * 255.0 + 0.5); }
 
-// The blend: its colour (chroma for grey mode), and its codes (per channel for rgb, else in
-// .x), integers in 0 .. blendCodes.
+#if defined(BLEND_MODEL)
+// Layer `layer`'s four plane codes: bytes, and a 4-bit plane's n from its 17 n (exact: a
+// multiple of 17 divided by 17). The filtered path fetches 4-bit planes as they are.
+vec4 btflutPlaneCodes(int layer) {
+    vec4 nibble = vec4(greaterThanEqual(vec4(float(4 * layer)) + vec4(0.0, 1.0, 2.0, 3.0), vec4(BLEND_MODEL_WIDE)));
+    vec4 bytes = btflutBytes(btflutBlendTexel(layer));
+#if defined(BLEND_FILTERED)
+    if (any(greaterThan(nibble, vec4(0.0))))
+        bytes = mix(bytes, btflutBytes(texelFetch(blendPlanes, ivec3(btflutBlendAt, layer), 0)), nibble);
+#endif
+    return bytes / (1.0 + 16.0 * nibble);
+}
+#endif
+
+// The prediction: its colour (chroma for grey mode), and its codes (per channel for rgb, else
+// in .x), integers in 0 .. blendCodes.
 struct BtflutBlend {
     vec3 colour;
     vec3 codes;
@@ -84,59 +95,42 @@ struct BtflutBlend {
 BtflutBlend btflutBlend() {
     BtflutBlend b;
 #if defined(BLEND_MODEL)
-    vec3 value = vec3(0.0);  // each channel's value before the albedo, times 4096
-    for (int c = 0; c < BLEND_MODEL_CHANNELS; ++c) {  // unrolled: constant bounds
-        float sum = blendModelOffset[c];
-#if BLEND_MODEL_LAYERS > 0
-        for (int l = 0; l < BLEND_MODEL_LAYERS; ++l)
-            sum += dot(btflutBytes(btflutBlendTexel(l)).rgb, blendModelWeights[l * BLEND_MODEL_CHANNELS + c]);
-#endif
-#if BLEND_MODEL_NIBBLE_LAYERS > 0
-        for (int l = 0; l < BLEND_MODEL_NIBBLE_LAYERS; ++l) {
-            vec3 bytes = btflutBytes(btflutBlendTexel(BLEND_MODEL_LAYERS + l)).rgb;
-            vec3 high = floor(bytes / 16.0);
-            int at = (l * BLEND_MODEL_CHANNELS + c) * 2;
-            sum += dot(high, blendModelNibbleWeights[at]) + dot(bytes - 16.0 * high, blendModelNibbleWeights[at + 1]);
-        }
-#endif
-        value[c] = floor(sum * blendModelScale);
+    vec3 sum = blendModelOffset;  // S_c: each channel's value before the albedo, in fixed point
+    for (int l = 0; l < BLEND_MODEL_LAYERS; ++l) {  // unrolled: constant bounds
+        vec4 codes = btflutPlaneCodes(l);
+        for (int c = 0; c < BLEND_MODEL_CHANNELS; ++c) sum[c] += dot(codes, blendModelWeights[l * BLEND_MODEL_CHANNELS + c]);
     }
+    vec3 value = floor(sum * blendModelScale);  // times BTFLUT_WEIGHT_UNIT
 #if BLEND_MODEL_CHANNELS == 1
     value = vec3(value.x);
 #endif
 #if defined(BLEND_MODEL_ALBEDO)
-    vec3 channels = clamp(btflutBytes(btflutBlendTexel(BLEND_MODEL_LAYERS + BLEND_MODEL_NIBBLE_LAYERS)).rgb * value, 0.0,
-                          255.0 * 4096.0);
+    vec3 channels = clamp(btflutBytes(btflutBlendTexel(BLEND_ALBEDO_LAYER)).rgb * value, 0.0, 255.0 * btflutUnit);
 #else
-    vec3 channels = clamp(255.0 * value, 0.0, 255.0 * 4096.0);
+    vec3 channels = clamp(255.0 * value, 0.0, 255.0 * btflutUnit);
 #endif
-    b.colour = channels / (255.0 * 4096.0);
+    b.colour = channels / (255.0 * btflutUnit);
 #if defined(RGB_MODE)
-    b.codes = floor(channels / 4096.0 + 0.5);  // each channel matched apart
+    b.codes = floor(channels / btflutUnit + 0.5);  // each channel matched apart
 #elif BLEND_MODEL_CHANNELS == 1 && !defined(BLEND_MODEL_ALBEDO)
-    b.codes = vec3(floor(channels.r / 4096.0 + 0.5));
+    b.codes = vec3(floor(channels.r / btflutUnit + 0.5));
 #else
-    b.codes = vec3(floor((channels.r + channels.g + channels.b) / 4096.0 + 0.5));
+    b.codes = vec3(floor((channels.r + channels.g + channels.b) / btflutUnit + 0.5));
 #endif
-#elif defined(BLEND_PACKED)
-    float sum = 0.0;
-    for (int l = 0; l < BLEND_LAYERS; ++l) sum += dot(btflutBytes(btflutBlendTexel(l)), blendWeights[l]);  // unrolled: a constant bound
-    b.codes = vec3(floor(sum / 4096.0 + 0.5));
-    b.colour = vec3(b.codes.x / 255.0);
 #else
     vec3 sum = vec3(0.0);
     b.colour = vec3(0.0);
     for (int k = 0; k < BLEND_FETCHES; ++k) {  // unrolled
         vec4 texel = btflutBlendTexel(blendLayer[k]);
         sum += blendWeight[k] * btflutBytes(texel).rgb;
-        b.colour += blendWeight[k] / 4096.0 * texel.rgb;
+        b.colour += blendWeight[k] / btflutUnit * texel.rgb;
     }
 #if defined(RGB_MODE)
-    b.codes = floor(sum / 4096.0 + 0.5);
+    b.codes = floor(sum / btflutUnit + 0.5);
 #elif defined(BLEND_GREY_REFERENCES)
-    b.codes = vec3(floor(sum.r / 4096.0 + 0.5));  // one channel (stored in all three)
+    b.codes = vec3(floor(sum.r / btflutUnit + 0.5));  // one channel (stored in all three)
 #else
-    b.codes = vec3(floor((sum.r + sum.g + sum.b) / 4096.0 + 0.5));  // the grey of RGB: the channel codes' sum
+    b.codes = vec3(floor((sum.r + sum.g + sum.b) / btflutUnit + 0.5));  // the grey of RGB: the channel codes' sum
 #endif
 #endif
     return b;
@@ -145,22 +139,11 @@ BtflutBlend btflutBlend() {
 // A code read at the top of its cell [q, q + 1) / (codes + 1) (Relighter::inputCode).
 float btflutBlendValue(float code) { return (code + 1.0) / (blendCodes + 1.0); }
 
-// The texel the blend reads (texelFetch at level 0): set by each shader's main. BLEND_FILTERED
-// (the scene's per-fragment path) samples bilinearly at btflutBlendUv instead, so a magnified
-// quad is smooth while the light moves, as its relit texture is once it stops: the prediction
-// of filtered planes, each rounded to 8 bits; 4-bit planes, two to a byte, are fetched as they are.
-ivec2 btflutBlendAt;
-vec2 btflutBlendUv;
-
 vec4 btflutBlendTexel(int layer) {
 #if defined(BLEND_FILTERED)
-#if defined(BLEND_MODEL) && BLEND_MODEL_NIBBLE_LAYERS > 0
-    if (layer >= BLEND_MODEL_LAYERS && layer < BLEND_MODEL_LAYERS + BLEND_MODEL_NIBBLE_LAYERS)
-        return texelFetch(blendReferences, ivec3(btflutBlendAt, layer), 0);
-#endif
-    return textureLod(blendReferences, vec3(btflutBlendUv, float(layer)), 0.0);
+    return textureLod(blendPlanes, vec3(btflutBlendUv, float(layer)), 0.0);
 #else
-    return texelFetch(blendReferences, ivec3(btflutBlendAt, layer), 0);
+    return texelFetch(blendPlanes, ivec3(btflutBlendAt, layer), 0);
 #endif
 }
 
@@ -179,8 +162,9 @@ vec3 btflutBlendColour(uvec2 pixel, bool greyReference) {
 #if defined(RGB_MODE)
     return vec3(btflutBlendMap(0, region, blend.codes.r, pixel), btflutBlendMap(1, region, blend.codes.g, pixel),
                 btflutBlendMap(2, region, blend.codes.b, pixel));
-#elif defined(BLEND_PACKED)
-    return btflutSetGrey(texelFetch(blendAlbedo, btflutBlendAt, 0).rgb, btflutBlendMap(0, region, blend.codes.x, pixel));
+#elif defined(BLEND_ALBEDO_CHROMA)
+    return btflutSetGrey(texelFetch(blendPlanes, ivec3(btflutBlendAt, BLEND_ALBEDO_LAYER), 0).rgb,
+                         btflutBlendMap(0, region, blend.codes.x, pixel));
 #else
     if (greyReference) return vec3(btflutBlendMap(0, region, blend.codes.x, pixel));
     return btflutSetGrey(blend.colour, btflutBlendMap(0, region, blend.codes.x, pixel));

@@ -1,7 +1,7 @@
 // The reference image at its native size with one LUT applied: the GL twin of btflut relight,
 // drawn by RelightPass (src/gl/relight_pass.h). Fragment (x, y) is image texel (x, row y),
 // row 0 the image's top, as the reference is stored. Defines: RGB_MODE (a LUT per channel),
-// DITHER; BLEND (and BLEND_PACKED, REGIONS) for banks that blend references, else MAPS_REFERENCE
+// DITHER; BLEND (and the predictor's, REGIONS) for banks with a predictor, else MAPS_REFERENCE
 // (lut_common.glsl).
 uniform sampler2D reference;
 uniform int referenceChannels; // 1 or 3

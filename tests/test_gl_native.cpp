@@ -100,6 +100,18 @@ TEST_SUITE("gl") {
         checkAgainstRelight(GlBackend::Egl, *bank, at);
     }
 
+    TEST_CASE("the include holds the constants the C++ uses (gpu_constants.h, written in by the build)") {
+        const std::string_view include = embeddedShader("btflut.glsl");
+        auto defines = [&](const std::string& name, long value) {
+            return include.find("\n#define " + name + " " + std::to_string(value) + "\n") != std::string_view::npos;
+        };
+        CHECK(defines("BTFLUT_WEIGHT_UNIT", kWeightUnit));
+        CHECK(defines("BTFLUT_MAX_PLANES", LightModel::kMaxPlanes));
+        CHECK(defines("BTFLUT_BASIS_BLN", static_cast<long>(LightBasis::Bilinear)));
+        CHECK(defines("BTFLUT_KIND_MODEL", BTFLUT_KIND_MODEL));
+        CHECK(include.find("btflut: constants (") == std::string_view::npos);  // the marker replaced
+    }
+
     TEST_CASE("a shader that does not compile names the file and line") {
         auto context = createHeadlessContext(GlBackend::Auto);
         REQUIRE(context.ok());

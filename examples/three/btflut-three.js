@@ -80,7 +80,7 @@ void main() {
     const text = new TextDecoder();
     const json = JSON.parse(text.decode(await readFile(folder + 'material.json')));
     const include = text.decode(await readFile(folder + 'btflut_es.glsl'));
-    const m = await btflutMaterial.prepare(json, (file) => readFile(folder + file));
+    const m = await btflutMaterial.prepare(json, (file) => readFile(folder + file), include);
     const dither = !options || options.dither !== false;
     m.material.dither = m.predictor.dither = dither;
 

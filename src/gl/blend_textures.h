@@ -25,13 +25,13 @@ bool lutsAsUniforms(const LutBank& bank);
 
 class BlendTextures {
 public:
-    static constexpr int kUnits = 6;  ///< texture units bind uses from its first: references, albedo, labels, 3 LUTs
+    static constexpr int kUnits = 5;  ///< texture units bind uses from its first: planes, labels, 3 LUTs
 
-    /// Uploads the references (grey and rgb: one RGB layer each; lrgb: four grey references
-    /// per RGBA layer), the albedo and the labels; adds their bytes to `bytes`.
+    /// Uploads the predictor's planes (Predictor::planes: RGBA8 layers, then the albedo's) and
+    /// the labels; adds their bytes to `bytes`.
     static BlendTextures upload(const LutBank& bank, std::size_t& bytes);
 
-    /// BLEND, BLEND_PACKED (lrgb), REGIONS, RGB_MODE as the bank needs.
+    /// BLEND, the predictor's own (Predictor::shaderDefines), REGIONS, RGB_MODE, LUT_UNIFORMS.
     static std::vector<std::string> defines(const LutBank& bank);
 
     /// LUT tables for one user of the bank (one per channel, a row per region), and their bytes.
@@ -47,9 +47,8 @@ public:
 private:
     const LutBank* m_bank = nullptr;
     bool m_lutsAsUniforms = false;  ///< lutsAsUniforms(bank), asked of GL once
-    GlTexture m_references, m_albedo, m_labels;
-    int m_layers = 0;        ///< reference layers, or a light model's 8-bit plane layers
-    int m_nibbleLayers = 0;  ///< a light model's 4-bit plane layers
+    GlTexture m_planes, m_labels;
+    int m_layers = 0;  ///< the planes' layers (the albedo's not counted)
 };
 
 }  // namespace btflut

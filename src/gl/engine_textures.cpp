@@ -97,7 +97,8 @@ void EngineTextures::bind(const ShaderProgram& program, const EngineMaterial& m,
     unit(1, GL_TEXTURE_2D_ARRAY, planes, "planes");
     unit(2, GL_TEXTURE_2D_ARRAY, weights, "weights");  // none for ptm, hsh: never read
     unit(3, GL_TEXTURE_2D, labels, "labels");
-    gl.Uniform1i(location("predictor.kind"), m.kind == EngineMaterial::Kind::Model ? 1 : 2);
+    gl.Uniform1i(location("predictor.kind"),
+                 m.kind == EngineMaterial::Kind::Model ? BTFLUT_KIND_MODEL : BTFLUT_KIND_REFERENCES);
     gl.Uniform1i(location("predictor.basis"), static_cast<int>(m.basis));
     gl.Uniform1i(location("predictor.order"), m.order);
     gl.Uniform1i(location("predictor.planes"), m.planes);

@@ -94,8 +94,20 @@
     return out;
   }
 
-  // `json`: material.json; `read(file)`: a promise of that file's bytes (a Uint8Array).
-  async function prepare(json, read) {
+  // The constants btflut's C++ shares with its shaders (kind ids, the most planes), as the
+  // include (`btflut_es.glsl`'s text) defines them: one source for C++, GLSL and this reader.
+  function constants(include) {
+    const out = {};
+    for (const [, name, value] of include.matchAll(/^#define (BTFLUT_\w+) (-?\d+)\s*$/gm)) out[name] = Number(value);
+    for (const name of ['BTFLUT_MAX_PLANES', 'BTFLUT_KIND_MODEL', 'BTFLUT_KIND_REFERENCES'])
+      if (!(name in out)) throw new Error('btflut_es.glsl: no ' + name + ' (an include older than this reader)');
+    return out;
+  }
+
+  // `json`: material.json; `read(file)`: a promise of that file's bytes (a Uint8Array);
+  // `include`: the text of the include the shader is built from (btflut_es.glsl).
+  async function prepare(json, read, include) {
+    const c = constants(include);
     if (json.format !== 'btflut-material') throw new Error('material.json: not a btflut material');
     if (json.version > 2) throw new Error('material.json: version ' + json.version + ' is newer than this page reads (2)');
     const png = async (file) => decodePng(await read(file), file);
@@ -115,8 +127,8 @@
       reference: null, planes: null, weights: null, labels: null,
       material: {layer: 0, rgbLuts, greyReference: json.reference.channels === 1, inputCode: json.lut_input_code,
                  outputCode: json.lut_output_code, dither: true},
-      predictor: {kind: 0, basis: 0, order: 0, planes: 0, channels: 1, albedo: 0, scale: new Array(32).fill(0),
-                  bias: new Array(32).fill(0), regions: 1, codes: 255, rgbLuts, greyOutput: false,
+      predictor: {kind: 0, basis: 0, order: 0, planes: 0, channels: 1, albedo: 0, scale: new Array(c.BTFLUT_MAX_PLANES).fill(0),
+                  bias: new Array(c.BTFLUT_MAX_PLANES).fill(0), regions: 1, codes: 255, rgbLuts, greyOutput: false,
                   outputCode: json.lut_output_code, dither: true}};
     if (json.kind === 'luts') {
       const reference = await png(json.reference.file);
@@ -146,7 +158,7 @@
       out.labels = {width: labels.width, height: labels.height, rgba: rgbaRows(labels)};
     }
     Object.assign(out.predictor, {
-      kind: p.kind === 'model' ? 1 : 2, basis: p.kind === 'model' ? p.basis_index : 0, order: p.order || 0, planes: p.planes,
+      kind: p.kind === 'model' ? c.BTFLUT_KIND_MODEL : c.BTFLUT_KIND_REFERENCES, basis: p.kind === 'model' ? p.basis_index : 0, order: p.order || 0, planes: p.planes,
       channels: p.channels, albedo: !p.albedo ? 0 : p.albedo.use === 'multiplies' ? 1 : 2, regions: p.regions, codes: p.codes,
       greyOutput: p.output_channels === 1});
     (p.scale || []).forEach((v, k) => { out.predictor.scale[k] = v; out.predictor.bias[k] = p.bias[k]; });
@@ -171,5 +183,5 @@ vec3 relight(vec2 uv, vec3 lightTangent, uvec2 pixel) {
 }
 `;
 
-  global.btflutMaterial = {decodePng, prepare, toHalf, fragmentHead};
+  global.btflutMaterial = {decodePng, constants, prepare, toHalf, fragmentHead};
 })(typeof window !== 'undefined' ? window : globalThis);

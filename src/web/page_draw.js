@@ -94,7 +94,7 @@ async function load() {
     for (let i = 0; i < text.length; ++i) bytes[i] = text.charCodeAt(i);
     return bytes;
   };
-  const m = await btflutMaterial.prepare(json, read);
+  const m = await btflutMaterial.prepare(json, read, data.include);
   program = gl.createProgram();
   gl.attachShader(program, compile(gl.VERTEX_SHADER, vertexSource));
   gl.attachShader(program, compile(gl.FRAGMENT_SHADER, '#version 300 es\n' + data.include + fragmentMain));

@@ -30,6 +30,7 @@
 
 #include "core/direction/direction.h"
 #include "core/image/image.h"
+#include "core/predict/gpu_constants.h"
 #include "core/predict/ptm.h"
 #include "core/result.h"
 
@@ -39,15 +40,20 @@ namespace btflut {
 /// integers below 2^24 are exact, fused or not) get the same codes: reference weights are
 /// integers summing to kWeightUnit, applied to the references' 8-bit codes, and a light
 /// model's channels are scaled by it (LightModelFixed).
-constexpr int kWeightUnit = 4096;
+constexpr int kWeightUnit = BTFLUT_WEIGHT_UNIT;
 
-enum class LightBasis : std::uint32_t { Ptm = 0, Hsh = 1, Rbf = 2, Bilinear = 3 };
+enum class LightBasis : std::uint32_t {
+    Ptm = BTFLUT_BASIS_PTM,
+    Hsh = BTFLUT_BASIS_HSH,
+    Rbf = BTFLUT_BASIS_RBF,
+    Bilinear = BTFLUT_BASIS_BLN
+};
 
 const char* lightBasisName(LightBasis basis);
 Result<LightBasis> parseLightBasis(const std::string& name);
 
 struct LightModel {
-    static constexpr int kMaxPlanes = 32;
+    static constexpr int kMaxPlanes = BTFLUT_MAX_PLANES;
 
     LightBasis basis = LightBasis::Ptm;
     int width = 0, height = 0;

@@ -1,5 +1,7 @@
 #include "core/predict/model_predictor.h"
 
+#include <algorithm>
+
 #include "core/check.h"
 
 namespace btflut {
@@ -9,6 +11,41 @@ ModelPredictor::ModelPredictor(const LightModel& model, bool perChannel)
     : Predictor(perChannel ? 3 : 1, perChannel || (model.albedo.empty() && model.channels == 1) ? 255 : 765),
       m_model(model) {
     BTFLUT_CHECK(!model.empty());
+}
+
+PredictorPlanes ModelPredictor::planes() const {
+    const LightModel& m = m_model;
+    const auto P = static_cast<std::size_t>(m.planes);
+    PredictorPlanes out;
+    // 4-bit codes n are stored as 17 n (0 .. 255): value = (n - b) s = (17 n - 17 b) s / 17.
+    auto widen = [&](std::size_t p) { return m.maxCode(static_cast<int>(p)) == 255 ? 1 : 17; };
+    for (std::size_t p = 0; p < P; ++p) {
+        out.scale.push_back(m.scale[p] / static_cast<float>(widen(p)));
+        out.bias.push_back(m.bias[p] * static_cast<float>(widen(p)));
+    }
+    for (std::size_t first = 0; first < P; first += 4) {
+        Image layer(m.width, m.height, 4);
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 4 && first + c < P; ++c)
+                layer.samples[i * 4 + c] =
+                    static_cast<float>(m.coefficients[i * P + first + c] * widen(first + c)) / 255.f;
+        out.layers.push_back(std::move(layer));
+    }
+    if (!m.albedo.empty()) {
+        out.albedo = Image(m.width, m.height, 3);
+        std::transform(m.albedo.begin(), m.albedo.end(), out.albedo.samples.begin(),
+                       [](std::uint8_t b) { return b / 255.f; });
+    }
+    return out;
+}
+
+std::vector<std::string> ModelPredictor::shaderDefines() const {
+    const std::string layers = std::to_string((m_model.planes + 3) / 4);
+    std::vector<std::string> d{"BLEND_MODEL", "BLEND_MODEL_LAYERS " + layers,
+                               "BLEND_MODEL_WIDE " + std::to_string(m_model.wide),
+                               "BLEND_MODEL_CHANNELS " + std::to_string(m_model.channels)};
+    if (!m_model.albedo.empty()) d.insert(d.end(), {"BLEND_MODEL_ALBEDO", "BLEND_ALBEDO_LAYER " + layers});
+    return d;
 }
 
 PredictorFrame ModelPredictor::frameAt(Direction light) const {

@@ -15,6 +15,8 @@ public:
 
     std::string name() const override { return lightModelName(m_model); }
     double bytesPerTexel() const override { return m_model.bytesPerTexel(); }
+    PredictorPlanes planes() const override;
+    std::vector<std::string> shaderDefines() const override;
     PredictorFrame frameAt(Direction light) const override;
     std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;

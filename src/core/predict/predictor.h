@@ -22,9 +22,20 @@
 #include <vector>
 
 #include "core/direction/direction.h"
+#include "core/image/image.h"
 #include "core/predict/light_model.h"
 
 namespace btflut {
+
+/// What a GPU reads to predict: the one packing btflut's renderer uploads and `export` writes
+/// (shaders/btflut.glsl, docs/engines.md).
+struct PredictorPlanes {
+    /// RGBA8: a light model's planes four to a layer (4-bit codes n stored as 17 n), or one
+    /// reference to a layer (a grey one in R, G and B).
+    std::vector<Image> layers;
+    Image albedo;                    ///< RGB8, empty when none
+    std::vector<float> scale, bias;  ///< a light model's, per plane, on the stored codes: (code - bias) scale
+};
 
 /// A predictor's integers at one light: the references blended and their weights (a
 /// reference blend), or the light model's per-light integers.
@@ -48,6 +59,11 @@ public:
     int codes() const { return m_codes; }
     /// Channels predicted and matched apart: 3 (rgb banks) or 1 (the grey).
     int channels() const { return m_channels; }
+
+    /// Its planes as a GPU holds them.
+    virtual PredictorPlanes planes() const = 0;
+    /// The #defines that choose and size its prediction in shaders/lut_common.glsl (BLEND_...).
+    virtual std::vector<std::string> shaderDefines() const = 0;
 
     /// Its integers at a light.
     virtual PredictorFrame frameAt(Direction light) const = 0;

@@ -34,6 +34,33 @@ double ReferenceBlend::bytesPerTexel() const {
     return static_cast<double>(m_references.size()) * m_references.front().channels + (m_albedo ? 3 : 0);
 }
 
+PredictorPlanes ReferenceBlend::planes() const {
+    PredictorPlanes out;
+    for (const Image& reference : m_references) {
+        Image layer(reference.width, reference.height, 4);  // RGBA8: grey in R, G and B, alpha opaque
+        const auto channels = static_cast<std::size_t>(reference.channels);
+        for (std::size_t i = 0; i < reference.pixelCount(); ++i) {
+            for (std::size_t c = 0; c < 3; ++c)
+                layer.samples[i * 4 + c] =
+                    std::round(reference.samples[i * channels + std::min(c, channels - 1)] * 255.f) / 255.f;
+            layer.samples[i * 4 + 3] = 1.f;
+        }
+        out.layers.push_back(std::move(layer));
+    }
+    if (m_albedo) out.albedo = *m_albedo;
+    return out;
+}
+
+std::vector<std::string> ReferenceBlend::shaderDefines() const {
+    std::vector<std::string> d{"BLEND_FETCHES " + std::to_string(std::min<std::size_t>(m_references.size(), 3))};
+    // Grey references are held in all three channels; their code is one channel's (codes
+    // 255), not the sum the grey of RGB takes.
+    if (m_references.front().channels == 1) d.push_back("BLEND_GREY_REFERENCES");
+    if (m_albedo)
+        d.insert(d.end(), {"BLEND_ALBEDO_CHROMA", "BLEND_ALBEDO_LAYER " + std::to_string(m_references.size())});
+    return d;
+}
+
 PredictorFrame ReferenceBlend::frameAt(Direction light) const {
     PredictorFrame frame;
     frame.count = 0;

@@ -23,6 +23,8 @@ public:
 
     std::string name() const override { return "references"; }
     double bytesPerTexel() const override;
+    PredictorPlanes planes() const override;
+    std::vector<std::string> shaderDefines() const override;
     PredictorFrame frameAt(Direction light) const override;
     std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;

@@ -61,56 +61,14 @@ std::vector<float> modelWeightGrid(const LightModel& m, int& size) {
     return grid;
 }
 
-// RGBA8 images of `count` values per texel, four to an image: value(texel, k) in 0 .. 255.
-template <class Value>
-std::vector<Image> fourToAnImage(int width, int height, std::size_t count, Value value) {
-    std::vector<Image> images;
-    const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    for (std::size_t first = 0; first < count; first += 4) {
-        Image image(width, height, 4);
-        for (std::size_t i = 0; i < texels; ++i)
-            for (std::size_t c = 0; c < 4 && first + c < count; ++c)
-                image.samples[i * 4 + c] = static_cast<float>(value(i, first + c)) / 255.f;
-        images.push_back(std::move(image));
-    }
-    return images;
-}
-
-// An image as RGBA8 (grey in R, G and B; alpha opaque), the layout of the planes' array.
-Image rgba(const Image& image) {
-    Image out(image.width, image.height, 4);
-    const auto channels = static_cast<std::size_t>(image.channels);
-    for (std::size_t i = 0; i < image.pixelCount(); ++i) {
-        for (std::size_t c = 0; c < 3; ++c)
-            out.samples[i * 4 + c] =
-                std::round(image.samples[i * channels + std::min(c, channels - 1)] * 255.f) / 255.f;
-        out.samples[i * 4 + 3] = 1.f;
-    }
-    return out;
-}
-
+// A light model's weights: ptm and hsh in closed form (btflut.glsl), rbf and bln on the grid.
 void setModel(EngineMaterial& out, const LightModel& m) {
     out.kind = EngineMaterial::Kind::Model;
     out.basis = m.basis;
     out.order = m.order;
     out.planes = m.planes;
     out.channels = m.channels;
-    // 4-bit codes n are stored as 17 n (0 .. 255): value = (n - b) s = (17 n - 17 b) s / 17.
-    for (int p = 0; p < m.planes; ++p) {
-        const float widen = m.maxCode(p) == 255 ? 1.f : 17.f;
-        out.scale.push_back(m.scale[static_cast<std::size_t>(p)] / widen);
-        out.bias.push_back(m.bias[static_cast<std::size_t>(p)] * widen);
-    }
-    const auto P = static_cast<std::size_t>(m.planes);
-    out.images = fourToAnImage(m.width, m.height, P, [&](std::size_t i, std::size_t p) {
-        return m.coefficients[i * P + p] * (m.maxCode(static_cast<int>(p)) == 255 ? 1 : 17);
-    });
-    if (!m.albedo.empty()) {
-        out.albedo = Image(m.width, m.height, 3);
-        std::transform(m.albedo.begin(), m.albedo.end(), out.albedo.samples.begin(),
-                       [](std::uint8_t b) { return b / 255.f; });
-        out.albedoMultiplies = true;
-    }
+    out.albedoMultiplies = !m.albedo.empty();
     if (m.basis == LightBasis::Rbf || m.basis == LightBasis::Bilinear) {
         out.weights = (m.planes + 1) * m.channels;
         const std::vector<float> rows = modelWeightGrid(m, out.weightGridSize);
@@ -152,6 +110,11 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     if (!blend.labels.empty()) out.labels = byteImage(blend.labels, bank.reference.width, bank.reference.height, 1);
     const Image& first = bank.predictsWithModel() ? bank.reference : blend.references.front();  // as Relighter::apply
     out.outputChannels = bank.colour == ColourMode::Grey ? first.channels : 3;
+    PredictorPlanes planes = bank.makePredictor()->planes();  // the packing btflut's renderer uploads too
+    out.images = std::move(planes.layers);
+    out.albedo = std::move(planes.albedo);
+    out.scale = std::move(planes.scale);
+    out.bias = std::move(planes.bias);
     if (bank.predictsWithModel()) {
         setModel(out, blend.model);
         return out;
@@ -159,8 +122,6 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     out.kind = EngineMaterial::Kind::References;
     out.planes = static_cast<int>(blend.references.size());
     out.channels = blend.references.front().channels;
-    for (const Image& reference : blend.references) out.images.push_back(rgba(reference));
-    if (bank.colour == ColourMode::Lrgb) out.albedo = blend.albedo;
     out.weights = out.planes;
     out.weightGridSize = kEngineWeightGrid;
     out.weightGrid = inLayers(referenceWeightGrid(bank, kEngineWeightGrid), static_cast<std::size_t>(out.weights),

@@ -6,12 +6,12 @@
 //   luts     every bank: a LUT per grid node of the light disk as one 3D texture of 16-bit
 //            texels, entries x G x (G x blocks); a block is a view layer (banks of LUTs) or a
 //            region (banks with a predictor: their match LUTs, LutBank::matchGridLuts).
-//   model    a light model (ptm, hsh, rbf, bln): its planes as 8-bit codes, four to an RGBA
-//            image (4-bit planes as codes 17 n, their scale and bias adjusted: the same
-//            values), then the albedo; per plane value = (code - bias) scale. The weights:
-//            ptm and hsh in closed form (btflut.glsl), rbf and bln from the weight grid.
-//   references  the references, one to an image (grey ones in every channel), then the
-//            albedo (lrgb); their blend weights from the weight grid.
+//   planes   the predictor's (Predictor::planes, the packing btflut's own renderer uploads
+//            too): a light model's (ptm, hsh, rbf, bln) as 8-bit codes four to an RGBA image
+//            (4-bit planes as codes 17 n, their scale and bias adjusted: the same values),
+//            per plane value = (code - bias) scale; or the references, one to an image (grey
+//            ones in every channel); then the albedo. The weights: ptm and hsh in closed form
+//            (btflut.glsl), rbf, bln and references from the weight grid.
 // The weight grid: S x S nodes over the equal-area light disk (node (i, j) at x = -1 + 2 i /
 // (S - 1), y likewise), per node `weights` floats, four to a layer: [layer][j][i][4].
 // Model rows hold the offsets, then each plane's channel weights ((1 + P) x channels, as
