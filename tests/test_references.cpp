@@ -249,6 +249,62 @@ TEST_CASE("regions and the PTM predictor relight to the measured histograms; a o
     CHECK(bankFormatVersion(*one) == 1);
 }
 
+TEST_CASE("a bank matched in part reproduces each measured light's histogram; between, its strength, ramped") {
+    TempDir dir;
+    const Material m = renderedMaterial(dir);
+    auto dataset = openDataset(m.colour);
+    REQUIRE(dataset.ok());
+    const Mask mask = *loadDatasetMask(*dataset, 48, 48);
+    for (BakeOptions options :
+         {BakeOptions{.model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2}, .match = 0},
+          BakeOptions{.references = 3, .match = 0.5f}}) {
+        auto bank = bakeBank(*dataset, options);
+        auto full = bakeBank(*dataset, [&] {
+            BakeOptions o = options;
+            o.match = 1;
+            return o;
+        }());
+        REQUIRE(bank.ok());
+        REQUIRE(full.ok());
+        const Relighter relighter(*bank), fullRelighter(*full);
+        INFO("match " << options.match);
+        for (const DatasetImage& im : dataset->images) {
+            CHECK(relighter.matchAt(im.light) == 1.f);
+            // At a measured light the LUTs are those of the fully matched bank: the photograph's histogram.
+            CHECK(relighter.frame(im.light).luts == fullRelighter.frame(im.light).luts);
+            const double l1 =
+                histogramL1(quantised(relighter.apply(relighter.frame(im.light), true), 8), *loadImage(im.path), mask);
+            CHECK(l1 == histogramL1(quantised(fullRelighter.apply(fullRelighter.frame(im.light), true), 8),
+                                    *loadImage(im.path), mask));
+        }
+        // Between, it moves smoothly (smoothstep: at most 1.5 (1 - match) per radius), and
+        // from `radius` away from every measured light on it is the bank's own.
+        const float radius = relighter.matchRampRadius();
+        REQUIRE(radius > 0);
+        float last = relighter.matchAt(dataset->images.front().light);
+        int away = 0;
+        for (int step = 1; step <= 120; ++step) {
+            const DiskPoint p = toDisk(dataset->images.front().light);
+            const DiskPoint q{p.x + step * radius / 8, p.y - step * radius / 16};
+            if (q.x * q.x + q.y * q.y > 1) break;
+            const float strength = relighter.matchAt(fromDisk(q));
+            CHECK(std::abs(strength - last) <= 1.5f * (1 - options.match) / 8 * 1.2f);
+            CHECK(strength >= options.match);
+            double nearest = 1e9;
+            for (const DatasetImage& im : dataset->images) {
+                const DiskPoint l = toDisk(im.light);
+                nearest = std::min(nearest, std::hypot(l.x - q.x, l.y - q.y));
+            }
+            if (nearest > radius * 1.001) {
+                CHECK(strength == doctest::Approx(options.match));
+                ++away;
+            }
+            last = strength;
+        }
+        CHECK(away > 0);
+    }
+}
+
 TEST_CASE("version 3 and 5 files round-trip, and every cut and flipped bit is refused") {
     TempDir dir;
     const Material m = renderedMaterial(dir);

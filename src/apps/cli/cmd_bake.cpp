@@ -139,10 +139,11 @@ std::string predictorSummary(const LutBank& bank) {
                                              : ", " + std::to_string(b.references.size()) + " reference(s)";
     char match[32];
     std::snprintf(match, sizeof match, "%.2f", static_cast<double>(b.match));
+    // At a measured light every bank is matched fully (Relighter::matchAt).
     return s +
            (b.match == 1   ? " matched"
-            : b.match == 0 ? " unmatched"
-                           : std::string(" matched ") + match) +
+            : b.match == 0 ? " matched at the measured lights, unmatched between"
+                           : std::string(" matched at the measured lights, ") + match + " between") +
            ", " + std::to_string(b.regions) + " region(s)";
 }
 

@@ -8,6 +8,7 @@
 #include "cli/cli.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
+#include "core/relight/relighter.h"
 
 namespace btflut::cli {
 
@@ -172,9 +173,13 @@ Status runInfo(const InfoOptions& o) {
             std::cout << ")";
         }
         std::cout << "\n  match:     "
-                  << (b.blend.match == 1   ? std::string("fully")
-                      : b.blend.match == 0 ? std::string("not at all (the prediction as it is)")
-                                           : fixed(b.blend.match, 2) + " of the way to the target")
+                  << (b.blend.match == 1
+                          ? std::string("fully")
+                          : "fully at the measured lights; " +
+                                (b.blend.match == 0
+                                     ? std::string("away from them not at all (the prediction as it is)")
+                                     : fixed(b.blend.match, 2) + " of the way to the target away from them") +
+                                " (ramped over " + fixed(matchRampRadius(b), 3) + " of the light disk)")
                   << (b.blend.target == LutBank::Blend::Target::Corrections
                           ? ", through the nodes' corrections blended at the light"
                           : ", to the measured distributions blended at the light")

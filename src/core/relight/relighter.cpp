@@ -30,6 +30,9 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     m_predictor = bank.makePredictor();
     m_counted = m_predictor->channels();  // rgb: each channel matched apart
     m_codes = m_predictor->codes();       // the grey of RGB8 on its channels' codes' scale: 765
+    for (std::size_t n = 0; n < bank.layers[0].measuredNodes; ++n)
+        m_measured.push_back(toDisk(bank.layers[0].nodes[n].light));
+    m_rampRadius = btflut::matchRampRadius(bank);
     if (blend.target == LutBank::Blend::Target::Corrections) {
         // Each node's LUT from the prediction at its light to its target, in a bank of the
         // same nodes (its lookups blend them as a classic bank's).
@@ -78,7 +81,7 @@ RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate)
     }
     if (m_corrections) {
         frame.luts = m_corrections->lookup(light, view, interpolate).values;
-        if (const float match = m_bank.blend.match; match < 1) {
+        if (const float match = matchAt(light); match < 1) {
             const auto entries = static_cast<std::size_t>(m_bank.entries);
             for (std::size_t k = 0; k < frame.luts.size(); ++k) {
                 const float v = static_cast<float>(k % entries) / static_cast<float>(entries - 1);
@@ -180,6 +183,16 @@ LevelCounts Relighter::predictedCounts(const RelightFrame& frame, std::size_t re
     return counts;
 }
 
+float Relighter::matchAt(Direction light) const {
+    const float match = m_bank.blend.match;
+    if (match >= 1 || m_measured.empty()) return match;
+    const DiskPoint p = toDisk(light);
+    double nearest = 1e30;
+    for (const DiskPoint& q : m_measured) nearest = std::min(nearest, std::hypot(p.x - q.x, p.y - q.y));
+    const double t = std::clamp(nearest / m_rampRadius, 0.0, 1.0), away = t * t * (3 - 2 * t);
+    return static_cast<float>(1 - (1 - match) * away);
+}
+
 float Relighter::identity(float v) const {
     return std::clamp((v * static_cast<float>(m_codes + 1) - 1) / static_cast<float>(m_codes), 0.f, 1.f);
 }
@@ -190,7 +203,7 @@ float Relighter::identity(float v) const {
 std::vector<float> Relighter::lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const {
     const auto entries = static_cast<std::size_t>(m_bank.entries),
                samples = static_cast<std::size_t>(m_bank.blend.quantiles);
-    const float match = m_bank.blend.match;
+    const float match = matchAt(frame.light);
     std::vector<float> luts;
     for (std::size_t r = 0; r < m_regionTexels.size(); ++r)
         for (int c = 0; c < m_counted; ++c) {
@@ -265,6 +278,22 @@ Image Relighter::applyBlendingLuts(Direction light, Direction view, bool dither)
         for (std::size_t s = 0; s < out.samples.size(); ++s) out.samples[s] += weight * matched.samples[s];
     }
     return out;
+}
+
+float matchRampRadius(const LutBank& bank) {
+    std::vector<DiskPoint> lights;
+    for (std::size_t n = 0; n < bank.layers.at(0).measuredNodes; ++n)
+        lights.push_back(toDisk(bank.layers[0].nodes[n].light));
+    if (lights.size() < 2) return 0.25f;  // one light: a quarter of the disk's radius
+    std::vector<double> nearest;
+    for (const DiskPoint& p : lights) {
+        double d = 1e30;
+        for (const DiskPoint& q : lights)
+            if (&p != &q) d = std::min(d, std::hypot(p.x - q.x, p.y - q.y));
+        nearest.push_back(d);
+    }
+    std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2), nearest.end());
+    return static_cast<float>(std::max(nearest[nearest.size() / 2] / 2, 1e-3));
 }
 
 Image relight(const LutBank& bank, Direction light, Direction view, bool dither) {

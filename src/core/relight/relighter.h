@@ -66,6 +66,14 @@ public:
     /// splits black and white too (predictors make spikes there: a PTM clips).
     float inputCode() const { return 1.f / static_cast<float>(m_codes + 1); }
 
+    /// How far a light's LUT moves the prediction towards the target: 1 at a measured light
+    /// (its photograph's histogram, exactly), the bank's Blend::match from half the median
+    /// spacing of the measured lights on (matchRampRadius), smoothly between (smoothstep of
+    /// the equal-area disk distance to the nearest measured light), so nothing jumps.
+    float matchAt(Direction light) const;
+    /// That half spacing, on the equal-area disk.
+    float matchRampRadius() const { return m_rampRadius; }
+
 private:
     /// The prediction's part of a frame (blend weights or the model's integers), no LUTs.
     RelightFrame predictionFrame(Direction light) const;
@@ -86,6 +94,8 @@ private:
     int m_codes = 255;                                       // codes of a predicted value (765 for the grey of RGB8)
     int m_counted = 1;                                       // channels counted: 3 for rgb, else 1 (grey)
     std::vector<std::vector<std::uint32_t>> m_regionTexels;  // sample texels of each region
+    std::vector<DiskPoint> m_measured;                       // the measured lights (matchAt)
+    float m_rampRadius = 0;
     /// Corrections (LutBank::Blend::Target::Corrections): the bank's nodes with, instead of
     /// their targets, the LUTs from the prediction at their lights to their targets.
     std::shared_ptr<const LutBank> m_corrections;
@@ -101,6 +111,11 @@ Image relight(const LutBank& bank, Direction light, Direction view = {}, bool di
 /// A bank with a predictor: the codes of a predicted value, 255 (a channel) or 765 (the grey of
 /// RGB8: three channels' codes summed); its match LUTs read code q at (q + 1) / (codes + 1).
 int predictionCodes(const LutBank& bank);
+
+/// Half the median distance from a measured light of `bank` to its nearest neighbour on the
+/// equal-area disk: how far from a measured light the match strength ramps down to the bank's
+/// (Relighter::matchAt).
+float matchRampRadius(const LutBank& bank);
 
 /// Fills every layer's match grid of a bank with a predictor (LutBank::matchGridLuts): at each
 /// grid node the LUT from the prediction at the node's light (beyond the horizon: at the
