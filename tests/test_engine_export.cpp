@@ -333,7 +333,21 @@ TEST_CASE("compare: exit 0 within the tolerance, 1 outside, 2 on bad input; the 
         CHECK(run.err.find(needle) != std::string::npos);
     };
     bad(runCli({"compare", dir / "a.png", dir / "small.png"}), "images of different sizes");
-    bad(runCli({"compare", dir / "a.png", dir / "colour.png"}), "images of different channel counts");
+    // Grey against RGB: the grey in all three channels, compared as RGB (not refused).
+    Image greyAsRgb(64, 48, 3);
+    for (std::size_t i = 0; i < a.samples.size(); ++i)
+        for (std::size_t c = 0; c < 3; ++c) greyAsRgb.samples[i * 3 + c] = a.samples[i];
+    REQUIRE(savePng(greyAsRgb, dir / "grey-as-rgb.png").ok());
+    CHECK(runCli({"compare", dir / "a.png", dir / "grey-as-rgb.png"}).out.find("identical") != std::string::npos);
+    CHECK(runCli({"compare", dir / "grey-as-rgb.png", dir / "a.png"}).status == 0);
+    CHECK(runCli({"compare", dir / "a.png", dir / "colour.png"}).status == 1);
+    bad(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "ssim=1.5"}), "ssim is at most 1");
+    // --crop: only the rectangle (pixel 100, row 1, differs; rows 10.. do not).
+    CHECK(runCli({"compare", dir / "a.png", dir / "b.png", "--crop", "0,10,64,38"}).out.find("identical") !=
+          std::string::npos);
+    CHECK(runCli({"compare", dir / "a.png", dir / "b.png", "--crop", "30,0,10,5", "--tolerance", "max=2"}).status == 1);
+    bad(runCli({"compare", dir / "a.png", dir / "b.png", "--crop", "0,10,65,38"}), "outside");
+    bad(runCli({"compare", dir / "a.png", dir / "b.png", "--crop", "0,10,64"}), "expected X,Y,W,H");
     bad(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "psnr"}), "expected NAME=VALUE");
     bad(runCli({"compare", dir / "a.png", dir / "b.png", "--tolerance", "psnr=-1"}), "not a non-negative number");
     bad(runCli({"compare", dir / "a.png", dir / "missing.png"}), "missing.png");
@@ -407,8 +421,11 @@ TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folder
     CHECK(folders.out.find("compared 3 image(s): 2 failed") != std::string::npos);
     CHECK(fs::exists(dir / "diffs/two.diff.png"));
     const std::string junit = readText(dir / "reports/compare.xml");
-    CHECK(junit.find("tests=\"3\" failures=\"2\"") != std::string::npos);
+    // two.png is outside the tolerance (a failure), three.png could not be compared (an error).
+    CHECK(junit.find("tests=\"3\" failures=\"1\" errors=\"1\"") != std::string::npos);
     CHECK(junit.find("<testcase classname=\"btflut.compare\" name=\"one.png\"/>") != std::string::npos);
+    CHECK(junit.find("<error message=\"no three.png in") != std::string::npos);
+    CHECK(junit.find("<failure message=\"outside") != std::string::npos);
     // --update creates the missing golden images and replaces those outside the tolerance.
     REQUIRE(savePng(a, dir / "out/three.png").ok());
     REQUIRE(savePng(a, dir / "out/four.png").ok());

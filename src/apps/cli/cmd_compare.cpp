@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -34,6 +35,7 @@ struct CompareOptions {
     std::string diff;
     std::string sideBySide;
     std::string junit;
+    std::string crop;     // X,Y,W,H: compare only that rectangle of both
     double diffFull = 0;  // the difference drawn full red, 1/255; 0: the tolerance's max, else 8
     bool json = false;
     bool quiet = false;
@@ -83,6 +85,8 @@ Result<Tolerance> parseTolerance(const std::string& text) {
         const double limit = std::strtod(value.c_str(), &end);
         if (value.empty() || *end != '\0' || !std::isfinite(limit) || limit < 0)
             return Error{"--tolerance '" + text + "': '" + value + "' is not a non-negative number"};
+        if (name == "ssim" && limit > 1)
+            return Error{"--tolerance '" + text + "': ssim is at most 1 (identical images), not " + value};
         if (name == "threshold")
             t.threshold = limit;
         else
@@ -303,6 +307,53 @@ nlohmann::json outcomeJson(const Outcome& r, const CompareOptions& o, const std:
     return out;
 }
 
+// A rectangle of an image, as `--crop X,Y,W,H` asks (x right, y down from the top-left pixel).
+struct Crop {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
+Result<std::optional<Crop>> parseCrop(const std::string& text) {
+    if (text.empty()) return std::optional<Crop>{};
+    int v[4];
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%d,%d,%d,%d%c", &v[0], &v[1], &v[2], &v[3], &tail) != 4 || v[0] < 0 || v[1] < 0 ||
+        v[2] <= 0 || v[3] <= 0)
+        return Error{"--crop '" + text + "': expected X,Y,W,H (pixels; X, Y from the top left, W, H at least 1)"};
+    return std::optional<Crop>{Crop{v[0], v[1], v[2], v[3]}};
+}
+
+// The part of `image` inside `crop` (the caller checks that it fits).
+ImageCodes cropped(const ImageCodes& image, const Crop& crop) {
+    ImageCodes out;
+    out.width = crop.width;
+    out.height = crop.height;
+    out.channels = image.channels;
+    out.bitDepth = image.bitDepth;
+    out.stride = image.stride;
+    const std::size_t bytes = static_cast<std::size_t>(image.stride) * (image.bitDepth / 8), row = bytes * crop.width;
+    out.bytes = std::make_unique<std::uint8_t[]>(row * static_cast<std::size_t>(crop.height));
+    for (int y = 0; y < crop.height; ++y)
+        std::memcpy(&out.bytes[row * static_cast<std::size_t>(y)],
+                    &image.bytes[(static_cast<std::size_t>(crop.y + y) * image.width + crop.x) * bytes], row);
+    return out;
+}
+
+// A grey image as RGB, its grey in all three channels: so grey and RGB renders compare.
+ImageCodes asRgb(const ImageCodes& grey) {
+    ImageCodes out;
+    out.width = grey.width;
+    out.height = grey.height;
+    out.channels = out.stride = 3;
+    out.bitDepth = grey.bitDepth;
+    const std::size_t bytes = static_cast<std::size_t>(grey.bitDepth / 8);
+    out.bytes = std::make_unique<std::uint8_t[]>(grey.pixelCount() * 3 * bytes);
+    for (std::size_t i = 0; i < grey.pixelCount(); ++i)
+        for (std::size_t c = 0; c < 3; ++c)
+            std::memcpy(&out.bytes[(i * 3 + c) * bytes], &grey.bytes[i * static_cast<std::size_t>(grey.stride) * bytes],
+                        bytes);
+    return out;
+}
+
 // Compares one pair; a problem that stops the pair (unreadable, another size) is an error for a
 // pair and a failed row in folders. Writes the diff and side-by-side images it is asked for.
 Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const std::string& actual,
@@ -328,16 +379,32 @@ Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const
         return Error{actual + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + ", " + expected +
                      " is " + std::to_string(b->width) + "x" + std::to_string(b->height) +
                      ": images of different sizes"};
-    if (a->channels != b->channels)
-        return Error{actual + " has " + std::to_string(a->channels) + " channel(s), " + expected + " has " +
-                     std::to_string(b->channels) + ": images of different channel counts"};
+    // Grey against RGB: the grey in all three channels, compared as RGB.
+    if (a->channels == 1 && b->channels == 3) *a = asRgb(*a);
+    if (a->channels == 3 && b->channels == 1) *b = asRgb(*b);
     Mask mask = fullMask(b->width, b->height);
     if (!o.mask.empty()) {
         Result<Mask> loaded = loadMask(o.mask, b->width, b->height);
         if (!loaded) return Error{loaded.error()};
         mask = std::move(*loaded);
-        if (mask.count() == 0) return Error{o.mask + ": the mask has no pixels to compare"};
     }
+    if (Result<std::optional<Crop>> crop = parseCrop(o.crop); !crop) {
+        return Error{crop.error()};
+    } else if (*crop) {
+        const Crop c = **crop;
+        if (c.x + c.width > b->width || c.y + c.height > b->height)
+            return Error{"--crop " + o.crop + ": outside " + expected + " (" + std::to_string(b->width) + "x" +
+                         std::to_string(b->height) + ")"};
+        *a = cropped(*a, c);
+        *b = cropped(*b, c);
+        Mask part = fullMask(c.width, c.height);
+        for (int y = 0; y < c.height; ++y)
+            for (int x = 0; x < c.width; ++x)
+                part.inside[static_cast<std::size_t>(y) * c.width + x] =
+                    mask.inside[static_cast<std::size_t>(c.y + y) * mask.width + c.x + x];
+        mask = std::move(part);
+    }
+    if (!o.mask.empty() && mask.count() == 0) return Error{o.mask + ": the mask has no pixels to compare"};
     r.f.e = compareCodes(*a, *b, mask);
     if (a->bitDepth == b->bitDepth)
         countPixels(*a, *b, mask, t.threshold, r.f);
@@ -366,7 +433,8 @@ Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const
     return r;
 }
 
-// <testsuite> of one <testcase> per image, a <failure> for each outside the tolerance.
+// <testsuite> of one <testcase> per image: a <failure> for each outside the tolerance, an
+// <error> for each that could not be compared (missing, unreadable, corrupt, another size).
 std::string junitReport(const std::vector<Outcome>& rows, const Tolerance& t, const std::string& tolerance) {
     auto escaped = [](const std::string& s) {
         std::string out;
@@ -384,19 +452,23 @@ std::string junitReport(const std::vector<Outcome>& rows, const Tolerance& t, co
         }
         return out;
     };
-    std::size_t failures = 0;
-    for (const Outcome& r : rows) failures += !r.ok();
+    std::size_t failures = 0, errors = 0;
+    for (const Outcome& r : rows) {
+        errors += !r.problem.empty();
+        failures += r.problem.empty() && !r.ok();
+    }
     std::ostringstream x;
     x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"btflut compare\" tests=\"" << rows.size()
-      << "\" failures=\"" << failures << "\">\n";
+      << "\" failures=\"" << failures << "\" errors=\"" << errors << "\">\n";
     for (const Outcome& r : rows) {
         x << "  <testcase classname=\"btflut.compare\" name=\"" << escaped(r.name) << "\"";
         if (r.ok()) {
             x << "/>\n";
             continue;
         }
-        x << ">\n    <failure message=\"" << escaped(r.problem.empty() ? "outside " + tolerance : r.problem) << "\">"
-          << escaped(line(r, t, tolerance)) << "</failure>\n  </testcase>\n";
+        const char* kind = r.problem.empty() ? "failure" : "error";
+        x << ">\n    <" << kind << " message=\"" << escaped(r.problem.empty() ? "outside " + tolerance : r.problem)
+          << "\">" << escaped(line(r, t, tolerance)) << "</" << kind << ">\n  </testcase>\n";
     }
     x << "</testsuite>\n";
     return x.str();
@@ -526,6 +598,9 @@ void addCompareCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::PositiveNumber);
     app->add_option("--side-by-side", o->sideBySide,
                     "side.png (folders: a folder of NAME.side.png): expected | actual | diff in one image");
+    app->add_option("--crop", o->crop,
+                    "X,Y,W,H: compare only that rectangle (pixels from the top left), e.g. a render without the "
+                    "viewer's panel");
     app->add_option("--junit", o->junit, "report.xml: a JUnit report, one test case per image, for CI dashboards");
     app->add_flag("--json", o->json, "print JSON");
     app->add_flag("--update", o->update,

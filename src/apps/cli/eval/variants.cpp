@@ -65,7 +65,10 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
                 variants.push_back(v);
                 continue;
             }
-        if (!mode) return Error{"--modes: " + mode.error()};
+        if (!mode)
+            return Error{"--modes: '" + name +
+                         "' is not a mode eval measures: lut, brdf, nearest, flat, or a light model (ptm, hsh, hsh2, "
+                         "hsh3, rbf, bln, rbfN, blnN, blnNc); the default is lut,ptm,hsh,rbf,bln,nearest,brdf"};
         if (*mode != RenderMode::Lut) {
             variants.push_back({name, *mode});
             continue;
