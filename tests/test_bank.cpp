@@ -56,7 +56,7 @@ TEST_CASE("between two nodes the LUT is their quantile blend, monotonic, exact a
         for (std::size_t k = 0; k < lut.values.size(); ++k)
             REQUIRE(lut.values[k] == doctest::Approx((1 - t) * la.values[k] + t * lb.values[k]).epsilon(1e-6));
     }
-    CHECK(bank->lookup(Direction::fromDegrees(30, 90)).provenance == Provenance::Extrapolated);
+    CHECK(bank->lookup(Direction::fromDegrees(30, 90)).provenance == Provenance::Clamped);
 }
 
 TEST_CASE("grid nodes carry their provenance and the blended LUT at 16 bits") {
@@ -67,7 +67,7 @@ TEST_CASE("grid nodes carry their provenance and the blended LUT at 16 bits") {
     const ViewLayer& layer = bank->layers[0];
     const std::size_t centre = 4 * 9 + 4;  // the pole, where shot0 was measured
     CHECK(layer.gridProvenance[centre] == Provenance::Measured);
-    CHECK(layer.gridProvenance[0] == Provenance::Extrapolated);  // a corner: beyond the horizon
+    CHECK(layer.gridProvenance[0] == Provenance::Clamped);  // a corner: beyond the horizon
     for (std::size_t k = 0; k < 256; ++k)
         REQUIRE(std::abs(layer.gridLuts[centre * 256 + k] / 65535.0 - layer.nodeLuts[k]) <= 0.5 / 65535 + 1e-9);
     for (int j = 0; j < 9; ++j)
@@ -226,12 +226,12 @@ TEST_CASE("lookups say how the light and the view were obtained; coverage is the
     // One frontal view layer: any other view is clamped to it, while the light is measured.
     const BankLookup oblique = bank->lookup(Direction::fromDegrees(30, 0), Direction::fromDegrees(40, 0));
     CHECK(oblique.lightProvenance == Provenance::Measured);
-    CHECK(oblique.viewProvenance == Provenance::Extrapolated);
-    CHECK(oblique.provenance == Provenance::Extrapolated);
+    CHECK(oblique.viewProvenance == Provenance::Clamped);
+    CHECK(oblique.provenance == Provenance::Clamped);
     const BankLookup between = bank->lookup(Direction::fromDegrees(20, 30));
     CHECK(between.lightProvenance == Provenance::Interpolated);
     CHECK(between.viewProvenance == Provenance::Measured);
-    CHECK(bank->lookup(Direction::fromDegrees(80, 180)).lightProvenance == Provenance::Extrapolated);
+    CHECK(bank->lookup(Direction::fromDegrees(80, 180)).lightProvenance == Provenance::Clamped);
     CHECK(bank->nearestNode(Direction::fromDegrees(50, 65)).node == 4);  // (55, 60)
 
     // The hull of the six lights reaches theta 55 at most: within the cap of theta <= 55,
@@ -283,7 +283,7 @@ TEST_CASE("layers domain: a light beyond one view's measured lights takes the ne
                      dir, {{0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 10, 1}, {30, 120, 0, 0, 10, 1}, {30, 240, 0, 0, 10, 1}})),
                  {.gridSize = 9});
     REQUIRE(single.ok());
-    CHECK(single->lookup(grazing).lightProvenance == Provenance::Extrapolated);
+    CHECK(single->lookup(grazing).lightProvenance == Provenance::Clamped);
 }
 
 TEST_CASE("isotropic domain: a pair beyond the hull takes the nearest measured pair, not a face bridging far pairs") {
@@ -302,7 +302,7 @@ TEST_CASE("isotropic domain: a pair beyond the hull takes the nearest measured p
     REQUIRE(bank.ok());
     const BankLookup held = bank->lookup(path[0].light, path[0].view);
     const BankLookup nearest = bank->lookup(path[1].light, path[1].view);  // c2-2, measured
-    CHECK(held.provenance == Provenance::Extrapolated);
+    CHECK(held.provenance == Provenance::Clamped);
     CHECK(nearest.provenance == Provenance::Measured);
     for (std::size_t k = 0; k < held.values.size(); ++k)
         CHECK(held.values[k] == doctest::Approx(nearest.values[k]).epsilon(1e-5));

@@ -87,7 +87,7 @@ TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured 
     // Beyond it: modelled (no longer clamped), and darker towards the horizon, as shadows grow.
     const BankLookup grazing = filled->lookup(Direction::fromDegrees(85, 120));
     CHECK(grazing.lightProvenance == Provenance::Modelled);
-    CHECK(clamped->lookup(Direction::fromDegrees(85, 120)).lightProvenance == Provenance::Extrapolated);
+    CHECK(clamped->lookup(Direction::fromDegrees(85, 120)).lightProvenance == Provenance::Clamped);
     auto mean = [](const std::vector<float>& lut) {
         double sum = 0;
         for (float v : lut) sum += v;
@@ -122,6 +122,24 @@ TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured 
     CliRun relit = runCli({"relight", dir / "fill.btflut", "--light", "85,120", "-o", dir / "r.png"});
     REQUIRE(relit.status == 0);
     CHECK(relit.out.find("LUT modelled") != std::string::npos);
+    CHECK(relit.err.find("--fill model") == std::string::npos);
+    // Without the fill: one word, "clamped", and a note that names what fills such lights.
+    CliRun clampedRun = runCli({"relight", dir / "clamp.btflut", "--light", "85,120", "-o", dir / "c.png"});
+    REQUIRE(clampedRun.status == 0);
+    CHECK(clampedRun.out.find("LUT clamped") != std::string::npos);
+    CHECK(clampedRun.err.find("beyond the measured lights") != std::string::npos);
+    CHECK(clampedRun.err.find("`bake --fill model`") != std::string::npos);
+    CHECK(runCli({"relight", dir / "clamp.btflut", "--light", "85,120", "-o", dir / "c.png", "-q"}).err.empty());
+    // A narrow capture (psm-rock reaches 39 degrees): info says so, in the same words.
+    if (!haveSharedData("psm-rock")) return;
+    REQUIRE(
+        runCli({"bake", sharedDataDir() + "/psm-rock", "--references", "1", "-o", dir / "rock.btflut", "-q"}).status ==
+        0);
+    const CliRun rock = runCli({"info", dir / "rock.btflut"});
+    CHECK(rock.out.find(" clamped; ") != std::string::npos);
+    CHECK(rock.out.find("are clamped to the nearest measured edge's LUT") != std::string::npos);
+    CHECK(rock.out.find("`bake --fill model`") != std::string::npos);
+    CHECK(rock.out.find("extrapolated") == std::string::npos);
 
     // A parameters file instead of fitting; bad combinations refused with one line.
     std::ofstream(dir / "p.json") << R"({"brdf": "lambert", "roughness": 0.4, "gain": 1})";

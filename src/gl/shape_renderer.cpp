@@ -19,7 +19,7 @@ constexpr int kMaxLayers = 16;             // shape.frag's layerViews[]
 std::string gridNoteOf(const LutBank& bank) {
     std::size_t clamped = 0, modelled = 0;
     for (Provenance p : bank.layers[0].gridProvenance) {
-        clamped += p == Provenance::Extrapolated;
+        clamped += p == Provenance::Clamped;
         modelled += p == Provenance::Modelled;
     }
     double measured = 0;

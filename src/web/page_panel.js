@@ -28,7 +28,7 @@ function drawDisk() {
   c.save();
   c.beginPath(); c.arc(diskCentre, diskCentre, diskRadius, 0, 2 * Math.PI); c.clip();
   provenance.forEach((kind, k) => {
-    if (kind !== 'modelled' && kind !== 'extrapolated') return;
+    if (kind !== 'modelled' && kind !== 'clamped' && kind !== 'extrapolated') return;  // 'extrapolated': exports before 2026-12
     const i = k % g, j = Math.floor(k / g), x = -1 + 2 * i / (g - 1), y = -1 + 2 * j / (g - 1);
     c.fillStyle = kind === 'modelled' ? 'rgba(230, 140, 40, 0.45)' : 'rgba(150, 150, 150, 0.35)';
     c.fillRect(diskCentre + x * diskRadius - cell / 2, diskCentre - y * diskRadius - cell / 2, cell, cell);

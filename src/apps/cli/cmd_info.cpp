@@ -129,7 +129,7 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
                                  {"max_theta", s.maxTheta},
                                  {"grid_measured", s.cells[0]},
                                  {"grid_interpolated", s.cells[1]},
-                                 {"grid_extrapolated", s.cells[2]},
+                                 {"grid_clamped", s.cells[2]},
                                  {"grid_modelled", s.cells[3]},
                                  {"coverage", b.lightCoverage(l)}});
     }
@@ -212,12 +212,16 @@ Status runInfo(const InfoOptions& o) {
         char line[400];
         std::snprintf(line, sizeof line,
                       "  layer %zu: view %s, %zu light nodes (theta up to %.1f)%s, grid nodes in the "
-                      "hemisphere: %zu measured, %zu interpolated, %zu modelled, %zu extrapolated; %.0f%% of light "
+                      "hemisphere: %zu measured, %zu interpolated, %zu modelled, %zu clamped; %.0f%% of light "
                       "directions covered by measurements%s\n",
                       l, degrees(layer.view).c_str(), layer.nodes.size() - modelled, maxTheta,
                       modelled ? (" + " + std::to_string(modelled) + " modelled").c_str() : "", counts[0], counts[1],
                       counts[3], counts[2], 100.0 * b.lightCoverage(l), modelled ? ", the rest modelled" : "");
         std::cout << line;
+        if (counts[2] > 0 && !modelled && b.lightCoverage(l) < 0.5)
+            std::cout << "    note: lights beyond theta " << fixed(maxTheta, 1)
+                      << " are clamped to the nearest measured edge's LUT (wrong shadows and speckle far from it); "
+                         "`bake --fill model` fills them from the fitted rough-surface model\n";
     }
     return success();
 }

@@ -1,5 +1,8 @@
 // btflut relight: the CPU reference of the renderer — the reference image with the LUT
 // for one light (and view) direction applied.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -22,6 +25,22 @@ struct RelightOptions {
     bool grid = false;
     bool quiet = false;
 };
+
+// A light beyond the measured ones gets the nearest edge's LUT (clamped): for a narrow capture
+// that can be far from the light asked for, so say so, and what fills such lights instead.
+void noteClampedLight(const LutBank& bank, const RelightFrame& frame, Direction light) {
+    if (frame.lightProvenance != Provenance::Clamped) return;
+    double reach = 0;
+    const ViewLayer& layer = bank.layers.front();
+    for (std::size_t n = 0; n < layer.measuredNodes; ++n) reach = std::max(reach, layer.nodes[n].light.theta);
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "btflut relight: note: the light (%.1f, %.1f) is beyond the measured lights (they reach theta "
+                  "%.1f): its LUT is clamped to the nearest measured edge's, which can show wrong shadows and speckle "
+                  "far from it; `bake --fill model` fills such lights from the fitted rough-surface model\n",
+                  light.theta * 180 / M_PI, light.phi * 180 / M_PI, reach * 180 / M_PI);
+    std::cerr << line;
+}
 
 Status runRelight(const RelightOptions& o) {
     if (Status s = requireExtension(o.output, {"png"}, "output"); !s) return s;
@@ -66,6 +85,7 @@ Status runRelight(const RelightOptions& o) {
     }
     const Relighter relighter(bank);
     const RelightFrame frame = relighter.frame(query->light, query->view);
+    if (!o.quiet) noteClampedLight(bank, frame, query->light);
     Image out = relighter.apply(frame, !o.noDither);
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
     if (!o.quiet)

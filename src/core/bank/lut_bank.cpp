@@ -21,7 +21,7 @@ int rank(Provenance p) {
             return 1;
         case Provenance::Modelled:
             return 2;
-        case Provenance::Extrapolated:
+        case Provenance::Clamped:
             return 3;
     }
     return 3;
@@ -30,7 +30,7 @@ int rank(Provenance p) {
 Provenance combine(Provenance a, Provenance b) { return rank(a) >= rank(b) ? a : b; }
 
 Provenance provenanceOf(const Weights& w) {
-    if (!w.inside) return Provenance::Extrapolated;
+    if (!w.inside) return Provenance::Clamped;
     double top = *std::max_element(w.weight.begin(), w.weight.begin() + w.count);
     return top > 1 - 1e-9 ? Provenance::Measured : Provenance::Interpolated;
 }
@@ -69,8 +69,8 @@ const char* provenanceName(Provenance p) {
             return "measured";
         case Provenance::Interpolated:
             return "interpolated";
-        case Provenance::Extrapolated:
-            return "extrapolated";
+        case Provenance::Clamped:
+            return "clamped";
         case Provenance::Modelled:
             return "modelled";
     }
@@ -123,7 +123,7 @@ void LutBank::fillGrids() {
     for (ViewLayer& layer : layers) {
         const auto cells = static_cast<std::size_t>(gridSize) * gridSize;
         layer.gridLuts.assign(cells * length, 0);
-        layer.gridProvenance.assign(cells, Provenance::Extrapolated);
+        layer.gridProvenance.assign(cells, Provenance::Clamped);
         for (int j = 0; j < gridSize; ++j)
             for (int i = 0; i < gridSize; ++i) {
                 // Beyond the horizon: the horizon's LUT (fromDisk pulls the point onto it).

@@ -53,8 +53,9 @@ const char* colourName(ColourMode c);
 /// How a LUT was obtained: from a measurement at that direction, by interpolating
 /// measurements around it, by clamping to the nearest measured boundary, or (wholly or in
 /// part) from the fitted rough-surface model that fills directions without measurements
-/// (model_fill.h). From best to worst: measured, interpolated, modelled, extrapolated.
-enum class Provenance : std::uint8_t { Measured = 0, Interpolated = 1, Extrapolated = 2, Modelled = 3 };
+/// (model_fill.h). From best to worst: measured, interpolated, modelled, clamped. One word per
+/// state in every output (`relight`, `info`, the viewer, the page, material.json).
+enum class Provenance : std::uint8_t { Measured = 0, Interpolated = 1, Clamped = 2, Modelled = 3 };
 
 const char* provenanceName(Provenance p);
 

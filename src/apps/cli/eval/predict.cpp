@@ -167,7 +167,7 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 v.errors.push_back(compareImages(predicted, *photo, mask));
                 v.images.push_back(info.name);
                 const BankLookup at = bank.lookup(info.light, info.view);
-                auto beyond = [](Provenance p) { return p == Provenance::Extrapolated || p == Provenance::Modelled; };
+                auto beyond = [](Provenance p) { return p == Provenance::Clamped || p == Provenance::Modelled; };
                 v.outside.push_back(beyond(at.lightProvenance) || beyond(at.viewProvenance));
                 if (sheetRow) {
                     sheetHistograms[static_cast<std::size_t>(&v - variants.data()) + 1].rows.push_back(
