@@ -4,7 +4,9 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 
+#include "core/bake/auto_bake.h"
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/data/dataset.h"
@@ -66,14 +68,19 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
     if (fs::path(path).extension() != ".btflut") {  // a dataset: bake it for this session
         Result<Dataset> dataset = openDataset(path);
         if (!dataset) return Error{dataset.error()};
+        // What `btflut bake DATASET` writes (the validated choice), unless a predictor is named.
         BakeOptions bake = o.bake;
         bake.ptm = true;
-        Result<LutBank> baked = bakeBank(*dataset, bake);
+        auto make = [&] { return o.validate ? bakeAuto(*dataset, {.base = bake}) : bakeBank(*dataset, bake); };
+        Result<LutBank> baked = make();
         if (!baked && baked.error().find("a PTM needs") != std::string::npos) {
             bake.ptm = false;  // too few lights for a PTM: mode ptm stays off
-            baked = bakeBank(*dataset, bake);
+            baked = make();
         }
         if (!baked) return Error{baked.error()};
+        const std::string shown = baked->makesLuts() ? baked->predictorName() : "the one-reference bank";
+        std::cout << "view: baked " << path << " for this session as `btflut bake` would"
+                  << (o.validate ? " (the validated choice: " : " (") << shown << ")\n";
         static int opened = 0;  // a session may open several datasets
         in.temporaryBank = (fs::temp_directory_path() /
                             ("btflut-view-" + std::to_string(::getpid()) + "-" + std::to_string(opened++) + ".btflut"))

@@ -44,6 +44,8 @@ struct ViewerOptions {
                                ///< at frame 1 this path is dropped on the window (through GLFW's callback)
     /// A dataset is baked with these (references, regions, colour, predictor).
     BakeOptions bake;
+    bool validate =
+        true;  ///< with a dataset: bake what `bake` makes by default (bakeAuto), unless `bake` names a predictor
 };
 
 Status runViewer(const ViewerOptions& options);

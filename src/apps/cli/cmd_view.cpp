@@ -61,13 +61,13 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--regions", o->bake.regions, "with a dataset: regions matched apart (bake --regions)")
         ->check(CLI::Range(1, 255));
     auto colour = std::make_shared<std::string>("grey");
-    auto predictor = std::make_shared<std::string>("references");
+    auto predictor = std::make_shared<std::string>("auto");
     app->add_option("--colour", *colour, "with a dataset: grey, rgb or lrgb (bake --colour)")
         ->check(CLI::IsMember({"grey", "rgb", "lrgb"}));
     app->add_option("--predictor", *predictor,
-                    "with a dataset: references, or a light model: ptm, hsh2, hsh3, rbfN, blnN (bake --predictor; the "
-                    "sphere and cylinder draw the references' bank)");
-    commands.push_back({app, [o, colour, predictor, size] {
+                    "with a dataset: auto (the default: what `bake DATASET` writes, chosen by validation), "
+                    "references, or a light model: ptm, hsh2, hsh3, rbfN, blnN (bake --predictor)");
+    commands.push_back({app, [o, colour, predictor, size, app] {
                             if (!size->empty()) {
                                 int w = 0, h = 0;
                                 char extra = 0;
@@ -80,11 +80,14 @@ void addViewCommand(CLI::App& root, Commands& commands) {
                             o->bake.colour = *colour == "rgb"    ? ColourMode::Rgb
                                              : *colour == "lrgb" ? ColourMode::Lrgb
                                                                  : ColourMode::Grey;
-                            if (*predictor != "references") {
+                            // auto, as bake: unless references or a predictor are named.
+                            o->validate = *predictor == "auto" && app->count("--references") == 0;
+                            if (*predictor != "references" && *predictor != "auto") {
                                 std::optional<Result<LightModelOptions>> model = lightModelNamed(*predictor);
                                 if (!model)
-                                    return Status{Error{"--predictor '" + *predictor +
-                                                        "': expected references or a basis (ptm, hsh, rbf, bln)"}};
+                                    return Status{
+                                        Error{"--predictor '" + *predictor +
+                                              "': expected auto, references or a basis (ptm, hsh, rbf, bln)"}};
                                 if (!*model) return Status{Error{"--predictor " + model->error()}};
                                 o->bake.model = **model;
                             }
