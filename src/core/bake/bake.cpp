@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <mutex>
 #include <optional>
 
@@ -12,6 +13,27 @@
 namespace btflut {
 
 namespace {
+
+// Runs a step of parallelFor's work items in index order, each index exactly once: float sums
+// made there (the PTM's moments, the lrgb albedo) then do not depend on which thread finished
+// first, so the same inputs give the same bank bytes. No deadlock: parallelFor hands out
+// indices in increasing order, so the lowest one not yet through is never waiting.
+class InIndexOrder {
+public:
+    template <class Step>
+    void run(std::size_t index, Step&& step) {
+        std::unique_lock lock(m_mutex);
+        m_turn.wait(lock, [&] { return m_next == index; });
+        step();
+        ++m_next;
+        m_turn.notify_all();
+    }
+
+private:
+    std::mutex m_mutex;
+    std::condition_variable m_turn;
+    std::size_t m_next = 0;
+};
 
 // Per-image result of the streaming pass.
 struct ImageLuts {
@@ -307,6 +329,7 @@ public:
         if (m_options.ptm) m_ptm.emplace(ref.width, ref.height);
         if (m_options.colour == ColourMode::Lrgb) m_albedo.emplace(ref.width, ref.height);
         m_blendReferences.resize(m_blend.references.size());  // as the blend keeps them, in pick order
+        InIndexOrder accumulating;
         parallelFor(m_dataset.images.size(), m_options.threads, [&](std::size_t i) {
             const DatasetImage& info = m_dataset.images[i];
             ImageLuts& out = results[i];
@@ -322,11 +345,14 @@ public:
                 out.error = info.path + ": --colour " + std::string(colourName(m_options.colour)) +
                             " needs colour images, this one is grey";
             } else {
-                if (m_ptm && angleBetween(info.view, refInfo.view) < 1e-9) m_ptm->add(**image, info.light);
-                if (m_albedo) m_albedo->add(**image);
                 out.values.reserve(length);
                 measureOne(**image, i, out.values);
             }
+            accumulating.run(i, [&] {  // every index, failed ones too
+                if (!out.error.empty()) return;
+                if (m_ptm && angleBetween(info.view, refInfo.view) < 1e-9) m_ptm->add(**image, info.light);
+                if (m_albedo) m_albedo->add(**image);
+            });
             if (m_options.progress) {
                 std::lock_guard lock(progressMutex);
                 m_options.progress(++done, m_dataset.images.size());
