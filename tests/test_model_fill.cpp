@@ -130,6 +130,19 @@ TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured 
     CHECK(clampedRun.err.find("beyond the measured lights") != std::string::npos);
     CHECK(clampedRun.err.find("`bake --fill model`") != std::string::npos);
     CHECK(runCli({"relight", dir / "clamp.btflut", "--light", "85,120", "-o", dir / "c.png", "-q"}).err.empty());
+    // --json: what was written and where the light fell; info -q: nothing, the exit status.
+    const CliRun json = runCli({"relight", dir / "clamp.btflut", "--light", "85,120", "-o", dir / "c.png", "--json"});
+    REQUIRE(json.status == 0);
+    const nlohmann::json j = nlohmann::json::parse(json.out);
+    CHECK(j["output"] == dir / "c.png");
+    CHECK(j["light_provenance"] == "clamped");
+    CHECK(j["light"]["theta"].get<double>() == doctest::Approx(85));
+    CHECK(j["width"].get<int>() > 0);
+    const CliRun quietInfo = runCli({"info", "-q", dir / "clamp.btflut"});
+    CHECK(quietInfo.status == 0);
+    CHECK(quietInfo.out.empty());
+    std::ofstream(dir / "cut.btflut", std::ios::binary) << readText(dir / "clamp.btflut").substr(0, 900);
+    CHECK(runCli({"info", "-q", dir / "cut.btflut"}).status != 0);
     // A narrow capture (psm-rock reaches 39 degrees): info says so, in the same words.
     if (!haveSharedData("psm-rock")) return;
     REQUIRE(

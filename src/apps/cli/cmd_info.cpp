@@ -17,6 +17,7 @@ namespace {
 struct InfoOptions {
     std::string bank;
     bool json = false;
+    bool quiet = false;
 };
 
 std::string fixed(double v, int decimals) {
@@ -139,6 +140,7 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
 Status runInfo(const InfoOptions& o) {
     Result<LutBank> bank = loadBank(o.bank);
     if (!bank) return Error{bank.error()};
+    if (o.quiet) return success();  // the bank reads, every chunk checked: exit 0
     const LutBank& b = *bank;
     if (o.json) {
         std::cout << jsonText(infoJson(o.bank, b));
@@ -233,6 +235,9 @@ void addInfoCommand(CLI::App& root, Commands& commands) {
     CLI::App* app = root.add_subcommand("info", "Describe a LUT bank: header, grid, coverage, size");
     app->add_option("BANK", o->bank, "M.btflut")->required();
     app->add_flag("--json", o->json, "print JSON");
+    addQuietFlag(
+        *app, o->quiet,
+        "print nothing: exit 0 when the bank reads whole, non-zero with one line when not (a check for scripts)");
     commands.push_back({app, [o] { return runInfo(*o); }});
 }
 

@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
 #include "core/bank/bank_file.h"
+#include "core/io/json_text.h"
 #include "core/relight/relighter.h"
 
 namespace btflut::cli {
@@ -24,7 +26,28 @@ struct RelightOptions {
     bool noDither = false;
     bool grid = false;
     bool quiet = false;
+    bool json = false;
 };
+
+// What was written and where the light fell: a line, or JSON (--json).
+void report(const RelightOptions& o, const Image& out, const std::string& lut, Direction light,
+            const RelightFrame* frame, float match) {
+    if (o.json) {
+        nlohmann::json j{{"output", o.output},
+                         {"width", out.width},
+                         {"height", out.height},
+                         {"light", {{"theta", light.theta * 180 / M_PI}, {"phi", light.phi * 180 / M_PI}}},
+                         {"lut", lut}};
+        if (frame) {
+            j["light_provenance"] = provenanceName(frame->lightProvenance);
+            j["view_provenance"] = provenanceName(frame->viewProvenance);
+        }
+        if (match >= 0) j["match"] = match;  // the strength at this light (a bank with a predictor)
+        std::cout << jsonText(j);
+    } else if (!o.quiet) {
+        std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT " << lut << ")\n";
+    }
+}
 
 // A light beyond the measured ones gets the nearest edge's LUT (clamped): for a narrow capture
 // that can be far from the light asked for, so say so, and what fills such lights instead.
@@ -67,11 +90,10 @@ Status runRelight(const RelightOptions& o) {
         return Error{o.bank + ": the bank has no reference image inside; give --reference-image"};
     if (o.grid && bank.makesLuts()) {  // the prediction, then the LUT read from the bank's match grid
         const Relighter relighter(bank);
-        const Image out = relighter.apply(relighter.gridFrame(query->light), !o.noDither);
+        const RelightFrame frame = relighter.gridFrame(query->light);
+        const Image out = relighter.apply(frame, !o.noDither);
         if (Status s = savePng(out, o.output, o.depth); !s) return s;
-        if (!o.quiet)
-            std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height
-                      << ", LUT from the match grid)\n";
+        report(o, out, "from the match grid", query->light, &frame, relighter.matchAt(query->light));
         return success();
     }
     if (o.grid) {  // what an engine reads from `export -o DIR/`
@@ -79,18 +101,16 @@ Status runRelight(const RelightOptions& o) {
         const Image out = applyLuts(bank.reference, bank.colour, bank.gridLookup(query->light, layer), bank.entries,
                                     o.noDither ? 0.f : bank.targetCode());
         if (Status s = savePng(out, o.output, o.depth); !s) return s;
-        if (!o.quiet)
-            std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT from the grid)\n";
+        report(o, out, "from the grid", query->light, nullptr, -1);
         return success();
     }
     const Relighter relighter(bank);
     const RelightFrame frame = relighter.frame(query->light, query->view);
-    if (!o.quiet) noteClampedLight(bank, frame, query->light);
+    if (!o.quiet && !o.json) noteClampedLight(bank, frame, query->light);
     Image out = relighter.apply(frame, !o.noDither);
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
-    if (!o.quiet)
-        std::cout << "wrote " << o.output << " (" << out.width << "x" << out.height << ", LUT "
-                  << provenanceName(frame.provenance) << ")\n";
+    report(o, out, provenanceName(frame.provenance), query->light, &frame,
+           bank.makesLuts() ? relighter.matchAt(query->light) : -1);
     return success();
 }
 
@@ -112,6 +132,10 @@ void addRelightCommand(CLI::App& root, Commands& commands) {
         "shaders/btflut.glsl's one filtered fetch), not interpolated over the measured directions; for a bank "
         "with a predictor, the LUT baked over the grid (no counting of the prediction per light)");
     addQuietFlag(*app, o->quiet, "do not say what was written");
+    app->add_flag("--json", o->json,
+                  "print what was written and where the light fell as JSON: output, size, the light, the LUT's "
+                  "source (measured, interpolated, modelled, clamped, or a grid), the light's and view's "
+                  "provenance, the match strength there");
     commands.push_back({app, [o] { return runRelight(*o); }});
 }
 
