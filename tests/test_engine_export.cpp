@@ -402,6 +402,16 @@ TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folder
     REQUIRE(side.ok());
     CHECK(side->width == 3 * 64);
     REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "1", "-o", dir / "m.btflut", "-q"}).status == 0);
+    // bake --json: the summary, and nothing else on stdout.
+    const CliRun baked = runCli(
+        {"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "hsh2", "--match", "0.5", "-o", dir / "h.btflut", "--json"});
+    REQUIRE(baked.status == 0);
+    const nlohmann::json summary = nlohmann::json::parse(baked.out);
+    CHECK(summary["output"] == dir / "h.btflut");
+    CHECK(summary["predictor"] == "hsh2");
+    CHECK(summary["match"].get<double>() == doctest::Approx(0.5));
+    CHECK(summary["bytes"].get<std::uint64_t>() == fs::file_size(dir / "h.btflut"));
+    CHECK(summary["measured_nodes"].get<int>() > 0);
     CHECK(runCli({"relight", dir / "m.btflut", "--light", "30,0", "-o", dir / "made/x.png", "-q"}).status == 0);
     CHECK(fs::exists(dir / "made/x.png"));
     // Folders: every image of either by name, one line each, every failure listed, JUnit.

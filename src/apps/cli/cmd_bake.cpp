@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 
 #include "cli/cli.h"
@@ -14,6 +15,7 @@
 #include "core/bank/bank_file.h"
 #include "core/inverse/fit.h"
 #include "core/inverse/model_fill.h"
+#include "core/io/json_text.h"
 
 namespace btflut::cli {
 
@@ -44,6 +46,7 @@ struct BakeCommandOptions {
     bool noReference = false;
     bool ptm = false;
     bool quiet = false;
+    bool json = false;  // the summary as JSON (no progress bar)
 };
 
 // A bank from the rough-surface model and one reference image.
@@ -196,6 +199,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
         return Error{
             "--no-reference: a bank that predicts (the default --predictor auto, references, a model) keeps "
             "what it predicts from; give --references 1 for the paper's bank"};
+    if (o.json) o.quiet = true;  // stdout holds the JSON only
     if (!o.quiet) options.progress = terminalProgress(o.predictor == "auto" ? "validating" : "baking");
     HistogramsWhileBaking collector{*dataset};
     const bool fitting = o.fill == "model" && o.params.empty();
@@ -216,6 +220,30 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
         if (Status s = fillFromFittedModel(o, *dataset, *bank, histograms ? &*histograms : nullptr); !s) return s;
     }
     if (Status s = saveBank(*bank, o.output, {.embedReference = !o.noReference}); !s) return s;
+    if (o.json) {
+        std::size_t nodes = 0;
+        for (const ViewLayer& l : bank->layers)
+            for (const LightNode& n : l.nodes) nodes += !n.modelled;
+        nlohmann::json j{{"output", o.output},
+                         {"images", dataset->images.size()},
+                         {"view_layers", bank->layers.size()},
+                         {"measured_nodes", nodes},
+                         {"grid_size", bank->gridSize},
+                         {"entries", bank->entries},
+                         {"domain", domainName(bank->domain)},
+                         {"colour", colourName(bank->colour)},
+                         {"reference", bank->referenceName},
+                         {"ptm", !bank->ptm.empty()},
+                         {"chosen_by_validation", !bank->selection.empty()},
+                         {"bytes", std::filesystem::file_size(o.output)}};
+        if (bank->makesLuts()) {
+            j["predictor"] = bank->predictorName();
+            j["bytes_per_texel"] = bank->predictorBytesPerTexel();
+            j["match"] = bank->blend.match;  // away from the measured lights; at them 1 (Relighter::matchAt)
+            j["regions"] = bank->blend.regions;
+        }
+        std::cout << jsonText(j);
+    }
     if (!o.quiet) {
         std::size_t nodes = 0;
         for (const ViewLayer& l : bank->layers)
@@ -324,6 +352,9 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
     app->add_flag("--no-reference", o->noReference,
                   "do not embed the reference image (relight then needs --reference-image)");
     addQuietFlag(*app, o->quiet, "no progress bar or summary");
+    app->add_flag("--json", o->json,
+                  "print the summary as JSON (output, images, nodes, grid, colour, predictor, match, bytes); no "
+                  "progress bar");
     commands.push_back({app, [o, app] { return runBake(*o, *app); }});
 }
 
