@@ -40,6 +40,14 @@ TEST_CASE("scenes parse, normalise their frames and cull what the camera cannot 
     CHECK(local.z == doctest::Approx(1));
 }
 
+TEST_CASE("the example scene docs/scene.md ships reads, with only the keys it documents") {
+    Result<Scene> scene = loadScene(std::string(BTFLUT_SOURCE_DIR) + "/examples/scene/wall.json");
+    REQUIRE_MESSAGE(scene.ok(), scene.error());
+    CHECK(scene->quads.size() == 2);
+    CHECK(scene->materials.at("default").bank.ends_with("examples/scene/default.btflut"));
+    CHECK(scene->quads[1].mode == RenderMode::Brdf);
+}
+
 TEST_CASE("a scene written as JSON reads back the same") {
     auto scene = parseScene(kScene, "s.json", "/scenes");
     REQUIRE(scene.ok());
