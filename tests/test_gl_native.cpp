@@ -1,5 +1,6 @@
 // GL tests (doctest suite "gl", CTest label gl): headless contexts, and the GPU path of relight.
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
@@ -134,6 +135,18 @@ TEST_SUITE("gl") {
         REQUIRE(runCli({"render", dir / "m.btflut", "--light", "15,0", "--native", "-o", dir / "gpu.png"}).status == 0);
         REQUIRE(runCli({"relight", dir / "m.btflut", "--light", "15,0", "-o", dir / "cpu.png", "-q"}).status == 0);
         CHECK(readText(dir / "gpu.png") == readText(dir / "cpu.png"));
+        // --json: where the light fell, as relight --json says it.
+        const CliRun json =
+            runCli({"render", dir / "m.btflut", "--light", "15,0", "--native", "-o", dir / "gpu.png", "--json"});
+        REQUIRE(json.status == 0);
+        const nlohmann::json j = nlohmann::json::parse(json.out);
+        CHECK(j["light"]["theta"].get<double>() == doctest::Approx(15));
+        CHECK(j["lut"] == "interpolated");
+        CHECK(j["light_provenance"] == "interpolated");
+        CHECK(
+            j["lut"] ==
+            nlohmann::json::parse(
+                runCli({"relight", dir / "m.btflut", "--light", "15,0", "-o", dir / "cpu.png", "--json"}).out)["lut"]);
         requireOneLineError(runCli({"render", dir / "none.btflut", "--light", "15,0", "--native", "-o", dir / "x.png"}),
                             "none.btflut: cannot open");
         requireOneLineError(runCli({"render", dir / "m.btflut", "--light", "nan,0", "--native", "-o", dir / "x.png"}),

@@ -1,4 +1,5 @@
 // btflut render: the GL renderer, headless (OSMesa or EGL).
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -32,10 +33,13 @@ struct RenderOptions {
     bool noDither = false;
 };
 
-// What was written, as --json prints it (a scene's statistics with it).
-void printWritten(const RenderOptions& o, const Image& image, const RenderStats* stats) {
+// What was written, as --json prints it (a scene's statistics with it; --native's: where the
+// light fell, `light`).
+void printWritten(const RenderOptions& o, const Image& image, const RenderStats* stats,
+                  const nlohmann::json& light = nullptr) {
     if (o.json) {
         nlohmann::json out{{"output", o.output}, {"width", image.width}, {"height", image.height}};
+        if (!light.is_null()) out.update(light);
         if (stats) {
             const RenderStats& s = *stats;
             out["stats"] = {{"materials_loaded", s.loadedMaterials},
@@ -160,7 +164,13 @@ Status runRender(const RenderOptions& o) {
     Result<Image> image = renderNative(bank, query->light, query->view, !o.noDither, o.interpolation != "nearest");
     if (!image) return Error{o.input + ": " + image.error()};
     if (Status s = savePng(*image, o.output, o.depth); !s) return s;
-    printWritten(o, *image, nullptr);
+    // Where the light fell, as relight --json says it: the LUT's source and the provenances.
+    const BankLookup at = bank.lookup(query->light, query->view);
+    printWritten(o, *image, nullptr,
+                 {{"light", {{"theta", query->light.theta * 180 / M_PI}, {"phi", query->light.phi * 180 / M_PI}}},
+                  {"lut", provenanceName(at.provenance)},
+                  {"light_provenance", provenanceName(at.lightProvenance)},
+                  {"view_provenance", provenanceName(at.viewProvenance)}});
     return success();
 }
 
