@@ -446,6 +446,7 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     REQUIRE(table.status == 0);
     CHECK(table.out.find("nan") == std::string::npos);
     CHECK(table.out.find(" - ") != std::string::npos);
+    CHECK(table.out.find("lut K<k> R<r> <colour>: a bank of k references") != std::string::npos);  // names explained
     // Several references put the shading where it is: better pixels than one reference.
     CHECK(byName["lut K3 R1 grey"]["psnr"].get<double>() > byName["lut K1 R1 grey"]["psnr"].get<double>() + 1);
     CHECK(byName["lut K3 R1 lrgb"]["bytes_per_texel"] == 6);

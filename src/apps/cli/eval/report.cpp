@@ -237,7 +237,14 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         "bytes/tx: data per texel a mode draws from (GPU B/tx: as allocated, padding and mipmaps included); bake s "
         "per\n"
         "bank; relight: CPU, one light change (LUTs and image); frame ms: GL, 4 quads at 1024x1024, the light moving;\n"
-        "GPU-CPU: the largest difference of render --native from relight, in 1/255.\n";
+        "GPU-CPU: the largest difference of render --native from relight, in 1/255.\n"
+        "Names: lut K<k> R<r> <colour>: a bank of k references blended per light (K1: the paper's bank), its sample "
+        "in\n"
+        "r regions matched apart (--regions), colour grey, rgb or lrgb; lut auto: bake's validated choice; lut "
+        "<basis>: "
+        "a\n"
+        "light model (ptm, hsh2, rbf9, ...) matched; ptm, hsh, rbf, bln alone: the light model unmatched, as RTI "
+        "viewers draw it.\n";
     if (!context.empty()) text += "GL: " + context + "\n";
     Report r{text, json, {}, {}};
     addTradeoff(r);
