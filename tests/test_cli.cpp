@@ -319,6 +319,10 @@ TEST_CASE("small things: hist of one image, info --json, match --mask, plot --ov
     CHECK(runCli({"match", dir / "shot0.png", dir / "shot1.png", "--mask", dir / "mask.png", "--target-mask",
                   dir / "mask.png", "-o", dir / "matched.png"})
               .status == 0);
+    const CliRun matched = runCli({"match", dir / "shot0.png", dir / "shot1.png", "-o", dir / "m2.png", "--json"});
+    REQUIRE(matched.status == 0);
+    CHECK(nlohmann::json::parse(matched.out)["output"] == dir / "m2.png");
+    CHECK(nlohmann::json::parse(matched.out)["entries"] == 256);
     requireOneLineError(
         runCli({"match", dir / "shot0.png", dir / "shot1.png", "--mask", dir / "small.png", "-o", dir / "x.png"}),
         "small.png");

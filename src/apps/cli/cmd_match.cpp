@@ -1,9 +1,11 @@
 // btflut match: give one image the grey-level histogram of another (one LUT, as baked).
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
 #include "core/bank/lut_bank.h"
+#include "core/io/json_text.h"
 
 namespace btflut::cli {
 
@@ -19,6 +21,7 @@ struct MatchOptions {
     int entries = 0;
     int depth = 8;
     bool noDither = false;
+    bool json = false;
 };
 
 Status runMatch(const MatchOptions& o) {
@@ -38,7 +41,16 @@ Status runMatch(const MatchOptions& o) {
     const float targetCode = 1.f / static_cast<float>(to.counts.size() - 1);
     Image out = applyLuts(source->image, ColourMode::Grey, lut.values, entries, o.noDither ? 0.f : targetCode);
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
-    if (!o.quiet) std::cout << "wrote " << o.output << "\n";
+    if (o.json)
+        std::cout << jsonText({{"output", o.output},
+                               {"width", out.width},
+                               {"height", out.height},
+                               {"source", o.source},
+                               {"target", o.target},
+                               {"entries", entries},
+                               {"dithered", !o.noDither}});
+    else if (!o.quiet)
+        std::cout << "wrote " << o.output << "\n";
     return success();
 }
 
@@ -56,6 +68,7 @@ void addMatchCommand(CLI::App& root, Commands& commands) {
     app->add_option("--entries", o->entries, "LUT entries (default 256, 4096 for 16-bit)")->check(CLI::Range(2, 65536));
     addLutImageOptions(*app, o->depth, o->noDither);
     addQuietFlag(*app, o->quiet);
+    app->add_flag("--json", o->json, "print what was written as JSON (output, size, source, target, LUT entries)");
     commands.push_back({app, [o] { return runMatch(*o); }});
 }
 
