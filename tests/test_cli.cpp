@@ -116,6 +116,10 @@ TEST_CASE("hist writes the documented CSV and JSON") {
     auto doc = nlohmann::json::parse(readText(dir / "h.json"));
     CHECK(doc["bins"] == 64);
     CHECK(doc["histograms"].size() == kShots.size());
+    const CliRun written = runCli({"hist", manifest, "-o", dir / "h2.json", "--json"});
+    REQUIRE(written.status == 0);
+    CHECK(nlohmann::json::parse(written.out)["histograms"] == kShots.size());
+    CHECK(nlohmann::json::parse(written.out)["output"] == dir / "h2.json");
 
     requireOneLineError(runCli({"hist", manifest, "--channels", "rgb", "-o", dir / "rgb.csv"}), "needs colour images");
     CHECK_FALSE(fs::exists(dir / "rgb.csv"));

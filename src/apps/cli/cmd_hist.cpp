@@ -2,10 +2,12 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/cli.h"
 #include "core/data/dataset.h"
 #include "core/histogram/histogram.h"
+#include "core/io/json_text.h"
 #include "core/parallel.h"
 
 namespace btflut::cli {
@@ -14,6 +16,7 @@ namespace {
 
 struct HistOptions {
     bool quiet = false;
+    bool json = false;
     std::string dataset;
     std::string output;
     int bins = 64;
@@ -39,7 +42,10 @@ Status runHist(const HistOptions& o) {
                                                  : datasetHistograms(o.dataset, o.mask, o.bins, o.channels == "rgb");
     if (!rows) return Error{rows.error()};
     if (Status s = saveHistograms(*rows, o.output); !s) return s;
-    if (!o.quiet)
+    if (o.json)
+        std::cout << jsonText(
+            {{"output", o.output}, {"histograms", rows->size()}, {"bins", o.bins}, {"channels", o.channels}});
+    else if (!o.quiet)
         std::cout << "wrote " << o.output << ": " << rows->size() << " histogram(s) of " << o.bins << " bins\n";
     return success();
 }
@@ -72,6 +78,7 @@ void addHistCommand(CLI::App& root, Commands& commands) {
         ->capture_default_str();
     app->add_option("--mask", o->mask, "sample mask instead of the dataset's own (non-zero = sample)");
     addQuietFlag(*app, o->quiet);
+    app->add_flag("--json", o->json, "print what was written as JSON (output, histograms, bins, channels)");
     commands.push_back({app, [o] { return runHist(*o); }});
 }
 
