@@ -224,6 +224,9 @@ TEST_CASE(
     CliRun run = runCli({"export", bank, "--web", dir / "m.html", "-o", dir / "m"});
     REQUIRE_MESSAGE(run.status == 0, run.err);
     CHECK(run.out.find("wrote " + std::string(dir / "m.html")) != std::string::npos);
+    // The command that opens it, as written: an absolute file:// URL (a relative path with '#' is a host).
+    CHECK(run.out.find("chromium 'file://" + fs::absolute(dir / "m.html").lexically_normal().generic_string() +
+                       "#light=30,90'") != std::string::npos);
     const std::string page = readText(dir / "m.html");
     const std::string tag = "id=\"btflut-data\">";
     const std::size_t open = page.find(tag) + tag.size(), close = page.find("</script>", open);

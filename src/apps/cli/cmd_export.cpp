@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <cctype>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -310,6 +312,23 @@ Status exportFolder(const ExportOptions& o, const EngineExport& made, bool reexp
     return success();
 }
 
+// A file's absolute file:// URL, percent-encoded: a relative path with '#' in a browser's
+// command line is read as a host name, so the page's command is given whole.
+std::string fileUrl(const std::string& path) {
+    const std::string absolute = fs::absolute(path).lexically_normal().generic_string();
+    std::string url = "file://";
+    for (unsigned char c : absolute) {
+        if (std::isalnum(c) || std::strchr("/-._~", c)) {
+            url += static_cast<char>(c);
+        } else {
+            char escaped[4];
+            std::snprintf(escaped, sizeof escaped, "%%%02X", c);
+            url += escaped;
+        }
+    }
+    return url;
+}
+
 // --web M.html: one page that opens from disk and relights the material with WebGL2.
 Status exportWeb(const ExportOptions& o, const EngineExport& made) {
     const std::string page = webPage(fs::path(o.bank).stem().string(), made.side, made.files);
@@ -320,7 +339,8 @@ Status exportWeb(const ExportOptions& o, const EngineExport& made) {
         char ratio[32];
         std::snprintf(ratio, sizeof ratio, "%.2f", static_cast<double>(page.size()) / static_cast<double>(exported));
         std::cout << "wrote " << o.web << ": " << made.summary << ", one page of " << page.size() << " bytes (" << ratio
-                  << " x the export's files); open it in a browser\n";
+                  << " x the export's files); open it in a browser (WebGL2, no server):\n  chromium '" << fileUrl(o.web)
+                  << "#light=30,90'\n";
     }
     return success();
 }
