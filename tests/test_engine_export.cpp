@@ -227,6 +227,14 @@ TEST_CASE(
     // The command that opens it, as written: an absolute file:// URL (a relative path with '#' is a host).
     CHECK(run.out.find("chromium 'file://" + fs::absolute(dir / "m.html").lexically_normal().generic_string() +
                        "#light=30,90'") != std::string::npos);
+    // --json: what was written, nothing else.
+    const CliRun json = runCli({"export", bank, "--web", dir / "j.html", "-o", dir / "j", "--json"});
+    REQUIRE(json.status == 0);
+    const nlohmann::json written = nlohmann::json::parse(json.out);
+    CHECK(written["web"]["page"] == dir / "j.html");
+    CHECK(written["folder"]["path"] == dir / "j");
+    const auto files = written["folder"]["files"].get<std::vector<std::string>>();
+    CHECK(std::find(files.begin(), files.end(), "material.json") != files.end());
     const std::string page = readText(dir / "m.html");
     const std::string tag = "id=\"btflut-data\">";
     const std::size_t open = page.find(tag) + tag.size(), close = page.find("</script>", open);

@@ -41,6 +41,7 @@ struct ExportOptions {
     int grid = 0;
     bool force = false;
     bool quiet = false;
+    bool json = false;  // what was written, as JSON (nothing else on stdout)
 };
 
 // 16-bit texels as an image of `rows` rows of `width` (refused beyond what a PNG holds).
@@ -391,6 +392,28 @@ Status runExport(const ExportOptions& o) {
     return o.output.empty() ? success() : exportAtlas(o, *bank);
 }
 
+// --json: runs the export quietly, then says what it wrote.
+Status runExportReporting(ExportOptions o) {
+    const bool json = o.json;
+    if (json) o.quiet = true;
+    if (Status s = runExport(o); !s || !json) return s;
+    nlohmann::json out = nlohmann::json::object();
+    if (!o.ptm.empty()) out["ptm"] = o.ptm;
+    if (!o.web.empty()) out["web"] = {{"page", o.web}, {"open", "chromium '" + fileUrl(o.web) + "#light=30,90'"}};
+    if (!o.output.empty() && fileExtension(o.output) == "png") {
+        out["atlas"] = o.output;
+    } else if (!o.output.empty()) {
+        std::vector<std::string> files;
+        std::error_code ec;
+        for (fs::directory_iterator it(o.output, ec), end; !ec && it != end; it.increment(ec))
+            files.push_back(it->path().filename().string());
+        std::sort(files.begin(), files.end());
+        out["folder"] = {{"path", o.output}, {"files", files}};
+    }
+    std::cout << jsonText(out);
+    return success();
+}
+
 }  // namespace
 
 void addExportCommand(CLI::App& root, Commands& commands) {
@@ -416,7 +439,10 @@ void addExportCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::Range(2, 257));
     app->add_flag("--force", o->force, "write into a folder that is not empty");
     addQuietFlag(*app, o->quiet);
-    commands.push_back({app, [o] { return runExport(*o); }});
+    app->add_flag("--json", o->json,
+                  "print what was written as JSON: the folder and its files, the page and the command that opens it, "
+                  "the PTM, the atlas");
+    commands.push_back({app, [o] { return runExportReporting(*o); }});
 }
 
 }  // namespace btflut::cli
