@@ -50,6 +50,11 @@ def check_2d(btflut, tmp, check):
           "a dataset is baked as `bake` would, and the viewer says which bank it shows")
     shot, state = image_area(one)
     check(state["projection"] == "2d", "a dataset of one frontal view opens in 2D")
+    # A light beyond the measured ones: the panel says "clamped", the word relight and info use.
+    beyond = os.path.join(tmp, "beyond")
+    run(XVFB + [btflut, "view", "--frames", "1", "--light", "88,0", "--screenshot-dir", beyond])
+    here = json.load(open(os.path.join(beyond, "frame-0000.json")))["here"]
+    check(here.startswith("light clamped"), f"a light beyond the measured ones is 'clamped' in the viewer ({here})")
     relit = os.path.join(tmp, "relit.png")
     # A bank with a predictor (what `bake` makes by default) is drawn with its match LUTs over
     # the grid, as engines draw it: `relight --grid`; a bank of LUTs, exactly.

@@ -298,6 +298,10 @@ bool Viewer::panel(int width, int height) {
         else
             ImGui::Text("hull (interpolated; outside: clamped)");
         ImGui::Text("here: %s", m_provenance.c_str());
+        if (m_provenance.starts_with("light clamped"))  // the words relight and info use
+            ImGui::TextWrapped(
+                "The light is beyond the measured lights: clamped to their edge, which can show wrong shadows "
+                "far from it. `bake --fill model` fills such lights from the fitted rough-surface model.");
         ImGui::Text("PTM: %s, measured images: %s", m_havePtm ? "yes" : "no", m_haveImages ? "yes" : "no");
         if (m_input.modelParameters.is_object()) {
             ImGui::TextUnformatted("model parameters:");

@@ -250,6 +250,7 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
                {"hovered_material", m_hovered},
                {"help_visible", m_helpVisible},
                {"message", m_message},
+               {"here", m_provenance},  // "light clamped, view measured": how the frame's LUT was made
                {"zoom", m_flat ? json(m_flatView.zoom) : json()},
                {"compare", m_present.compare == PresentSettings::Compare::Off
                                ? json()
