@@ -84,6 +84,12 @@ corner = image.crop((850, 550, 900, 600))  # off the sphere: black
 assert max(centre.getdata()) > 40 and max(corner.getdata()) == 0, "the sphere view is not drawn"
 PY
 echo "export --web: the panel and the sphere view draw"
+# A light beyond the measured ones: the panel says "clamped", as relight, info and the viewer do.
+dom=$(timeout 180 chromium --headless --no-sandbox --user-data-dir="$work/profile" --use-angle=swiftshader --enable-unsafe-swiftshader \
+      --virtual-time-budget=30000 --dump-dom "file://$work/hsh2.html#light=88,0" 2>/dev/null)
+grep -q 'clamped: beyond the measured lights; bake --fill model' <<<"$dom" ||
+  { echo "export --web: a light beyond the measured ones is not said to be clamped" >&2; exit 1; }
+echo "export --web: a light beyond the measured ones is said to be clamped"
 # Without WebGL2: a message, not a blank canvas.
 dom=$(timeout 120 chromium --headless --no-sandbox --user-data-dir="$work/profile" --disable-webgl --disable-3d-apis \
       --virtual-time-budget=10000 --dump-dom "file://$work/one.html" 2>/dev/null)

@@ -2,9 +2,19 @@
 // modelled ones marked). Third of the page's parts (page_state.js).
 // --- The panel and the light disk ---------------------------------------------------------
 const layer = (json.views || [])[0] || {};
+// The provenance of the grid node nearest the light (the export's node_provenance).
+function lightProvenance() {
+  const g = json.luts.grid_size, provenance = layer.node_provenance || [];
+  const r = Math.SQRT2 * Math.sin(state.theta * Math.PI / 360);
+  const x = r * Math.cos(state.phi * Math.PI / 180), y = r * Math.sin(state.phi * Math.PI / 180);
+  const i = Math.round((x + 1) / 2 * (g - 1)), j = Math.round((y + 1) / 2 * (g - 1));
+  return provenance[j * g + i] || 'measured';
+}
 function updatePanel() {
   panel.style.display = state.ui ? 'block' : 'none';
-  document.getElementById('light').textContent = 'theta ' + state.theta.toFixed(1) + ', phi ' + state.phi.toFixed(1);
+  const beyond = ['clamped', 'extrapolated'].includes(lightProvenance());  // 'extrapolated': older exports
+  document.getElementById('light').textContent = 'theta ' + state.theta.toFixed(1) + ', phi ' + state.phi.toFixed(1) +
+      (beyond ? ' (clamped: beyond the measured lights; bake --fill model fills them)' : '');
   document.getElementById('exposure-value').textContent = state.exposure.toFixed(2);
   document.getElementById('exposure').value = Math.log2(state.exposure);
   document.getElementById('view-2d').classList.toggle('on', state.view === '2d');
