@@ -431,6 +431,9 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     INFO(r.err);
     REQUIRE(r.status == 0);
     const auto json = nlohmann::json::parse(r.out);
+    CHECK(json["options"]["holdout"] == "every:3");  // what made the figures, to repeat them
+    CHECK(json["options"]["colour"] == "grey,lrgb");
+    CHECK_FALSE(json["btflut_version"].get<std::string>().empty());
     std::map<std::string, nlohmann::json> byName;
     for (const auto& mode : json["modes"]) byName[mode["name"]] = mode;
     for (const char* name : {"lut K1 R1 grey", "lut K3 R2 lrgb", "lut K3 R1 grey (LUTs blended)", "lut ptm R2 grey",

@@ -118,7 +118,26 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                         {"modes", nlohmann::json::array()},
                         {"rows", nlohmann::json::array()},
                         {"fixed_view", dataset.fixedView()},
-                        {"rectified", dataset.rectified}};
+                        {"rectified", dataset.rectified},
+                        // What made these figures, so a run can be repeated and compared.
+                        {"btflut_version", BTFLUT_VERSION},
+                        {"options",
+                         {{"holdout", o.holdout},
+                          {"modes", o.modes},
+                          {"references", o.references},
+                          {"regions", o.regions},
+                          {"colour", o.colours},
+                          {"predictor", o.predictors},
+                          {"fill", o.fills},
+                          {"target", o.targets},
+                          {"mask", o.mask},
+                          {"grid", o.grids},
+                          {"luts", o.lutSources},
+                          {"domain", o.domains},
+                          {"blended_luts", o.blendedLuts},
+                          {"gl", !o.noGl},
+                          {"backend", o.backend},
+                          {"frames", o.frames}}}};
     // Pixels compare where every image shares one frame: a fixed camera, or a rectified BTF.
     const bool pixels = dataset.fixedView() || dataset.rectified;
     if (!pixels) json["pixels"] = "not compared: the views' images are not rectified to one frame (PSNR, SSIM null)";
