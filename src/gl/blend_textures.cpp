@@ -16,8 +16,15 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     BlendTextures t;
     t.m_bank = &bank;
     t.m_lutsAsUniforms = lutsAsUniforms(bank);
+    const std::unique_ptr<const Predictor> predictor = bank.makePredictor();
+    t.m_defines = {"BLEND"};
+    const std::vector<std::string> own = predictor->shaderDefines();
+    t.m_defines.insert(t.m_defines.end(), own.begin(), own.end());
+    if (bank.colour == ColourMode::Rgb) t.m_defines.push_back("RGB_MODE");
+    if (bank.blend.regions > 1) t.m_defines.push_back("REGIONS");
+    if (t.m_lutsAsUniforms) t.m_defines.push_back("LUT_UNIFORMS " + std::to_string(bank.matchLength()));
     // The predictor's planes as `export` writes them: RGBA8 layers, then the albedo's.
-    const PredictorPlanes planes = bank.makePredictor()->planes();
+    const PredictorPlanes planes = predictor->planes();
     const Image& first = planes.layers.front();
     const std::size_t texels = first.pixelCount(),
                       layers = planes.layers.size() + (planes.albedo.samples.empty() ? 0 : 1);
@@ -41,17 +48,6 @@ bool lutsAsUniforms(const LutBank& bank) {
     gl.GetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &components);
     // A float array may take a vec4 slot per element; the other uniforms need some room too.
     return floats <= 3 * 256 && 4 * floats + 1024 <= components;
-}
-
-std::vector<std::string> BlendTextures::defines(const LutBank& bank) {
-    BTFLUT_CHECK(bank.makesLuts());
-    std::vector<std::string> d{"BLEND"};
-    const std::vector<std::string> predictor = bank.makePredictor()->shaderDefines();
-    d.insert(d.end(), predictor.begin(), predictor.end());
-    if (bank.colour == ColourMode::Rgb) d.push_back("RGB_MODE");
-    if (bank.blend.regions > 1) d.push_back("REGIONS");
-    if (lutsAsUniforms(bank)) d.push_back("LUT_UNIFORMS " + std::to_string(bank.matchLength()));
-    return d;
 }
 
 std::vector<GlTexture> BlendTextures::makeLutTables() const {

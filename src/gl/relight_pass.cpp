@@ -14,7 +14,11 @@ std::vector<std::string> mapsReferenceDefines(const LutBank& bank) {
 }
 
 RelightPass::RelightPass(const LutBank& bank, GLuint reference, const BlendTextures* blend)
-    : m_bank(&bank), m_lutsAsUniforms(lutsAsUniforms(bank)), m_reference(reference), m_blend(blend) {
+    : m_bank(&bank),
+      m_lutsAsUniforms(lutsAsUniforms(bank)),
+      m_reference(reference),
+      m_blend(blend),
+      m_defines(blend ? blend->defines() : mapsReferenceDefines(bank)) {
     BTFLUT_CHECK(bank.makesLuts() == (blend != nullptr));
     m_framebuffer = makeFramebuffer();
     m_vertexArray = makeVertexArray();
@@ -35,8 +39,7 @@ std::size_t RelightPass::lutBytes() const {
 Result<const ShaderProgram*> RelightPass::program(bool dither) {
     auto found = m_programs.find(dither);
     if (found == m_programs.end()) {
-        const LutBank& bank = *m_bank;
-        std::vector<std::string> defines = m_blend ? BlendTextures::defines(bank) : mapsReferenceDefines(bank);
+        std::vector<std::string> defines = m_defines;
         if (dither) defines.push_back("DITHER");
         Result<ShaderProgram> p =
             buildProgram({"quad.vert"}, {"btflut.glsl", "lut_common.glsl", "native.frag"}, defines);

@@ -51,6 +51,8 @@ public:
     /// native.frag and scene.frag's LUT_FRAGMENT share.
     void bindLuts(const ShaderProgram& program, const RelightFrame& frame, const std::vector<GlTexture>& luts,
                   int first) const;
+    /// lut_common.glsl's defines for this bank (the blend's, or mapsReferenceDefines), made once.
+    const std::vector<std::string>& defines() const { return m_defines; }
 
 private:
     Result<const ShaderProgram*> program(bool dither);
@@ -59,6 +61,7 @@ private:
     bool m_lutsAsUniforms;  ///< lutsAsUniforms(bank), asked of GL once
     GLuint m_reference;
     const BlendTextures* m_blend;
+    std::vector<std::string> m_defines;
     std::map<bool, ShaderProgram> m_programs;  // by dither
     GlFramebuffer m_framebuffer;
     GlVertexArray m_vertexArray;

@@ -105,21 +105,19 @@ const LutBank* SceneRenderer::bank(const std::string& material) const {
     return it == m_materials.end() ? nullptr : &it->second.bank;
 }
 
-Result<const ShaderProgram*> SceneRenderer::program(RenderMode mode, const LutBank& bank, bool unlit,
+Result<const ShaderProgram*> SceneRenderer::program(RenderMode mode, const Material& material, bool unlit,
                                                     bool perFragment) {
+    const LutBank& bank = material.bank;
     std::vector<std::string> defines{unlit ? "UNLIT" : modeDefine(mode)};
     if (!unlit && mode == RenderMode::Lut && bank.layers.size() == 1) {
         // A bank of one view layer: its relit texture, drawn flat; or relit per fragment.
         defines = {perFragment ? "LUT_FRAGMENT" : "FLAT_MODE"};
         if (perFragment) {
-            if (bank.makesLuts()) {
-                const std::vector<std::string> blend = BlendTextures::defines(bank);
-                defines.insert(defines.end(), blend.begin(), blend.end());
-                defines.push_back("BLEND_FILTERED");
-            } else {
-                const std::vector<std::string> maps = mapsReferenceDefines(bank);
-                defines.insert(defines.end(), maps.begin(), maps.end());
-            }
+            // The pass's defines, made once per material: the predictor is not made per frame.
+            BTFLUT_CHECK(material.pass.has_value());  // prepare makes it for every quad drawn this way
+            const std::vector<std::string>& pass = material.pass->defines();
+            defines.insert(defines.end(), pass.begin(), pass.end());
+            if (bank.makesLuts()) defines.push_back("BLEND_FILTERED");
             if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
             if (m_dither) defines.push_back("DITHER");
             if (m_predictionOnly) defines.push_back("PREDICTION_ONLY");
@@ -162,7 +160,7 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
         const RenderMode mode = modes[i];
         const Material& material = m_materials.at(quad.material);
         const bool unlit = mode != RenderMode::Flat && q.unlit;
-        Result<const ShaderProgram*> program = this->program(mode, material.bank, unlit, q.perFragment);
+        Result<const ShaderProgram*> program = this->program(mode, material, unlit, q.perFragment);
         if (!program) return Error{program.error()};
         const ShaderProgram& p = **program;
         gl.UseProgram(p.id());

@@ -178,7 +178,7 @@ private:
         std::string nearestImage;
     };
     SceneRenderer() = default;
-    Result<const ShaderProgram*> program(RenderMode mode, const LutBank& bank, bool unlit, bool perFragment);
+    Result<const ShaderProgram*> program(RenderMode mode, const Material& material, bool unlit, bool perFragment);
     Vec3 viewAt(const SceneQuad& quad, double x, double y) const;
     std::vector<Direction> viewGridDirections(const SceneQuad& quad) const;
     std::vector<Direction> viewsOf(const std::string& material, const std::vector<std::size_t>& visible) const;

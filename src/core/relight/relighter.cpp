@@ -10,6 +10,28 @@ namespace btflut {
 
 namespace {
 
+// The measured lights of the bank's first view layer on the equal-area disk.
+std::vector<DiskPoint> measuredDiskPoints(const LutBank& bank) {
+    std::vector<DiskPoint> lights;
+    for (std::size_t n = 0; n < bank.layers.at(0).measuredNodes; ++n)
+        lights.push_back(toDisk(bank.layers[0].nodes[n].light));
+    return lights;
+}
+
+// Half the median distance from a light to its nearest neighbour (matchRampRadius).
+float rampRadius(const std::vector<DiskPoint>& lights) {
+    if (lights.size() < 2) return 0.25f;  // one light: a quarter of the disk's radius
+    std::vector<double> nearest;
+    for (const DiskPoint& p : lights) {
+        double d = 1e30;
+        for (const DiskPoint& q : lights)
+            if (&p != &q) d = std::min(d, std::hypot(p.x - q.x, p.y - q.y));
+        nearest.push_back(d);
+    }
+    std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2), nearest.end());
+    return static_cast<float>(std::max(nearest[nearest.size() / 2] / 2, 1e-3));
+}
+
 // Predicted codes counted at their top-of-cell values (Relighter::predictedCounts) as
 // counts at their own values q / codes.
 LevelCounts ownValues(const LevelCounts& counts) {
@@ -30,9 +52,10 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     m_predictor = bank.makePredictor();
     m_counted = m_predictor->channels();  // rgb: each channel matched apart
     m_codes = m_predictor->codes();       // the grey of RGB8 on its channels' codes' scale: 765
-    for (std::size_t n = 0; n < bank.layers[0].measuredNodes; ++n)
-        m_measured.push_back(toDisk(bank.layers[0].nodes[n].light));
-    m_rampRadius = btflut::matchRampRadius(bank);
+    if (blend.match < 1) {                // matchAt's ramp; a bank matched fully needs none
+        m_measured = measuredDiskPoints(bank);
+        m_rampRadius = rampRadius(m_measured);
+    }
     if (blend.target == LutBank::Blend::Target::Corrections) {
         // Each node's LUT from the prediction at its light to its target, in a bank of the
         // same nodes (its lookups blend them as a classic bank's).
@@ -280,21 +303,7 @@ Image Relighter::applyBlendingLuts(Direction light, Direction view, bool dither)
     return out;
 }
 
-float matchRampRadius(const LutBank& bank) {
-    std::vector<DiskPoint> lights;
-    for (std::size_t n = 0; n < bank.layers.at(0).measuredNodes; ++n)
-        lights.push_back(toDisk(bank.layers[0].nodes[n].light));
-    if (lights.size() < 2) return 0.25f;  // one light: a quarter of the disk's radius
-    std::vector<double> nearest;
-    for (const DiskPoint& p : lights) {
-        double d = 1e30;
-        for (const DiskPoint& q : lights)
-            if (&p != &q) d = std::min(d, std::hypot(p.x - q.x, p.y - q.y));
-        nearest.push_back(d);
-    }
-    std::nth_element(nearest.begin(), nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2), nearest.end());
-    return static_cast<float>(std::max(nearest[nearest.size() / 2] / 2, 1e-3));
-}
+float matchRampRadius(const LutBank& bank) { return rampRadius(measuredDiskPoints(bank)); }
 
 Image relight(const LutBank& bank, Direction light, Direction view, bool dither) {
     BTFLUT_CHECK(!bank.reference.samples.empty());

@@ -71,7 +71,7 @@ public:
     /// spacing of the measured lights on (matchRampRadius), smoothly between (smoothstep of
     /// the equal-area disk distance to the nearest measured light), so nothing jumps.
     float matchAt(Direction light) const;
-    /// That half spacing, on the equal-area disk.
+    /// That half spacing, on the equal-area disk (0 for a bank matched fully: no ramp).
     float matchRampRadius() const { return m_rampRadius; }
 
 private:
