@@ -113,7 +113,7 @@ def main():
             worst_s, worst_mb = max(worst_s, seconds), max(worst_mb, mb)
             problems = []
             if status != expected:
-                problems.append(f'exit status {status}, expected {expected}')
+                problems.append(f'exit status {status}, expected {expected}: ' + repr(err[-600:]))
             if expected == 1 and (err.count('\n') != 1 or 'error' not in err):
                 problems.append('stderr is not one error line: ' + repr(err[:300]))
             if seconds > LIMIT_S:

@@ -9,7 +9,7 @@ using namespace btflut;
 using namespace btflut::test;
 
 namespace {
-const std::vector<SyntheticShot> kShots{
+const std::vector<SyntheticShot> kCliShots{
     {0, 0, 0, 0, 0, 1}, {30, 0, 0, 0, 40, 1}, {30, 120, 0, 0, 0, 2}, {30, 240, 0, 0, 100, 1}};
 }
 
@@ -59,7 +59,7 @@ TEST_CASE("-q, --json and --force mean one thing on every command") {
     for (const char* cmd : {"export", "synth"}) CHECK(runCli({cmd, "--help"}).out.find("--force") != std::string::npos);
 
     TempDir dir;
-    const std::string manifest = writeSyntheticDataset(dir, kShots);
+    const std::string manifest = writeSyntheticDataset(dir, kCliShots);
     auto quiet = [&](std::vector<std::string> args) {
         args.push_back("-q");
         const CliRun r = runCli(args);
@@ -100,12 +100,12 @@ TEST_CASE("docs/eval.md's usage lists every option of eval") {
 
 TEST_CASE("hist writes the documented CSV and JSON") {
     TempDir dir;
-    std::string manifest = writeSyntheticDataset(dir, kShots);
+    std::string manifest = writeSyntheticDataset(dir, kCliShots);
     CliRun r = runCli({"hist", manifest, "--bins", "8", "-o", dir / "h.csv"});
     REQUIRE(r.status == 0);
     auto rows = parseHistogramCsv(readText(dir / "h.csv"), "h.csv");
     REQUIRE(rows.ok());
-    REQUIRE(rows->size() == kShots.size());
+    REQUIRE(rows->size() == kCliShots.size());
     CHECK((*rows)[1].light.thetaDegrees() == doctest::Approx(30));
     double sum = 0;
     for (double v : (*rows)[2].bins) sum += v;
@@ -115,10 +115,10 @@ TEST_CASE("hist writes the documented CSV and JSON") {
     REQUIRE(runCli({"hist", manifest, "-o", dir / "h.json"}).status == 0);
     auto doc = nlohmann::json::parse(readText(dir / "h.json"));
     CHECK(doc["bins"] == 64);
-    CHECK(doc["histograms"].size() == kShots.size());
+    CHECK(doc["histograms"].size() == kCliShots.size());
     const CliRun written = runCli({"hist", manifest, "-o", dir / "h2.json", "--json"});
     REQUIRE(written.status == 0);
-    CHECK(nlohmann::json::parse(written.out)["histograms"] == kShots.size());
+    CHECK(nlohmann::json::parse(written.out)["histograms"] == kCliShots.size());
     CHECK(nlohmann::json::parse(written.out)["output"] == dir / "h2.json");
 
     requireOneLineError(runCli({"hist", manifest, "--channels", "rgb", "-o", dir / "rgb.csv"}), "needs colour images");
@@ -129,7 +129,7 @@ TEST_CASE("hist writes the documented CSV and JSON") {
 
 TEST_CASE("bake, info, relight and export work from files") {
     TempDir dir;
-    std::string manifest = writeSyntheticDataset(dir, kShots);
+    std::string manifest = writeSyntheticDataset(dir, kCliShots);
     CliRun bake = runCli({"bake", manifest, "-o", dir / "m.btflut", "--grid", "5", "--references", "1"});
     REQUIRE(bake.status == 0);
     CHECK(bake.out.find("wrote") != std::string::npos);
@@ -162,7 +162,7 @@ TEST_CASE("bake, info, relight and export work from files") {
 
 TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched") {
     TempDir dir;
-    std::string manifest = writeSyntheticDataset(dir, kShots);
+    std::string manifest = writeSyntheticDataset(dir, kCliShots);
     REQUIRE(runCli({"bake", manifest, "-o", dir / "m.btflut"}).status == 0);
     std::ofstream(dir / "keep.btflut") << "precious";
     std::ofstream(dir / "keep.png") << "precious";
@@ -295,7 +295,7 @@ TEST_CASE("plot draws histogram CSV files as a figure; bad files refused") {
 
 TEST_CASE("small things: hist of one image, info --json, match --mask, plot --overlay, commands say what they wrote") {
     TempDir dir;
-    std::string manifest = writeSyntheticDataset(dir, kShots);
+    std::string manifest = writeSyntheticDataset(dir, kCliShots);
     CliRun hist = runCli({"hist", dir / "shot1.png", "-o", dir / "one.csv"});
     REQUIRE_MESSAGE(hist.status == 0, hist.err);
     CHECK(hist.out.find("wrote " + std::string(dir / "one.csv") + ": 1 histogram(s) of 64 bins") != std::string::npos);

@@ -19,7 +19,7 @@ using namespace btflut::test;
 
 namespace {
 
-Image draw(SceneRenderer& renderer, Direction light, RenderMode mode = RenderMode::Lut) {
+Image drawRelit(SceneRenderer& renderer, Direction light, RenderMode mode = RenderMode::Lut) {
     Status s = renderer.draw(toVector(light), mode);
     if (!s) FAIL(s.error());
     return renderer.readBack();
@@ -94,16 +94,16 @@ TEST_SUITE("gl") {
         REQUIRE(renderer.ok());
         SceneRenderer& r = **renderer;
         const Direction a = Direction::fromDegrees(30, 20), b = Direction::fromDegrees(40, 200);
-        draw(r, a);
+        drawRelit(r, a);
         CHECK(r.stats().relightPasses == 2);
         CHECK(r.stats().relitTextures == 2);
-        draw(r, a);  // the light did not move: nothing relit
+        drawRelit(r, a);  // the light did not move: nothing relit
         CHECK(r.stats().relightPasses == 2);
-        draw(r, b);  // the same two textures, relit
+        drawRelit(r, b);  // the same two textures, relit
         CHECK(r.stats().relightPasses == 4);
         CHECK(r.stats().relitTextures == 2);
-        draw(r, b, RenderMode::Flat);  // kept while no quad is in mode lut
-        draw(r, b);
+        drawRelit(r, b, RenderMode::Flat);  // kept while no quad is in mode lut
+        drawRelit(r, b);
         CHECK(r.stats().relightPasses == 4);
         CHECK(r.stats().textureBytes.relit >= 2 * bank.reference.pixelCount());
     }
@@ -120,10 +120,10 @@ TEST_SUITE("gl") {
         auto renderer = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 40, 30));
         REQUIRE(renderer.ok());
         SceneRenderer& r = **renderer;
-        draw(r, a);  // a first frame relights: its texture is mipmapped from relit texels
+        drawRelit(r, a);  // a first frame relights: its texture is mipmapped from relit texels
         CHECK(r.stats().quadsTextureSpace == 1);
         CHECK(r.stats().relightPasses == 1);
-        const Image moving = draw(r, b);  // moved: 1,200 pixels per fragment cost less than the pass
+        const Image moving = drawRelit(r, b);  // moved: 1,200 pixels per fragment cost less than the pass
         CHECK(r.stats().quadsPerFragment == 1);
         CHECK(r.stats().relightPasses == 1);
         // Per fragment at 1:1 is relight: the same LUT, dithered per texel.
@@ -135,12 +135,12 @@ TEST_SUITE("gl") {
                 worst = std::max(worst, std::abs(static_cast<double>(moving.at(x, y, 0)) - cpu.at(x, y, 0)));
         INFO("per fragment against relight: worst " << worst * 255 << "/255");
         CHECK(worst <= 1.0 / 255 + 1e-6);
-        draw(r, b);  // stopped: relit once
+        drawRelit(r, b);  // stopped: relit once
         CHECK(r.stats().quadsTextureSpace == 1);
         CHECK(r.stats().relightPasses == 2);
-        draw(r, b);
+        drawRelit(r, b);
         CHECK(r.stats().relightPasses == 2);
-        draw(r, c);
+        drawRelit(r, c);
         CHECK(r.stats().quadsPerFragment == 1);
         CHECK(r.stats().textureBytes.luts > 0);  // the quad's LUTs, made once
 
@@ -148,8 +148,8 @@ TEST_SUITE("gl") {
         // the light moves.
         auto big = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 400, 300));
         REQUIRE(big.ok());
-        draw(**big, a);
-        draw(**big, b);
+        drawRelit(**big, a);
+        drawRelit(**big, b);
         CHECK((*big)->stats().quadsTextureSpace == 1);
         CHECK((*big)->stats().relightPasses == 2);
     }
@@ -166,7 +166,7 @@ TEST_SUITE("gl") {
             scene.dither = dither;
             auto renderer = SceneRenderer::create(scene);
             REQUIRE(renderer.ok());
-            const Image gpu = draw(**renderer, light);
+            const Image gpu = drawRelit(**renderer, light);
             const Image cpu =
                 applyLuts(bank.reference, bank.colour, lut.values, bank.entries, dither ? bank.targetCode() : 0);
             double worst = 0;
@@ -199,7 +199,7 @@ TEST_SUITE("gl") {
             // The quad fills a (64 / block) x (48 / block) image: each pixel covers block x block texels.
             auto renderer = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 64 / block, 48 / block));
             REQUIRE(renderer.ok());
-            const std::vector<double> gpu = greys(draw(**renderer, light));
+            const std::vector<double> gpu = greys(drawRelit(**renderer, light));
             const std::vector<double> truth = boxMeans(relit, block);
             // What applying the LUT to the mipmapped reference gives (the per-fragment LUT).
             std::vector<double> lutOfMean = boxMeans(bank.reference, block);
@@ -228,8 +228,8 @@ TEST_SUITE("gl") {
         auto quarter = SceneRenderer::create(frontalScene(dir / "m.btflut", "", 16, 12));
         REQUIRE(full.ok());
         REQUIRE(quarter.ok());
-        const Image near = draw(**full, light);
-        const std::vector<double> truth = boxMeans(near, 4), far = greys(draw(**quarter, light));
+        const Image near = drawRelit(**full, light);
+        const std::vector<double> truth = boxMeans(near, 4), far = greys(drawRelit(**quarter, light));
         std::vector<double> lutOfMean = boxMeans(bank.reference, 4);
         const BankLookup centre = bank.lookup(light, Direction{});
         for (double& v : lutOfMean) v = Lut::applyLut(centre.values.data(), bank.entries, static_cast<float>(v));

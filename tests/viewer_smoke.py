@@ -13,6 +13,7 @@ usage: viewer_smoke.py BTFLUT
 """
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -122,6 +123,24 @@ def check_2d(btflut, tmp, check):
         check(abs(ratio - 2) < 0.05, f"exposure +1 stop doubles linear light (ratio {ratio:.3f})")
 
 
+def check_cache(btflut, tmp, check):
+    """A dataset viewed again opens the bank baked the first time, unless a file changed or --rebake."""
+    data = os.path.join(tmp, "cached-data")
+    shutil.copytree(os.path.join(os.path.dirname(btflut), "assets", "default"), data)
+    view = XVFB + [btflut, "view", data, "--frames", "1", "--predictor", "hsh2"]
+    said = lambda extra=[]: run(view + extra).stdout
+    first, again, rebaked = said(), said(), said(["--rebake"])
+    check("baked " in first and "baked earlier" in again and "baked earlier" not in rebaked,
+          f"a dataset viewed again opens the bank baked before; --rebake bakes again ({again.strip()!r})")
+    image = os.path.join(data, sorted(f for f in os.listdir(data) if f.endswith(".png"))[0])
+    os.utime(image, (os.path.getatime(image), os.path.getmtime(image) + 10))
+    changed = said()
+    check("baked earlier" not in changed, f"a changed image bakes the dataset again ({changed.strip()!r})")
+    cache = os.path.join(os.environ["XDG_CACHE_HOME"], "btflut", "view")
+    check(os.path.isdir(cache) and all(f.endswith(".btflut") for f in os.listdir(cache)),
+          f"the banks are kept in $XDG_CACHE_HOME/btflut/view ({sorted(os.listdir(cache)) if os.path.isdir(cache) else []})")
+
+
 def check_drop(btflut, tmp, check):
     """Drag and drop (injected through GLFW's drop callback): a bank opens; a file that is no
     bank, dataset or scene, and a missing one, leave a line in the panel and the viewer runs on."""
@@ -189,6 +208,7 @@ def main():
     btflut = os.path.abspath(sys.argv[1])
     config = tempfile.TemporaryDirectory()  # the recent files list goes here, not in ~/.config
     os.environ["XDG_CONFIG_HOME"] = config.name
+    os.environ["XDG_CACHE_HOME"] = os.path.join(config.name, "cache")  # banks baked from datasets
     failures = []
 
     def check(ok, what):
@@ -271,6 +291,7 @@ def main():
                                  os.path.join(tmp, "moved.png")], capture_output=True, text=True)
         check(result.returncode == 0, f"a saved scene file still renders after its folder moved ({result.stderr.strip()!r})")
         check_2d(btflut, tmp, check)
+        check_cache(btflut, tmp, check)
         check_drop(btflut, tmp, check)
         check_shapes(btflut, tmp, check)
         check_scene_hover(btflut, tmp, check)

@@ -11,6 +11,7 @@
 #include "core/bank/bank_file.h"
 #include "core/data/dataset.h"
 #include "core/io/json_text.h"
+#include "viewer/bake_cache.h"
 
 namespace btflut {
 
@@ -42,6 +43,20 @@ std::string defaultMaterial() {
     return installed.string();  // named in the error
 }
 
+// The options a dataset is baked with, as text for the cache's key.
+std::string bakeSettings(const BakeOptions& bake, bool validate) {
+    std::string text = "validate " + std::to_string(validate) + " references " + std::to_string(bake.references) +
+                       " regions " + std::to_string(bake.regions) + " colour " +
+                       std::to_string(static_cast<int>(bake.colour)) + " grid " + std::to_string(bake.gridSize);
+    if (bake.model) {
+        const LightModelOptions& m = *bake.model;
+        text += " model " + std::to_string(static_cast<int>(m.basis)) + " " + std::to_string(m.order) + " " +
+                std::to_string(m.planes) + " " + std::to_string(m.packed) + " " + std::to_string(m.grid) + " " +
+                std::to_string(m.colour);
+    }
+    return text;
+}
+
 }  // namespace
 
 Result<ViewerInput> openInput(const ViewerOptions& o) {
@@ -65,33 +80,53 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
         }
     }
     std::string bank = path, images = o.images;
-    if (fs::path(path).extension() != ".btflut") {  // a dataset: bake it for this session
+    if (fs::path(path).extension() != ".btflut") {  // a dataset: bake it (or find it baked)
         Result<Dataset> dataset = openDataset(path);
         if (!dataset) return Error{dataset.error()};
-        // What `btflut bake DATASET` writes (the validated choice), unless a predictor is named.
+        // What `btflut bake DATASET` writes (the validated choice), unless a predictor is named;
+        // kept in the cache so the dataset opens at once next time (--rebake bakes again).
         BakeOptions bake = o.bake;
         bake.ptm = true;
-        auto make = [&] { return o.validate ? bakeAuto(*dataset, {.base = bake}) : bakeBank(*dataset, bake); };
-        Result<LutBank> baked = make();
-        if (!baked && baked.error().find("a PTM needs") != std::string::npos) {
-            bake.ptm = false;  // too few lights for a PTM: mode ptm stays off
-            baked = make();
+        const std::string cached = bakeCachePath(*dataset, bakeSettings(bake, o.validate));
+        std::error_code ec;
+        const bool reuse = !o.rebake && fs::exists(cached, ec) && loadBank(cached, {.ptm = false});
+        if (!reuse) {
+            auto make = [&] { return o.validate ? bakeAuto(*dataset, {.base = bake}) : bakeBank(*dataset, bake); };
+            Result<LutBank> baked = make();
+            if (!baked && baked.error().find("a PTM needs") != std::string::npos) {
+                bake.ptm = false;  // too few lights for a PTM: mode ptm stays off
+                baked = make();
+            }
+            if (!baked) return Error{baked.error()};
+            fs::create_directories(fs::path(cached).parent_path(), ec);
+            if (saveBank(*baked, cached)) {
+                bank = cached;
+            } else {                    // no cache to write to (a read-only home): a file for this session
+                static int opened = 0;  // a session may open several datasets
+                in.temporaryBank = (fs::temp_directory_path() / ("btflut-view-" + std::to_string(::getpid()) + "-" +
+                                                                 std::to_string(opened++) + ".btflut"))
+                                       .string();
+                if (Status s = saveBank(*baked, in.temporaryBank); !s) return Error{s.error()};
+                bank = in.temporaryBank;
+            }
+        } else {
+            bank = cached;
         }
-        if (!baked) return Error{baked.error()};
-        const std::string shown = baked->makesLuts() ? baked->predictorName() : "the one-reference bank";
-        std::cout << "view: baked " << path << " for this session as `btflut bake` would"
-                  << (o.validate ? " (the validated choice: " : " (") << shown << ")\n";
-        static int opened = 0;  // a session may open several datasets
-        in.temporaryBank = (fs::temp_directory_path() /
-                            ("btflut-view-" + std::to_string(::getpid()) + "-" + std::to_string(opened++) + ".btflut"))
-                               .string();
-        if (Status s = saveBank(*baked, in.temporaryBank); !s) return Error{s.error()};
-        bank = in.temporaryBank;
+        if (bank == cached) pruneBakeCache(cached);
         images = path;
         in.modelParameters = manifestParameters(path);
+        in.bakedBank = bank;
+        in.bakeReused = reuse;
     }
     Result<LutBank> header = loadBank(bank, {.ptm = false});
     if (!header) return Error{header.error()};
+    if (!in.bakedBank.empty()) {
+        const std::string shown = header->makesLuts() ? header->predictorName() : "the one-reference bank";
+        std::cout << "view: " << (in.bakeReused ? "opened the bank of " : "baked ") << path
+                  << (in.bakeReused ? " baked earlier" : "") << " as `btflut bake` would"
+                  << (o.validate ? " (the validated choice: " : " (") << shown << ")"
+                  << (in.bakeReused ? "; --rebake bakes it again" : "") << "\n";
+    }
     const double aspect = static_cast<double>(header->reference.width) / header->reference.height;
     in.singleQuad = true;
     in.scene.file = path;

@@ -1,5 +1,5 @@
 #pragma once
-// What `btflut view` opens: a bank, a dataset (baked for the session) or a scene file, as a
+// What `btflut view` opens: a bank, a dataset (baked, or found baked: bake_cache.h) or a scene file, as a
 // scene; a single material becomes one quad.
 //
 //   Result<ViewerInput> in = openInput(options);   // in->scene, in->title
@@ -20,6 +20,8 @@ struct ViewerInput {
     std::string title;
     nlohmann::json modelParameters;  ///< a synthetic dataset's parameters, when known
     std::string temporaryBank;       ///< baked from a dataset for this session; removed at exit
+    std::string bakedBank;           ///< baked from the dataset opened (or found baked in the cache)
+    bool bakeReused = false;         ///< the bank came from the cache (bake_cache.h)
 };
 
 /// Opens `options.input` (the bundled default material when empty). Errors name the file: missing,

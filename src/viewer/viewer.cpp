@@ -224,15 +224,15 @@ Status Viewer::saveScriptedFrame(int frame, int width, int height) {
     scene.light = lightVector();
     scene.interpolateLuts = m_interpolate;
     for (SceneQuad& q : scene.quads) q.mode = pane.mode;
-    if (!m_input.temporaryBank.empty()) {  // the session's bank goes when the viewer does: keep a copy
+    if (!m_input.bakedBank.empty()) {  // the session's bank goes (or leaves the cache): keep a copy
         const fs::path kept = dir / "material.btflut";
         if (!fs::exists(kept)) {
-            Result<Bytes> bytes = readFile(m_input.temporaryBank);
+            Result<Bytes> bytes = readFile(m_input.bakedBank);
             if (!bytes) return Error{bytes.error()};
             if (Status s = writeFileAtomically(kept.string(), *bytes); !s) return s;
         }
         for (auto& [name, material] : scene.materials)
-            if (material.bank == m_input.temporaryBank) material.bank = kept.string();
+            if (material.bank == m_input.bakedBank) material.bank = kept.string();
     }
     const std::string sceneFile = std::string(stem) + ".scene.json";
     if (Status s = writeFileAtomically((dir / sceneFile).string(), sceneToJson(scene, dir.string())); !s)

@@ -44,6 +44,7 @@ struct ViewerOptions {
                                ///< at frame 1 this path is dropped on the window (through GLFW's callback)
     /// A dataset is baked with these (references, regions, colour, predictor).
     BakeOptions bake;
+    bool rebake = false;  ///< with a dataset: bake it again, not the cached bank (bake_cache.h)
     bool validate =
         true;  ///< with a dataset: bake what `bake` makes by default (bakeAuto), unless `bake` names a predictor
 };

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "core/bake/auto_bake.h"
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"

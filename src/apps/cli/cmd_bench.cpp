@@ -9,7 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "cli/model_options.h"
 #include "core/bake/bake.h"
 #include "core/bank/lut_bank.h"

@@ -6,7 +6,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "core/inverse/classify.h"
 #include "core/io/json_text.h"
 

@@ -13,7 +13,7 @@
 #include <set>
 #include <sstream>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "core/check.h"
 #include "core/data/dataset.h"
 #include "core/eval/metrics.h"

@@ -11,7 +11,7 @@
 #include <map>
 #include <memory>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "cli/eval/eval.h"
 #include "core/io/json_text.h"
 

@@ -13,7 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "cli/web_page.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"

@@ -5,7 +5,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "core/histogram/plot.h"
 #include "core/inverse/fit.h"
 #include "core/io/file_io.h"

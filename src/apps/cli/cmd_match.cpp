@@ -3,7 +3,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "core/bank/lut_bank.h"
 #include "core/io/json_text.h"
 

@@ -4,7 +4,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "core/inverse/orient.h"
 #include "core/io/json_text.h"
 

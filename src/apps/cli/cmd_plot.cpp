@@ -3,7 +3,7 @@
 #include <iostream>
 #include <memory>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "core/histogram/plot.h"
 
 namespace btflut::cli {

@@ -2,7 +2,7 @@
 #include <iostream>
 #include <memory>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "cli/model_options.h"
 #include "core/synth/synth.h"
 

@@ -2,7 +2,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "cli/cli.h"
+#include "cli/command.h"
 #include "viewer/viewer.h"
 
 namespace btflut::cli {
@@ -11,8 +11,9 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<ViewerOptions>();
     CLI::App* app = root.add_subcommand(
         "view", "Explore a material in a window: move the light, switch modes, compare side by side (docs/viewer.md)");
-    app->add_option("INPUT", o->input,
-                    "M.btflut, a dataset (baked for the session) or SCENE.json; default: the bundled material");
+    app->add_option(
+        "INPUT", o->input,
+        "M.btflut, a dataset (baked as bake would; kept for next time) or SCENE.json; default: the bundled material");
     app->add_option("--images", o->images, "with a bank: the dataset it was baked from (for mode nearest)");
     app->add_option("--mode", o->mode, "lut, brdf, ptm, flat or nearest")->capture_default_str();
     app->add_option("--split", o->split,
@@ -67,6 +68,9 @@ void addViewCommand(CLI::App& root, Commands& commands) {
     app->add_option("--predictor", *predictor,
                     "with a dataset: auto (the default: what `bake DATASET` writes, chosen by validation), "
                     "references, or a light model: ptm, hsh2, hsh3, rbfN, blnN (bake --predictor)");
+    app->add_flag("--rebake", o->rebake,
+                  "with a dataset: bake it again, not the bank kept from an earlier view of it "
+                  "($XDG_CACHE_HOME/btflut/view)");
     commands.push_back({app, [o, colour, predictor, size, app] {
                             if (!size->empty()) {
                                 int w = 0, h = 0;

@@ -2,8 +2,9 @@
 // Command-line flags of the rough-surface model, shared by `simulate` and `bench simulate`
 // (and, later, `synth`): --roughness, --brdf, --sigma, --kd, --ks, --ior, --gain.
 
-#include <CLI/CLI.hpp>
 #include <optional>
+
+#include "cli/command.h"
 
 #include "core/physics/surface.h"
 
