@@ -163,7 +163,7 @@ def check_drop(btflut, tmp, check):
                 last.get("input") != path
         check(ok, f"drop {name}: {'opened' if opens else 'a line in the panel, the viewer runs on'} "
                   f"(exit {result.returncode}, {len(states)} frames, input {last.get('input')!r}, "
-                  f"message {last.get('message')!r})")
+                  f"message {last.get('message')!r})" + (f"; stderr: {result.stderr[-1500:]!r}" if result.returncode else ""))
     recent = os.path.join(os.environ["XDG_CONFIG_HOME"], "btflut", "recent.txt")
     listed = open(recent).read().split("\n") if os.path.exists(recent) else []
     check(os.path.abspath(bank) in listed, f"the dropped bank is in the recent files ({recent})")

@@ -8,13 +8,11 @@
 //   - writing replaces bytes that are not UTF-8 (file names are bytes on Linux) with
 //     U+FFFD instead of throwing.
 
-#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "core/direction/direction.h"
-#include "core/io/closest_name.h"
 #include "core/result.h"
 
 namespace btflut {
@@ -25,40 +23,16 @@ constexpr int kMaxJsonDepth = 64;
 /// A direction as the JSON files write it: {"theta": degrees, "phi": degrees}.
 inline nlohmann::json directionJson(Direction d) { return {{"theta", d.thetaDegrees()}, {"phi", d.phiDegrees()}}; }
 
-inline Result<nlohmann::json> parseJsonText(const std::string& text, const std::string& file) {
-    struct TooDeep {};
-    try {
-        return nlohmann::json::parse(text, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-            if (depth > kMaxJsonDepth) throw TooDeep{};
-            return true;
-        });
-    } catch (const TooDeep&) {
-        return Error{file + ": not valid JSON (nested deeper than " + std::to_string(kMaxJsonDepth) + " levels)"};
-    } catch (const nlohmann::json::exception& e) {
-        return Error{file + ": not valid JSON (" + e.what() + ")"};
-    }
-}
+/// The JSON value of `text`, or the one-line error naming `file` (see above). Out of line:
+/// nlohmann's parser and writer are compiled once, not in each of the files that read JSON.
+Result<nlohmann::json> parseJsonText(const std::string& text, const std::string& file);
 
 /// Refuses a key of `object` that is not in `known`, naming it and the nearest known key
 /// ("FILE: quads[0]: unknown key 'uv_scael' (did you mean 'uv_scale'?)"): a misspelt key
 /// would otherwise be ignored silently. `where` is the object's place ("FILE: quads[0]").
-inline Status requireKnownKeys(const nlohmann::json& object, const std::vector<std::string>& known,
-                               const std::string& where) {
-    if (!object.is_object()) return success();
-    for (const auto& item : object.items()) {
-        if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
-        const std::string guess = closestName(item.key(), known);
-        std::string list;
-        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
-        return Error{where + ": unknown key '" + item.key() + "' (" +
-                     (guess.empty() ? "known: " + list : "did you mean '" + guess + "'?") + ")"};
-    }
-    return success();
-}
+Status requireKnownKeys(const nlohmann::json& object, const std::vector<std::string>& known, const std::string& where);
 
 /// The text of a JSON value (indent < 0: one line), never throwing on invalid UTF-8.
-inline std::string jsonText(const nlohmann::json& value, int indent = 1) {
-    return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace) + (indent >= 0 ? "\n" : "");
-}
+std::string jsonText(const nlohmann::json& value, int indent = 1);
 
 }  // namespace btflut

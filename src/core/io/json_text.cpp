@@ -1,0 +1,40 @@
+#include "core/io/json_text.h"
+
+#include <algorithm>
+
+#include "core/io/closest_name.h"
+
+namespace btflut {
+
+Result<nlohmann::json> parseJsonText(const std::string& text, const std::string& file) {
+    struct TooDeep {};
+    try {
+        return nlohmann::json::parse(text, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+            if (depth > kMaxJsonDepth) throw TooDeep{};
+            return true;
+        });
+    } catch (const TooDeep&) {
+        return Error{file + ": not valid JSON (nested deeper than " + std::to_string(kMaxJsonDepth) + " levels)"};
+    } catch (const nlohmann::json::exception& e) {
+        return Error{file + ": not valid JSON (" + e.what() + ")"};
+    }
+}
+
+Status requireKnownKeys(const nlohmann::json& object, const std::vector<std::string>& known, const std::string& where) {
+    if (!object.is_object()) return success();
+    for (const auto& item : object.items()) {
+        if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
+        const std::string guess = closestName(item.key(), known);
+        std::string list;
+        for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+        return Error{where + ": unknown key '" + item.key() + "' (" +
+                     (guess.empty() ? "known: " + list : "did you mean '" + guess + "'?") + ")"};
+    }
+    return success();
+}
+
+std::string jsonText(const nlohmann::json& value, int indent) {
+    return value.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace) + (indent >= 0 ? "\n" : "");
+}
+
+}  // namespace btflut
