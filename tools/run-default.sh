@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 bash tools/setup.sh
 build="${BTFLUT_BUILD_DIR:-build}"
 if [ ! -x "$build/btflut" ]; then
-  echo "building btflut (the first build takes about 4 minutes on 2 cores; later runs only what changed) ..."
+  echo "building btflut (the first build takes about 5 minutes on 2 cores; later runs only what changed) ..."
 fi
 start=$(date +%s)
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
