@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "core/bake/auto_bake.h"
 #include "core/bake/bake.h"
@@ -80,6 +81,7 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
         }
     }
     std::string bank = path, images = o.images;
+    std::optional<LutBank> opened;                  // the bank, once read or baked: read once
     if (fs::path(path).extension() != ".btflut") {  // a dataset: bake it (or find it baked)
         Result<Dataset> dataset = openDataset(path);
         if (!dataset) return Error{dataset.error()};
@@ -89,8 +91,12 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
         bake.ptm = true;
         const std::string cached = bakeCachePath(*dataset, bakeSettings(bake, o.validate));
         std::error_code ec;
-        const bool reuse = !o.rebake && fs::exists(cached, ec) && loadBank(cached, {.ptm = false});
-        if (!reuse) {
+        if (!o.rebake && fs::exists(cached, ec))
+            if (Result<LutBank> found = loadBank(cached, {.ptm = false})) opened = std::move(*found);
+        in.bakeReused = opened.has_value();
+        if (in.bakeReused) {
+            bank = cached;
+        } else {
             auto make = [&] { return o.validate ? bakeAuto(*dataset, {.base = bake}) : bakeBank(*dataset, bake); };
             Result<LutBank> baked = make();
             if (!baked && baked.error().find("a PTM needs") != std::string::npos) {
@@ -101,33 +107,31 @@ Result<ViewerInput> openInput(const ViewerOptions& o) {
             fs::create_directories(fs::path(cached).parent_path(), ec);
             if (saveBank(*baked, cached)) {
                 bank = cached;
-            } else {                    // no cache to write to (a read-only home): a file for this session
-                static int opened = 0;  // a session may open several datasets
+            } else {                          // no cache to write to (a read-only home): a file for this session
+                static int sessionBanks = 0;  // a session may open several datasets
                 in.temporaryBank = (fs::temp_directory_path() / ("btflut-view-" + std::to_string(::getpid()) + "-" +
-                                                                 std::to_string(opened++) + ".btflut"))
+                                                                 std::to_string(sessionBanks++) + ".btflut"))
                                        .string();
                 if (Status s = saveBank(*baked, in.temporaryBank); !s) return Error{s.error()};
                 bank = in.temporaryBank;
             }
-        } else {
-            bank = cached;
+            opened = std::move(*baked);
         }
         if (bank == cached) pruneBakeCache(cached);
         images = path;
         in.modelParameters = manifestParameters(path);
         in.bakedBank = bank;
-        in.bakeReused = reuse;
-    }
-    Result<LutBank> header = loadBank(bank, {.ptm = false});
-    if (!header) return Error{header.error()};
-    if (!in.bakedBank.empty()) {
-        const std::string shown = header->makesLuts() ? header->predictorName() : "the one-reference bank";
+        const std::string shown = opened->makesLuts() ? opened->predictorName() : "the one-reference bank";
         std::cout << "view: " << (in.bakeReused ? "opened the bank of " : "baked ") << path
                   << (in.bakeReused ? " baked earlier" : "") << " as `btflut bake` would"
                   << (o.validate ? " (the validated choice: " : " (") << shown << ")"
                   << (in.bakeReused ? "; --rebake bakes it again" : "") << "\n";
+    } else {
+        Result<LutBank> read = loadBank(bank, {.ptm = false});
+        if (!read) return Error{read.error()};
+        opened = std::move(*read);
     }
-    const double aspect = static_cast<double>(header->reference.width) / header->reference.height;
+    const double aspect = static_cast<double>(opened->reference.width) / opened->reference.height;
     in.singleQuad = true;
     in.scene.file = path;
     in.scene.fovDegrees = 40;
