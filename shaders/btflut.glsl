@@ -106,6 +106,88 @@ vec3 btflutRelight(sampler3D luts, BtflutMaterial m, vec3 reference, vec3 lightT
 // of RGBA32F layers over the light disk (read exactly with texelFetch; unused by ptm and
 // hsh, whose weights are computed here); `labels`, R8 (nearest): each texel's region * 1/255.
 
+// The prediction at a texel: one set of functions for every bank kind, used by engines
+// (btflutPredict below: the light's weights from the sidecar and the weight grid, per fragment)
+// and by btflut's own renderer (shaders/lut_common.glsl: the CPU's integers at the light, so
+// its codes are the CPU's bit for bit). Sums are in 1 / BTFLUT_WEIGHT_UNIT of a code.
+
+#define BTFLUT_MAX_LAYERS (BTFLUT_MAX_PLANES / 4)
+
+// How a prediction's codes are matched: each channel by its LUT (colour "rgb"), its first
+// channel alone (a grey prediction: codes 255), or the grey of RGB (the channels' codes summed:
+// codes 765).
+#define BTFLUT_MATCH_RGB 0
+#define BTFLUT_MATCH_ONE 1
+#define BTFLUT_MATCH_SUM 2
+
+// A light model at one light: per layer of four planes and per channel ([layer * 3 + channel])
+// the weights of the planes' codes; per channel the offset; the scale that takes the sum to the
+// value times BTFLUT_WEIGHT_UNIT, floored.
+struct BtflutModelFrame {
+    vec4 weights[BTFLUT_MAX_LAYERS * 3];
+    vec3 offset;
+    float scale;
+};
+
+// A texel's prediction: `channels` in 1 / BTFLUT_WEIGHT_UNIT of a code (0 .. 255 a channel), and
+// its colour in [0, 1], whose chroma a grey match keeps.
+struct BtflutPrediction {
+    vec3 channels;
+    vec3 colour;
+};
+
+// An RGBA8 texel's stored bytes (a filtered one's nearest).
+vec4 btflutBytes(vec4 texel) { return floor(texel * 255.0 + 0.5); }
+
+// A light model's prediction from its planes' codes (`codes[l]`: layer l's four, on the scale
+// the frame's weights are for): the sum floored after the scale, times the albedo's bytes (or
+// 255 without one), clamped.
+BtflutPrediction btflutModelPrediction(vec4 codes[BTFLUT_MAX_LAYERS], int layers, int channels, BtflutModelFrame f,
+                                       vec3 albedoBytes) {
+    vec3 sum = f.offset;
+    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) {
+        if (l >= layers) break;
+        for (int c = 0; c < 3; ++c) {
+            if (c >= channels) break;
+            sum[c] += dot(codes[l], f.weights[l * 3 + c]);
+        }
+    }
+    vec3 value = floor(sum * f.scale);
+    if (channels == 1) value = vec3(value.x);
+    BtflutPrediction p;
+    p.channels = clamp(albedoBytes * value, 0.0, 255.0 * float(BTFLUT_WEIGHT_UNIT));
+    p.colour = p.channels / (255.0 * float(BTFLUT_WEIGHT_UNIT));
+    return p;
+}
+
+// A blend of references, one at a time: `weight` (an integer, of BTFLUT_WEIGHT_UNIT) times
+// the reference's texel. Start from btflutNoPrediction().
+BtflutPrediction btflutNoPrediction() { return BtflutPrediction(vec3(0.0), vec3(0.0)); }
+void btflutAddReference(inout BtflutPrediction p, float weight, vec4 texel) {
+    p.channels += weight * btflutBytes(texel).rgb;
+    p.colour += weight / float(BTFLUT_WEIGHT_UNIT) * texel.rgb;
+}
+
+// The codes a prediction is matched with (BTFLUT_MATCH_...): per channel, or in .x.
+vec3 btflutCodes(BtflutPrediction p, int match) {
+    const float unit = float(BTFLUT_WEIGHT_UNIT);
+    if (match == BTFLUT_MATCH_RGB) return floor(p.channels / unit + 0.5);
+    if (match == BTFLUT_MATCH_ONE) return vec3(floor(p.channels.r / unit + 0.5));
+    return vec3(floor((p.channels.r + p.channels.g + p.channels.b) / unit + 0.5));
+}
+
+// A code's LUT input: code q read at the top of its cell, (q + 1) / (codes + 1).
+float btflutCodeValue(float code, float codes) { return (code + 1.0) / (codes + 1.0); }
+
+// The relit colour from the matched values (`matched`: per channel for BTFLUT_MATCH_RGB, else
+// the grey in .x): the grey alone (`greyOutput`), or given the chroma of `chroma` (the
+// prediction's colour; lrgb: the albedo's).
+vec3 btflutRelitColour(vec3 matched, int match, bool greyOutput, vec3 chroma) {
+    if (match == BTFLUT_MATCH_RGB) return matched;
+    if (greyOutput) return vec3(matched.x);
+    return btflutSetGrey(chroma, matched.x);
+}
+
 // What the sidecar's "predictor" says.
 struct BtflutPredictor {
     int kind;       // BTFLUT_KIND_MODEL (a light model) or BTFLUT_KIND_REFERENCES
@@ -123,6 +205,11 @@ struct BtflutPredictor {
     float outputCode; // "lut_output_code"
     bool dither;
 };
+
+// How its codes are matched (BTFLUT_MATCH_...).
+int btflutMatchOf(BtflutPredictor p) {
+    return p.rgbLuts ? BTFLUT_MATCH_RGB : p.codes == 255.0 ? BTFLUT_MATCH_ONE : BTFLUT_MATCH_SUM;
+}
 
 // Four weights of the light at disk point `disk`: layer `layer` of the weight grid, bilinear
 // between the four nodes around it (node (i, j) at -1 + 2 (i, j) / (S - 1)).
@@ -163,53 +250,67 @@ void btflutBasisTerms(int basis, vec3 light, out float t[9]) {
 // The layer of `planes` that holds the albedo.
 int btflutAlbedoLayer(BtflutPredictor p) { return p.kind == BTFLUT_KIND_MODEL ? (p.planes + 3) / 4 : p.planes; }
 
-// The prediction at texture coordinate `uv` for a light in the tangent frame, in codes (0 ..
-// 255 a channel, not yet rounded): what btflut's CPU relighting rounds before its match LUT.
-vec3 btflutPredict(sampler2DArray planes, sampler2DArray weights, BtflutPredictor p, vec2 uv, vec3 lightTangent) {
-    vec2 disk = btflutDiskPoint(lightTangent);
-    vec3 value = vec3(0.0);
-    vec4 w4 = vec4(0.0);
-    if (p.kind == BTFLUT_KIND_REFERENCES) {  // references: one weight each
-        for (int k = 0; k < p.planes; ++k) {
-            if (k % 4 == 0) w4 = btflutWeightLayer(weights, disk, k / 4);
-            float w = floor(w4[k % 4] * float(BTFLUT_WEIGHT_UNIT) + 0.5) / float(BTFLUT_WEIGHT_UNIT);  // as btflut's CPU
-            if (w != 0.0) value += w * texture(planes, vec3(uv, float(k))).rgb;
-        }
-        return 255.0 * value;
-    }
-    // A light model: rows (1 + P) x channels, the offsets, then each plane's channel weights.
+// A light model's frame at a light, from the sidecar: the weights (closed form, or the grid's
+// rows: (1 + P) x channels, the offsets, then each plane's channel weights) with each plane's
+// scale and bias folded in, on the planes' stored bytes.
+BtflutModelFrame btflutModelFrame(sampler2DArray weights, BtflutPredictor p, vec3 lightTangent) {
     bool closed = p.basis == BTFLUT_BASIS_PTM || p.basis == BTFLUT_BASIS_HSH;
     float terms[9];
     if (closed) btflutBasisTerms(p.basis, lightTangent, terms);
+    vec2 disk = btflutDiskPoint(lightTangent);
+    const float unit = float(BTFLUT_WEIGHT_UNIT);
+    BtflutModelFrame f;
+    for (int k = 0; k < BTFLUT_MAX_LAYERS * 3; ++k) f.weights[k] = vec4(0.0);
+    f.offset = vec3(0.0);
+    f.scale = 1.0;
+    vec4 w4 = vec4(0.0);
     int rows = (p.planes + 1) * p.channels;
-    vec4 codes = vec4(0.0);
-    float v = 0.0;
     for (int k = 0; k < rows; ++k) {
         int c = k % p.channels, plane = k / p.channels - 1;
         if (!closed && k % 4 == 0) w4 = btflutWeightLayer(weights, disk, k / 4);
         float w = closed ? (plane >= 0 ? terms[plane] : 0.0) : w4[k % 4];
         if (plane < 0) {
-            value[c] = w;
+            f.offset[c] += w * unit;
             continue;
         }
-        if (c == 0) {
-            if (plane % 4 == 0) codes = texture(planes, vec3(uv, float(plane / 4))) * 255.0;
-            v = (codes[plane % 4] - p.bias[plane]) * p.scale[plane];
-        }
-        value[c] += v * w;
+        float weight = p.scale[plane] * w * unit;  // of the plane's byte
+        f.weights[(plane / 4) * 3 + c][plane % 4] = weight;
+        f.offset[c] -= p.bias[plane] * weight;
     }
-    // btflut rounds as here: the value down to 1 / BTFLUT_WEIGHT_UNIT, times the albedo's byte (or 255), to
-    // the nearest code; so CPU and GPU codes agree but where float sums sit on a step.
-    value = floor((p.channels == 1 ? vec3(value.x) : value) * float(BTFLUT_WEIGHT_UNIT)) / float(BTFLUT_WEIGHT_UNIT);
-    vec3 bytes = p.albedo == 1 ? floor(texture(planes, vec3(uv, float(btflutAlbedoLayer(p)))).rgb * 255.0 + 0.5) : vec3(255.0);
-    return clamp(bytes * value, 0.0, 255.0);
+    return f;
+}
+
+// The prediction at texture coordinate `uv` for a light in the tangent frame.
+BtflutPrediction btflutPrediction(sampler2DArray planes, sampler2DArray weights, BtflutPredictor p, vec2 uv,
+                                  vec3 lightTangent) {
+    BtflutPrediction prediction = btflutNoPrediction();
+    if (p.kind == BTFLUT_KIND_REFERENCES) {  // references: one weight each, to 1 / BTFLUT_WEIGHT_UNIT as btflut's CPU
+        vec2 disk = btflutDiskPoint(lightTangent);
+        vec4 w4 = vec4(0.0);
+        for (int k = 0; k < p.planes; ++k) {
+            if (k % 4 == 0) w4 = btflutWeightLayer(weights, disk, k / 4);
+            float w = floor(w4[k % 4] * float(BTFLUT_WEIGHT_UNIT) + 0.5);
+            if (w != 0.0) btflutAddReference(prediction, w, texture(planes, vec3(uv, float(k))));
+        }
+        return prediction;
+    }
+    vec4 codes[BTFLUT_MAX_LAYERS];
+    int layers = (p.planes + 3) / 4;
+    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < layers ? texture(planes, vec3(uv, float(l))) * 255.0 : vec4(0.0);
+    vec3 albedo = p.albedo == 1 ? btflutBytes(texture(planes, vec3(uv, float(layers)))).rgb : vec3(255.0);
+    return btflutModelPrediction(codes, layers, p.channels, btflutModelFrame(weights, p, lightTangent), albedo);
+}
+
+// The same in codes (0 .. 255 a channel, not yet rounded): what btflut's CPU relighting rounds
+// before its match LUT, and what an RTI viewer shows.
+vec3 btflutPredict(sampler2DArray planes, sampler2DArray weights, BtflutPredictor p, vec2 uv, vec3 lightTangent) {
+    return btflutPrediction(planes, weights, p, uv, lightTangent).channels / float(BTFLUT_WEIGHT_UNIT);
 }
 
 // A predicted code's value through its region's match LUT at the light, dithered per pixel.
-// Code q is read at (q + 1) / (codes + 1), the top of its cell, as btflut relights.
 float btflutMatch(sampler3D luts, BtflutPredictor p, vec2 disk, int region, float code, uvec2 pixel, int channel) {
     BtflutMaterial m = BtflutMaterial(region, false, false, 1.0 / (p.codes + 1.0), p.outputCode, p.dither);
-    return btflutMap(luts, m, disk, (code + 1.0) / (p.codes + 1.0), pixel, channel);
+    return btflutMap(luts, m, disk, btflutCodeValue(code, p.codes), pixel, channel);
 }
 
 // A bank with a predictor relit at `uv` for a light in the tangent frame; `pixel` for the dither.
@@ -223,15 +324,12 @@ vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights
         ivec2 size = textureSize(labels, 0);
         region = int(texelFetch(labels, ivec2(mod(floor(uv * vec2(size)), vec2(size))), 0).r * 255.0 + 0.5);
     }
-    vec3 predicted = btflutPredict(planes, weights, p, uv, lightTangent);
-    if (p.rgbLuts) {
-        vec3 q = floor(predicted + 0.5);
-        return vec3(btflutMatch(luts, p, disk, region, q.r, pixel, 0), btflutMatch(luts, p, disk, region, q.g, pixel, 1),
-                    btflutMatch(luts, p, disk, region, q.b, pixel, 2));
-    }
-    float q = p.codes == 255.0 ? floor(predicted.r + 0.5) : floor(predicted.r + predicted.g + predicted.b + 0.5);
-    float grey = btflutMatch(luts, p, disk, region, q, pixel, 0);
-    if (p.albedo == 2) return btflutSetGrey(texture(planes, vec3(uv, float(btflutAlbedoLayer(p)))).rgb, grey);
-    if (p.greyOutput) return vec3(grey);
-    return btflutSetGrey(predicted / 255.0, grey);
+    BtflutPrediction predicted = btflutPrediction(planes, weights, p, uv, lightTangent);
+    int match = btflutMatchOf(p);
+    vec3 q = btflutCodes(predicted, match);
+    vec3 matched = vec3(btflutMatch(luts, p, disk, region, q.x, pixel, 0));
+    if (match == BTFLUT_MATCH_RGB)
+        matched = vec3(matched.x, btflutMatch(luts, p, disk, region, q.y, pixel, 1), btflutMatch(luts, p, disk, region, q.z, pixel, 2));
+    if (p.albedo == 2) return btflutRelitColour(matched, match, false, texture(planes, vec3(uv, float(btflutAlbedoLayer(p)))).rgb);
+    return btflutRelitColour(matched, match, p.greyOutput, predicted.colour);
 }

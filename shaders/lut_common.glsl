@@ -1,7 +1,8 @@
-// LUT application shared by btflut's fragment shaders (after btflut.glsl, whose dither hash
-// and grey step they use): the GLSL twin of src/core/histogram/lut.h (lutInput, lutOutput) and of
-// applyLuts in src/core/bank/lut_bank.cpp, bit for bit, so CPU relighting and GPU rendering agree.
-// (Compiled and tested against `btflut relight` by the renderer, issue 5.)
+// btflut's own renderer (after btflut.glsl, whose predictor, dither hash and grey step it uses):
+// the GLSL twin of src/core/histogram/lut.h (lutInput, lutOutput) and of applyLuts in
+// src/core/bank/lut_bank.cpp, and btflut.glsl's predictor driven by the CPU's integers at the
+// light, bit for bit, so CPU relighting and GPU rendering agree. (Compiled and tested against
+// `btflut relight` by the renderer, issue 5.)
 
 // The LUT (a 1D texture of `entries` texels, linear filtering) at v in [0, 1]. textureLod: a
 // LUT has no mipmaps, so the fetch needs no derivatives.
@@ -30,9 +31,10 @@ float btflutUniformLut(int lut, int count, float v) {
 #endif
 
 // Banks with a predictor (src/core/predict/predictor.h; defines BLEND, the predictor's own
-// from Predictor::shaderDefines, REGIONS). The prediction is exact integer arithmetic in float
-// (8-bit codes times integer weights, sums below 2^24), so its code is the CPU's; the LUT of
-// the texel's region is applied to it.
+// from Predictor::shaderDefines, REGIONS): btflut.glsl's prediction (btflutModelPrediction,
+// btflutAddReference) of the CPU's integers at the light. The arithmetic is exact in float
+// (8-bit codes times integer weights, sums below 2^24), so its codes are the CPU's; the LUT of
+// the texel's region is applied to them.
 #if defined(BLEND)
 // The predictor's planes as engines get them (Predictor::planes): RGBA8 layers, a light
 // model's planes four to a layer (its 4-bit codes n as 17 n), or one reference to a layer (a
@@ -40,11 +42,7 @@ float btflutUniformLut(int lut, int count, float v) {
 // multiplies the model's value; BLEND_ALBEDO_CHROMA: lrgb's chroma after the match).
 uniform sampler2DArray blendPlanes;
 #if defined(BLEND_MODEL)
-// light_model.h, LightModelFixed: per layer and channel, the integer weights of its four
-// planes; per channel the integer offset; the power of two to value * BTFLUT_WEIGHT_UNIT.
-uniform vec4 blendModelWeights[BLEND_MODEL_LAYERS * BLEND_MODEL_CHANNELS];
-uniform vec3 blendModelOffset;
-uniform float blendModelScale;
+uniform BtflutModelFrame blendModel;  // LightModelFixed: the weights of the codes n of 4-bit planes
 #else
 uniform int blendLayer[BLEND_FETCHES];   // the references around the light (BLEND_FETCHES: min(K, 3))
 uniform float blendWeight[BLEND_FETCHES]; // integers summing to BTFLUT_WEIGHT_UNIT
@@ -57,7 +55,14 @@ uniform int blendRegions;
 uniform usampler2D blendLabels;
 #endif
 
-const float btflutUnit = float(BTFLUT_WEIGHT_UNIT);
+// How the prediction's codes are matched.
+#if defined(RGB_MODE)
+const int btflutBlendMatch = BTFLUT_MATCH_RGB;
+#elif defined(BLEND_GREY_REFERENCES) || (defined(BLEND_MODEL) && BLEND_MODEL_CHANNELS == 1 && !defined(BLEND_MODEL_ALBEDO))
+const int btflutBlendMatch = BTFLUT_MATCH_ONE;
+#else
+const int btflutBlendMatch = BTFLUT_MATCH_SUM;
+#endif
 
 // The texel the prediction reads (texelFetch at level 0): set by each shader's main.
 // BLEND_FILTERED (the scene's per-fragment path) samples bilinearly at btflutBlendUv instead,
@@ -66,10 +71,13 @@ const float btflutUnit = float(BTFLUT_WEIGHT_UNIT);
 ivec2 btflutBlendAt;
 vec2 btflutBlendUv;
 
-// A plane layer's texel there (below).
-vec4 btflutBlendTexel(int layer);
-
-vec4 btflutBytes(vec4 texel) { return floor(texel * 255.0 + 0.5); }
+vec4 btflutBlendTexel(int layer) {
+#if defined(BLEND_FILTERED)
+    return textureLod(blendPlanes, vec3(btflutBlendUv, float(layer)), 0.0);
+#else
+    return texelFetch(blendPlanes, ivec3(btflutBlendAt, layer), 0);
+#endif
+}
 
 #if defined(BLEND_MODEL)
 // Layer `layer`'s four plane codes: bytes, and a 4-bit plane's n from its 17 n (exact: a
@@ -85,65 +93,21 @@ vec4 btflutPlaneCodes(int layer) {
 }
 #endif
 
-// The prediction: its colour (chroma for grey mode), and its codes (per channel for rgb, else
-// in .x), integers in 0 .. blendCodes.
-struct BtflutBlend {
-    vec3 colour;
-    vec3 codes;
-};
-
-BtflutBlend btflutBlend() {
-    BtflutBlend b;
+// The texel's prediction.
+BtflutPrediction btflutBlend() {
 #if defined(BLEND_MODEL)
-    vec3 sum = blendModelOffset;  // S_c: each channel's value before the albedo, in fixed point
-    for (int l = 0; l < BLEND_MODEL_LAYERS; ++l) {  // unrolled: constant bounds
-        vec4 codes = btflutPlaneCodes(l);
-        for (int c = 0; c < BLEND_MODEL_CHANNELS; ++c) sum[c] += dot(codes, blendModelWeights[l * BLEND_MODEL_CHANNELS + c]);
-    }
-    vec3 value = floor(sum * blendModelScale);  // times BTFLUT_WEIGHT_UNIT
-#if BLEND_MODEL_CHANNELS == 1
-    value = vec3(value.x);
-#endif
+    vec4 codes[BTFLUT_MAX_LAYERS];
+    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < BLEND_MODEL_LAYERS ? btflutPlaneCodes(l) : vec4(0.0);
 #if defined(BLEND_MODEL_ALBEDO)
-    vec3 channels = clamp(btflutBytes(btflutBlendTexel(BLEND_ALBEDO_LAYER)).rgb * value, 0.0, 255.0 * btflutUnit);
+    vec3 albedo = btflutBytes(btflutBlendTexel(BLEND_ALBEDO_LAYER)).rgb;
 #else
-    vec3 channels = clamp(255.0 * value, 0.0, 255.0 * btflutUnit);
+    vec3 albedo = vec3(255.0);
 #endif
-    b.colour = channels / (255.0 * btflutUnit);
-#if defined(RGB_MODE)
-    b.codes = floor(channels / btflutUnit + 0.5);  // each channel matched apart
-#elif BLEND_MODEL_CHANNELS == 1 && !defined(BLEND_MODEL_ALBEDO)
-    b.codes = vec3(floor(channels.r / btflutUnit + 0.5));
+    return btflutModelPrediction(codes, BLEND_MODEL_LAYERS, BLEND_MODEL_CHANNELS, blendModel, albedo);
 #else
-    b.codes = vec3(floor((channels.r + channels.g + channels.b) / btflutUnit + 0.5));
-#endif
-#else
-    vec3 sum = vec3(0.0);
-    b.colour = vec3(0.0);
-    for (int k = 0; k < BLEND_FETCHES; ++k) {  // unrolled
-        vec4 texel = btflutBlendTexel(blendLayer[k]);
-        sum += blendWeight[k] * btflutBytes(texel).rgb;
-        b.colour += blendWeight[k] / btflutUnit * texel.rgb;
-    }
-#if defined(RGB_MODE)
-    b.codes = floor(sum / btflutUnit + 0.5);
-#elif defined(BLEND_GREY_REFERENCES)
-    b.codes = vec3(floor(sum.r / btflutUnit + 0.5));  // one channel (stored in all three)
-#else
-    b.codes = vec3(floor((sum.r + sum.g + sum.b) / btflutUnit + 0.5));  // the grey of RGB: the channel codes' sum
-#endif
-#endif
-    return b;
-}
-
-// A code read at the top of its cell [q, q + 1) / (codes + 1) (Relighter::inputCode).
-float btflutBlendValue(float code) { return (code + 1.0) / (blendCodes + 1.0); }
-
-vec4 btflutBlendTexel(int layer) {
-#if defined(BLEND_FILTERED)
-    return textureLod(blendPlanes, vec3(btflutBlendUv, float(layer)), 0.0);
-#else
-    return texelFetch(blendPlanes, ivec3(btflutBlendAt, layer), 0);
+    BtflutPrediction p = btflutNoPrediction();
+    for (int k = 0; k < BLEND_FETCHES; ++k) btflutAddReference(p, blendWeight[k], btflutBlendTexel(blendLayer[k]));
+    return p;
 #endif
 }
 
@@ -158,16 +122,17 @@ vec3 btflutBlendColour(uvec2 pixel, bool greyReference) {
 #else
     uint region = 0u;
 #endif
-    BtflutBlend blend = btflutBlend();
+    BtflutPrediction blend = btflutBlend();
+    vec3 q = btflutCodes(blend, btflutBlendMatch);
+    vec3 matched = vec3(btflutBlendMap(0, region, q.x, pixel));
 #if defined(RGB_MODE)
-    return vec3(btflutBlendMap(0, region, blend.codes.r, pixel), btflutBlendMap(1, region, blend.codes.g, pixel),
-                btflutBlendMap(2, region, blend.codes.b, pixel));
-#elif defined(BLEND_ALBEDO_CHROMA)
-    return btflutSetGrey(texelFetch(blendPlanes, ivec3(btflutBlendAt, BLEND_ALBEDO_LAYER), 0).rgb,
-                         btflutBlendMap(0, region, blend.codes.x, pixel));
+    matched = vec3(matched.x, btflutBlendMap(1, region, q.y, pixel), btflutBlendMap(2, region, q.z, pixel));
+#endif
+#if defined(BLEND_ALBEDO_CHROMA)
+    return btflutRelitColour(matched, btflutBlendMatch, false,
+                             texelFetch(blendPlanes, ivec3(btflutBlendAt, BLEND_ALBEDO_LAYER), 0).rgb);
 #else
-    if (greyReference) return vec3(btflutBlendMap(0, region, blend.codes.x, pixel));
-    return btflutSetGrey(blend.colour, btflutBlendMap(0, region, blend.codes.x, pixel));
+    return btflutRelitColour(matched, btflutBlendMatch, greyReference, blend.colour);
 #endif
 }
 
@@ -196,9 +161,9 @@ float btflutBlendMap(int channel, uint region, float code, uvec2 pixel) {
 #if defined(PREDICTION_ONLY)
     return code / blendCodes;  // bench render's baseline: the predictor as an RTI viewer draws it
 #elif defined(DITHER)
-    return btflutBlendLutDithered(channel, region, btflutBlendValue(code), pixel, outCode);
+    return btflutBlendLutDithered(channel, region, btflutCodeValue(code, blendCodes), pixel, outCode);
 #else
-    return btflutBlendLut(channel, region, btflutBlendValue(code));
+    return btflutBlendLut(channel, region, btflutCodeValue(code, blendCodes));
 #endif
 }
 #endif  // BLEND

@@ -54,8 +54,18 @@ uniform ivec2 texels;  // the reference's size: the dither and the blend's fetch
 
 #if defined(PTM_MODE)
 uniform sampler2D ptmLow, ptmHigh, ptmAlbedo;  // coefficients 0-2, 3-5 (bytes), RGB albedo
-uniform vec3 ptmWeightsLow, ptmWeightsHigh;    // the light's terms with scale and bias folded in
-uniform float ptmOffset;
+uniform BtflutModelFrame ptmFrame;              // the light's terms with scale and bias folded in
+
+// The PTM as the light model it is (btflut.glsl's one predictor): six planes of one channel
+// times the albedo, filtered and mipmapped as RTI viewers draw it.
+vec3 ptmColour() {
+    vec3 low = texture(ptmLow, uv).rgb * 255.0, high = texture(ptmHigh, uv).rgb * 255.0;
+    vec4 codes[BTFLUT_MAX_LAYERS];
+    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = vec4(0.0);
+    codes[0] = vec4(low, high.r);
+    codes[1] = vec4(high.gb, 0.0, 0.0);
+    return btflutModelPrediction(codes, 2, 1, ptmFrame, texture(ptmAlbedo, uv).rgb * 255.0).colour;
+}
 #endif
 
 void main() {
@@ -78,9 +88,7 @@ void main() {
 #elif defined(FLAT_MODE)
     colour = vec4(texture(reference, uv).rgb, 1.0);
 #elif defined(PTM_MODE)
-    float luminance = dot(texture(ptmLow, uv).rgb, ptmWeightsLow) + dot(texture(ptmHigh, uv).rgb, ptmWeightsHigh) +
-                      ptmOffset;
-    colour = vec4(clamp(texture(ptmAlbedo, uv).rgb * luminance, 0.0, 1.0), 1.0);
+    colour = vec4(ptmColour(), 1.0);
 #elif defined(NEAREST_MODE)
     colour = vec4(texture(reference, uv).rgb, 1.0);
 #elif defined(BRDF_MODE)

@@ -65,7 +65,8 @@ void main() {
     BtflutMaterial m = BtflutMaterial(b.w, flags.x != 0, flags.w != 0, codes.z, codes.y, flags.z != 0);
     uvec2 pixel = uvec2(gl_FragCoord.xy);
     colour = vec4(btflutRelight(luts, planes, weights, labels, p, uv, lightTangent, pixel) +
-                  btflutRelight(luts, m, texture(reference, uv).rgb, lightTangent, pixel), 1.0);
+                  btflutRelight(luts, m, texture(reference, uv).rgb, lightTangent, pixel) +
+                  btflutPredict(planes, weights, p, uv, lightTangent) / 255.0, 1.0);
 }
 GLSL
 } > "$work/hlsl.frag"

@@ -94,20 +94,19 @@ void BlendTextures::bind(const ShaderProgram& p, const RelightFrame& frame, cons
     gl.Uniform1i(p["blendRegions"], bank.blend.regions);
     if (m_lutsAsUniforms) gl.Uniform1fv(p["lutValues"], static_cast<GLsizei>(bank.matchLength()), frame.luts.data());
     if (bank.predictsWithModel()) {
-        // The frame's integers (LightModelFixed; the CPU twin: predictFixed): per layer of four
-        // planes and per channel, the planes' weights.
+        // The frame's integers (LightModelFixed; the CPU twin: predictFixed) as btflut.glsl's
+        // BtflutModelFrame: per layer of four planes and per channel, the planes' weights.
         const LightModel& m = bank.blend.model;
         const auto P = static_cast<std::size_t>(m.planes), C = static_cast<std::size_t>(m.channels);
-        std::vector<float> weights(static_cast<std::size_t>(m_layers) * C * 4, 0.f);
+        std::vector<float> weights(static_cast<std::size_t>(m_layers) * 3 * 4, 0.f);
         for (std::size_t q = 0; q < P; ++q)
             for (std::size_t c = 0; c < C; ++c)
-                weights[((q / 4) * C + c) * 4 + q % 4] = static_cast<float>(frame.model.weights[q * C + c]);
-        gl.Uniform4fv(p["blendModelWeights"], static_cast<GLsizei>(static_cast<std::size_t>(m_layers) * C),
-                      weights.data());
+                weights[((q / 4) * 3 + c) * 4 + q % 4] = static_cast<float>(frame.model.weights[q * C + c]);
+        gl.Uniform4fv(p["blendModel.weights"], m_layers * 3, weights.data());
         const float offset[3] = {static_cast<float>(frame.model.offset[0]), static_cast<float>(frame.model.offset[1]),
                                  static_cast<float>(frame.model.offset[2])};
-        gl.Uniform3fv(p["blendModelOffset"], 1, offset);
-        gl.Uniform1f(p["blendModelScale"], frame.model.scale);
+        gl.Uniform3fv(p["blendModel.offset"], 1, offset);
+        gl.Uniform1f(p["blendModel.scale"], frame.model.scale);
     } else {
         const auto fetches = static_cast<GLsizei>(std::min<std::size_t>(bank.blend.references.size(), 3));
         GLint layers[3] = {0, 0, 0};

@@ -175,10 +175,17 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
             bind(0, GL_TEXTURE_2D, material.ptm[0].id(), "ptmLow");
             bind(1, GL_TEXTURE_2D, material.ptm[1].id(), "ptmHigh");
             bind(2, GL_TEXTURE_2D, material.ptm[2].id(), "ptmAlbedo");
+            // The light's PTM weights (ptmWeights: on texels in [0, 1]) as btflut.glsl's
+            // BtflutModelFrame on the coefficient bytes, in 1 / kWeightUnit: the PTM is a light
+            // model of six planes drawn by the one predictor.
             const std::array<float, 7>& w = q.ptmWeights;
-            gl.Uniform3f(p["ptmWeightsLow"], w[0], w[1], w[2]);
-            gl.Uniform3f(p["ptmWeightsHigh"], w[3], w[4], w[5]);
-            gl.Uniform1f(p["ptmOffset"], w[6]);
+            const float unit = static_cast<float>(kWeightUnit) / 255.f;
+            const float weights[8] = {w[0] * unit, w[1] * unit, w[2] * unit, w[3] * unit,
+                                      w[4] * unit, w[5] * unit, 0,           0};
+            gl.Uniform4fv(p["ptmFrame.weights[0]"], 1, weights);
+            gl.Uniform4fv(p["ptmFrame.weights[3]"], 1, weights + 4);
+            gl.Uniform3f(p["ptmFrame.offset"], w[6] * static_cast<float>(kWeightUnit), 0, 0);
+            gl.Uniform1f(p["ptmFrame.scale"], 1.f);
         } else if (mode == RenderMode::Nearest) {
             bind(0, GL_TEXTURE_2D, material.imageTextures.at(q.nearestImage).id(), "reference");
         } else if (relitInTextureSpace(q, mode)) {
