@@ -89,22 +89,12 @@ std::vector<Fold> validationFolds(std::size_t n) {
     return folds;
 }
 
-}  // namespace
-
-int smallestBudget(int channels) { return channels; }
-
-Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options, const ImageProvider& provider) {
-    auto log = [&](const std::string& line) {
-        if (options.log) options.log(line);
-    };
-    if (dataset.images.empty()) return Error{dataset.source + ": dataset has no images"};
-    if (options.match && !(*options.match >= 0 && *options.match <= 1))
-        return Error{"--match must be from 0 (not at all) to 1 (fully)"};
-    // Every image decoded once; the bakes below read them from memory.
+// Every image decoded once, all of one size: the bakes below read them from memory.
+Result<std::vector<Image>> decodeAll(const Dataset& dataset, const ImageProvider& provider, int threads) {
     const std::size_t n = dataset.images.size();
     std::vector<Image> decoded(n);
     std::vector<std::string> errors(n);
-    parallelFor(n, options.base.threads, [&](std::size_t i) {
+    parallelFor(n, threads, [&](std::size_t i) {
         if (!provider) {
             Result<Image> image = loadImage(dataset.images[i].path);
             if (image)
@@ -128,32 +118,27 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
                                        dataset.images.front().path);
             !s)
             return Error{s.error()};
-    const ImageProvider cached = [&](std::size_t i, Image&) -> Result<const Image*> { return &decoded[i]; };
+    return decoded;
+}
 
-    if (options.budget < smallestBudget(first.channels))
-        return Error{"--budget " + std::to_string(options.budget) +
-                     ": no predictor fits; the smallest budget that works is " +
-                     std::to_string(smallestBudget(first.channels)) + " bytes per texel (the one-reference bank)"};
-    std::vector<Candidate> candidates = candidatesFor(options.base, first.channels, options.budget, n);
-    nlohmann::json selection{
-        {"budget", options.budget},
-        {"rule", "the highest validation PSNR with histogram L1 within 0.002 of the one-reference bank's"}};
-    const std::vector<Fold> folds = dataset.fixedView() ? validationFolds(n) : std::vector<Fold>{};
-    Result<Mask> mask = loadDatasetMask(dataset, first.width, first.height);
-    if (!mask) return Error{mask.error()};
+// What validation reads: the images, the folds, the sample's mask, the match strengths tried.
+struct Validation {
+    const Dataset& dataset;
+    const std::vector<Image>& decoded;
+    std::vector<Fold> folds;
+    Mask mask;
+    std::vector<float> strengths;
+};
 
-    const std::vector<float> strengths =
-        options.match ? std::vector<float>{*options.match} : std::vector<float>{0.f, 0.25f, 0.5f, 0.75f, 1.f};
+// Each candidate baked on each fold's training lights and scored on its held-out images
+// (sums per match strength); a candidate whose bake fails on a fold is skipped on all.
+void validate(std::vector<Candidate>& candidates, const Validation& v, const AutoBakeOptions& options) {
     std::size_t steps = 0, done = 0;
-    for (const Candidate& c : candidates) steps += c.skipped.empty() ? folds.size() : 0;
-    if (!folds.empty())
-        log("validating " + std::to_string(steps / folds.size()) + " predictors within " +
-            std::to_string(options.budget) + " bytes per texel on " + std::to_string(folds.size()) + " folds of the " +
-            std::to_string(n) + " lights");
-    for (const Fold& fold : folds) {
-        const Dataset train = subset(dataset, fold.train);
+    for (const Candidate& c : candidates) steps += c.skipped.empty() ? v.folds.size() : 0;
+    for (const Fold& fold : v.folds) {
+        const Dataset train = subset(v.dataset, fold.train);
         const ImageProvider trainImages = [&](std::size_t i, Image&) -> Result<const Image*> {
-            return &decoded[fold.train[i]];
+            return &v.decoded[fold.train[i]];
         };
         for (Candidate& c : candidates) {
             if (!c.skipped.empty()) continue;
@@ -171,13 +156,13 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
                 continue;
             }
             const Relighter relighter(*bank);
-            for (float strength : c.classic || !bank->makesLuts() ? std::vector<float>{1.f} : strengths) {
+            for (float strength : c.classic || !bank->makesLuts() ? std::vector<float>{1.f} : v.strengths) {
                 bank->blend.match = strength;  // read by the frames below (one strength at a time)
                 std::vector<ImageErrors> figures(fold.test.size());
                 parallelFor(fold.test.size(), options.base.threads, [&](std::size_t k) {
-                    const DatasetImage& info = dataset.images[fold.test[k]];
+                    const DatasetImage& info = v.dataset.images[fold.test[k]];
                     figures[k] = compareImages(relighter.apply(relighter.frame(info.light, info.view), true),
-                                               decoded[fold.test[k]], *mask);
+                                               v.decoded[fold.test[k]], v.mask);
                 });
                 auto& [psnr, l1] = c.sums[strength];
                 for (const ImageErrors& e : figures) psnr += e.psnr, l1 += e.l1;
@@ -186,20 +171,26 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
             if (options.base.progress) options.base.progress(++done, steps);
         }
     }
+}
 
-    // The choice: the best PSNR among the settings whose L1 the one-reference bank's allows.
+struct Choice {
+    const Candidate* chosen = nullptr;  ///< none validated
+    float match = 1;
+    nlohmann::json rows = nlohmann::json::array();  ///< every candidate's figures
+};
+
+// The best PSNR among the settings whose L1 the one-reference bank's allows.
+Choice choose(const std::vector<Candidate>& candidates) {
     const Candidate& classic = candidates.front();
     double bound = INFINITY;
     if (classic.images > 0) bound = classic.sums.at(1.f).second / static_cast<double>(classic.images) + kL1Tolerance;
-    const Candidate* chosen = nullptr;
-    float chosenMatch = 1;
+    Choice out;
     double chosenPsnr = -INFINITY;
-    nlohmann::json rows = nlohmann::json::array();
     for (const Candidate& c : candidates) {
         nlohmann::json row{{"name", c.name}, {"bytes", c.bytes}};
         if (!c.skipped.empty() || c.images == 0) {
             row["skipped"] = c.skipped.empty() ? "not validated" : c.skipped;
-            rows.push_back(row);
+            out.rows.push_back(row);
             continue;
         }
         row["validation"] = nlohmann::json::array();
@@ -207,18 +198,63 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
             const double psnr = sum.first / static_cast<double>(c.images),
                          l1 = sum.second / static_cast<double>(c.images);
             row["validation"].push_back({{"match", strength}, {"psnr", psnr}, {"l1", l1}});
-            if (l1 <= bound && psnr > chosenPsnr) chosen = &c, chosenMatch = strength, chosenPsnr = psnr;
+            if (l1 <= bound && psnr > chosenPsnr) out.chosen = &c, out.match = strength, chosenPsnr = psnr;
         }
-        rows.push_back(row);
+        out.rows.push_back(row);
     }
-    selection["candidates"] = rows;
+    return out;
+}
+
+}  // namespace
+
+int smallestBudget(int channels) { return channels; }
+
+Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options, const ImageProvider& provider) {
+    auto log = [&](const std::string& line) {
+        if (options.log) options.log(line);
+    };
+    if (dataset.images.empty()) return Error{dataset.source + ": dataset has no images"};
+    if (options.match && !(*options.match >= 0 && *options.match <= 1))
+        return Error{"--match must be from 0 (not at all) to 1 (fully)"};
+    Result<std::vector<Image>> decoded = decodeAll(dataset, provider, options.base.threads);
+    if (!decoded) return Error{decoded.error()};
+    const Image& first = decoded->front();
+    const std::size_t n = decoded->size();
+    const ImageProvider cached = [&](std::size_t i, Image&) -> Result<const Image*> { return &(*decoded)[i]; };
+
+    if (options.budget < smallestBudget(first.channels))
+        return Error{"--budget " + std::to_string(options.budget) +
+                     ": no predictor fits; the smallest budget that works is " +
+                     std::to_string(smallestBudget(first.channels)) + " bytes per texel (the one-reference bank)"};
+    std::vector<Candidate> candidates = candidatesFor(options.base, first.channels, options.budget, n);
+    nlohmann::json selection{
+        {"budget", options.budget},
+        {"rule", "the highest validation PSNR with histogram L1 within 0.002 of the one-reference bank's"}};
+    Result<Mask> mask = loadDatasetMask(dataset, first.width, first.height);
+    if (!mask) return Error{mask.error()};
+    const Validation validation{
+        dataset, *decoded, dataset.fixedView() ? validationFolds(n) : std::vector<Fold>{}, std::move(*mask),
+        options.match ? std::vector<float>{*options.match} : std::vector<float>{0.f, 0.25f, 0.5f, 0.75f, 1.f}};
+    const std::vector<Fold>& folds = validation.folds;
+    if (!folds.empty()) {
+        std::size_t validated = 0;
+        for (const Candidate& c : candidates) validated += c.skipped.empty() ? 1 : 0;
+        log("validating " + std::to_string(validated) + " predictors within " + std::to_string(options.budget) +
+            " bytes per texel on " + std::to_string(folds.size()) + " folds of the " + std::to_string(n) + " lights");
+    }
+    validate(candidates, validation, options);
+
+    const Choice choice = choose(candidates);
+    const Candidate& classic = candidates.front();
+    selection["candidates"] = choice.rows;
     selection["folds"] = folds.size();
     BakeOptions final = classic.options;
-    if (chosen) {
-        final = chosen->options;
-        final.match = chosenMatch;
-        selection["chosen"] = {{"name", chosen->name}, {"match", chosenMatch}, {"bytes", chosen->bytes}};
-        log("chose " + chosen->name + (chosen->classic ? "" : ", match " + std::to_string(chosenMatch).substr(0, 4)));
+    if (choice.chosen) {
+        final = choice.chosen->options;
+        final.match = choice.match;
+        selection["chosen"] = {{"name", choice.chosen->name}, {"match", choice.match}, {"bytes", choice.chosen->bytes}};
+        log("chose " + choice.chosen->name +
+            (choice.chosen->classic ? "" : ", match " + std::to_string(choice.match).substr(0, 4)));
     } else {
         // Nothing validated: several views, or too few images. The one-reference bank, or where
         // its reference is constant over the sample (a grey card, a black set), a model that
@@ -229,8 +265,8 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
     }
     final.progress = options.base.progress;
     Result<LutBank> bank = bakeBank(dataset, final, cached);
-    if (!bank && !chosen && dataset.fixedView() && bank.error().find("constant") != std::string::npos) {
-        final = candidates.front().options;
+    if (!bank && !choice.chosen && dataset.fixedView() && bank.error().find("constant") != std::string::npos) {
+        final = classic.options;
         final.model = LightModelOptions{.basis = LightBasis::Rbf,
                                         .planes = std::clamp(options.budget, 1, LightModel::kMaxPlanes)};
         selection["chosen"] = {

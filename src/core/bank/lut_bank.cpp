@@ -268,106 +268,133 @@ std::optional<std::size_t> LutBank::nearestLayerMeasuring(DiskPoint light, std::
     return best;
 }
 
+namespace {
+
+// A lookup's values as a weighted sum of nodes' values (in double, rounded once at the end),
+// and where they come from.
+class NodeBlend {
+public:
+    explicit NodeBlend(const LutBank& bank) : m_bank(bank), m_sum(bank.nodeLength(), 0.0) {}
+
+    void add(LutBank::NodeRef n, double weight) {
+        const ViewLayer& layer = m_bank.layers[n.layer];
+        BTFLUT_CHECK(layer.lutsLoaded);
+        const float* lut = &layer.nodeLuts[n.node * m_sum.size()];
+        for (std::size_t k = 0; k < m_sum.size(); ++k) m_sum[k] += weight * lut[k];
+    }
+
+    BankLookup finish() {
+        look.values.assign(m_sum.size(), 0.f);
+        for (std::size_t k = 0; k < m_sum.size(); ++k) look.values[k] = static_cast<float>(m_sum[k]);
+        look.provenance = combine(look.lightProvenance, look.viewProvenance);
+        return look;
+    }
+
+    BankLookup look;  ///< its provenances, set as nodes are added
+
+private:
+    const LutBank& m_bank;
+    std::vector<double> m_sum;
+};
+
+// Isotropic banks: the light and view pair's point in the pairs' domain.
+void addIsotropic(const LutBank& bank, Direction light, Direction view, NodeBlend& blend) {
+    const Point3 q = isotropicPoint(light, view);
+    const Weights w = bank.pairs.weightsAt(q);
+    auto addPoint = [&](std::size_t point, double weight) {
+        const std::vector<LutBank::NodeRef>& nodes = bank.pairNodes[point];
+        for (LutBank::NodeRef n : nodes) blend.add(n, weight / static_cast<double>(nodes.size()));
+    };
+    // Beyond the hull, the clamp to its boundary gives way to the nearest measured pair
+    // over one grid step. Measurements along a path (CUReT's light and view moving
+    // together) make a hull whose faces bridge far-apart pairs; the point on such a face
+    // blends the two, while the nearest pair is what was measured closest.
+    double clamped = 1;
+    if (!w.inside) {
+        Point3 onHull{0, 0, 0};
+        for (int p = 0; p < w.count; ++p) {
+            const Point3& v = bank.pairs.points()[static_cast<std::size_t>(w.index[p])];
+            onHull = {onHull.x + w.weight[p] * v.x, onHull.y + w.weight[p] * v.y, onHull.z + w.weight[p] * v.z};
+        }
+        clamped = bank.hullRamp(std::hypot(q.x - onHull.x, q.y - onHull.y, q.z - onHull.z));
+        addPoint(bank.nearestPair(q), 1 - clamped);
+    }
+    for (int p = 0; p < w.count; ++p) addPoint(static_cast<std::size_t>(w.index[p]), w.weight[p] * clamped);
+    // One domain point carries both: measured only where light and view are.
+    blend.look.lightProvenance = blend.look.viewProvenance = provenanceOf(w);
+}
+
+// View layer `layer`'s share `viewWeight` of a light: its measured nodes around the light,
+// and beyond their hull another view's measurements or the fitted model's nodes.
+void addLayer(const LutBank& bank, std::size_t layer, double viewWeight, DiskPoint lightPoint, NodeBlend& blend) {
+    const ViewLayer& lights = bank.layers[layer];
+    const Weights lw = lights.lights.weightsAt(lightPoint);
+    // Beyond the measured hull the measurements clamped to it give way to other data over
+    // one grid step, so a LUT never jumps at the hull: their share of the blend.
+    auto clampedShare = [&] {
+        DiskPoint onHull{0, 0};
+        for (int l = 0; l < lw.count; ++l) {
+            const DiskPoint q = lights.lights.points()[static_cast<std::size_t>(lw.index[l])];
+            onHull = {onHull.x + lw.weight[l] * q.x, onHull.y + lw.weight[l] * q.y};
+        }
+        return bank.hullRamp(std::hypot(lightPoint.x - onHull.x, lightPoint.y - onHull.y));
+    };
+    Provenance& provenance = blend.look.lightProvenance;
+    double measured = 1;  // the share of this layer's measured nodes
+    std::optional<std::size_t> borrowed;
+    // Another view's measurements at the light come before the model's.
+    if (!lw.inside) borrowed = bank.nearestLayerMeasuring(lightPoint, layer);
+    if (borrowed) {
+        // Beyond this view's lights, within another view's: the nearest such view's
+        // measurements at this light (shadows and highlights follow the light more than
+        // the view), rather than this view's clamped to its hull.
+        measured = clampedShare();
+        const Weights ow = bank.layers[*borrowed].lights.weightsAt(lightPoint);
+        for (int o = 0; o < ow.count; ++o)
+            blend.add({*borrowed, static_cast<std::size_t>(ow.index[o])}, viewWeight * ow.weight[o] * (1 - measured));
+        provenance = combine(provenance, Provenance::Interpolated);
+    } else if (!lw.inside && lights.measuredNodes < lights.nodes.size()) {
+        // Beyond every view's measured lights: towards the fitted model (model_fill.h).
+        measured = clampedShare();
+        const Weights mw = lights.modelLights.weightsAt(lightPoint);
+        for (int m = 0; m < mw.count; ++m)
+            blend.add({layer, lights.measuredNodes + static_cast<std::size_t>(mw.index[m])},
+                      viewWeight * mw.weight[m] * (1 - measured));
+        provenance = combine(provenance, Provenance::Modelled);
+    } else {
+        provenance = combine(provenance, provenanceOf(lw));
+    }
+    for (int l = 0; l < lw.count; ++l)
+        blend.add({layer, static_cast<std::size_t>(lw.index[l])}, viewWeight * lw.weight[l] * measured);
+}
+
+}  // namespace
+
 BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) const {
-    const std::size_t length = nodeLength();
-    BankLookup out;
     if (!interpolate) {
         const NodeRef n = nearestNode(light, view);
         const ViewLayer& layer = layers[n.layer];
         BTFLUT_CHECK(layer.lutsLoaded);
-        const float* lut = &layer.nodeLuts[n.node * length];
-        out.values.assign(lut, lut + length);
+        const float* lut = &layer.nodeLuts[n.node * nodeLength()];
+        BankLookup out;
+        out.values.assign(lut, lut + nodeLength());
         const bool exact = angleBetween(layer.view, view) < kSameDirection &&
                            angleBetween(layer.nodes[n.node].light, light) < kSameDirection;
         out.provenance = exact ? Provenance::Measured : Provenance::Interpolated;
         out.lightProvenance = out.viewProvenance = out.provenance;
         return out;
     }
-    out.values.assign(length, 0.f);
-    std::vector<double> accumulated(length, 0.0);
-    auto add = [&](NodeRef n, double w) {
-        const ViewLayer& layer = layers[n.layer];
-        BTFLUT_CHECK(layer.lutsLoaded);
-        const float* lut = &layer.nodeLuts[n.node * length];
-        for (std::size_t k = 0; k < length; ++k) accumulated[k] += w * lut[k];
-    };
-    auto finish = [&] {
-        for (std::size_t k = 0; k < length; ++k) out.values[k] = static_cast<float>(accumulated[k]);
-        out.provenance = combine(out.lightProvenance, out.viewProvenance);
-        return out;
-    };
+    NodeBlend sum(*this);
     if (domain == BankDomain::Isotropic) {
-        const Point3 q = isotropicPoint(light, view);
-        const Weights w = pairs.weightsAt(q);
-        auto addPoint = [&](std::size_t point, double weight) {
-            const std::vector<NodeRef>& nodes = pairNodes[point];
-            for (NodeRef n : nodes) add(n, weight / static_cast<double>(nodes.size()));
-        };
-        // Beyond the hull, the clamp to its boundary gives way to the nearest measured pair
-        // over one grid step. Measurements along a path (CUReT's light and view moving
-        // together) make a hull whose faces bridge far-apart pairs; the point on such a face
-        // blends the two, while the nearest pair is what was measured closest.
-        double clamped = 1;
-        if (!w.inside) {
-            Point3 onHull{0, 0, 0};
-            for (int p = 0; p < w.count; ++p) {
-                const Point3& v = pairs.points()[static_cast<std::size_t>(w.index[p])];
-                onHull = {onHull.x + w.weight[p] * v.x, onHull.y + w.weight[p] * v.y, onHull.z + w.weight[p] * v.z};
-            }
-            clamped = hullRamp(std::hypot(q.x - onHull.x, q.y - onHull.y, q.z - onHull.z));
-            addPoint(nearestPair(q), 1 - clamped);
-        }
-        for (int p = 0; p < w.count; ++p) addPoint(static_cast<std::size_t>(w.index[p]), w.weight[p] * clamped);
-        // One domain point carries both: measured only where light and view are.
-        out.lightProvenance = out.viewProvenance = provenanceOf(w);
-        return finish();
+        addIsotropic(*this, light, view, sum);
+        return sum.finish();
     }
-    Weights vw = views.weightsAt(toDisk(view));
-    out.viewProvenance = provenanceOf(vw);
+    const Weights vw = views.weightsAt(toDisk(view));
+    sum.look.viewProvenance = provenanceOf(vw);
     const DiskPoint lightPoint = toDisk(light);
-    for (int v = 0; v < vw.count; ++v) {
-        if (vw.weight[v] == 0) continue;
-        const auto layer = static_cast<std::size_t>(vw.index[v]);
-        const ViewLayer& lights = layers[layer];
-        Weights lw = lights.lights.weightsAt(lightPoint);
-        // Beyond the measured hull the measurements clamped to it give way to other data over
-        // one grid step, so a LUT never jumps at the hull: their share of the blend.
-        auto clampedShare = [&] {
-            DiskPoint onHull{0, 0};
-            for (int l = 0; l < lw.count; ++l) {
-                const DiskPoint q = lights.lights.points()[static_cast<std::size_t>(lw.index[l])];
-                onHull = {onHull.x + lw.weight[l] * q.x, onHull.y + lw.weight[l] * q.y};
-            }
-            return hullRamp(std::hypot(lightPoint.x - onHull.x, lightPoint.y - onHull.y));
-        };
-        double measured = 1;  // the share of this layer's measured nodes
-        std::optional<std::size_t> borrowed;
-        // Another view's measurements at the light come before the model's.
-        if (!lw.inside) borrowed = nearestLayerMeasuring(lightPoint, layer);
-        if (borrowed) {
-            // Beyond this view's lights, within another view's: the nearest such view's
-            // measurements at this light (shadows and highlights follow the light more than
-            // the view), rather than this view's clamped to its hull.
-            measured = clampedShare();
-            const Weights ow = layers[*borrowed].lights.weightsAt(lightPoint);
-            for (int o = 0; o < ow.count; ++o)
-                add({*borrowed, static_cast<std::size_t>(ow.index[o])}, vw.weight[v] * ow.weight[o] * (1 - measured));
-            out.lightProvenance = combine(out.lightProvenance, Provenance::Interpolated);
-        } else if (!lw.inside && lights.measuredNodes < lights.nodes.size()) {
-            // Beyond every view's measured lights: towards the fitted model (model_fill.h).
-            measured = clampedShare();
-            const Weights mw = lights.modelLights.weightsAt(lightPoint);
-            for (int m = 0; m < mw.count; ++m)
-                add({layer, lights.measuredNodes + static_cast<std::size_t>(mw.index[m])},
-                    vw.weight[v] * mw.weight[m] * (1 - measured));
-            out.lightProvenance = combine(out.lightProvenance, Provenance::Modelled);
-        } else {
-            out.lightProvenance = combine(out.lightProvenance, provenanceOf(lw));
-        }
-        for (int l = 0; l < lw.count; ++l)
-            add({layer, static_cast<std::size_t>(lw.index[l])}, vw.weight[v] * lw.weight[l] * measured);
-    }
-    return finish();
+    for (int v = 0; v < vw.count; ++v)
+        if (vw.weight[v] != 0) addLayer(*this, static_cast<std::size_t>(vw.index[v]), vw.weight[v], lightPoint, sum);
+    return sum.finish();
 }
 
 Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,

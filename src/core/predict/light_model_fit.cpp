@@ -221,6 +221,106 @@ std::vector<float> resampleOnGrid(const LightModel& rbf, int grid) {
     return out;
 }
 
+// A texel's value in dimension d of the image stack: image d / C, channel d % C (or the grey).
+struct StackValues {
+    const std::vector<const Image*>& images;
+    std::size_t C;
+    double operator()(std::size_t texel, std::size_t d) const {
+        const Image& image = *images[d / C];
+        return C == 1 ? image.grey(texel) : image.samples[texel * 3 + d % C];
+    }
+};
+
+// The stack's mean over the sample's texels and its largest P principal components (columns
+// of E), with their variances.
+struct Components {
+    Eigen::VectorXd mean;
+    Eigen::MatrixXd E;
+    std::vector<double> variance;
+};
+
+Result<Components> principalComponents(const StackValues& value, std::size_t D, std::size_t P,
+                                       const std::vector<std::uint32_t>& sample, int threads, const std::string& what) {
+    // Mean and covariance over (at most about 2^16 of) the sample's texels.
+    const std::size_t step = std::max<std::size_t>(1, sample.size() / 65536);
+    std::vector<std::uint32_t> used;
+    for (std::size_t i = 0; i < sample.size(); i += step) used.push_back(sample[i]);
+    const std::size_t blocks = std::min<std::size_t>(16, used.size());
+    std::vector<Eigen::MatrixXd> partial(blocks, Eigen::MatrixXd::Zero(D, D));
+    std::vector<Eigen::VectorXd> partialMean(blocks, Eigen::VectorXd::Zero(D));
+    parallelFor(blocks, threads, [&](std::size_t b) {
+        Eigen::VectorXd x(D);
+        for (std::size_t s = b; s < used.size(); s += blocks) {
+            for (std::size_t d = 0; d < D; ++d) x(d) = value(used[s], d);
+            partial[b].selfadjointView<Eigen::Lower>().rankUpdate(x);
+            partialMean[b] += x;
+        }
+    });
+    Eigen::MatrixXd second = Eigen::MatrixXd::Zero(D, D);
+    Components out{Eigen::VectorXd::Zero(D), Eigen::MatrixXd(D, P), std::vector<double>(P)};
+    for (std::size_t b = 0; b < blocks; ++b) {
+        second += partial[b];
+        out.mean += partialMean[b];
+    }
+    const auto count = static_cast<double>(used.size());
+    out.mean /= count;
+    Eigen::MatrixXd covariance = second.selfadjointView<Eigen::Lower>();
+    covariance = covariance / count - out.mean * out.mean.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance);
+    if (eigen.info() != Eigen::Success) return Error{what + ": the images' principal components did not converge"};
+    // The largest P components (the solver sorts ascending).
+    for (std::size_t p = 0; p < P; ++p) {
+        out.E.col(static_cast<Eigen::Index>(p)) = eigen.eigenvectors().col(static_cast<Eigen::Index>(D - 1 - p));
+        out.variance[p] = std::max(0.0, eigen.eigenvalues()(static_cast<Eigen::Index>(D - 1 - p)));
+    }
+    return out;
+}
+
+// Each texel's coordinates on the components, texels x P.
+std::vector<double> projectTexels(const StackValues& value, const Components& pca, std::size_t texels, int threads) {
+    const auto D = static_cast<std::size_t>(pca.E.rows()), P = static_cast<std::size_t>(pca.E.cols());
+    std::vector<double> coordinates(texels * P);
+    parallelFor((texels + 4095) / 4096, threads, [&](std::size_t block) {
+        const std::size_t end = std::min(texels, (block + 1) * 4096);
+        Eigen::VectorXd x(D);
+        for (std::size_t i = block * 4096; i < end; ++i) {
+            for (std::size_t d = 0; d < D; ++d) x(d) = value(i, d) - pca.mean(d);
+            const Eigen::VectorXd c = pca.E.transpose() * x;
+            for (std::size_t p = 0; p < P; ++p) coordinates[i * P + p] = c(static_cast<Eigen::Index>(p));
+        }
+    });
+    return coordinates;
+}
+
+// sigma: the multiple of the lights' median spacing that predicts each light's row best from
+// the others.
+float chooseSigma(const std::vector<Direction>& lights, const std::vector<float>& table, std::size_t row, std::size_t C,
+                  const std::vector<double>& variance) {
+    const std::size_t n = lights.size();
+    std::vector<double> spacing;
+    for (std::size_t i = 0; i < n; ++i) {
+        double nearest = INFINITY;
+        const Vec3 a = toVector(lights[i]);
+        for (std::size_t j = 0; j < n; ++j) {
+            if (j == i) continue;
+            const Vec3 b = toVector(lights[j]);
+            const double d =
+                std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
+            if (d > 1e-9) nearest = std::min(nearest, d);
+        }
+        if (std::isfinite(nearest)) spacing.push_back(nearest);
+    }
+    std::sort(spacing.begin(), spacing.end());
+    const double unit = spacing.empty() ? 0.1 : std::max(spacing[spacing.size() / 2], 1e-3);
+    double best = INFINITY;
+    auto sigma = static_cast<float>(unit);
+    for (double factor : {0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 4.0}) {
+        const double e = n > 1 ? leaveOneOutError(lights, table, row, C, variance, unit * factor) : 0;
+        if (e < best) best = e, sigma = static_cast<float>(unit * factor);
+    }
+    return sigma;
+}
+
 Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
                           const Mask& mask, const LightModelOptions& o, const std::string& what) {
     const Image& first = *images.front();
@@ -241,71 +341,24 @@ Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::ve
                                  : static_cast<std::size_t>(o.planes);
     m.planes = m.wide = static_cast<int>(std::min(most, D));
     const auto P = static_cast<std::size_t>(m.planes);
-    auto value = [&](std::size_t texel, std::size_t d) -> double {
-        const Image& image = *images[d / C];
-        return C == 1 ? image.grey(texel) : image.samples[texel * 3 + d % C];
-    };
+    const StackValues value{images, C};
 
-    // Mean and covariance over (at most about 2^16 of) the sample's texels.
     std::vector<std::uint32_t> sample;
     for (std::size_t i = 0; i < mask.inside.size(); ++i)
         if (mask.inside[i]) sample.push_back(static_cast<std::uint32_t>(i));
     if (sample.empty()) return Error{what + ": the mask has no sample pixels"};
-    const std::size_t step = std::max<std::size_t>(1, sample.size() / 65536);
-    std::vector<std::uint32_t> used;
-    for (std::size_t i = 0; i < sample.size(); i += step) used.push_back(sample[i]);
-    const std::size_t blocks = std::min<std::size_t>(16, used.size());
-    std::vector<Eigen::MatrixXd> partial(blocks, Eigen::MatrixXd::Zero(D, D));
-    std::vector<Eigen::VectorXd> partialMean(blocks, Eigen::VectorXd::Zero(D));
-    parallelFor(blocks, o.threads, [&](std::size_t b) {
-        Eigen::VectorXd x(D);
-        for (std::size_t s = b; s < used.size(); s += blocks) {
-            for (std::size_t d = 0; d < D; ++d) x(d) = value(used[s], d);
-            partial[b].selfadjointView<Eigen::Lower>().rankUpdate(x);
-            partialMean[b] += x;
-        }
-    });
-    Eigen::MatrixXd second = Eigen::MatrixXd::Zero(D, D);
-    Eigen::VectorXd mean = Eigen::VectorXd::Zero(D);
-    for (std::size_t b = 0; b < blocks; ++b) {
-        second += partial[b];
-        mean += partialMean[b];
-    }
-    const auto count = static_cast<double>(used.size());
-    mean /= count;
-    Eigen::MatrixXd covariance = second.selfadjointView<Eigen::Lower>();
-    covariance = covariance / count - mean * mean.transpose();
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance);
-    if (eigen.info() != Eigen::Success) return Error{what + ": the images' principal components did not converge"};
-    // The largest P components (the solver sorts ascending).
-    Eigen::MatrixXd E(D, P);
-    std::vector<double> variance(P);
-    for (std::size_t p = 0; p < P; ++p) {
-        E.col(static_cast<Eigen::Index>(p)) = eigen.eigenvectors().col(static_cast<Eigen::Index>(D - 1 - p));
-        variance[p] = std::max(0.0, eigen.eigenvalues()(static_cast<Eigen::Index>(D - 1 - p)));
-    }
-
-    // Each texel's coordinates on the components.
-    const std::size_t texels = m.texels();
-    std::vector<double> coordinates(texels * P);
-    parallelFor((texels + 4095) / 4096, o.threads, [&](std::size_t block) {
-        const std::size_t end = std::min(texels, (block + 1) * 4096);
-        Eigen::VectorXd x(D);
-        for (std::size_t i = block * 4096; i < end; ++i) {
-            for (std::size_t d = 0; d < D; ++d) x(d) = value(i, d) - mean(d);
-            const Eigen::VectorXd c = E.transpose() * x;
-            for (std::size_t p = 0; p < P; ++p) coordinates[i * P + p] = c(static_cast<Eigen::Index>(p));
-        }
-    });
+    Result<Components> pca = principalComponents(value, D, P, sample, o.threads, what);
+    if (!pca) return Error{pca.error()};
+    std::vector<double> coordinates = projectTexels(value, *pca, m.texels(), o.threads);
     if (o.packed) {
-        chooseSplit(coordinates, variance, sample, o.planes, m);
+        chooseSplit(coordinates, pca->variance, sample, o.planes, m);
         if (static_cast<std::size_t>(m.planes) < P) {  // fewer components kept: drop the rest
             std::vector<double> kept;
-            for (std::size_t i = 0; i < texels; ++i)
+            for (std::size_t i = 0; i < m.texels(); ++i)
                 kept.insert(kept.end(), coordinates.begin() + static_cast<std::ptrdiff_t>(i * P),
                             coordinates.begin() + static_cast<std::ptrdiff_t>(i * P) + m.planes);
             coordinates = std::move(kept);
-            E.conservativeResize(Eigen::NoChange, m.planes);
+            pca->E.conservativeResize(Eigen::NoChange, m.planes);
         }
     }
     quantisePlanes(coordinates, m);
@@ -317,33 +370,11 @@ Result<LightModel> fitPca(const std::vector<const Image*>& images, const std::ve
     m.table.resize(n * row);
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t c = 0; c < C; ++c) {
-            m.table[i * row + c] = static_cast<float>(mean(i * C + c));
+            m.table[i * row + c] = static_cast<float>(pca->mean(i * C + c));
             for (std::size_t p = 0; p < kept; ++p)
-                m.table[i * row + (1 + p) * C + c] = static_cast<float>(E(i * C + c, p));
+                m.table[i * row + (1 + p) * C + c] = static_cast<float>(pca->E(i * C + c, p));
         }
-    // sigma: the multiple of the lights' median spacing that predicts each light's row best
-    // from the others.
-    std::vector<double> spacing;
-    for (std::size_t i = 0; i < n; ++i) {
-        double nearest = INFINITY;
-        const Vec3 a = toVector(lights[i]);
-        for (std::size_t j = 0; j < n; ++j) {
-            if (j == i) continue;
-            const Vec3 b = toVector(lights[j]);
-            const double d =
-                std::sqrt((a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y) + (a.z - b.z) * (a.z - b.z));
-            if (d > 1e-9) nearest = std::min(nearest, d);
-        }
-        if (std::isfinite(nearest)) spacing.push_back(nearest);
-    }
-    std::sort(spacing.begin(), spacing.end());
-    const double unit = spacing.empty() ? 0.1 : std::max(spacing[spacing.size() / 2], 1e-3);
-    double best = INFINITY;
-    m.sigma = static_cast<float>(unit);
-    for (double factor : {0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 2.8, 4.0}) {
-        const double e = n > 1 ? leaveOneOutError(lights, m.table, row, C, variance, unit * factor) : 0;
-        if (e < best) best = e, m.sigma = static_cast<float>(unit * factor);
-    }
+    m.sigma = chooseSigma(lights, m.table, row, C, pca->variance);
     if (o.basis == LightBasis::Bilinear) {
         if (o.grid < 2 || o.grid > 64) return Error{"bln grid " + std::to_string(o.grid) + " is outside 2..64"};
         m.grid = o.grid;

@@ -17,6 +17,153 @@
 
 namespace btflut::cli::eval {
 
+namespace {
+
+// One fold's banks, baked on first use from its training images: one per setting (the base,
+// one grey reference, also serves brdf and ptm), each with its relighter. The first fold's
+// are saved for the report (bankFiles).
+class FoldBanks {
+public:
+    FoldBanks(std::vector<Variant>& variants, const Dataset& train, bool ptm, bool firstFold,
+              const std::filesystem::path& scratch, std::map<std::string, std::string>& bankFiles)
+        : m_variants(variants),
+          m_train(train),
+          m_ptm(ptm),
+          m_firstFold(firstFold),
+          m_scratch(scratch),
+          m_bankFiles(bankFiles) {}
+
+    static Variant::Setting keyOf(const Variant& v) {
+        return v.mode == RenderMode::Lut ? v.setting() : Variant::Setting{"references", 1,     1,      ColourMode::Grey,
+                                                                          false,        false, v.grid, v.domain};
+    }
+
+    Result<LutBank*> bankFor(Variant& v) {
+        const Variant::Setting key = keyOf(v);
+        if (!m_banks.count(key))
+            if (Status s = bake(v, key); !s) return Error{s.error()};
+        LutBank* bank = m_banks[key].get();
+        if (m_firstFold && !m_bankFiles.count(v.name)) {
+            const std::string path = (m_scratch / (std::to_string(m_bankFiles.size()) + ".btflut")).string();
+            if (Status s = saveBank(*bank, path); !s) return Error{s.error()};
+            m_bankFiles[v.name] = path;
+            v.bytesPerTexel = bytesPerTexel(v, *bank);
+        }
+        return bank;
+    }
+
+    const Relighter& relighter(const Variant& v) const { return *m_relighters.at(keyOf(v)); }
+
+private:
+    Status bake(const Variant& v, const Variant::Setting& key) {
+        Variant setting = v;
+        std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled,
+                 setting.corrections, setting.grid, setting.domain) = key;
+        const auto start = Clock::now();
+        const BakeOptions options = bakeOptionsOf(setting, m_ptm && setting.base());
+        // lut auto: bake's validated choice, from the fold's training images alone
+        Result<LutBank> bank =
+            setting.predictor == "auto" ? bakeAuto(m_train, {.base = options}) : bakeBank(m_train, options);
+        if (!bank) return Error{bank.error()};
+        if (setting.filled)  // fitted to the training images only
+            if (Result<ModelFillReport> fill = fillFromDataset(*bank, m_train, nullptr); !fill)
+                return Error{fill.error()};
+        const double took = seconds(start);
+        m_banks[key] = std::make_unique<LutBank>(std::move(*bank));
+        m_relighters[key] = std::make_unique<Relighter>(*m_banks[key]);
+        for (Variant& other : m_variants)
+            if (other.mode == RenderMode::Lut && other.setting() == key) other.bakeSeconds.push_back(took);
+        return success();
+    }
+
+    std::vector<Variant>& m_variants;
+    const Dataset& m_train;
+    bool m_ptm, m_firstFold;
+    const std::filesystem::path& m_scratch;
+    std::map<std::string, std::string>& m_bankFiles;
+    std::map<Variant::Setting, std::unique_ptr<LutBank>> m_banks;
+    std::map<Variant::Setting, std::unique_ptr<Relighter>> m_relighters;
+};
+
+Result<Image> loadSameSize(const Dataset& dataset, std::size_t i, const Image& first) {
+    Result<Image> image = loadImage(dataset.images[i].path);
+    if (!image) return Error{image.error()};
+    if (Status s =
+            requireSameSize(*image, dataset.images[i].path, first.width, first.height, dataset.images.front().path);
+        !s)
+        return Error{s.error()};
+    return image;
+}
+
+// The RTI bases on their own (variants with a basis), fitted to the fold's training images
+// (decoded once), by variant name.
+Result<std::map<std::string, LightModel>> fitBases(std::vector<Variant>& variants, const Dataset& dataset,
+                                                   const Fold& fold, const Image& first, const Mask& mask) {
+    std::map<std::string, LightModel> models;
+    if (std::none_of(variants.begin(), variants.end(), [](const Variant& v) { return v.basis.has_value(); }))
+        return models;
+    std::vector<Image> decoded;
+    std::vector<const Image*> images;
+    std::vector<Direction> lights;
+    for (std::size_t i : fold.train) {
+        Result<Image> image = loadSameSize(dataset, i, first);
+        if (!image) return Error{image.error()};
+        decoded.push_back(std::move(*image));
+        lights.push_back(dataset.images[i].light);
+    }
+    for (const Image& image : decoded) images.push_back(&image);
+    for (Variant& v : variants) {
+        if (!v.basis) continue;
+        const auto start = Clock::now();
+        Result<LightModel> model = fitLightModel(images, lights, mask, *v.basis, dataset.source);
+        if (!model) return Error{model.error()};
+        v.bakeSeconds.push_back(seconds(start));
+        v.bytesPerTexel = model->bytesPerTexel();
+        models[v.name] = std::move(*model);
+    }
+    return models;
+}
+
+// The training image nearest held-out image `info` (its light and view, in the bank's
+// domain), decoded once per fold.
+Result<Image> nearestTraining(const Dataset& dataset, const Fold& fold, const LutBank& bank, const DatasetImage& info,
+                              std::map<std::size_t, Image>& decoded) {
+    auto distance = [&](const DatasetImage& m) {
+        if (bank.domain == BankDomain::Isotropic) {
+            const Point3 a = isotropicPoint(m.light, m.view), b = isotropicPoint(info.light, info.view);
+            return std::hypot(a.x - b.x, a.y - b.y, a.z - b.z);
+        }
+        return std::hypot(angleBetween(m.light, info.light), angleBetween(m.view, info.view));
+    };
+    std::size_t nearest = fold.train.front();
+    for (std::size_t i : fold.train)
+        if (distance(dataset.images[i]) < distance(dataset.images[nearest])) nearest = i;
+    if (!decoded.count(nearest)) {
+        Result<Image> image = loadImage(dataset.images[nearest].path);
+        if (!image) return Error{image.error()};
+        decoded.emplace(nearest, std::move(*image));
+    }
+    return decoded.at(nearest);
+}
+
+// A variant's bank relit for held-out image `info` through the code users run.
+Image relitPrediction(Variant& v, const LutBank& bank, const Relighter& relighter, const DatasetImage& info) {
+    const auto start = Clock::now();
+    Image predicted;
+    if (v.fromGrid && bank.makesLuts())  // the prediction, the LUT from the match grid
+        predicted = relighter.apply(relighter.gridFrame(info.light), true);
+    else if (v.fromGrid)  // the classic grid, as an engine reads it
+        predicted =
+            applyLuts(bank.reference, bank.colour, bank.gridLookup(info.light), bank.entries, bank.targetCode());
+    else
+        predicted = v.blendedLuts ? relighter.applyBlendingLuts(info.light, info.view, true)
+                                  : relighter.apply(relighter.frame(info.light, info.view), true);
+    v.relightSeconds.push_back(seconds(start));
+    return predicted;
+}
+
+}  // namespace
+
 Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, const std::vector<Fold>& folds,
                     const Image& first, const Mask& mask, bool ptm, const EvalOptions& o,
                     const std::filesystem::path& scratch, std::map<std::string, std::string>& bankFiles,
@@ -39,123 +186,38 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
     for (std::size_t f = 0; f < folds.size(); ++f) {
         const Fold& fold = folds[f];
         const Dataset train = subset(dataset, fold.train);
-        // Banks per setting; the base (one grey reference) also serves brdf and ptm.
-        std::map<Variant::Setting, std::unique_ptr<LutBank>> banks;
-        std::map<Variant::Setting, std::unique_ptr<Relighter>> relighters;
-        auto bankFor = [&](Variant& v) -> Result<LutBank*> {
-            const auto key = v.mode == RenderMode::Lut ? v.setting()
-                                                       : Variant::Setting{"references", 1,     1,      ColourMode::Grey,
-                                                                          false,        false, v.grid, v.domain};
-            if (!banks.count(key)) {
-                Variant setting = v;
-                std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled,
-                         setting.corrections, setting.grid, setting.domain) = key;
-                const auto start = Clock::now();
-                const BakeOptions options = bakeOptionsOf(setting, ptm && setting.base());
-                // lut auto: bake's validated choice, from the fold's training images alone
-                Result<LutBank> bank =
-                    setting.predictor == "auto" ? bakeAuto(train, {.base = options}) : bakeBank(train, options);
-                if (!bank) return Error{bank.error()};
-                if (setting.filled)  // fitted to the training images only
-                    if (Result<ModelFillReport> fill = fillFromDataset(*bank, train, nullptr); !fill)
-                        return Error{fill.error()};
-                const double took = seconds(start);
-                banks[key] = std::make_unique<LutBank>(std::move(*bank));
-                relighters[key] = std::make_unique<Relighter>(*banks[key]);
-                for (Variant& other : variants)
-                    if (other.mode == RenderMode::Lut && other.setting() == key) other.bakeSeconds.push_back(took);
-            }
-            LutBank* bank = banks[key].get();
-            if (f == 0 && !bankFiles.count(v.name)) {
-                const std::string path = (scratch / (std::to_string(bankFiles.size()) + ".btflut")).string();
-                if (Status s = saveBank(*bank, path); !s) return Error{s.error()};
-                bankFiles[v.name] = path;
-                v.bytesPerTexel = bytesPerTexel(v, *bank);
-            }
-            return bank;
-        };
+        FoldBanks banks(variants, train, ptm, f == 0, scratch, bankFiles);
         for (Variant& v : variants)
-            if (Result<LutBank*> b = bankFor(v); !b) return Error{b.error()};
-        // The RTI bases on their own, fitted to the training images (decoded once per fold).
-        std::map<std::string, LightModel> models;
-        if (std::any_of(variants.begin(), variants.end(), [](const Variant& v) { return v.basis.has_value(); })) {
-            std::vector<Image> decoded;
-            std::vector<const Image*> images;
-            std::vector<Direction> lights;
-            for (std::size_t i : fold.train) {
-                Result<Image> image = loadImage(dataset.images[i].path);
-                if (!image) return Error{image.error()};
-                if (Status s = requireSameSize(*image, dataset.images[i].path, first.width, first.height,
-                                               dataset.images.front().path);
-                    !s)
-                    return Error{s.error()};
-                decoded.push_back(std::move(*image));
-                lights.push_back(dataset.images[i].light);
-            }
-            for (const Image& image : decoded) images.push_back(&image);
-            for (Variant& v : variants) {
-                if (!v.basis) continue;
-                const auto start = Clock::now();
-                Result<LightModel> model = fitLightModel(images, lights, mask, *v.basis, dataset.source);
-                if (!model) return Error{model.error()};
-                v.bakeSeconds.push_back(seconds(start));
-                v.bytesPerTexel = model->bytesPerTexel();
-                models[v.name] = std::move(*model);
-            }
-        }
+            if (Result<LutBank*> b = banks.bankFor(v); !b) return Error{b.error()};
+        Result<std::map<std::string, LightModel>> models = fitBases(variants, dataset, fold, first, mask);
+        if (!models) return Error{models.error()};
 
         std::map<std::size_t, Image> trainImages;  // nearest: decoded once per fold
         for (std::size_t t : fold.test) {
             const DatasetImage& info = dataset.images[t];
-            Result<Image> photo = loadImage(info.path);
+            Result<Image> photo = loadSameSize(dataset, t, first);
             if (!photo) return Error{photo.error()};
-            if (Status s = requireSameSize(*photo, info.path, first.width, first.height, dataset.images.front().path);
-                !s)
-                return Error{s.error()};
             const bool sheetRow = onSheet.count(t) > 0;
             if (sheetRow) {
                 sheet.push_back({{info.name + " (photo)", *photo}});
                 sheetHistograms.front().rows.push_back(histogramOf(*photo, info));
             }
             for (Variant& v : variants) {
-                Result<LutBank*> found = bankFor(v);
+                Result<LutBank*> found = banks.bankFor(v);
                 if (!found) return Error{found.error()};
                 const LutBank& bank = **found;
                 v.bankDomain = bank.domain;
                 Image predicted;
                 if (v.basis) {
-                    predicted = models.at(v.name).render(info.light);
+                    predicted = models->at(v.name).render(info.light);
                 } else if (v.mode == RenderMode::Lut) {
-                    const Relighter& relighter = *relighters.at(v.setting());
-                    const auto start = Clock::now();
-                    if (v.fromGrid && bank.makesLuts())  // the prediction, the LUT from the match grid
-                        predicted = relighter.apply(relighter.gridFrame(info.light), true);
-                    else if (v.fromGrid)  // the classic grid, as an engine reads it
-                        predicted = applyLuts(bank.reference, bank.colour, bank.gridLookup(info.light), bank.entries,
-                                              bank.targetCode());
-                    else
-                        predicted = v.blendedLuts ? relighter.applyBlendingLuts(info.light, info.view, true)
-                                                  : relighter.apply(relighter.frame(info.light, info.view), true);
-                    v.relightSeconds.push_back(seconds(start));
+                    predicted = relitPrediction(v, bank, banks.relighter(v), info);
                 } else if (v.mode == RenderMode::Ptm) {
                     predicted = bank.ptm.render(info.light);
                 } else if (v.mode == RenderMode::Nearest) {  // the nearest measured light-view pair in the domain
-                    auto distance = [&](const DatasetImage& m) {
-                        if (bank.domain == BankDomain::Isotropic) {
-                            const Point3 a = isotropicPoint(m.light, m.view), b = isotropicPoint(info.light, info.view);
-                            return std::hypot(a.x - b.x, a.y - b.y, a.z - b.z);
-                        }
-                        return std::hypot(angleBetween(m.light, info.light), angleBetween(m.view, info.view));
-                    };
-                    std::size_t nearest = fold.train.front();
-                    for (std::size_t i : fold.train)
-                        if (distance(dataset.images[i]) < distance(dataset.images[nearest])) nearest = i;
-                    if (!trainImages.count(nearest)) {
-                        Result<Image> image = loadImage(dataset.images[nearest].path);
-                        if (!image) return Error{image.error()};
-                        trainImages.emplace(nearest, std::move(*image));
-                    }
-                    predicted = trainImages.at(nearest);
+                    Result<Image> nearest = nearestTraining(dataset, fold, bank, info, trainImages);
+                    if (!nearest) return Error{nearest.error()};
+                    predicted = std::move(*nearest);
                 } else {
                     predicted = bank.reference;
                     if (v.mode == RenderMode::Brdf) {
