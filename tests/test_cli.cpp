@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include "core/bank/bank_file.h"
+#include "core/predict/model_predictor.h"
 #include "helpers.h"
 
 using namespace btflut;
@@ -216,7 +217,7 @@ TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched
         CHECK(automatic.status == 0);
         Result<LutBank> bank = loadBank(dir / "auto.btflut");
         REQUIRE(bank.ok());
-        CHECK(bank->predictsWithModel());
+        CHECK(bank->predictorAs<ModelPredictor>() != nullptr);
     }
     CHECK(readText(dir / "keep.btflut") == "precious");
     CHECK(readText(dir / "keep.png") == "precious");

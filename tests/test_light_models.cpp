@@ -12,6 +12,7 @@
 #include "core/data/dataset.h"
 #include "core/eval/metrics.h"
 #include "core/predict/light_model.h"
+#include "core/predict/model_predictor.h"
 #include "core/relight/relighter.h"
 #include "helpers.h"
 
@@ -162,7 +163,7 @@ TEST_CASE("light models: lights within 5 degrees and black pixels give finite mo
     for (const LightModelOptions& o : everyBasis()) {
         Result<LutBank> bank = bakeBank(*dataset, {.model = o});
         REQUIRE_MESSAGE(bank.ok(), bank.error());
-        const LightModel& m = bank->blend.model;
+        const LightModel& m = bank->predictorAs<ModelPredictor>()->model();
         for (std::size_t p = 0; p < static_cast<std::size_t>(m.planes); ++p) {
             CHECK(std::isfinite(m.scale[p]));
             CHECK(std::isfinite(m.bias[p]));
@@ -259,7 +260,7 @@ TEST_CASE("auto: degenerate captures bake; a budget below every predictor is ref
         REQUIRE(runCli({"bake", manifest, "--budget", "3", "-o", dir / "b3.btflut", "-q"}).status == 0);
         Result<LutBank> bank = loadBank(dir / "b3.btflut");
         REQUIRE(bank.ok());
-        CHECK((bank->predictsWithModel() ? bank->blend.model.bytesPerTexel() : bank->reference.channels) <= 3);
+        CHECK(bank->predictorBytesPerTexel() <= 3);
     }
 }
 
@@ -275,7 +276,8 @@ TEST_CASE("version 5 banks of every basis round-trip; every cut and flipped bit 
         Result<LutBank> back = decodeBank(bytes, "b.btflut");
         REQUIRE_MESSAGE(back.ok(), back.error());
         CHECK(encodeBank(*back) == bytes);
-        CHECK(back->blend.model.coefficients == bank->blend.model.coefficients);
+        CHECK(back->predictorAs<ModelPredictor>()->model().coefficients ==
+              bank->predictorAs<ModelPredictor>()->model().coefficients);
         CHECK(back->blend.match == 0.5f);
         for (std::size_t cut = 8; cut < bytes.size(); cut += bytes.size() / 29)
             CHECK_FALSE(decodeBank(Bytes(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(cut)), "cut").ok());

@@ -10,6 +10,7 @@
 #include "core/eval/holdout.h"
 #include "core/eval/metrics.h"
 #include "core/histogram/histogram.h"
+#include "core/predict/reference_blend.h"
 #include "core/predict/references.h"
 #include "core/relight/relighter.h"
 #include "helpers.h"
@@ -150,7 +151,7 @@ TEST_CASE("several references: blend, then match keeps the measured histogram; t
         REQUIRE(one.ok());
         REQUIRE(blend.ok());
         REQUIRE(blend->makesLuts());
-        CHECK(blend->blend.references.size() == 4);
+        CHECK(blend->predictorAs<ReferenceBlend>()->references().size() == 4);
         const Relighter oneRelighter(*one), blendRelighter(*blend);
         double oneError = 0, blendError = 0, oneL1 = 0, blendL1 = 0;
         for (const DatasetImage& im : dataset->images) {
@@ -170,7 +171,7 @@ TEST_CASE("several references: blend, then match keeps the measured histogram; t
         // ... and the pixels are far closer than one reference's.
         CHECK(blendError < 0.5 * oneError);
         // At a reference's own light the blend is that reference: the photograph comes back.
-        const LightNode& second = blend->blend.lights[1];
+        const ReferenceLight& second = blend->predictorAs<ReferenceBlend>()->lights()[1];
         auto found = std::find_if(dataset->images.begin(), dataset->images.end(),
                                   [&](const DatasetImage& im) { return im.name == second.name; });
         REQUIRE(found != dataset->images.end());

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/predict/model_predictor.h"
+#include "core/predict/reference_blend.h"
 #include "gl/textures.h"
 
 namespace btflut {
@@ -16,7 +18,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     BlendTextures t;
     t.m_bank = &bank;
     t.m_lutsAsUniforms = lutsAsUniforms(bank);
-    const std::unique_ptr<const Predictor> predictor = bank.makePredictor();
+    const Predictor* predictor = &bank.predictor();
     t.m_defines = {"BLEND"};
     const std::vector<std::string> own = predictor->shaderDefines();
     t.m_defines.insert(t.m_defines.end(), own.begin(), own.end());
@@ -93,10 +95,10 @@ void BlendTextures::bind(const ShaderProgram& p, const RelightFrame& frame, cons
     gl.Uniform1i(p["blendEntries"], bank.entries);
     gl.Uniform1i(p["blendRegions"], bank.blend.regions);
     if (m_lutsAsUniforms) gl.Uniform1fv(p["lutValues"], static_cast<GLsizei>(bank.matchLength()), frame.luts.data());
-    if (bank.predictsWithModel()) {
+    if (const ModelPredictor* model = bank.predictorAs<ModelPredictor>()) {
         // The frame's integers (LightModelFixed; the CPU twin: predictFixed) as btflut.glsl's
         // BtflutModelFrame: per layer of four planes and per channel, the planes' weights.
-        const LightModel& m = bank.blend.model;
+        const LightModel& m = model->model();
         const auto P = static_cast<std::size_t>(m.planes), C = static_cast<std::size_t>(m.channels);
         std::vector<float> weights(static_cast<std::size_t>(m_layers) * 3 * 4, 0.f);
         for (std::size_t q = 0; q < P; ++q)
@@ -108,7 +110,8 @@ void BlendTextures::bind(const ShaderProgram& p, const RelightFrame& frame, cons
         gl.Uniform3fv(p["blendModel.offset"], 1, offset);
         gl.Uniform1f(p["blendModel.scale"], frame.model.scale);
     } else {
-        const auto fetches = static_cast<GLsizei>(std::min<std::size_t>(bank.blend.references.size(), 3));
+        const auto fetches =
+            static_cast<GLsizei>(std::min<std::size_t>(bank.predictorAs<ReferenceBlend>()->references().size(), 3));
         GLint layers[3] = {0, 0, 0};
         float weights[3] = {0, 0, 0};
         for (int k = 0; k < frame.count; ++k) {

@@ -284,12 +284,8 @@ bool Viewer::panel(int width, int height) {
                     colourName(m_bank->colour), m_bank->entries);
         if (m_bank->makesLuts()) {
             const LutBank::Blend& blend = m_bank->blend;
-            if (m_bank->predictsWithModel())
-                ImGui::Text("lut: %s relit, matched (%.2f) in %d region(s)", m_bank->predictorName().c_str(),
-                            static_cast<double>(blend.match), blend.regions);
-            else
-                ImGui::Text("lut: %zu references blended, matched in %d region(s)", blend.references.size(),
-                            blend.regions);
+            ImGui::Text("lut: %s, matched (%.2f) in %d region(s)", m_bank->predictor().description().c_str(),
+                        static_cast<double>(blend.match), blend.regions);
         }
         ImGui::Text("%zu view layer(s), %zu lights (theta <= %.0f)", m_bank->layers.size(), nodes, maxTheta);
         ImGui::Text("%.0f%% of light directions inside the measured", 100 * m_coverage);

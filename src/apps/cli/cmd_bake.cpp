@@ -16,6 +16,7 @@
 #include "core/inverse/fit.h"
 #include "core/inverse/model_fill.h"
 #include "core/io/json_text.h"
+#include "core/predict/reference_blend.h"
 
 namespace btflut::cli {
 
@@ -138,8 +139,9 @@ std::string predictorSummary(const LutBank& bank) {
     if (!bank.makesLuts()) return "";
     const LutBank::Blend& b = bank.blend;
     // The name `--predictor` takes (bln9c, not the planes it unpacks to), as info prints it.
-    std::string s = bank.predictsWithModel() ? ", " + bank.predictorName()
-                                             : ", " + std::to_string(b.references.size()) + " reference(s)";
+    const ReferenceBlend* references = bank.predictorAs<ReferenceBlend>();
+    std::string s = references ? ", " + std::to_string(references->references().size()) + " reference(s)"
+                               : ", " + bank.predictorName();
     char match[32];
     std::snprintf(match, sizeof match, "%.2f", static_cast<double>(b.match));
     // At a measured light every bank is matched fully (Relighter::matchAt).

@@ -18,7 +18,9 @@
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
 #include "core/predict/light_model.h"
+#include "core/predict/model_predictor.h"
 #include "core/predict/ptm_file.h"
+#include "core/predict/reference_blend.h"
 #include "core/relight/engine_material.h"
 #include "core/relight/material_json.h"
 #include "core/relight/relighter.h"
@@ -88,36 +90,39 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
         blend["mask"] = texture("mask", byteImage(bl.mask.inside, b.reference.width, b.reference.height, 255));
         if (!bl.labels.empty())
             blend["labels"] = texture("labels", byteImage(bl.labels, b.reference.width, b.reference.height, 1));
-        if (!bl.albedo.samples.empty()) blend["albedo"] = texture("albedo", bl.albedo);
-        if (bl.predictor == LutBank::Blend::Predictor::Model) {
+        const ReferenceBlend* references = b.predictorAs<ReferenceBlend>();
+        const ModelPredictor* model = b.predictorAs<ModelPredictor>();
+        if (references && !references->albedo().samples.empty())
+            blend["albedo"] = texture("albedo", references->albedo());
+        if (model && !model->bankPtm()) {
             // The light model (docs/predictors.md; its LMDL chunk in docs/btflut-format.md).
-            const LightModel& m = bl.model;
-            nlohmann::json model{{"basis", lightBasisName(m.basis)},
-                                 {"name", lightModelName(m)},
-                                 {"planes", m.planes},
-                                 {"planes_8bit", m.wide},
-                                 {"channels", m.channels},
-                                 {"order", m.order},
-                                 {"scale", m.scale},
-                                 {"bias", m.bias},
-                                 {"images", nlohmann::json::array()}};
+            const LightModel& m = model->model();
+            nlohmann::json sidecar{{"basis", lightBasisName(m.basis)},
+                                   {"name", lightModelName(m)},
+                                   {"planes", m.planes},
+                                   {"planes_8bit", m.wide},
+                                   {"channels", m.channels},
+                                   {"order", m.order},
+                                   {"scale", m.scale},
+                                   {"bias", m.bias},
+                                   {"images", nlohmann::json::array()}};
             if (m.basis == LightBasis::Rbf) {
-                model["sigma"] = m.sigma;
-                for (Direction d : m.lights) model["lights"].push_back(directionJson(d));
+                sidecar["sigma"] = m.sigma;
+                for (Direction d : m.lights) sidecar["lights"].push_back(directionJson(d));
             }
-            if (m.basis == LightBasis::Bilinear) model["grid"] = m.grid;
-            if (!m.table.empty()) model["table"] = m.table;
+            if (m.basis == LightBasis::Bilinear) sidecar["grid"] = m.grid;
+            if (!m.table.empty()) sidecar["table"] = m.table;
             const std::vector<Image> images = lightModelImages(m);
             for (std::size_t k = 0; k < images.size(); ++k)
-                model["images"].push_back(texture("model-" + std::to_string(k), images[k]));
-            model["layout"] =
+                sidecar["images"].push_back(texture("model-" + std::to_string(k), images[k]));
+            sidecar["layout"] =
                 "images: the 8-bit planes three to an image (R, G, B), then the 4-bit planes six to an image (two to a "
                 "channel, the first in the high nibble), then the albedo if the model has one; value = (code - bias) * "
                 "scale; table rows (per rbf light or bln grid node j * grid + i): the channels' offsets, then each "
                 "plane's channel weights";
             blend["predictor"] = b.predictorName();
-            blend["model"] = model;
-        } else if (bl.predictor == LutBank::Blend::Predictor::Ptm) {
+            blend["model"] = sidecar;
+        } else if (model) {  // the bank's PTM
             blend["predictor"] = "ptm";
             blend["ptm_scale"] = b.ptm.scale;
             blend["ptm_bias"] = b.ptm.bias;
@@ -129,9 +134,10 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
             }
         } else {
             blend["predictor"] = b.predictorName();
-            for (std::size_t k = 0; k < bl.references.size(); ++k)
-                blend["references"].push_back({{"file", texture("reference-" + std::to_string(k), bl.references[k])},
-                                               {"light", directionJson(bl.lights[k].light)}});
+            for (std::size_t k = 0; k < references->references().size(); ++k)
+                blend["references"].push_back(
+                    {{"file", texture("reference-" + std::to_string(k), references->references()[k])},
+                     {"light", directionJson(references->lights()[k].light)}});
         }
         blend["how"] =
             "per light: blend the references of the Delaunay triangle (equal-area disk) around the light with "

@@ -8,6 +8,8 @@
 #include "cli/command.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
+#include "core/predict/model_predictor.h"
+#include "core/predict/reference_blend.h"
 #include "core/relight/relighter.h"
 
 namespace btflut::cli {
@@ -105,14 +107,15 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
                        {"ptm", !b.ptm.empty()},
                        {"layers", nlohmann::json::array()}};
     if (b.makesLuts()) {
+        const ReferenceBlend* references = b.predictorAs<ReferenceBlend>();
         out["blend"] = {{"predictor", b.predictorName()},
-                        {"references", b.blend.references.size()},
+                        {"references", references ? references->references().size() : 0},
                         {"regions", b.blend.regions},
                         {"quantiles", b.blend.quantiles},
                         {"match", b.blend.match},
                         {"target", b.blend.target == LutBank::Blend::Target::Corrections ? "corrections" : "measured"}};
-        if (b.predictsWithModel()) {
-            const LightModel& m = b.blend.model;
+        if (const ModelPredictor* model = b.predictorAs<ModelPredictor>()) {
+            const LightModel& m = model->model();
             out["blend"]["model"] = {{"basis", lightBasisName(m.basis)},
                                      {"planes", m.planes},
                                      {"channels", m.channels},
@@ -159,13 +162,7 @@ Status runInfo(const InfoOptions& o) {
               << "\n";
     if (b.makesLuts()) {
         // "relit per light" only: how far it is matched is the next line's (0: not at all).
-        if (b.predictsWithModel())
-            std::cout << "  predictor: " << b.predictorName() << " (" << b.blend.model.bytesPerTexel()
-                      << " bytes per texel), relit per light, LUTs made at run time from ";
-        else
-            std::cout << "  predictor: " << b.blend.references.size()
-                      << " reference(s) blended per light, LUTs made at run "
-                      << "time from ";
+        std::cout << "  predictor: " << b.predictor().description() << ", LUTs made at run time from ";
         std::cout << b.blend.quantiles << "-sample quantile functions; " << b.blend.regions << " region(s)";
         if (b.blend.regions > 1) {
             std::vector<std::size_t> texels(static_cast<std::size_t>(b.blend.regions), 0);
@@ -186,9 +183,10 @@ Status runInfo(const InfoOptions& o) {
                           ? ", through the nodes' corrections blended at the light"
                           : ", to the measured distributions blended at the light")
                   << "\n";
-        for (std::size_t k = 0; k < b.blend.lights.size(); ++k)
-            std::cout << "    reference " << k << ": " << b.blend.lights[k].name << ", light "
-                      << degrees(b.blend.lights[k].light) << "\n";
+        if (const ReferenceBlend* references = b.predictorAs<ReferenceBlend>())
+            for (std::size_t k = 0; k < references->lights().size(); ++k)
+                std::cout << "    reference " << k << ": " << references->lights()[k].name << ", light "
+                          << degrees(references->lights()[k].light) << "\n";
     }
     if (!b.selection.empty()) printSelection(b.selection);
     if (!b.ptm.empty())

@@ -7,6 +7,8 @@
 #include <optional>
 
 #include "core/parallel.h"
+#include "core/predict/model_predictor.h"
+#include "core/predict/reference_blend.h"
 #include "core/predict/references.h"
 #include "core/relight/relighter.h"
 
@@ -310,7 +312,7 @@ public:
         if (m_options.model) {
             Result<LightModel> model = fitModel(m_dataset, m_options, m_refIndex, *m_ref, m_mask, m_images, m_decoded);
             if (!model) return Error{model.error()};
-            m_bank.blend.model = std::move(*model);
+            m_model = std::move(*model);
         }
         return success();
     }
@@ -418,21 +420,23 @@ private:
         blend.target = m_options.target;
         blend.labels = m_blend.regions.count > 1 ? std::move(m_blend.regions.labels) : std::vector<std::uint8_t>{};
         blend.mask = m_mask;
-        if (m_options.model) {
-            blend.predictor = LutBank::Blend::Predictor::Model;
+        const bool perChannel = m_bank.colour == ColourMode::Rgb;
+        if (m_model) {
+            blend.predictor = std::make_shared<ModelPredictor>(std::move(*m_model), perChannel);
             return success();
         }
-        blend.references = std::move(m_blendReferences);
-        for (std::size_t k : m_blend.references)
-            blend.lights.push_back({m_dataset.images[k].name, m_dataset.images[k].light});
-        if (m_albedo) blend.albedo = m_albedo->finish();
-        for (const Image& r : blend.references) {
+        for (const Image& r : m_blendReferences) {
             const std::vector<LevelCounts> levels =
-                countLevels(r, m_mask, m_bank.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey);
+                countLevels(r, m_mask, perChannel ? ColourMode::Rgb : ColourMode::Grey);
             for (const LevelCounts& l : levels)
                 if (l.presentCodes() < 2)
                     return Error{m_dataset.source + ": a reference image is constant over the sample"};
         }
+        std::vector<ReferenceLight> lights;
+        for (std::size_t k : m_blend.references)
+            lights.push_back({m_dataset.images[k].name, m_dataset.images[k].light});
+        blend.predictor = std::make_shared<ReferenceBlend>(std::move(m_blendReferences), std::move(lights), perChannel,
+                                                           m_albedo ? m_albedo->finish() : Image{});
         return success();
     }
 
@@ -449,6 +453,7 @@ private:
     std::vector<LevelCounts> m_refLevels;  // classic banks: the reference's levels per channel
     std::vector<Image> m_decoded;          // a light model's images, decoded once for the fit and the pass
     std::vector<Image> m_blendReferences;
+    std::optional<LightModel> m_model;  // the predictor's, fitted before the images are measured
     std::optional<PtmFitter> m_ptm;
     std::optional<AlbedoAccumulator> m_albedo;
 };

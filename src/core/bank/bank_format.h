@@ -28,6 +28,10 @@ constexpr std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReferenc
                         kLabels = tagOf("LABL"), kAlbedo = tagOf("ALBD"), kFill = tagOf("FILL"),
                         kLightModel = tagOf("LMDL"), kSelection = tagOf("CHOS"), kMatchGrid = tagOf("MGRD");
 
+// The HEAD's predictor (version 5): the references blended (REFS), the bank's PTM (PTMC), or a
+// light model (LMDL).
+enum class FilePredictor : std::uint32_t { References = 0, Ptm = 1, Model = 2 };
+
 inline std::string tagName(std::uint32_t tag) {
     std::string s;
     for (int i = 0; i < 4; ++i) {

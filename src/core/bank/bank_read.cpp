@@ -8,6 +8,8 @@
 #include "core/bank/bank_format.h"
 #include "core/check.h"
 #include "core/io/json_text.h"
+#include "core/predict/model_predictor.h"
+#include "core/predict/reference_blend.h"
 
 namespace btflut {
 
@@ -105,7 +107,16 @@ Result<Chunks> splitChunks(const Bytes& bytes, const std::string& name) {
 struct Head {
     std::uint32_t layerCount = 0, refWidth = 0, refHeight = 0, refChannels = 0, refDepth = 0;
     std::uint32_t references = 0;  // version 3, banks that make their LUTs at run time
+    FilePredictor predictor = FilePredictor::References;
     bool embedded = false;
+};
+
+// A predictor's parts as its chunks give them, made into the bank's predictor at the end.
+struct PredictorParts {
+    std::vector<Image> references;
+    std::vector<ReferenceLight> lights;
+    Image albedo;
+    std::optional<LightModel> model;
 };
 
 // LMDL (encodeLightModel in bank_write.cpp): every count checked before anything is allocated
@@ -233,7 +244,7 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
                 return fail("references, regions or quantiles out of range");
             bank.blend.regions = static_cast<int>(regions);
             bank.blend.quantiles = static_cast<int>(quantiles);
-            if (head.references == 0) bank.blend.predictor = LutBank::Blend::Predictor::Ptm;
+            if (head.references == 0) head.predictor = FilePredictor::Ptm;
         } else if (in.ok() && (head.references != 0 || regions != 0)) {
             return fail("references and regions without quantiles");
         }
@@ -246,7 +257,7 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
                         (bank.blend.quantiles > 0 ? (head.references == 0) != (predictor != 0)
                                                   : predictor != 0 || match != 1 || target != 0)))
             return fail("predictor, match or target out of range, or not what the references say");
-        if (bank.blend.quantiles > 0) bank.blend.predictor = static_cast<LutBank::Blend::Predictor>(predictor);
+        if (bank.blend.quantiles > 0) head.predictor = static_cast<FilePredictor>(predictor);
         bank.blend.match = match;
         bank.blend.target = static_cast<LutBank::Blend::Target>(target);
     }
@@ -322,7 +333,8 @@ namespace {
 
 // The chunks of version 3 banks that make their LUTs at run time (LutBank::Blend); sizes
 // are checked against HEAD before anything is decoded, and each chunk may come once.
-Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, const Head& head, LutBank& bank) {
+Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, const Head& head, LutBank& bank,
+                      PredictorParts& parts) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + tagName(tag) + " chunk: " + what}; };
     LutBank::Blend& blend = bank.blend;
     const int w = static_cast<int>(head.refWidth), h = static_cast<int>(head.refHeight);
@@ -338,7 +350,7 @@ Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, co
         return decodeImage(Bytes(bytes, bytes + length), name + " (" + what + ")", w, h);
     };
     if (tag == kReferences) {
-        if (!blend.references.empty()) return fail("twice");
+        if (!parts.references.empty()) return fail("twice");
         for (std::uint32_t k = 0; k < head.references; ++k) {
             Result<Direction> light = getDirection(in, name, "reference light");
             if (!light) return Error{light.error()};
@@ -346,13 +358,14 @@ Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, co
             Result<Image> image = png("reference " + std::to_string(k));
             if (!image) return Error{image.error()};
             const int channels = bank.colour == ColourMode::Lrgb ? 1 : static_cast<int>(head.refChannels);
-            if (image->channels != channels) return fail("reference " + std::to_string(k) + " has the wrong channels");
-            blend.lights.push_back({referenceName, *light});
-            blend.references.push_back(std::move(*image));
+            if (image->channels != channels || image->bitDepth != 8)
+                return fail("reference " + std::to_string(k) + " has the wrong channels or is not 8-bit");
+            parts.lights.push_back({referenceName, *light});
+            parts.references.push_back(std::move(*image));
         }
         if (in.remaining() != 0) return fail("has the wrong size");
         std::vector<DiskPoint> points;
-        for (const LightNode& node : blend.lights) points.push_back(toDisk(node.light));
+        for (const ReferenceLight& l : parts.lights) points.push_back(toDisk(l.light));
         if (hasNearDuplicates(points, 1e-9)) return fail("two references share one light direction");
         return success();
     }
@@ -372,11 +385,11 @@ Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, co
         if (blend.mask.count() == 0) return fail("has no sample pixels");
         return success();
     }
-    if (!blend.albedo.samples.empty()) return fail("twice");
+    if (!parts.albedo.samples.empty()) return fail("twice");
     Result<Image> image = whole("albedo");
     if (!image) return Error{image.error()};
     if (image->channels != 3) return fail("not an RGB image");
-    blend.albedo = std::move(*image);
+    parts.albedo = std::move(*image);
     return success();
 }
 
@@ -441,7 +454,7 @@ public:
             case kLabels:
             case kAlbedo:
                 if (!m_bank.makesLuts()) return fail("unexpected chunk " + tagName(chunk.tag));
-                return readBlendChunk(chunk.tag, in, m_name, m_head, m_bank);
+                return readBlendChunk(chunk.tag, in, m_name, m_head, m_bank, m_parts);
             case kLightModel:
                 return lightModel(in);
             case kMatchGrid:
@@ -559,12 +572,11 @@ private:
 
     // LMDL: the light model of a bank predicted by one.
     Status lightModel(Reader& in) {
-        if (m_haveModel || m_bank.blend.predictor != LutBank::Blend::Predictor::Model)
+        if (m_parts.model || !m_bank.makesLuts() || m_head.predictor != FilePredictor::Model)
             return fail("unexpected LMDL chunk");
-        m_haveModel = true;
         Result<LightModel> model = decodeLightModel(in, m_name, m_head);
         if (!model) return Error{model.error()};
-        m_bank.blend.model = std::move(*model);
+        m_parts.model = std::move(*model);
         return success();
     }
 
@@ -603,7 +615,7 @@ private:
         if (m_havePtm) return fail("two PTMC chunks");
         m_havePtm = true;
         m_bank.ptmInFile = true;
-        if (!m_options.ptm && m_bank.blend.predictor != LutBank::Blend::Predictor::Ptm)
+        if (!m_options.ptm && !(m_bank.makesLuts() && m_head.predictor == FilePredictor::Ptm))
             return success();  // the predictor's is needed
         Result<Ptm> ptm = decodePtm(chunk, m_name, m_head.refWidth, m_head.refHeight);
         if (!ptm) return Error{ptm.error()};
@@ -631,23 +643,30 @@ private:
         return success();
     }
 
-    // A bank with a predictor: its parts all there and consistent; a PTM-predicted bank's
-    // PTM folded into a light model.
+    // A bank with a predictor: its parts all there and consistent, made into its predictor (a
+    // PTM-predicted bank's PTM as a light model).
     Status predictor() {
         LutBank::Blend& blend = m_bank.blend;
-        const bool ptmPredictor = blend.predictor == LutBank::Blend::Predictor::Ptm;
-        if (ptmPredictor && (!m_havePtm || m_bank.colour != ColourMode::Grey))
+        const FilePredictor kind = m_head.predictor;
+        if (kind == FilePredictor::Ptm && (!m_havePtm || m_bank.colour != ColourMode::Grey))
             return fail("a PTM-predicted bank without its PTM");
-        if (blend.predictor == LutBank::Blend::Predictor::Model && (!m_haveModel || m_bank.colour == ColourMode::Lrgb))
+        if (kind == FilePredictor::Model && (!m_parts.model || m_bank.colour == ColourMode::Lrgb))
             return fail("a bank predicted by a light model without its model (LMDL chunk)");
-        if (ptmPredictor) blend.model = lightModelFromPtm(m_bank.ptm);
-        if (!m_head.embedded || blend.references.size() != m_head.references || blend.mask.inside.empty() ||
+        if (!m_head.embedded || m_parts.references.size() != m_head.references || blend.mask.inside.empty() ||
             (blend.regions > 1) != !blend.labels.empty() ||
-            (m_bank.colour == ColourMode::Lrgb) != !blend.albedo.samples.empty() || m_bank.layers.size() != 1)
+            (m_bank.colour == ColourMode::Lrgb) != !m_parts.albedo.samples.empty() || m_bank.layers.size() != 1)
             return fail(
                 "the references, mask, labels or albedo of a bank that blends references are missing or do not fit");
         for (std::uint8_t label : blend.labels)
             if (label >= blend.regions) return fail("a region label is beyond the bank's regions");
+        const bool perChannel = m_bank.colour == ColourMode::Rgb;
+        if (kind == FilePredictor::Ptm)
+            blend.predictor = std::make_shared<ModelPredictor>(lightModelFromPtm(m_bank.ptm), perChannel, true);
+        else if (kind == FilePredictor::Model)
+            blend.predictor = std::make_shared<ModelPredictor>(std::move(*m_parts.model), perChannel);
+        else
+            blend.predictor = std::make_shared<ReferenceBlend>(std::move(m_parts.references), std::move(m_parts.lights),
+                                                               perChannel, std::move(m_parts.albedo));
         return success();
     }
 
@@ -657,7 +676,8 @@ private:
     const BankReadOptions& m_options;
     LutBank& m_bank;
     const std::vector<bool> m_wanted;  // empty: every layer's LUTs
-    bool m_haveReference = false, m_havePtm = false, m_haveModel = false, m_haveSelection = false;
+    bool m_haveReference = false, m_havePtm = false, m_haveSelection = false;
+    PredictorParts m_parts;
     std::size_t m_matchGrids = 0, m_totalNodes = 0;
     const Chunk* m_fill = nullptr;
 };

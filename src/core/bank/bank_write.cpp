@@ -6,6 +6,8 @@
 #include "core/bank/bank_file.h"
 #include "core/bank/bank_format.h"
 #include "core/check.h"
+#include "core/predict/model_predictor.h"
+#include "core/predict/reference_blend.h"
 
 namespace btflut {
 
@@ -91,12 +93,19 @@ Bytes encodeLightModel(const LightModel& m) {
     return std::move(w.bytes());
 }
 
+// The HEAD's predictor of a bank that makes its LUTs.
+FilePredictor filePredictor(const LutBank& bank) {
+    if (const ModelPredictor* m = bank.predictorAs<ModelPredictor>())
+        return m->bankPtm() ? FilePredictor::Ptm : FilePredictor::Model;
+    return FilePredictor::References;
+}
+
 }  // namespace
 
 std::uint32_t bankFormatVersion(const LutBank& bank) {
     // The oldest version that holds everything: readers of version 1 keep reading the banks
     // they always could.
-    if ((bank.makesLuts() && (bank.blend.predictor == LutBank::Blend::Predictor::Model || bank.blend.match != 1 ||
+    if ((bank.makesLuts() && (filePredictor(bank) == FilePredictor::Model || bank.blend.match != 1 ||
                               bank.blend.target != LutBank::Blend::Target::Measured)) ||
         !bank.selection.empty() || std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) {
             return !l.matchGridLuts.empty();
@@ -150,13 +159,13 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     if (version >= 2) head.put(static_cast<std::uint32_t>(bank.domain));
     if (version >= 3) {
         // All zero for a bank of LUTs (a version 4 bank need not make its LUTs at run time).
-        head.put(static_cast<std::uint32_t>(bank.blend.references.size()));
+        const ReferenceBlend* references = bank.predictorAs<ReferenceBlend>();
+        head.put(static_cast<std::uint32_t>(references ? references->references().size() : 0));
         head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.regions : 0));
         head.put(static_cast<std::uint32_t>(bank.blend.quantiles));
     }
     if (version >= 5) {
-        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.predictor
-                                                             : LutBank::Blend::Predictor::References));
+        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? filePredictor(bank) : FilePredictor::References));
         head.put(bank.makesLuts() ? bank.blend.match : 1.f);
         head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.target : LutBank::Blend::Target::Measured));
     }
@@ -186,22 +195,27 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     if (embed) putChunk(file, kReference, encodePng(bank.reference, bank.reference.bitDepth));
     if (bank.makesLuts()) {
         const LutBank::Blend& blend = bank.blend;
-        Writer refs;
-        for (std::size_t k = 0; k < blend.references.size(); ++k) {
-            putDirection(refs, blend.lights[k].light);
-            refs.putString(blend.lights[k].name);
-            const Bytes png = encodePng(blend.references[k], blend.references[k].bitDepth);
-            refs.put(static_cast<std::uint32_t>(png.size()));
-            refs.putBytes(png.data(), png.size());
+        const ReferenceBlend* references = bank.predictorAs<ReferenceBlend>();
+        if (references) {
+            Writer refs;
+            for (std::size_t k = 0; k < references->references().size(); ++k) {
+                const Image& image = references->references()[k];
+                putDirection(refs, references->lights()[k].light);
+                refs.putString(references->lights()[k].name);
+                const Bytes png = encodePng(image, image.bitDepth);
+                refs.put(static_cast<std::uint32_t>(png.size()));
+                refs.putBytes(png.data(), png.size());
+            }
+            putChunk(file, kReferences, refs.bytes());
         }
-        if (!blend.references.empty()) putChunk(file, kReferences, refs.bytes());
         putChunk(file, kMask, encodePng(byteImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
         if (!blend.labels.empty())
             putChunk(file, kLabels, encodePng(byteImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
-        if (!blend.albedo.samples.empty()) putChunk(file, kAlbedo, encodePng(blend.albedo, 8));
+        if (references && !references->albedo().samples.empty())
+            putChunk(file, kAlbedo, encodePng(references->albedo(), 8));
+        if (filePredictor(bank) == FilePredictor::Model)
+            putChunk(file, kLightModel, encodeLightModel(bank.predictorAs<ModelPredictor>()->model()));
     }
-    if (bank.makesLuts() && bank.blend.predictor == LutBank::Blend::Predictor::Model)
-        putChunk(file, kLightModel, encodeLightModel(bank.blend.model));
     for (const ViewLayer& layer : bank.layers)  // version 5: every layer's or none
         if (!layer.matchGridLuts.empty())
             putChunk(

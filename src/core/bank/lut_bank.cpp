@@ -1,8 +1,5 @@
 #include "core/bank/lut_bank.h"
 
-#include "core/predict/model_predictor.h"
-#include "core/predict/reference_blend.h"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -93,11 +90,6 @@ void LutBank::buildTriangulations() {
         viewPoints.push_back(toDisk(layer.view));
     }
     views = Triangulation(std::move(viewPoints));
-    if (!blend.lights.empty()) {
-        std::vector<DiskPoint> points;
-        for (const LightNode& node : blend.lights) points.push_back(toDisk(node.light));
-        blend.triangulation = Triangulation(std::move(points));
-    }
     pairs = {};
     pairNodes.clear();
     if (domain != BankDomain::Isotropic) return;
@@ -488,19 +480,16 @@ Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>&
     return out;
 }
 
-std::unique_ptr<const Predictor> LutBank::makePredictor() const {
-    BTFLUT_CHECK(makesLuts());
-    const bool perChannel = colour == ColourMode::Rgb;
-    if (predictsWithModel()) return std::make_unique<ModelPredictor>(blend.model, perChannel);
-    return std::make_unique<ReferenceBlend>(blend.references, blend.triangulation, perChannel,
-                                            colour == ColourMode::Lrgb ? &blend.albedo : nullptr);
+const Predictor& LutBank::predictor() const {
+    BTFLUT_CHECK(makesLuts() && blend.predictor);
+    return *blend.predictor;
 }
 
-std::string LutBank::predictorName() const { return makesLuts() ? makePredictor()->name() : ""; }
+std::string LutBank::predictorName() const { return makesLuts() ? predictor().name() : ""; }
 
 double LutBank::predictorBytesPerTexel() const {
     if (!makesLuts()) return reference.channels * (reference.bitDepth / 8.0);
-    return makePredictor()->bytesPerTexel() + (blend.regions > 1 ? 1 : 0);
+    return predictor().bytesPerTexel() + (blend.regions > 1 ? 1 : 0);
 }
 
 LevelCounts brdfReferenceGrey(const LutBank& bank) {

@@ -135,13 +135,10 @@ struct LutBank {
     /// lrgb; relighter.h): K references blended per light, and regions of the sample, each
     /// matched to its own target. Their nodes hold the targets' quantile functions.
     struct Blend {
-        /// What is matched per light: the references blended, the bank's PTM relit (the PTM
-        /// is then part of the bank's relighting, not only a baseline), or a light model
-        /// (light_model.h: ptm, hsh, rbf, bln).
-        enum class Predictor : std::uint32_t { References = 0, Ptm = 1, Model = 2 } predictor = Predictor::References;
-        /// The predictor when it is not the references: the light model, or for Ptm the
-        /// bank's PTM as one (the file keeps it once, in its PTM chunk).
-        LightModel model;
+        /// What predicts each texel before each light's LUT matches it (predictor.h): the
+        /// references blended (reference_blend.h) or a light model (model_predictor.h; a
+        /// bank's PTM as one). Shared by the bank's copies: a predictor never changes.
+        std::shared_ptr<const Predictor> predictor;
         /// How far each light's LUT moves the prediction's distribution towards the target's:
         /// 1 fully (the target's histogram), 0 not at all (the prediction as it is); between,
         /// the quantile functions blended (the Wasserstein geodesic between the two).
@@ -156,10 +153,6 @@ struct LutBank {
         /// level and spread. Both reproduce a measured node exactly; only Measured counts
         /// per light change.
         enum class Target : std::uint32_t { Measured = 0, Corrections = 1 } target = Target::Measured;
-        std::vector<Image> references;     ///< K, as blended: grey (lrgb) or as the source
-        std::vector<LightNode> lights;     ///< each reference's light and image
-        Triangulation triangulation;       ///< over their lights: the blend weights
-        Image albedo;                      ///< lrgb: the chroma, RGB 8-bit
         std::vector<std::uint8_t> labels;  ///< per texel its region (all texels); empty: one region
         Mask mask;                         ///< the sample texels: the blend's statistics are theirs
         int regions = 1;
@@ -172,11 +165,14 @@ struct LutBank {
 
     /// True for banks that make their LUTs at run time (see Blend).
     bool makesLuts() const { return blend.quantiles > 0; }
-    /// True for banks whose prediction is a light model (Blend::model), not a blend of references.
-    bool predictsWithModel() const { return makesLuts() && blend.predictor != Blend::Predictor::References; }
-    /// The predictor of a bank that makes its LUTs (predictor.h: a reference blend, or the
-    /// light model), over this bank's data: the bank must outlive it.
-    std::unique_ptr<const Predictor> makePredictor() const;
+    /// The predictor of a bank that makes its LUTs.
+    const Predictor& predictor() const;
+    /// Its kind, for what only that kind has (its file chunk, its sidecar, its description):
+    /// the predictor as `Kind`, or null when it is another (or the bank makes no LUTs).
+    template <class Kind>
+    const Kind* predictorAs() const {
+        return dynamic_cast<const Kind*>(blend.predictor.get());
+    }
     /// The predictor's name as the command line gives it (`--predictor`): the light model's
     /// (ptm, hsh2, rbf9, bln9c, ...) or "references"; "" for a bank of LUTs.
     std::string predictorName() const;

@@ -1,16 +1,24 @@
 #include "core/predict/model_predictor.h"
 
 #include <algorithm>
+#include <sstream>
 
 #include "core/check.h"
 
 namespace btflut {
 
 // Grey: one channel's codes (a grey model without albedo), or the sum of three.
-ModelPredictor::ModelPredictor(const LightModel& model, bool perChannel)
+ModelPredictor::ModelPredictor(LightModel model, bool perChannel, bool bankPtm)
     : Predictor(perChannel ? 3 : 1, perChannel || (model.albedo.empty() && model.channels == 1) ? 255 : 765),
-      m_model(model) {
-    BTFLUT_CHECK(!model.empty());
+      m_model(std::move(model)),
+      m_bankPtm(bankPtm) {
+    BTFLUT_CHECK(!m_model.empty());
+}
+
+std::string ModelPredictor::description() const {
+    std::ostringstream out;
+    out << name() << " (" << bytesPerTexel() << " bytes per texel), relit per light";
+    return out.str();
 }
 
 PredictorPlanes ModelPredictor::planes() const {

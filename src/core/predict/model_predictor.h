@@ -9,12 +9,14 @@ namespace btflut {
 
 class ModelPredictor final : public Predictor {
 public:
-    /// `model` outlives the predictor. `perChannel`: its RGB matched per channel (rgb banks);
-    /// else its grey, on the scale of the summed channel codes when it has colour.
-    ModelPredictor(const LightModel& model, bool perChannel);
+    /// `perChannel`: its RGB matched per channel (rgb banks); else its grey, on the scale of
+    /// the summed channel codes when it has colour. `bankPtm`: the model is a bank's PTM (the
+    /// file keeps it once, as the PTM; docs/btflut-format.md).
+    ModelPredictor(LightModel model, bool perChannel, bool bankPtm = false);
 
     std::string name() const override { return lightModelName(m_model); }
     double bytesPerTexel() const override { return m_model.bytesPerTexel(); }
+    std::string description() const override;
     PredictorPlanes planes() const override;
     std::vector<std::string> shaderDefines() const override;
     PredictorFrame frameAt(Direction light) const override;
@@ -25,8 +27,12 @@ public:
         countCodesOf(*this, frame, texels, channel, counts);
     }
 
+    const LightModel& model() const { return m_model; }
+    bool bankPtm() const { return m_bankPtm; }
+
 private:
-    const LightModel& m_model;
+    LightModel m_model;
+    bool m_bankPtm;
 };
 
 }  // namespace btflut

@@ -7,9 +7,9 @@
 //   reference_blend.h   K references blended with the light's barycentric weights
 //   model_predictor.h   a linear light model (ptm, hsh, rbf, bln; a bank's PTM as one)
 //
-//   std::unique_ptr<const Predictor> p = bank.makePredictor();      // lut_bank.h
-//   PredictorFrame f = p->frameAt(light);            // per light change: integers
-//   std::size_t q = p->code(f, texel, channel);      // 0 .. p->codes(), what the GPU computes
+//   const Predictor& p = bank.predictor();           // lut_bank.h: the bank holds one
+//   PredictorFrame f = p.frameAt(light);             // per light change: integers
+//   std::size_t q = p.code(f, texel, channel);       // 0 .. p.codes(), what the GPU computes
 //
 // Predictions are exact integer arithmetic (kWeightUnit, light_model.h), so the CPU and the
 // GPU's shaders (shaders/lut_common.glsl) get the same codes.
@@ -54,6 +54,9 @@ public:
     virtual std::string name() const = 0;
     /// Bytes per texel it stores (the region labels, a bank's, not counted).
     virtual double bytesPerTexel() const = 0;
+    /// What it is, in words, for `info` and the viewer: "hsh2 (4 bytes per texel), relit per
+    /// light", "3 reference(s) blended per light".
+    virtual std::string description() const = 0;
     /// Codes of a predicted value: 255 (a channel) or 765 (the grey of RGB8, three channels'
     /// codes summed).
     int codes() const { return m_codes; }

@@ -7,16 +7,26 @@
 
 namespace btflut {
 
-ReferenceBlend::ReferenceBlend(const std::vector<Image>& references, const Triangulation& lights, bool perChannel,
-                               const Image* albedo)
+namespace {
+Triangulation overLights(const std::vector<ReferenceLight>& lights) {
+    std::vector<DiskPoint> points;
+    for (const ReferenceLight& l : lights) points.push_back(toDisk(l.light));
+    return Triangulation(std::move(points));
+}
+}  // namespace
+
+ReferenceBlend::ReferenceBlend(std::vector<Image> references, std::vector<ReferenceLight> lights, bool perChannel,
+                               Image albedo)
     : Predictor(perChannel ? 3 : 1, perChannel ? 255 : 255 * references.at(0).channels),
-      m_references(references),
-      m_lights(lights),
-      m_albedo(albedo) {
-    BTFLUT_CHECK(references.front().bitDepth == 8);  // the blend's codes are 8-bit (bakeBank's blendForm)
+      m_references(std::move(references)),
+      m_lights(std::move(lights)),
+      m_triangulation(overLights(m_lights)),
+      m_albedo(std::move(albedo)) {
+    BTFLUT_CHECK(m_references.size() == m_lights.size());
+    BTFLUT_CHECK(m_references.front().bitDepth == 8);  // the blend's codes are 8-bit (bakeBank's blendForm)
     const int counted = channels();
     auto code = [](float v) { return static_cast<std::int32_t>(std::lround(v * 255.f)); };
-    for (const Image& reference : references) {
+    for (const Image& reference : m_references) {
         std::vector<std::int32_t> codes(reference.pixelCount() * static_cast<std::size_t>(counted));
         for (std::size_t i = 0; i < reference.pixelCount(); ++i) {
             const float* p = &reference.samples[i * static_cast<std::size_t>(reference.channels)];
@@ -31,7 +41,8 @@ ReferenceBlend::ReferenceBlend(const std::vector<Image>& references, const Trian
 }
 
 double ReferenceBlend::bytesPerTexel() const {
-    return static_cast<double>(m_references.size()) * m_references.front().channels + (m_albedo ? 3 : 0);
+    return static_cast<double>(m_references.size()) * m_references.front().channels +
+           (m_albedo.samples.empty() ? 0 : 3);
 }
 
 PredictorPlanes ReferenceBlend::planes() const {
@@ -47,7 +58,7 @@ PredictorPlanes ReferenceBlend::planes() const {
         }
         out.layers.push_back(std::move(layer));
     }
-    if (m_albedo) out.albedo = *m_albedo;
+    out.albedo = m_albedo;
     return out;
 }
 
@@ -56,7 +67,7 @@ std::vector<std::string> ReferenceBlend::shaderDefines() const {
     // Grey references are held in all three channels; their code is one channel's (codes
     // 255), not the sum the grey of RGB takes.
     if (m_references.front().channels == 1) d.push_back("BLEND_GREY_REFERENCES");
-    if (m_albedo)
+    if (!m_albedo.samples.empty())
         d.insert(d.end(), {"BLEND_ALBEDO_CHROMA", "BLEND_ALBEDO_LAYER " + std::to_string(m_references.size())});
     return d;
 }
@@ -65,7 +76,7 @@ PredictorFrame ReferenceBlend::frameAt(Direction light) const {
     PredictorFrame frame;
     frame.count = 0;
     // Barycentric weights in 1 / kWeightUnit; the largest takes the rounding so they sum to it.
-    const Weights w = m_lights.weightsAt(toDisk(light));
+    const Weights w = m_triangulation.weightsAt(toDisk(light));
     std::int32_t total = 0;
     std::size_t largest = 0;
     for (int k = 0; k < w.count; ++k) {
@@ -91,8 +102,8 @@ std::size_t ReferenceBlend::code(const PredictorFrame& frame, std::size_t texel,
 }
 
 void ReferenceBlend::colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const {
-    if (m_albedo) {  // lrgb: the albedo's chroma
-        std::copy_n(&m_albedo->samples[texel * 3], 3, rgb);
+    if (!m_albedo.samples.empty()) {  // lrgb: the albedo's chroma
+        std::copy_n(&m_albedo.samples[texel * 3], 3, rgb);
         return;
     }
     for (int c = 0; c < 3; ++c) {  // the blend's own (RGB references)

@@ -4,6 +4,7 @@
 // predictor of `bake --references K` (references.h picks them).
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/direction/triangulation.h"
@@ -12,17 +13,25 @@
 
 namespace btflut {
 
+/// A reference's light and the image it was picked from.
+struct ReferenceLight {
+    std::string name;
+    Direction light;
+};
+
 class ReferenceBlend final : public Predictor {
 public:
-    /// `references` 8-bit, grey or RGB, and `lights` over their lights' disk points, both
-    /// outliving the predictor. `perChannel`: RGB references matched per channel (rgb
-    /// banks); else their grey, on the scale of the summed channel codes. `albedo` (lrgb: grey
-    /// references and an RGB albedo) gives the chroma, or null.
-    ReferenceBlend(const std::vector<Image>& references, const Triangulation& lights, bool perChannel,
-                   const Image* albedo);
+    /// `references` 8-bit, grey or RGB, picked at `lights` (one each, no two alike).
+    /// `perChannel`: RGB references matched per channel (rgb banks); else their grey, on the
+    /// scale of the summed channel codes. `albedo` (lrgb: grey references and an RGB albedo)
+    /// gives the chroma; empty for none.
+    ReferenceBlend(std::vector<Image> references, std::vector<ReferenceLight> lights, bool perChannel, Image albedo);
 
     std::string name() const override { return "references"; }
     double bytesPerTexel() const override;
+    std::string description() const override {
+        return std::to_string(m_references.size()) + " reference(s) blended per light";
+    }
     PredictorPlanes planes() const override;
     std::vector<std::string> shaderDefines() const override;
     PredictorFrame frameAt(Direction light) const override;
@@ -33,10 +42,17 @@ public:
         countCodesOf(*this, frame, texels, channel, counts);
     }
 
+    const std::vector<Image>& references() const { return m_references; }
+    const std::vector<ReferenceLight>& lights() const { return m_lights; }
+    /// Over the references' lights' disk points: the blend's weights.
+    const Triangulation& triangulation() const { return m_triangulation; }
+    const Image& albedo() const { return m_albedo; }  ///< lrgb's; empty for none
+
 private:
-    const std::vector<Image>& m_references;
-    const Triangulation& m_lights;
-    const Image* m_albedo;
+    std::vector<Image> m_references;
+    std::vector<ReferenceLight> m_lights;
+    Triangulation m_triangulation;
+    Image m_albedo;
     std::vector<std::vector<std::int32_t>> m_referenceCodes;  // [reference][texel * channels + c]
 };
 

@@ -5,6 +5,8 @@
 
 #include "core/check.h"
 #include "core/predict/light_model.h"
+#include "core/predict/model_predictor.h"
+#include "core/predict/reference_blend.h"
 #include "core/relight/relighter.h"
 
 namespace btflut {
@@ -108,20 +110,20 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     out.inputCode = 1.f / static_cast<float>(out.codes + 1);  // Relighter::inputCode
     out.regions = blend.regions;
     if (!blend.labels.empty()) out.labels = byteImage(blend.labels, bank.reference.width, bank.reference.height, 1);
-    const Image& first = bank.predictsWithModel() ? bank.reference : blend.references.front();  // as Relighter::apply
-    out.outputChannels = bank.colour == ColourMode::Grey ? first.channels : 3;
-    PredictorPlanes planes = bank.makePredictor()->planes();  // the packing btflut's renderer uploads too
+    out.outputChannels = bank.colour == ColourMode::Grey ? bank.reference.channels : 3;  // as Relighter::apply
+    PredictorPlanes planes = bank.predictor().planes();  // the packing btflut's renderer uploads too
     out.images = std::move(planes.layers);
     out.albedo = std::move(planes.albedo);
     out.scale = std::move(planes.scale);
     out.bias = std::move(planes.bias);
-    if (bank.predictsWithModel()) {
-        setModel(out, blend.model);
+    if (const ModelPredictor* model = bank.predictorAs<ModelPredictor>()) {
+        setModel(out, model->model());
         return out;
     }
+    const ReferenceBlend& references = *bank.predictorAs<ReferenceBlend>();
     out.kind = EngineMaterial::Kind::References;
-    out.planes = static_cast<int>(blend.references.size());
-    out.channels = blend.references.front().channels;
+    out.planes = static_cast<int>(references.references().size());
+    out.channels = references.references().front().channels;
     out.weights = out.planes;
     out.weightGridSize = kEngineWeightGrid;
     out.weightGrid = inLayers(referenceWeightGrid(bank, kEngineWeightGrid), static_cast<std::size_t>(out.weights),

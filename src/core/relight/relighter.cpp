@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "core/parallel.h"
+#include "core/predict/reference_blend.h"
 
 namespace btflut {
 
@@ -49,7 +50,7 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
         if (blend.mask.inside[i])
             m_regionTexels[blend.labels.empty() ? 0 : blend.labels[i]].push_back(static_cast<std::uint32_t>(i));
-    m_predictor = bank.makePredictor();
+    m_predictor = &bank.predictor();
     m_counted = m_predictor->channels();  // rgb: each channel matched apart
     m_codes = m_predictor->codes();       // the grey of RGB8 on its channels' codes' scale: 765
     if (blend.match < 1) {                // matchAt's ramp; a bank matched fully needs none
@@ -152,7 +153,7 @@ RelightFrame Relighter::gridFrame(Direction light) const {
 
 int predictionCodes(const LutBank& bank) {
     BTFLUT_CHECK(bank.makesLuts());
-    return bank.makePredictor()->codes();
+    return bank.predictor().codes();
 }
 
 void bakeMatchGrid(LutBank& bank, int threads) {
@@ -176,13 +177,14 @@ void bakeMatchGrid(LutBank& bank, int threads) {
 }
 
 std::vector<float> referenceWeightGrid(const LutBank& bank, int size) {
-    BTFLUT_CHECK(bank.makesLuts() && !bank.predictsWithModel() && size >= 2);
-    const std::size_t k = bank.blend.references.size();
+    const ReferenceBlend* blend = bank.predictorAs<ReferenceBlend>();
+    BTFLUT_CHECK(blend && size >= 2);
+    const std::size_t k = blend->references().size();
     std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * k, 0.f);
     for (int j = 0; j < size; ++j)
         for (int i = 0; i < size; ++i) {
-            const Weights w = bank.blend.triangulation.weightsAt(
-                toDisk(fromDisk(diskGridPoint(i, j, size))));  // beyond the rim: on it
+            const Weights w =
+                blend->triangulation().weightsAt(toDisk(fromDisk(diskGridPoint(i, j, size))));  // beyond the rim: on it
             float* node =
                 &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * k];
             for (int n = 0; n < w.count; ++n)
@@ -248,7 +250,7 @@ Image Relighter::apply(const RelightFrame& frame, bool dither) const {
     const float targetCode = dither ? m_bank.targetCode() : 0.f;
     if (!m_bank.makesLuts()) return applyLuts(m_bank.reference, m_bank.colour, frame.luts, m_bank.entries, targetCode);
     const LutBank::Blend& blend = m_bank.blend;
-    const Image& first = m_bank.predictsWithModel() ? m_bank.reference : blend.references.front();
+    const Image& first = m_bank.reference;  // its size, and its channels a grey bank gives out
     const ColourMode colour = m_bank.colour;
     const int outChannels = colour == ColourMode::Grey ? first.channels : 3;
     Image out(first.width, first.height, outChannels, m_bank.reference.bitDepth);

@@ -90,7 +90,7 @@ private:
     }
 
     const LutBank& m_bank;
-    std::unique_ptr<const Predictor> m_predictor;            // banks that make their LUTs
+    const Predictor* m_predictor = nullptr;                  // banks that make their LUTs: the bank's
     int m_codes = 255;                                       // codes of a predicted value (765 for the grey of RGB8)
     int m_counted = 1;                                       // channels counted: 3 for rgb, else 1 (grey)
     std::vector<std::vector<std::uint32_t>> m_regionTexels;  // sample texels of each region
