@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/predict/model_predictor.h"
-#include "core/predict/reference_blend.h"
 #include "gl/textures.h"
 
 namespace btflut {
@@ -18,7 +16,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     BlendTextures t;
     t.m_bank = &bank;
     t.m_lutsAsUniforms = lutsAsUniforms(bank);
-    const Predictor* predictor = &bank.predictor();
+    const Predictor* predictor = t.m_predictor = &bank.predictor();
     t.m_defines = {"BLEND"};
     const std::vector<std::string> own = predictor->shaderDefines();
     t.m_defines.insert(t.m_defines.end(), own.begin(), own.end());
@@ -37,7 +35,6 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
         for (std::size_t i = 0; i < texels; ++i)
             for (std::size_t c = 0; c < 3; ++c)
                 data[((layers - 1) * texels + i) * 4 + c] = byteOf(planes.albedo.samples[i * 3 + c]);
-    t.m_layers = static_cast<int>(planes.layers.size());
     t.m_planes = uploadTextureArray(first.width, first.height, static_cast<int>(layers), 4, data.data(), bytes);
     if (!bank.blend.labels.empty())
         t.m_labels = uploadLabels(first.width, first.height, bank.blend.labels.data(), bytes);
@@ -87,39 +84,32 @@ void BlendTextures::bind(const ShaderProgram& p, const RelightFrame& frame, cons
     };
     unit(0, GL_TEXTURE_2D_ARRAY, m_planes.id(), "blendPlanes");
     if (m_labels.id()) unit(1, GL_TEXTURE_2D, m_labels.id(), "blendLabels");
-    for (int c = 0; c < 3; ++c)  // every sampler on a unit of its own type, even unused ones
-        unit(2 + c, GL_TEXTURE_2D, tables[std::min<std::size_t>(static_cast<std::size_t>(c), tables.size() - 1)].id(),
-             ("blendLuts[" + std::to_string(c) + "]").c_str());
+    for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
+        gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + 2 + c));
+        gl.BindTexture(GL_TEXTURE_2D,
+                       tables[std::min<std::size_t>(static_cast<std::size_t>(c), tables.size() - 1)].id());
+    }
+    const GLint units[3] = {first + 2, first + 3, first + 4};
+    gl.Uniform1iv(p["blendLuts"], 3, units);
     const LutBank& bank = *m_bank;
-    gl.Uniform1f(p["blendCodes"], static_cast<float>(predictionCodes(bank)));
+    gl.Uniform1f(p["blendCodes"], static_cast<float>(m_predictor->codes()));
     gl.Uniform1i(p["blendEntries"], bank.entries);
     gl.Uniform1i(p["blendRegions"], bank.blend.regions);
     if (m_lutsAsUniforms) gl.Uniform1fv(p["lutValues"], static_cast<GLsizei>(bank.matchLength()), frame.luts.data());
-    if (const ModelPredictor* model = bank.predictorAs<ModelPredictor>()) {
-        // The frame's integers (LightModelFixed; the CPU twin: predictFixed) as btflut.glsl's
-        // BtflutModelFrame: per layer of four planes and per channel, the planes' weights.
-        const LightModel& m = model->model();
-        const auto P = static_cast<std::size_t>(m.planes), C = static_cast<std::size_t>(m.channels);
-        std::vector<float> weights(static_cast<std::size_t>(m_layers) * 3 * 4, 0.f);
-        for (std::size_t q = 0; q < P; ++q)
-            for (std::size_t c = 0; c < C; ++c)
-                weights[((q / 4) * 3 + c) * 4 + q % 4] = static_cast<float>(frame.model.weights[q * C + c]);
-        gl.Uniform4fv(p["blendModel.weights"], m_layers * 3, weights.data());
-        const float offset[3] = {static_cast<float>(frame.model.offset[0]), static_cast<float>(frame.model.offset[1]),
-                                 static_cast<float>(frame.model.offset[2])};
-        gl.Uniform3fv(p["blendModel.offset"], 1, offset);
-        gl.Uniform1f(p["blendModel.scale"], frame.model.scale);
-    } else {
-        const auto fetches =
-            static_cast<GLsizei>(std::min<std::size_t>(bank.predictorAs<ReferenceBlend>()->references().size(), 3));
-        GLint layers[3] = {0, 0, 0};
-        float weights[3] = {0, 0, 0};
-        for (int k = 0; k < frame.count; ++k) {
-            layers[k] = frame.references[static_cast<std::size_t>(k)];
-            weights[k] = static_cast<float>(frame.weights[static_cast<std::size_t>(k)]);
+    // The predictor's frame at the light, as its shader code reads it.
+    for (const ShaderValues& v : m_predictor->shaderValues(frame)) {
+        const GLint location = p[v.name];
+        const auto count = static_cast<GLsizei>(v.values.size() / static_cast<std::size_t>(v.size));
+        if (v.integer) {
+            const std::vector<GLint> integers(v.values.begin(), v.values.end());
+            gl.Uniform1iv(location, count, integers.data());
+        } else if (v.size == 4) {
+            gl.Uniform4fv(location, count, v.values.data());
+        } else if (v.size == 3) {
+            gl.Uniform3fv(location, count, v.values.data());
+        } else {
+            gl.Uniform1fv(location, count, v.values.data());
         }
-        gl.Uniform1iv(p["blendLayer"], fetches, layers);
-        gl.Uniform1fv(p["blendWeight"], fetches, weights);
     }
 }
 

@@ -32,7 +32,7 @@ public:
     static BlendTextures upload(const LutBank& bank, std::size_t& bytes);
 
     /// BLEND, the predictor's own (Predictor::shaderDefines), REGIONS, RGB_MODE, LUT_UNIFORMS:
-    /// made once by upload (making the predictor costs a pass over its data).
+    /// made once by upload.
     const std::vector<std::string>& defines() const { return m_defines; }
 
     /// LUT tables for one user of the bank (one per channel, a row per region), and their bytes.
@@ -47,10 +47,10 @@ public:
 
 private:
     const LutBank* m_bank = nullptr;
-    bool m_lutsAsUniforms = false;  ///< lutsAsUniforms(bank), asked of GL once
+    const Predictor* m_predictor = nullptr;  ///< the bank's
+    bool m_lutsAsUniforms = false;           ///< lutsAsUniforms(bank), asked of GL once
     std::vector<std::string> m_defines;
     GlTexture m_planes, m_labels;
-    int m_layers = 0;  ///< the planes' layers (the albedo's not counted)
 };
 
 }  // namespace btflut

@@ -73,9 +73,9 @@ void RelightPass::bindLuts(const ShaderProgram& p, const RelightFrame& frame, co
         for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
             gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + c));
             gl.BindTexture(GL_TEXTURE_1D, luts[static_cast<std::size_t>(std::min(c, bank.channels() - 1))].id());
-            const std::string name = "lut[" + std::to_string(c) + "]";
-            gl.Uniform1i(p[name], first + c);
         }
+        const GLint units[3] = {first, first + 1, first + 2};
+        gl.Uniform1iv(p["lut"], 3, units);  // the array from its first element (GL ignores unused ones)
     }
     if (!m_blend) {
         gl.Uniform1i(p["entries"], bank.entries);

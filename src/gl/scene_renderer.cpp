@@ -197,10 +197,12 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
         }
         if (mode == RenderMode::Lut && !unlit && !oneLayerLut(q, mode)) {
             for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
-                const std::string name = "lut[" + std::to_string(c) + "]";
-                bind(1 + c, GL_TEXTURE_3D,
-                     q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id(), name.c_str());
+                gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + 1 + c));
+                gl.BindTexture(GL_TEXTURE_3D,
+                               q.luts[std::min<std::size_t>(static_cast<std::size_t>(c), q.luts.size() - 1)].id());
             }
+            const GLint units[3] = {1, 2, 3};
+            gl.Uniform1iv(p["lut"], 3, units);
             const auto n = static_cast<float>(material.bank.entries);
             gl.Uniform2f(p["lutCoordinate"], (n - 1) / n, 0.5f / n);
             gl.Uniform1i(p["viewGrid"], kViewGrid);

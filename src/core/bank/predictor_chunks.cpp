@@ -217,5 +217,4 @@ Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, co
     return success();
 }
 
-
 }  // namespace btflut::bank_read

@@ -56,6 +56,23 @@ std::vector<std::string> ModelPredictor::shaderDefines() const {
     return d;
 }
 
+std::vector<ShaderValues> ModelPredictor::shaderValues(const PredictorFrame& frame) const {
+    // btflut.glsl's BtflutModelFrame: per layer of four planes and per channel ([layer * 3 +
+    // channel]) the planes' weights, the offsets, the scale (LightModelFixed; the CPU's twin:
+    // predictFixed).
+    const auto P = static_cast<std::size_t>(m_model.planes), C = static_cast<std::size_t>(m_model.channels);
+    std::vector<float> weights((P + 3) / 4 * 3 * 4, 0.f);
+    for (std::size_t q = 0; q < P; ++q)
+        for (std::size_t c = 0; c < C; ++c)
+            weights[((q / 4) * 3 + c) * 4 + q % 4] = static_cast<float>(frame.model.weights[q * C + c]);
+    const LightModelFixed& f = frame.model;
+    return {{"blendModel.weights", 4, std::move(weights)},
+            {"blendModel.offset",
+             3,
+             {static_cast<float>(f.offset[0]), static_cast<float>(f.offset[1]), static_cast<float>(f.offset[2])}},
+            {"blendModel.scale", 1, {f.scale}}};
+}
+
 PredictorFrame ModelPredictor::frameAt(Direction light) const {
     PredictorFrame frame;
     frame.count = 0;

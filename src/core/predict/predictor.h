@@ -37,6 +37,15 @@ struct PredictorPlanes {
     std::vector<float> scale, bias;  ///< a light model's, per plane, on the stored codes: (code - bias) scale
 };
 
+/// A uniform a predictor's shader code reads per light (shaders/lut_common.glsl): vectors of
+/// `size` (1, 3 or 4) numbers, values.size() / size of them (an array, from its first element).
+struct ShaderValues {
+    std::string name;
+    int size = 1;
+    std::vector<float> values;
+    bool integer = false;  ///< an int uniform (the values are whole numbers)
+};
+
 /// A predictor's integers at one light: the references blended and their weights (a
 /// reference blend), or the light model's per-light integers.
 struct PredictorFrame {
@@ -67,6 +76,8 @@ public:
     virtual PredictorPlanes planes() const = 0;
     /// The #defines that choose and size its prediction in shaders/lut_common.glsl (BLEND_...).
     virtual std::vector<std::string> shaderDefines() const = 0;
+    /// What that code reads at a light: its frame's integers as uniforms.
+    virtual std::vector<ShaderValues> shaderValues(const PredictorFrame& frame) const = 0;
 
     /// Its integers at a light.
     virtual PredictorFrame frameAt(Direction light) const = 0;

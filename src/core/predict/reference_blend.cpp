@@ -72,6 +72,17 @@ std::vector<std::string> ReferenceBlend::shaderDefines() const {
     return d;
 }
 
+std::vector<ShaderValues> ReferenceBlend::shaderValues(const PredictorFrame& frame) const {
+    // The references around the light and their weights (BLEND_FETCHES of each; unused ones 0).
+    const std::size_t fetches = std::min<std::size_t>(m_references.size(), 3);
+    std::vector<float> layers(fetches, 0.f), weights(fetches, 0.f);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(frame.count); ++k) {
+        layers[k] = static_cast<float>(frame.references[k]);
+        weights[k] = static_cast<float>(frame.weights[k]);
+    }
+    return {{"blendLayer", 1, std::move(layers), true}, {"blendWeight", 1, std::move(weights)}};
+}
+
 PredictorFrame ReferenceBlend::frameAt(Direction light) const {
     PredictorFrame frame;
     frame.count = 0;

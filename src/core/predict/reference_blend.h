@@ -34,6 +34,7 @@ public:
     }
     PredictorPlanes planes() const override;
     std::vector<std::string> shaderDefines() const override;
+    std::vector<ShaderValues> shaderValues(const PredictorFrame& frame) const override;
     PredictorFrame frameAt(Direction light) const override;
     std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;
