@@ -5,7 +5,10 @@
 #  - the page `export --web` writes, opened at #light=30,40&zoom=1&ui=0 and cropped to the
 #    material; it is at most 1.4 times the engine export's files; its 2D view with the panel and
 #    its sphere draw with no console message; without WebGL2 it says so;
-#  - the three.js recipe (examples/three/, docs/engines.md) on the engine export.
+#  - the three.js recipe (examples/three/, docs/engines.md) on the engine export: the
+#    repository's page with Debian's three.js (r111, a classic script), and the page the export
+#    writes into its folder (three.html) with npm's current one (0.187, an ES module: fetched
+#    once into ~/.cache/btflut/npm, or $BTFLUT_THREE_MODULE's three.module.js).
 #
 #   bash tests/browser_check.sh BTFLUT DEFAULT_MATERIAL [SHARED_DATA]
 set -euo pipefail
@@ -24,6 +27,20 @@ fi
 if [ -d "$data/psm-rock" ]; then
   banks+=("rock-rgb|$data/psm-rock --colour rgb|max=2" "rock-ptm-albedo|$data/psm-rock --predictor ptm|p99=2,mean=0.2"
           "rock-lrgb-regions|$data/psm-rock --references 4 --colour lrgb --regions 2|max=2")
+fi
+
+# Current three.js, as an ES module.
+three_version=0.187.0
+three_module=${BTFLUT_THREE_MODULE:-${XDG_CACHE_HOME:-$HOME/.cache}/btflut/npm/three-$three_version/node_modules/three/build/three.module.js}
+if [ ! -f "$three_module" ]; then
+  command -v npm >/dev/null || { echo "browser_check: npm not found (bash tools/setup.sh installs it)" >&2; exit 1; }
+  prefix=${three_module%/node_modules/three/build/three.module.js}
+  mkdir -p "$prefix"
+  if ! npm install --no-save --no-audit --no-fund --prefix "$prefix" "three@$three_version" >"$work/npm.log" 2>&1; then
+    cat "$work/npm.log" >&2
+    echo "browser_check: npm could not fetch three@$three_version (npm's registry must be reachable)" >&2
+    exit 1
+  fi
 fi
 
 # The shot's top-left WIDTH x HEIGHT in the material's channels (a grey one is drawn R = G = B).
@@ -69,7 +86,13 @@ for entry in "${banks[@]}"; do
   bash "$repo/tools/browser-shot.sh" "file://$repo/examples/three/relight.html#material=file://$work/$name/&light=$light" \
     "$width" "$height" "$work/$name-three.png"
   crop "$work/$name-three.png" "$width" "$height" "$channels" "$work/$name-three-crop.png"
-  check "three.js, $name at $light" "$work/$name-three-crop.png" "$work/$name-grid.png" "$tolerance"
+  check "three.js r111 (Debian), $name at $light" "$work/$name-three-crop.png" "$work/$name-grid.png" "$tolerance"
+  # The export's own page (three.html, with the recipe's scripts beside it) with current three.js.
+  bash "$repo/tools/browser-shot.sh" "file://$work/$name/three.html#light=$light&three=file://$three_module" \
+    "$width" "$height" "$work/$name-three-module.png"
+  crop "$work/$name-three-module.png" "$width" "$height" "$channels" "$work/$name-three-module-crop.png"
+  check "three.js $three_version (npm, ES module), $name at $light" "$work/$name-three-module-crop.png" \
+    "$work/$name-grid.png" "$tolerance"
 done
 
 # The page with its panel, and the sphere under the point light: drawn, no console message.

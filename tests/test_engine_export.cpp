@@ -60,8 +60,12 @@ TEST_SUITE("gl") {
             REQUIRE(runCli(bake).status == 0);
             CliRun run = runCli({"export", bank, "-o", folder});
             REQUIRE_MESSAGE(run.status == 0, run.err);
-            for (const char* file : {"reference.png", "luts.png", "material.json", "btflut.glsl"})
+            // The material, the include, and the three.js recipe: the folder is all an artist needs
+            // (tests/browser_check.sh opens its three.html).
+            for (const char* file : {"reference.png", "luts.png", "material.json", "btflut.glsl", "btflut_es.glsl",
+                                     "btflut_material.js", "btflut-three.js", "three.html"})
                 CHECK(fs::exists(folder + "/" + file));
+            CHECK(run.out.find("chromium --allow-file-access-from-files 'file://") != std::string::npos);
             const nlohmann::json material = readJson(folder + "/material.json");
             CHECK(material["format"] == "btflut-material");
             Result<Image> luts = loadImage(folder + "/luts.png");

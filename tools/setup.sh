@@ -20,6 +20,7 @@ packages=(
   xvfb xauth
   glslang-tools spirv-cross  # the include's HLSL and GLSL ES forms (tools/shader-forms.sh)
   chromium libjs-three  # WebGL2 tests in headless Chromium: the three.js recipe
+  npm                   # ... and current three.js (0.187, npm's registry) for it (tests/browser_check.sh)
   parallel              # GNU parallel: tools/bake-library.sh bakes materials side by side
   clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (tools/fuzz.sh)
   clang-format          # the code's format (tools/format.sh; tools/test.sh checks it)

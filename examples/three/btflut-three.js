@@ -7,9 +7,11 @@
 //   mesh.material = relit.material;
 //   relit.setLight(new THREE.Vector3(x, y, z));          // in the material's tangent frame
 //
-// A classic script (no modules), so it runs from file://. WebGL2 only: the include needs 3D and
-// array textures; the LUTs are half floats, which WebGL2 filters. Copyright the btflut authors;
-// MIT licence.
+// A classic script (no modules), so it runs from file://. `THREE` is whichever three.js the page
+// loaded: Debian's (r111, a classic script) or current ones (0.187, an ES module: pass the
+// module's namespace); tested with both (tests/browser_check.sh). WebGL2 only: the include needs
+// 3D and array textures; the LUTs are half floats, which WebGL2 filters. Copyright the btflut
+// authors; MIT licence.
 (function (global) {
   'use strict';
 
@@ -64,8 +66,18 @@ void main() {
     return t;
   }
 
+  // three.js renamed its data textures (r137: DataTexture3D -> Data3DTexture, DataTexture2DArray
+  // -> DataArrayTexture) and wants GLSL 3 shaders without their #version line (r118: glslVersion).
+  const data3D = (THREE) => THREE.Data3DTexture || THREE.DataTexture3D;
+  const dataArray = (THREE) => THREE.DataArrayTexture || THREE.DataTexture2DArray;
+  function glsl3(THREE, vertex, fragment) {
+    if (THREE.GLSL3 === undefined) return {vertexShader: vertex, fragmentShader: fragment};
+    const bare = (source) => source.replace(/^#version 300 es\n/, '');
+    return {vertexShader: bare(vertex), fragmentShader: bare(fragment), glslVersion: THREE.GLSL3};
+  }
+
   function arrayTexture(THREE, data, width, height, depth, type, filter) {
-    const t = new THREE.DataTexture2DArray(data, width, height, depth);
+    const t = new (dataArray(THREE))(data, width, height, depth);
     t.format = THREE.RGBAFormat;
     t.type = type;
     t.magFilter = t.minFilter = filter;
@@ -84,7 +96,7 @@ void main() {
     const dither = !options || options.dither !== false;
     m.material.dither = m.predictor.dither = dither;
 
-    const luts = new THREE.DataTexture3D(m.luts.halves, m.luts.width, m.luts.height, m.luts.depth);
+    const luts = new (data3D(THREE))(m.luts.halves, m.luts.width, m.luts.height, m.luts.depth);
     luts.format = m.luts.channels === 1 ? THREE.RedFormat : THREE.RGBAFormat;
     luts.type = THREE.HalfFloatType;
     luts.magFilter = luts.minFilter = THREE.LinearFilter;
@@ -104,8 +116,8 @@ void main() {
       labels: {value: m.labels ? texture2D(THREE, m.labels, THREE.NearestFilter) : unused2D},
       hasPredictor: {value: m.kind !== 'luts'}, lightTangent: {value: new THREE.Vector3(0, 0, 1)}, exposure: {value: 1},
       size: {value: new THREE.Vector2(m.size[0], m.size[1])}, material: {value: m.material}, predictor: {value: m.predictor}};
-    const material = new THREE.RawShaderMaterial({
-      uniforms, vertexShader, fragmentShader: '#version 300 es\n' + include + fragmentMain});
+    const material = new THREE.RawShaderMaterial(
+      {uniforms, ...glsl3(THREE, vertexShader, '#version 300 es\n' + include + fragmentMain)});
     return {
       material, json,
       setLight(direction) { uniforms.lightTangent.value.copy(direction).normalize(); },

@@ -34,6 +34,11 @@ namespace fs = std::filesystem;
 
 // The shader include in each shading language (tools/shader-forms.sh makes all but the first).
 constexpr const char* kShaderIncludes[] = {"btflut.glsl", "btflut_es.glsl", "btflut.hlsl", "btflut.gdshaderinc"};
+// The three.js recipe (examples/three/, docs/engines.md), so a folder is all an artist needs:
+// its page (three.html) loads the material beside it with the two scripts.
+constexpr std::pair<const char*, const char*> kThreeRecipe[] = {{"btflut_material.js", "btflut_material.js"},
+                                                                {"btflut-three.js", "btflut-three.js"},
+                                                                {"three.html", "relight.html"}};
 
 struct ExportOptions {
     std::string bank;
@@ -221,6 +226,8 @@ bool exportFileName(const std::string& name) {
         if (name == file) return true;
     for (const char* file : kShaderIncludes)
         if (name == file) return true;
+    for (const auto& [file, source] : kThreeRecipe)
+        if (name == file) return true;
     return std::regex_match(name, planes);
 }
 
@@ -298,27 +305,6 @@ Result<bool> folderReady(const ExportOptions& o) {
     return reexport;
 }
 
-// -o DIR/: the export's files in a folder.
-Status exportFolder(const ExportOptions& o, const EngineExport& made, bool reexport) {
-    std::error_code ec;
-    std::vector<std::pair<std::string, std::string_view>> files;
-    for (const auto& [name, bytes] : made.files) files.push_back({name, bytes});
-    if (Status s = writeFolder(o.output, files); !s) return s;
-    // What a previous export wrote and this one did not (planes of a bigger model, weights);
-    // only in a folder that held nothing else (with --force, other files may be the user's).
-    for (fs::directory_iterator it(o.output, ec), end; reexport && !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        const bool written = std::any_of(files.begin(), files.end(), [&](const auto& f) { return f.first == name; });
-        if (!written && exportFileName(name)) fs::remove(it->path(), ec);
-    }
-    if (o.quiet) return success();
-    std::cout << "wrote " << o.output << ": " << made.summary;
-    for (const auto& file : files)
-        if (file.first != "luts.png") std::cout << ", " << file.first;
-    std::cout << "\n";
-    return success();
-}
-
 // A file's absolute file:// URL, percent-encoded: a relative path with '#' in a browser's
 // command line is read as a host name, so the page's command is given whole.
 std::string fileUrl(const std::string& path) {
@@ -334,6 +320,29 @@ std::string fileUrl(const std::string& path) {
         }
     }
     return url;
+}
+
+// -o DIR/: the export's files in a folder.
+Status exportFolder(const ExportOptions& o, const EngineExport& made, bool reexport) {
+    std::error_code ec;
+    std::vector<std::pair<std::string, std::string_view>> files;
+    for (const auto& [name, bytes] : made.files) files.push_back({name, bytes});
+    for (const auto& [name, source] : kThreeRecipe) files.push_back({name, embeddedWebFile(source)});
+    if (Status s = writeFolder(o.output, files); !s) return s;
+    // What a previous export wrote and this one did not (planes of a bigger model, weights);
+    // only in a folder that held nothing else (with --force, other files may be the user's).
+    for (fs::directory_iterator it(o.output, ec), end; reexport && !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        const bool written = std::any_of(files.begin(), files.end(), [&](const auto& f) { return f.first == name; });
+        if (!written && exportFileName(name)) fs::remove(it->path(), ec);
+    }
+    if (o.quiet) return success();
+    std::cout << "wrote " << o.output << ": " << made.summary;
+    for (const auto& file : files)
+        if (file.first != "luts.png") std::cout << ", " << file.first;
+    std::cout << "\nin three.js (WebGL2, no server): chromium --allow-file-access-from-files '"
+              << fileUrl((fs::path(o.output) / "three.html").string()) << "#light=30,90'\n";
+    return success();
 }
 
 // --web M.html: one page that opens from disk and relights the material with WebGL2.
