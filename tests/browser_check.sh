@@ -107,6 +107,29 @@ corner = image.crop((850, 550, 900, 600))  # off the sphere: black
 assert max(centre.getdata()) > 40 and max(corner.getdata()) == 0, "the sphere view is not drawn"
 PY
 echo "export --web: the panel and the sphere view draw"
+# "Fit" places the material in the area the panel leaves free, at three window sizes (the
+# page writes where it drew the material and the panel: data-material, data-panel).
+for size in 1200,800 400,800 900,600; do
+  dom=$(timeout 180 chromium --headless --no-sandbox --user-data-dir="$work/profile" --use-angle=swiftshader \
+        --enable-unsafe-swiftshader --window-size="$size" --virtual-time-budget=30000 \
+        --dump-dom "file://$work/hsh2.html#light=50,120&zoom=fit" 2>/dev/null)
+  /usr/bin/python3 - "$size" <<<"$dom" <<'PY' || exit 1
+import re, sys
+dom = sys.stdin.read()
+width, height = map(int, sys.argv[1].split(","))
+found = {k: re.search(r'data-%s="([-0-9,]*)"' % k, dom) for k in ("material", "panel", "size")}
+assert all(found.values()), "the page wrote no data-material, data-panel or data-size"
+m = [int(v) for v in found["material"].group(1).split(",")]
+p = [int(v) for v in found["panel"].group(1).split(",")]
+width, height = map(int, found["size"].group(1).split(","))  # the view (a browser's window has a least size)
+overlap = max(0, min(m[2], p[2]) - max(m[0], p[0])) * max(0, min(m[3], p[3]) - max(m[1], p[1]))
+inside = m[0] >= 0 and m[1] >= 0 and m[2] <= width and m[3] <= height
+print(f"export --web, fit in a {sys.argv[1]} window ({width}x{height} view): the material at {m}, the panel at {p}, "
+      f"{overlap} px under it")
+if overlap > 0 or not inside or m[2] - m[0] < 32:
+    sys.exit(f"export --web, fit in a {sys.argv[1]} window: the material is under the panel or off the page")
+PY
+done
 # A light beyond the measured ones: the panel says "clamped", as relight, info and the viewer do.
 dom=$(timeout 180 chromium --headless --no-sandbox --user-data-dir="$work/profile" --use-angle=swiftshader --enable-unsafe-swiftshader \
       --virtual-time-budget=30000 --dump-dom "file://$work/hsh2.html#light=88,0" 2>/dev/null)

@@ -139,9 +139,27 @@ function lightVector() {
   const t = state.theta * Math.PI / 180, p = state.phi * Math.PI / 180;
   return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)];
 }
+// The part of the view the panel leaves free, in device pixels, y up (GL's): right of the panel
+// or below it, whichever shows the material larger; the whole view when the panel is hidden.
+function freeArea() {
+  const whole = {x: 0, y: 0, width: view.width, height: view.height};
+  if (!state.ui) return whole;
+  const dpr = window.devicePixelRatio || 1, box = panel.getBoundingClientRect(), [w, h] = state.size;
+  const right = {x: box.right * dpr, y: 0, width: view.width - box.right * dpr, height: view.height};
+  const below = {x: 0, y: 0, width: view.width, height: view.height - box.bottom * dpr};
+  const scale = (a) => Math.min(a.width / w, a.height / h);
+  const best = scale(right) >= scale(below) ? right : below;
+  return best.width > 0 && best.height > 0 ? best : whole;
+}
+// "Fit": the material as large as the free area holds it, centred in it.
 function fitZoom() {
-  const [w, h] = state.size;
-  return Math.min(view.width / w, view.height / h) * 0.95;
+  const a = freeArea(), [w, h] = state.size;
+  return Math.min(a.width / w, a.height / h) * 0.95;
+}
+// The texel at the view's centre that puts the material's centre at the free area's.
+function fitCentre(zoom) {
+  const a = freeArea(), [w, h] = state.size;
+  return [w / 2 - (a.x + a.width / 2 - view.width / 2) / zoom, h / 2 - (a.y + a.height / 2 - view.height / 2) / zoom];
 }
 let pending = false;
 function redraw() {
@@ -156,6 +174,7 @@ function draw() {
   gl.viewport(0, 0, width, height);
   const [w, h] = state.size;
   const zoom = state.zoom === null ? fitZoom() : state.zoom;
+  if (state.zoom === null) state.centre = fitCentre(zoom);  // fitted anew to every size
   if (!state.centre) state.centre = [w / 2, h / 2];
   let origin = [width / 2 - state.centre[0] * zoom, height / 2 - state.centre[1] * zoom];
   if (state.anchored) origin = [0, height - h * zoom];  // the image's top left at the view's
@@ -170,6 +189,12 @@ function draw() {
   gl.uniform1f(uniforms.lightDistance, 4);
   gl.uniform1f(uniforms.exposure, state.exposure);
   gl.drawArrays(gl.TRIANGLES, 0, 3);
+  // Where the material and the panel are, in CSS pixels (left, top, right, bottom): for tests.
+  const box = panel.getBoundingClientRect();
+  view.dataset.material = [origin[0], height - origin[1] - h * zoom, origin[0] + w * zoom, height - origin[1]]
+    .map((v) => Math.round(v / dpr)).join(',');
+  view.dataset.panel = state.ui ? [box.left, box.top, box.right, box.bottom].map(Math.round).join(',') : '';
+  view.dataset.size = [view.clientWidth, view.clientHeight].join(',');
   const error = gl.getError();
   if (error !== gl.NO_ERROR) console.error('WebGL error ' + error + ' while drawing');
   updatePanel();

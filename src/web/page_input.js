@@ -39,7 +39,8 @@ view.addEventListener('pointermove', (e) => {
     state.theta = Math.asin(r) * 180 / Math.PI;
     state.phi = (Math.atan2(y, x) * 180 / Math.PI + 360) % 360;
   } else {
-    const zoom = state.zoom === null ? fitZoom() : state.zoom;
+    if (state.zoom === null) state.zoom = fitZoom();  // a fitted view, once panned, keeps its zoom
+    const zoom = state.zoom;
     if (state.anchored) state.centre = [view.width / 2 / zoom, state.size[1] - view.height / 2 / zoom], state.anchored = false;
     state.centre = [state.centre[0] - (e.clientX - x0) * dpr / zoom, state.centre[1] + (e.clientY - y0) * dpr / zoom];
   }
