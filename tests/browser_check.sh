@@ -110,12 +110,12 @@ echo "export --web: the panel and the sphere view draw"
 # "Fit" places the material in the area the panel leaves free, at three window sizes (the
 # page writes where it drew the material and the panel: data-material, data-panel).
 for size in 1200,800 400,800 900,600; do
-  dom=$(timeout 180 chromium --headless --no-sandbox --user-data-dir="$work/profile" --use-angle=swiftshader \
-        --enable-unsafe-swiftshader --window-size="$size" --virtual-time-budget=30000 \
-        --dump-dom "file://$work/hsh2.html#light=50,120&zoom=fit" 2>/dev/null)
-  /usr/bin/python3 - "$size" <<<"$dom" <<'PY' || exit 1
+  timeout 180 chromium --headless --no-sandbox --user-data-dir="$work/profile" --use-angle=swiftshader \
+    --enable-unsafe-swiftshader --window-size="$size" --virtual-time-budget=30000 \
+    --dump-dom "file://$work/hsh2.html#light=50,120&zoom=fit" >"$work/fit.html" 2>/dev/null
+  /usr/bin/python3 - "$size" "$work/fit.html" <<'PY' || exit 1
 import re, sys
-dom = sys.stdin.read()
+dom = open(sys.argv[2]).read()
 width, height = map(int, sys.argv[1].split(","))
 found = {k: re.search(r'data-%s="([-0-9,]*)"' % k, dom) for k in ("material", "panel", "size")}
 assert all(found.values()), "the page wrote no data-material, data-panel or data-size"
