@@ -20,7 +20,6 @@ packages=(
   xvfb xauth
   glslang-tools spirv-cross  # the include's HLSL and GLSL ES forms (tools/shader-forms.sh)
   chromium libjs-three  # WebGL2 tests in headless Chromium: the three.js recipe
-  npm                   # ... and current three.js (0.187, npm's registry) for it (tests/browser_check.sh)
   parallel              # GNU parallel: tools/bake-library.sh bakes materials side by side
   clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (tools/fuzz.sh)
   clang-format          # the code's format (tools/format.sh; tools/test.sh checks it)
@@ -30,6 +29,9 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# npm fetches current three.js for the recipe's test (tests/browser_check.sh): Debian's npm,
+# unless a Node.js that ships its own (NodeSource's nodejs) is there, which Debian's would conflict with.
+command -v npm >/dev/null || missing+=(npm)
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages present"
   exit 0
