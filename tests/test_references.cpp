@@ -442,6 +442,11 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
         INFO(name);
         REQUIRE(byName.count(name));
         CHECK(byName[name]["psnr"].get<double>() > 10);
+        // Each mean's spread over the three held-out images: an interval around it.
+        const nlohmann::json& l1 = byName[name]["spread"]["l1"];
+        CHECK(l1["sd"].get<double>() >= 0);
+        CHECK(l1["ci95"][0].get<double>() <= byName[name]["l1"].get<double>());
+        CHECK(l1["ci95"][1].get<double>() >= byName[name]["l1"].get<double>());
     }
     CHECK(json["rows"].size() == json["modes"].size() * 3);
     CHECK(json["rows"][0]["theta"].get<double>() > 0);  // each row says its light

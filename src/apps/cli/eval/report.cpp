@@ -206,6 +206,24 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                                  {"gpu_max_diff_255", number(v.gpuMaxDiff)}});
         const auto outside = static_cast<std::size_t>(std::count(v.outside.begin(), v.outside.end(), true));
         nlohmann::json& mode = json["modes"].back();
+        // Beside each mean its spread over the predictions: the per-image standard deviation and
+        // the 95% interval of the mean (normal approximation, mean +- 1.96 sd / sqrt(n)), so two
+        // modes' figures can be told apart from the noise of which images were held out.
+        for (const auto& [key, field] :
+             {std::pair{"l1", &ImageErrors::l1}, std::pair{"emd", &ImageErrors::emd},
+              std::pair{"psnr", &ImageErrors::psnr}, std::pair{"ssim", &ImageErrors::ssim}}) {
+            const double m = mean(field);
+            const std::size_t n = v.errors.size();
+            if (!std::isfinite(m) || n < 2) {
+                mode["spread"][key] = nullptr;
+                continue;
+            }
+            double squares = 0;
+            for (const ImageErrors& e : v.errors) squares += (e.*field - m) * (e.*field - m);
+            const double sd = std::sqrt(squares / static_cast<double>(n - 1)),
+                         half = 1.96 * sd / std::sqrt(static_cast<double>(n));
+            mode["spread"][key] = {{"sd", number(sd)}, {"ci95", {number(m - half), number(m + half)}}};
+        }
         for (int where : {0, 1})
             mode[where ? "outside_hull" : "inside_hull"] = {{"count", where ? outside : v.errors.size() - outside},
                                                             {"l1", number(mean(&ImageErrors::l1, where))},
