@@ -449,6 +449,18 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
         CHECK(l1["ci95"][1].get<double>() >= byName[name]["l1"].get<double>());
     }
     CHECK(json["rows"].size() == json["modes"].size() * 3);
+    // Sweeps: a predictor's bank at each match strength, bake's choice at each budget.
+    const CliRun swept = runCli({"eval", m.grey, "--holdout", "every:3", "--modes", "lut", "--predictor", "auto,hsh2",
+                                 "--match", "0,1", "--budget", "1,4", "--no-gl", "--json"});
+    INFO(swept.err);
+    REQUIRE(swept.status == 0);
+    std::vector<std::string> sweptNames;
+    const nlohmann::json sweptJson = nlohmann::json::parse(swept.out);
+    for (const auto& mode : sweptJson["modes"]) sweptNames.push_back(mode["name"]);
+    CHECK(sweptNames == std::vector<std::string>{"lut auto match 0 budget 1", "lut auto match 0 budget 4",
+                                                 "lut auto match 1 budget 1", "lut auto match 1 budget 4",
+                                                 "lut hsh2 R1 grey match 0", "lut hsh2 R1 grey match 1"});
+    CHECK(runCli({"eval", m.grey, "--match", "2", "--no-gl"}).err.find("--match '2': expected") != std::string::npos);
     CHECK(json["rows"][0]["theta"].get<double>() > 0);  // each row says its light
     // --no-gl: the GL figures are "-" in the table, not nan.
     const CliRun table = runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "lut", "--no-gl"});

@@ -118,6 +118,12 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
                     "--references blended), or a light model relit, then matched: ptm, hsh2, hsh3, rbfN, blnN, rbfNc, "
                     "blnNc; a list")
         ->capture_default_str();
+    app->add_option("--match", o->matches,
+                    "lut with a predictor (and lut auto): each match strength of a list, 0 (the prediction as it is) "
+                    "to 1 (the target's histogram), e.g. 0,0.5,1; default: bake's (auto: validated)");
+    app->add_option("--budget", o->budgets,
+                    "lut auto: each budget of a list, in bytes per texel the predictor may store (e.g. 3,6,9); "
+                    "default: bake's");
     app->add_flag("--blended-luts", o->blendedLuts,
                   "also the alternative to blend-then-match: each reference matched alone, the results blended");
     app->add_option("--fill", o->fills,

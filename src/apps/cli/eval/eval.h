@@ -50,6 +50,8 @@ struct EvalOptions {
     std::string grids = "17";          ///< banks' grid sizes, a list
     std::string lutSources = "exact";  ///< lut: exact (made at the light), grid (read from the bank's grid), a list
     std::string domains = "auto";      ///< the banks' domains: auto (bake's choice), layers, isotropic, a list
+    std::string matches;               ///< lut with a predictor: match strengths, a list; empty: bake's
+    std::string budgets;               ///< lut auto: bytes per texel, a list; empty: bake's
     int sheetLights = 4;
 };
 
@@ -72,6 +74,8 @@ struct Variant {
     bool corrections = false;  // lut with a predictor: the nodes' corrections blended (LutBank::Blend::Target)
     bool blendedLuts = false;  // the alternative: per-reference LUTs blended
     std::optional<BankDomain> domain;            // the bank's domain (and nearest's distance); empty: bake's choice
+    std::optional<float> match;                  // lut with a predictor: the match strength; empty: bake's
+    std::optional<int> budget;                   // lut auto: bytes per texel; empty: bake's
     BankDomain bankDomain = BankDomain::Layers;  // what the bank has: `domain`, or bake's choice
     /// An RTI basis on its own, unmatched (modes hsh, rbf, bln; a number after the name is
     /// the hsh order or the planes): fitted to the fold's training images.
@@ -82,8 +86,11 @@ struct Variant {
         return predictor == "references" && references == 1 && regions == 1 && colour == ColourMode::Grey && !filled &&
                !corrections;
     }
-    using Setting = std::tuple<std::string, int, int, ColourMode, bool, bool, int, std::optional<BankDomain>>;
-    Setting setting() const { return {predictor, references, regions, colour, filled, corrections, grid, domain}; }
+    using Setting = std::tuple<std::string, int, int, ColourMode, bool, bool, int, std::optional<BankDomain>,
+                               std::optional<float>, std::optional<int>>;
+    Setting setting() const {
+        return {predictor, references, regions, colour, filled, corrections, grid, domain, match, budget};
+    }
 
     std::vector<ImageErrors> errors;
     std::vector<std::string> images;

@@ -34,8 +34,8 @@ public:
           m_bankFiles(bankFiles) {}
 
     static Variant::Setting keyOf(const Variant& v) {
-        return v.mode == RenderMode::Lut ? v.setting() : Variant::Setting{"references", 1,     1,      ColourMode::Grey,
-                                                                          false,        false, v.grid, v.domain};
+        if (v.mode == RenderMode::Lut) return v.setting();
+        return {"references", 1, 1, ColourMode::Grey, false, false, v.grid, v.domain, std::nullopt, std::nullopt};
     }
 
     Result<LutBank*> bankFor(Variant& v) {
@@ -58,12 +58,13 @@ private:
     Status bake(const Variant& v, const Variant::Setting& key) {
         Variant setting = v;
         std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled,
-                 setting.corrections, setting.grid, setting.domain) = key;
+                 setting.corrections, setting.grid, setting.domain, setting.match, setting.budget) = key;
         const auto start = Clock::now();
         const BakeOptions options = bakeOptionsOf(setting, m_ptm && setting.base());
         // lut auto: bake's validated choice, from the fold's training images alone
-        Result<LutBank> bank =
-            setting.predictor == "auto" ? bakeAuto(m_train, {.base = options}) : bakeBank(m_train, options);
+        AutoBakeOptions automatic{.base = options, .match = setting.match};
+        if (setting.budget) automatic.budget = *setting.budget;
+        Result<LutBank> bank = setting.predictor == "auto" ? bakeAuto(m_train, automatic) : bakeBank(m_train, options);
         if (!bank) return Error{bank.error()};
         if (setting.filled)  // fitted to the training images only
             if (Result<ModelFillReport> fill = fillFromDataset(*bank, m_train, nullptr); !fill)

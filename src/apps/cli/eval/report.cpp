@@ -134,6 +134,8 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                           {"grid", o.grids},
                           {"luts", o.lutSources},
                           {"domain", o.domains},
+                          {"match", o.matches},
+                          {"budget", o.budgets},
                           {"blended_luts", o.blendedLuts},
                           {"gl", !o.noGl},
                           {"backend", o.backend},

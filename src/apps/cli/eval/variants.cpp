@@ -182,6 +182,56 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             all.push_back(r);
         }
     variants = std::move(all);
+    // The sweeps: lut variants with a predictor at each match strength, `lut auto` at each budget.
+    std::vector<float> strengths;
+    for (const std::string& item : split(o.matches)) {
+        char* end = nullptr;
+        const float s = std::strtof(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !(s >= 0 && s <= 1))
+            return Error{"--match '" + o.matches + "': expected a comma-separated list of strengths from 0 to 1"};
+        strengths.push_back(s);
+    }
+    std::vector<int> budgets;
+    if (!o.budgets.empty()) {
+        Result<std::vector<int>> parsed = parseList(o.budgets, "budget", 1, 255);
+        if (!parsed) return Error{parsed.error()};
+        budgets = *parsed;
+    }
+    auto sweep = [&](const auto& values, auto applies, auto set) {
+        if (values.empty()) return;
+        all.clear();
+        for (const Variant& v : variants) {
+            if (!applies(v)) {
+                all.push_back(v);
+                continue;
+            }
+            for (const auto& value : values) {
+                Variant r = v;
+                set(r, value);
+                all.push_back(r);
+            }
+        }
+        variants = std::move(all);
+    };
+    sweep(
+        strengths,
+        [](const Variant& v) {
+            return v.mode == RenderMode::Lut &&
+                   (v.predictor == "auto" ||
+                    bakePredicts(v.references, v.regions, false, v.colour, v.predictor != "references"));
+        },
+        [](Variant& r, float s) {
+            char text[32];
+            std::snprintf(text, sizeof text, " match %g", static_cast<double>(s));
+            r.match = s;
+            r.name += text;
+        });
+    sweep(
+        budgets, [](const Variant& v) { return v.mode == RenderMode::Lut && v.predictor == "auto"; },
+        [](Variant& r, int b) {
+            r.budget = b;
+            r.name += " budget " + std::to_string(b);
+        });
     // Lut variants first, then the baselines in the order asked.
     std::stable_partition(variants.begin(), variants.end(), [](const Variant& v) { return v.mode == RenderMode::Lut; });
     return variants;
@@ -218,6 +268,7 @@ BakeOptions bakeOptionsOf(const Variant& v, bool ptm) {
     b.references = v.references;
     if (std::optional<Result<LightModelOptions>> model = lightModelNamed(v.predictor)) b.model = **model;
     if (v.corrections) b.target = LutBank::Blend::Target::Corrections;
+    if (v.match) b.match = *v.match;
     b.regions = v.regions;
     b.colour = v.colour;
     b.ptm = ptm;
