@@ -500,6 +500,17 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     for (const auto& mode : json["by_theta"]["modes"])
         for (const auto& n : mode["count"]) counted += n.get<std::size_t>();
     CHECK(counted == json["rows"].size());
+    // Bands centred on multiples of 10: each row's theta within 5 degrees of a band its mode has.
+    for (const auto& row : json["rows"]) {
+        const double theta = row["theta"].get<double>();
+        bool inBand = false;
+        for (const auto& mode : json["by_theta"]["modes"])
+            if (mode["name"] == row["mode"])
+                for (const auto& centre : mode["theta"])
+                    inBand = inBand || (std::abs(centre.get<double>() - theta) <= 5 &&
+                                        std::fmod(centre.get<double>(), 10.0) == 0);
+        CHECK(inBand);
+    }
     CHECK(loadImage(dir / "eval/tradeoff.png")->width > 3 * 400);
     CliRun two =
         runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "lut", "--no-gl", "--json", "--contact", "2"});

@@ -56,6 +56,11 @@ void addTradeoff(Report& r) {
     r.json["pareto_fronts"] = fronts;  // per figure and cost: the modes on the front, cheapest first
 }
 
+// The 10-degree band of theta a light falls in: bands centred on multiples of 10, so a dome's
+// rings (at 20, 40, 60, 80 degrees, give or take a measurement's error) sit in the middle of
+// theirs rather than on an edge, split between two.
+int thetaBand(double theta) { return static_cast<int>(std::floor(theta / 10 + 0.5)); }
+
 // Each mode's mean PSNR and L1 over the held-out lights in 10-degree bands of theta: where
 // each mode fails.
 void addByTheta(Report& r) {
@@ -64,14 +69,14 @@ void addByTheta(Report& r) {
     std::vector<std::string> modes;
     for (const nlohmann::json& m : r.json["modes"]) modes.push_back(m["name"]);
     for (const nlohmann::json& row : r.json["rows"])
-        rows[row["mode"]][static_cast<int>(row["theta"].get<double>() / kBand)].push_back(&row);
+        rows[row["mode"]][thetaBand(row["theta"].get<double>())].push_back(&row);
     nlohmann::json out{{"band_degrees", kBand}, {"modes", nlohmann::json::array()}};
     ChartPanel psnr{.title = "PSNR against the held-out light's theta",
-                    .xLabel = "theta (degrees), 10-degree bands",
+                    .xLabel = "theta (degrees), 10-degree bands centred on multiples of 10",
                     .yLabel = "dB",
                     .lines = true};
     ChartPanel l1{.title = "histogram L1 against the held-out light's theta",
-                  .xLabel = "theta (degrees), 10-degree bands",
+                  .xLabel = "theta (degrees), 10-degree bands centred on multiples of 10",
                   .yLabel = "L1",
                   .lines = true};
     for (const std::string& name : modes) {
@@ -86,7 +91,7 @@ void addByTheta(Report& r) {
             for (const nlohmann::json* row : members)
                 sumPsnr += (*row)["psnr"].is_number() ? (*row)["psnr"].get<double>() : std::nan(""),
                     sumL1 += (*row)["l1"].get<double>();
-            const double n = static_cast<double>(members.size()), centre = (band + 0.5) * kBand;
+            const double n = static_cast<double>(members.size()), centre = band * kBand;
             mode["theta"].push_back(centre);
             mode["psnr"].push_back(std::isfinite(sumPsnr) ? nlohmann::json(sumPsnr / n) : nlohmann::json(nullptr));
             mode["l1"].push_back(sumL1 / n);
