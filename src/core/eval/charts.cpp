@@ -13,7 +13,7 @@ namespace {
 
 constexpr int kPanelW = 420, kPanelH = 300;                      // the plot area
 constexpr int kLeft = 76, kRight = 24, kTop = 40, kBottom = 52;  // around it: ticks, labels, title
-constexpr int kLegendW = 180;                                    // line panels: the legend, right of the plot
+constexpr int kLegendW = 300;  // line panels: the legend, right of the plot (names of ~27 characters whole)
 constexpr int kCellW = kLeft + kPanelW + kRight, kCellH = kTop + kPanelH + kBottom;
 
 std::string tickText(double v) {

@@ -71,12 +71,12 @@ void addByTheta(Report& r) {
     for (const nlohmann::json& row : r.json["rows"])
         rows[row["mode"]][thetaBand(row["theta"].get<double>())].push_back(&row);
     nlohmann::json out{{"band_degrees", kBand}, {"modes", nlohmann::json::array()}};
-    ChartPanel psnr{.title = "PSNR against the held-out light's theta",
-                    .xLabel = "theta (degrees), 10-degree bands centred on multiples of 10",
+    ChartPanel psnr{.title = "PSNR against the light's theta",
+                    .xLabel = "theta (degrees), 10-degree bands",
                     .yLabel = "dB",
                     .lines = true};
-    ChartPanel l1{.title = "histogram L1 against the held-out light's theta",
-                  .xLabel = "theta (degrees), 10-degree bands centred on multiples of 10",
+    ChartPanel l1{.title = "histogram L1 against the light's theta",
+                  .xLabel = "theta (degrees), 10-degree bands",
                   .yLabel = "L1",
                   .lines = true};
     for (const std::string& name : modes) {
