@@ -1,6 +1,8 @@
 #include <doctest/doctest.h>
 
 #include "core/histogram/histogram.h"
+#include "core/histogram/plot.h"
+#include "core/image/canvas.h"
 
 using namespace btflut;
 
@@ -66,4 +68,21 @@ TEST_CASE("earth mover's distance of shifted spikes is the shift") {
     b[5] = 1;
     CHECK(earthMoversDistance(a, b) == doctest::Approx(0.3));
     CHECK(earthMoversDistance(a, a) == 0.0);
+}
+
+TEST_CASE("contact sheet: a label's lines ('\\n' between them) are drawn one under the other") {
+    Image cell(16, 16, 3);
+    std::fill(cell.samples.begin(), cell.samples.end(), 0.5f);
+    const Image one = contactSheet({{{"photo", cell}}}, 64), two = contactSheet({{{"photo\n12.3 dB", cell}}}, 64);
+    CHECK(two.height == one.height + Canvas::kTextHeight + 5);  // a line more for every cell
+    // The second line's rows have ink, and none with a blank second line.
+    const int from = 8 + 2 + Canvas::kTextHeight + 5, to = from + Canvas::kTextHeight;
+    auto inked = [&](const Image& image) {
+        for (int y = from; y < to; ++y)
+            for (int x = 0; x < image.width; ++x)
+                if (image.samples[(static_cast<std::size_t>(y) * image.width + x) * 3] != image.samples[0]) return true;
+        return false;
+    };
+    CHECK(inked(two));
+    CHECK_FALSE(inked(contactSheet({{{"photo\n ", cell}}}, 64)));
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <sstream>
 
 #include "core/image/canvas.h"
 
@@ -144,7 +145,13 @@ Image scaledTo(const Image& image, int width) {
 
 Image contactSheet(const std::vector<std::vector<SheetCell>>& rows, int cellWidth) {
     BTFLUT_CHECK(!rows.empty() && !rows.front().empty() && cellWidth > 0);
-    constexpr int kGap = 8, kLabel = 22;
+    constexpr int kGap = 8, kLine = Canvas::kTextHeight + 5;
+    std::size_t lines = 1;  // a label's lines ('\n' between them)
+    for (const auto& row : rows)
+        for (const SheetCell& cell : row)
+            lines = std::max<std::size_t>(
+                lines, 1 + static_cast<std::size_t>(std::count(cell.label.begin(), cell.label.end(), '\n')));
+    const int kLabel = static_cast<int>(lines) * kLine + 4;
     std::size_t columns = 0;
     int cellHeight = 0;
     std::vector<std::vector<Image>> scaled;
@@ -163,7 +170,10 @@ Image contactSheet(const std::vector<std::vector<SheetCell>>& rows, int cellWidt
         for (std::size_t c = 0; c < rows[r].size(); ++c) {
             const int x = kGap + static_cast<int>(c) * (cellWidth + kGap);
             const int y = kGap + static_cast<int>(r) * (cellHeight + kLabel + kGap);
-            canvas.text(x, y + 2, Canvas::fitted(rows[r][c].label, cellWidth), kInk);  // clipped to its cell
+            std::istringstream label(rows[r][c].label);
+            int line = 0;
+            for (std::string text; std::getline(label, text); ++line)  // each line clipped to its cell
+                canvas.text(x, y + 2 + line * kLine, Canvas::fitted(text, cellWidth), line == 0 ? kInk : kAxisGrey);
             canvas.blit(x, y + kLabel, scaled[r][c]);
         }
     return canvas.take();

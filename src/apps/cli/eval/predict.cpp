@@ -200,7 +200,10 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
             if (!photo) return Error{photo.error()};
             const bool sheetRow = onSheet.count(t) > 0;
             if (sheetRow) {
-                sheet.push_back({{info.name + " (photo)", *photo}});
+                char light[64];
+                std::snprintf(light, sizeof light, "\nlight %.0f, %.0f", info.light.thetaDegrees(),
+                              info.light.phiDegrees());
+                sheet.push_back({{info.name + " (photo)" + light, *photo}});
                 sheetHistograms.front().rows.push_back(histogramOf(*photo, info));
             }
             for (Variant& v : variants) {
@@ -235,7 +238,14 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 if (sheetRow) {
                     sheetHistograms[static_cast<std::size_t>(&v - variants.data()) + 1].rows.push_back(
                         histogramOf(predicted, info));
-                    sheet.back().push_back({v.name, std::move(predicted)});
+                    // Each cell's figures under its name: how close it came to the photograph.
+                    const ImageErrors& e = v.errors.back();
+                    char figures[64];
+                    if (std::isnan(e.psnr))  // views not rectified to one frame: no pixels compared
+                        std::snprintf(figures, sizeof figures, "\nL1 %.2f", e.l1);
+                    else
+                        std::snprintf(figures, sizeof figures, "\n%.1f dB  L1 %.2f", e.psnr, e.l1);
+                    sheet.back().push_back({v.name + figures, std::move(predicted)});
                 }
             }
         }
