@@ -152,13 +152,13 @@ function freeArea() {
   return best.width > 0 && best.height > 0 ? best : whole;
 }
 // "Fit": the material as large as the free area holds it, centred in it.
-function fitZoom() {
-  const a = freeArea(), [w, h] = state.size;
+function fitZoom(a = freeArea()) {
+  const [w, h] = state.size;
   return Math.min(a.width / w, a.height / h) * 0.95;
 }
 // The texel at the view's centre that puts the material's centre at the free area's.
-function fitCentre(zoom) {
-  const a = freeArea(), [w, h] = state.size;
+function fitCentre(zoom, a = freeArea()) {
+  const [w, h] = state.size;
   return [w / 2 - (a.x + a.width / 2 - view.width / 2) / zoom, h / 2 - (a.y + a.height / 2 - view.height / 2) / zoom];
 }
 let pending = false;
@@ -173,8 +173,9 @@ function draw() {
   if (view.width !== width || view.height !== height) view.width = width, view.height = height;
   gl.viewport(0, 0, width, height);
   const [w, h] = state.size;
-  const zoom = state.zoom === null ? fitZoom() : state.zoom;
-  if (state.zoom === null) state.centre = fitCentre(zoom);  // fitted anew to every size
+  const free = state.zoom === null ? freeArea() : null;  // the panel's box asked once a frame
+  const zoom = state.zoom === null ? fitZoom(free) : state.zoom;
+  if (state.zoom === null) state.centre = fitCentre(zoom, free);  // fitted anew to every size
   if (!state.centre) state.centre = [w / 2, h / 2];
   let origin = [width / 2 - state.centre[0] * zoom, height / 2 - state.centre[1] * zoom];
   if (state.anchored) origin = [0, height - h * zoom];  // the image's top left at the view's
