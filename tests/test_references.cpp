@@ -460,6 +460,16 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     CHECK(sweptNames == std::vector<std::string>{"lut auto match 0 budget 1", "lut auto match 0 budget 4",
                                                  "lut auto match 1 budget 1", "lut auto match 1 budget 4",
                                                  "lut hsh2 R1 grey match 0", "lut hsh2 R1 grey match 1"});
+    // lut auto says what bake chose in each fold (one fold here), and only lut auto does.
+    for (const auto& mode : sweptJson["modes"]) {
+        INFO(mode["name"]);
+        const bool automatic = mode["name"].get<std::string>().rfind("lut auto", 0) == 0;
+        REQUIRE(mode.contains("chosen") == automatic);
+        if (automatic) {
+            REQUIRE(mode["chosen"].size() == 1);
+            CHECK(mode["chosen"][0].get<std::string>().find(" match ") != std::string::npos);
+        }
+    }
     CHECK(runCli({"eval", m.grey, "--match", "2", "--no-gl"}).err.find("--match '2': expected") != std::string::npos);
     CHECK(json["rows"][0]["theta"].get<double>() > 0);  // each row says its light
     // --no-gl: the GL figures are "-" in the table, not nan.

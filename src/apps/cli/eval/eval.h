@@ -98,6 +98,8 @@ struct Variant {
     /// domain (its lookup extrapolated, or modelled), so the bank clamped (or modelled) it.
     std::vector<bool> outside;
     std::vector<double> bakeSeconds, relightSeconds;
+    /// lut auto: what bake chose in each fold ("hsh2 match 0.50"), in fold order.
+    std::vector<std::string> chosen;
     double bytesPerTexel = 0;
     double gpuBytesPerTexel = std::nan(""), frameMs = std::nan(""), gpuMaxDiff = std::nan("");
 };

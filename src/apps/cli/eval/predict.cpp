@@ -19,6 +19,17 @@ namespace btflut::cli::eval {
 
 namespace {
 
+// What bake --predictor auto chose, from the bank's selection: "hsh2 match 0.50".
+std::string choiceOf(const LutBank& bank) {
+    const nlohmann::json s = nlohmann::json::parse(bank.selection, nullptr, false);
+    if (!s.is_object() || !s.contains("chosen")) return "?";
+    const nlohmann::json& chosen = s["chosen"];
+    char text[96];
+    std::snprintf(text, sizeof text, "%s match %.2f", chosen.value("name", std::string("?")).c_str(),
+                  chosen.value("match", 1.0));
+    return text;
+}
+
 // One fold's banks, baked on first use from its training images: one per setting (the base,
 // one grey reference, also serves brdf and ptm), each with its relighter. The first fold's
 // are saved for the report (bankFiles).
@@ -72,8 +83,12 @@ private:
         const double took = seconds(start);
         m_banks[key] = std::make_unique<LutBank>(std::move(*bank));
         m_relighters[key] = std::make_unique<Relighter>(*m_banks[key]);
+        const std::string chosen = setting.predictor == "auto" ? choiceOf(*m_banks[key]) : std::string();
         for (Variant& other : m_variants)
-            if (other.mode == RenderMode::Lut && other.setting() == key) other.bakeSeconds.push_back(took);
+            if (other.mode == RenderMode::Lut && other.setting() == key) {
+                other.bakeSeconds.push_back(took);
+                if (!chosen.empty()) other.chosen.push_back(chosen);
+            }
         return success();
     }
 

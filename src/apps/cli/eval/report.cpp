@@ -154,6 +154,7 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         "btflut eval %s: %zu images, hold-out %s (%zu fold(s), %zu predictions per mode), %zu sample pixels\n",
         dataset.source.c_str(), dataset.images.size(), o.holdout.c_str(), folds.size(), tests, maskPixels);
     std::string text = line;
+    std::string chosenText;                             // lut auto's choice per fold, after the table
     std::map<std::string, const DatasetImage*> byName;  // each held-out image's light and view, for the rows
     for (const DatasetImage& image : dataset.images) byName[image.name] = &image;
     std::snprintf(line, sizeof line, "%-30s %7s %7s %7s %6s %9s %9s %8s %9s %8s %8s\n", "mode", "L1", "EMD", "PSNR",
@@ -213,6 +214,13 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                                  {"gpu_max_diff_255", number(v.gpuMaxDiff)}});
         const auto outside = static_cast<std::size_t>(std::count(v.outside.begin(), v.outside.end(), true));
         nlohmann::json& mode = json["modes"].back();
+        if (!v.chosen.empty()) {  // lut auto: what bake chose in each fold
+            mode["chosen"] = v.chosen;
+            chosenText += "  " + v.name + ":";
+            for (std::size_t f = 0; f < v.chosen.size(); ++f)
+                chosenText += (f ? ", " : " ") + std::string("fold ") + std::to_string(f + 1) + " " + v.chosen[f];
+            chosenText += "\n";
+        }
         // Beside each mean its spread over the predictions: the per-image standard deviation and
         // the 95% interval of the mean (normal approximation, mean +- 1.96 sd / sqrt(n)), so two
         // modes' figures can be told apart from the noise of which images were held out.
@@ -251,6 +259,8 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                                     {"ssim", pixels ? nlohmann::json(v.errors[i].ssim) : nlohmann::json(nullptr)}});
         }
     }
+    if (!chosenText.empty())
+        text += "\nlut auto chose, per fold (bake's validation on the fold's training lights):\n" + chosenText;
     // Bins outside the measured hull (the bank clamped or modelled them) apart from those inside.
     const bool anyOutside = std::any_of(json["modes"].begin(), json["modes"].end(),
                                         [](const nlohmann::json& m) { return m["outside_hull"]["count"] > 0; });
