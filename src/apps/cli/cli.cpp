@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 
@@ -118,12 +119,22 @@ const std::array<Vec3, 2>& benchLights() {
 
 std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label) {
     if (!::isatty(STDERR_FILENO)) return {};
-    return [label](std::size_t done, std::size_t total) {
+    using Clock = std::chrono::steady_clock;
+    // Drawn once the work has taken a second (quick runs stay quiet), with the time taken and
+    // an estimate of the time left from the rate so far.
+    return [label, start = Clock::now(), shown = false](std::size_t done, std::size_t total) mutable {
+        const double took = std::chrono::duration<double>(Clock::now() - start).count();
+        if (!shown && took < 1.0) return;
+        shown = true;
         const int width = 30;
-        int filled = static_cast<int>(width * done / std::max<std::size_t>(total, 1));
-        std::fprintf(stderr, "\r%s [%s%s] %zu/%zu", label.c_str(), std::string(filled, '#').c_str(),
-                     std::string(width - filled, ' ').c_str(), done, total);
-        if (done == total) std::fprintf(stderr, "\n");
+        const int filled = static_cast<int>(width * std::min(done, total) / std::max<std::size_t>(total, 1));
+        char left[48] = "";
+        if (done > 0 && done < total)
+            std::snprintf(left, sizeof left, ", about %.0f s left",
+                          took * static_cast<double>(total - done) / static_cast<double>(done));
+        std::fprintf(stderr, "\r%s [%s%s] %zu/%zu, %.0f s%s   ", label.c_str(), std::string(filled, '#').c_str(),
+                     std::string(width - filled, ' ').c_str(), done, total, took, left);
+        if (done >= total) std::fprintf(stderr, "\n");
     };
 }
 

@@ -60,7 +60,8 @@ Scene benchScene(const std::string& bank, int width, int height, const std::stri
 /// Two lights, alternated frame by frame, so that every frame re-blends.
 const std::array<Vec3, 2>& benchLights();
 
-/// A progress bar on stderr when it is a terminal; does nothing otherwise.
+/// A progress bar on stderr when it is a terminal, with the time taken and an estimate of
+/// the time left, from the first second on; does nothing otherwise.
 std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label);
 
 }  // namespace btflut::cli

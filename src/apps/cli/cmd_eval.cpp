@@ -69,6 +69,7 @@ Status runEval(EvalOptions o) {
 
     std::vector<std::vector<SheetCell>> sheet;
     std::vector<PlotColumn> sheetHistograms;
+    if (!o.quiet) o.progress = terminalProgress("evaluating");
     if (Status s =
             predictFolds(variants, *dataset, *folds, *first, *mask, ptm, o, scratch, bankFiles, sheet, sheetHistograms);
         !s)

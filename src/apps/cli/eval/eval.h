@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -53,6 +54,8 @@ struct EvalOptions {
     std::string matches;               ///< lut with a predictor: match strengths, a list; empty: bake's
     std::string budgets;               ///< lut auto: bytes per texel, a list; empty: bake's
     int sheetLights = 4;
+    /// Called with (steps done, steps) as folds' banks are baked and images predicted; may be empty.
+    std::function<void(std::size_t, std::size_t)> progress;
 };
 
 /// Options a dataset with several views changes: the modes that predict another view (lut,

@@ -199,12 +199,20 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
     const std::vector<std::size_t> tests(heldOut.begin(), heldOut.end());
     const std::size_t sheetLights = std::min<std::size_t>(tests.size(), static_cast<std::size_t>(o.sheetLights));
     for (std::size_t k = 0; k < sheetLights; ++k) onSheet.insert(tests[k * tests.size() / sheetLights]);
+    // Progress: a step per bank setting baked and per held-out image predicted, in every fold.
+    std::size_t steps = 0, done = 0;
+    for (const Fold& fold : folds) steps += variants.size() + fold.test.size();
+    auto step = [&] {
+        if (o.progress) o.progress(++done, steps);
+    };
     for (std::size_t f = 0; f < folds.size(); ++f) {
         const Fold& fold = folds[f];
         const Dataset train = subset(dataset, fold.train);
         FoldBanks banks(variants, train, ptm, f == 0, scratch, bankFiles);
-        for (Variant& v : variants)
+        for (Variant& v : variants) {
             if (Result<LutBank*> b = banks.bankFor(v); !b) return Error{b.error()};
+            step();
+        }
         Result<std::map<std::string, LightModel>> models = fitBases(variants, dataset, fold, first, mask);
         if (!models) return Error{models.error()};
 
@@ -263,6 +271,7 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                     sheet.back().push_back({v.name + figures, std::move(predicted)});
                 }
             }
+            step();
         }
     }
     return success();

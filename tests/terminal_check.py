@@ -1,0 +1,48 @@
+"""Progress on a terminal: `btflut eval` under a pseudo-terminal draws its progress bar with
+the time left once it has run a second; piped, it prints none. Usage: terminal_check.py BTFLUT MATERIAL"""
+import os
+import pty
+import subprocess
+import sys
+import tempfile
+
+
+def under_terminal(argv):
+    """Runs argv with stdout and stderr on a pseudo-terminal; returns what it wrote and its status."""
+    main, side = pty.openpty()
+    process = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=side, stderr=side)
+    os.close(side)
+    chunks = []
+    while True:
+        try:
+            chunk = os.read(main, 4096)
+        except OSError:  # the side closed: the process has ended
+            break
+        if not chunk:
+            break
+        chunks.append(chunk)
+    os.close(main)
+    return b"".join(chunks).decode(errors="replace"), process.wait()
+
+
+def main():
+    btflut, material = sys.argv[1], sys.argv[2]
+    with tempfile.TemporaryDirectory() as folder:
+        # Slow enough to pass the bar's first second: every light held out in turn.
+        argv = [btflut, "eval", material, "--holdout", "loo", "--modes", "lut,ptm", "--no-gl", "-o",
+                os.path.join(folder, "eval")]
+        text, status = under_terminal(argv)
+        assert status == 0, text
+        frames = [line for line in text.split("\r") if line.startswith("evaluating [")]
+        assert frames, "no progress bar on a terminal:\n" + text[-2000:]
+        assert any("s left" in f for f in frames), "no estimate of the time left:\n" + "\n".join(frames[-5:])
+        steps = frames[-1].split("]")[1].split(",")[0].strip()
+        done, total = (int(x) for x in steps.split("/"))
+        assert done == total, frames[-1]
+        piped = subprocess.run(argv[:-1] + [os.path.join(folder, "piped")], capture_output=True, text=True)
+        assert piped.returncode == 0 and "evaluating [" not in piped.stderr, piped.stderr
+    print("terminal_check: progress drawn on a terminal (%d frames), none when piped" % len(frames))
+
+
+if __name__ == "__main__":
+    main()
