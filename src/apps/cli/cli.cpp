@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "core/bank/bank_file.h"
@@ -120,11 +121,13 @@ const std::array<Vec3, 2>& benchLights() {
 std::function<void(std::size_t, std::size_t)> terminalProgress(const std::string& label) {
     if (!::isatty(STDERR_FILENO)) return {};
     using Clock = std::chrono::steady_clock;
-    // Drawn once the work has taken a second (quick runs stay quiet), with the time taken and
-    // an estimate of the time left from the rate so far.
-    return [label, start = Clock::now(), shown = false](std::size_t done, std::size_t total) mutable {
+    // Drawn once the work has taken a second (quick runs stay quiet; BTFLUT_PROGRESS_AFTER
+    // sets the seconds), with the time taken and an estimate of the time left from the rate so far.
+    const char* after = std::getenv("BTFLUT_PROGRESS_AFTER");
+    const double delay = after ? std::atof(after) : 1.0;
+    return [label, delay, start = Clock::now(), shown = false](std::size_t done, std::size_t total) mutable {
         const double took = std::chrono::duration<double>(Clock::now() - start).count();
-        if (!shown && took < 1.0) return;
+        if (!shown && took < delay) return;
         shown = true;
         const int width = 30;
         const int filled = static_cast<int>(width * std::min(done, total) / std::max<std::size_t>(total, 1));
