@@ -86,3 +86,36 @@ TEST_CASE("contact sheet: a label's lines ('\\n' between them) are drawn one und
     CHECK(inked(two));
     CHECK_FALSE(inked(contactSheet({{{"photo\n ", cell}}}, 64)));
 }
+
+TEST_CASE("histogram figure against the first column: its bars under every panel, each column's outline in its own") {
+    auto row = [](int peak) {
+        HistogramRow r;
+        r.name = "light";
+        r.bins.assign(8, 0.0);
+        r.bins[static_cast<std::size_t>(peak)] = 1;
+        return r;
+    };
+    const std::vector<PlotColumn> columns{{"measured", {row(2)}}, {"a", {row(2)}}, {"b", {row(6)}}};
+    const PlotStyle style{.layout = PlotStyle::Layout::AgainstFirst, .panelWidth = 160, .panelHeight = 80};
+    const Image figure = plotHistograms(columns, style);
+    const Image paper = plotHistograms(columns, {.panelWidth = 160, .panelHeight = 80});
+    CHECK(figure.width < paper.width);  // two panels, not three: the first column is in both
+    // Count the bars' colour in each panel's x range: the measured peak (bin 2 of 8) in both.
+    const Rgb bar = paletteColour(0), outline = paletteColour(2);
+    auto count = [&](Rgb c, int x0, int x1) {
+        int n = 0;
+        for (int y = 0; y < figure.height; ++y)
+            for (int x = x0; x < x1; ++x)
+                if (std::abs(figure.at(x, y, 0) - c.r) < 1e-3f && std::abs(figure.at(x, y, 1) - c.g) < 1e-3f &&
+                    std::abs(figure.at(x, y, 2) - c.b) < 1e-3f)
+                    ++n;
+        return n;
+    };
+    const int right = figure.width - 160 - 36;             // the second panel's left edge
+    CHECK(count(bar, right - 196, right - 36) > 20 * 60);  // a bar of a fifth of the panel, nearly full height
+    CHECK(count(bar, right, right + 160) > 20 * 60);
+    // b's outline (its peak at bin 6) only in the second panel, near its right.
+    CHECK(count(outline, right, right + 160) > 20);
+    CHECK(count(outline, right + 110, right + 140) > 20);
+    CHECK(count(outline, right - 196, right - 36) < 10);  // its title's colour is above the panels, not in them
+}

@@ -28,7 +28,8 @@ Status runPlot(const PlotOptions& o) {
         if (rows->empty()) return Error{input + ": no histograms to plot"};
         columns.push_back({std::filesystem::path(input).stem().string(), std::move(*rows)});
     }
-    Image figure = plotHistograms(columns, o.overlay);
+    Image figure =
+        plotHistograms(columns, {.layout = o.overlay ? PlotStyle::Layout::Overlay : PlotStyle::Layout::Columns});
     if (Status s = savePng(figure, o.output); !s) return s;
     if (!o.quiet) std::cout << "wrote " << o.output << " (" << figure.width << "x" << figure.height << ")\n";
     return success();

@@ -10,7 +10,7 @@ namespace btflut {
 
 namespace {
 
-constexpr int kPanelW = 256, kPanelH = 60, kGapX = 36, kGapY = 10;
+constexpr int kGapX = 36, kGapY = 10;
 constexpr int kLeft = 96, kTop = 44, kBottom = 44;
 
 const Rgb kBar = paletteColour(0), kAxis = kAxisGrey, kMark{0.75f, 0.15f, 0.1f};
@@ -30,8 +30,12 @@ std::string format(const char* pattern, double v) {
 
 }  // namespace
 
-Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay) {
-    BTFLUT_CHECK(!columns.empty());
+Image plotHistograms(const std::vector<PlotColumn>& columns, const PlotStyle& style) {
+    using Layout = PlotStyle::Layout;
+    BTFLUT_CHECK(!columns.empty() && style.panelWidth > 16 && style.panelHeight > 16);
+    const int panelW = style.panelWidth, panelH = style.panelHeight;
+    const bool paper = style.layout == Layout::Columns, against = style.layout == Layout::AgainstFirst;
+    BTFLUT_CHECK(!against || columns.size() > 1);
     std::size_t rows = 0;
     for (const PlotColumn& c : columns) rows = std::max(rows, c.rows.size());
     BTFLUT_CHECK(rows > 0);
@@ -40,82 +44,121 @@ Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay) {
             if (r < c.rows.size()) return positionLabel(c.rows[r].name);
         return std::string();
     };
+    auto peakOf = [](const HistogramRow& row) { return *std::max_element(row.bins.begin(), row.bins.end()); };
+    // A common y axis: a position's largest bin over every column, its ticks left of the panels.
+    std::vector<double> common(rows, 0);
+    for (std::size_t r = 0; r < rows; ++r)
+        for (const PlotColumn& c : columns)
+            if (r < c.rows.size()) common[r] = std::max(common[r], peakOf(c.rows[r]));
+    int ticksW = 0;
+    if (!paper)
+        for (double top : common) ticksW = std::max(ticksW, Canvas::textWidth(format("%.3f", top)) + 8);
     int left = kLeft;  // fits the longest row label
     for (std::size_t r = 0; r < rows; ++r) left = std::max(left, Canvas::textWidth(labelOf(r)) + 16);
-    const int panels = overlay ? 1 : static_cast<int>(columns.size());
-    const int top = overlay ? kTop + 18 * static_cast<int>(columns.size()) : kTop;
-    const int width = left + panels * (kPanelW + kGapX);
-    const int height = top + static_cast<int>(rows) * (kPanelH + kGapY) + kBottom;
+    left += ticksW;
+    const int panels = style.layout == Layout::Overlay ? 1 : static_cast<int>(columns.size()) - (against ? 1 : 0);
+    const int legendLines = style.layout == Layout::Overlay ? static_cast<int>(columns.size()) : against ? 2 : 0;
+    const int top = kTop + 18 * legendLines + (paper ? 0 : 18);  // legend, the y axis's name
+    const int width = left + panels * (panelW + kGapX);
+    const int height = top + static_cast<int>(rows) * (panelH + kGapY) + kBottom;
     Canvas canvas(width, height);
     auto colourOf = [](std::size_t c) { return paletteColour(c); };  // the first: the bars
-    auto fitted = [](const std::string& title) { return Canvas::fitted(title, kPanelW); };
-    if (overlay) {  // the legend
+    auto fitted = [&](const std::string& title) { return Canvas::fitted(title, panelW); };
+    // Which columns a panel draws, and where: the paper's one each, Overlay all in one, AgainstFirst the first and one.
+    auto panelOf = [&](std::size_t c) { return paper ? static_cast<int>(c) : against ? static_cast<int>(c) - 1 : 0; };
+    auto panelX = [&](int panel) { return left + panel * (panelW + kGapX); };
+    if (style.layout == Layout::Overlay) {  // the legend
         for (std::size_t c = 0; c < columns.size(); ++c) {
             const int y = 8 + 18 * static_cast<int>(c);
             canvas.fill(left, y + 3, left + 24, y + 11, colourOf(c));
             canvas.text(left + 32, y, fitted(columns[c].title), kInk);
         }
     } else {
-        for (std::size_t c = 0; c < columns.size(); ++c) {
-            const int x0 = left + static_cast<int>(c) * (kPanelW + kGapX);
+        if (against) {  // the legend: bars the first column, the outline the panel's
+            canvas.fill(left, 11, left + 24, 19, colourOf(0));
+            canvas.text(left + 32, 8, "bars: " + columns.front().title, kInk);
+            canvas.fill(left, 32, left + 24, 34, colourOf(1));
+            canvas.text(left + 32, 26, "lines: each panel's, in its title's colour", kInk);
+        }
+        for (std::size_t c = against ? 1 : 0; c < columns.size(); ++c) {
+            const int x0 = panelX(panelOf(c));
             const std::string title = fitted(columns[c].title);
-            canvas.text(x0 + (kPanelW - Canvas::textWidth(title)) / 2, 10, title, kInk);
+            canvas.text(x0 + (panelW - Canvas::textWidth(title)) / 2, top - 24 - (paper ? 0 : 18), title,
+                        against ? colourOf(c) : kInk);
         }
     }
+    if (!paper) canvas.text(left - ticksW, top - 20, "fraction of texels", kAxis);  // the common y axis's name
     for (std::size_t r = 0; r < rows; ++r) {
-        const int y0 = top + static_cast<int>(r) * (kPanelH + kGapY);
+        const int y0 = top + static_cast<int>(r) * (panelH + kGapY);
         const std::string label = labelOf(r);
         const bool marked = label.size() > 2 && label[label.size() - 2] == ' ';
         canvas.text(8, y0 + 20, label, marked ? kMark : kInk);
-        double overall = 0;  // overlay: one scale for the panel
-        for (const PlotColumn& c : columns)
-            if (r < c.rows.size())
-                overall = std::max(overall, *std::max_element(c.rows[r].bins.begin(), c.rows[r].bins.end()));
+        if (!paper && common[r] > 0)  // the common scale's ticks: 0, half, the top
+            for (double t : {0.0, 0.5, 1.0}) {
+                const int y = y0 + panelH - static_cast<int>(t * (panelH - 4) + 0.5);
+                const std::string tick = t == 0 ? "0" : format("%.3f", t * common[r]);
+                canvas.text(left - 6 - Canvas::textWidth(tick),
+                            std::clamp(y - Canvas::kTextHeight / 2, y0, y0 + panelH), tick, kAxis);
+                canvas.fill(left - 4, y, left, y + 1, kAxis);
+            }
+        for (int p = 0; p < panels; ++p) {
+            const int x0 = panelX(p);
+            canvas.fill(x0, y0 + panelH, x0 + panelW, y0 + panelH + 1, kAxis);  // baseline
+            canvas.fill(x0, y0, x0 + 1, y0 + panelH, kAxis);                    // y axis
+        }
         for (std::size_t c = 0; c < columns.size(); ++c) {
-            const int x0 = left + (overlay ? 0 : static_cast<int>(c) * (kPanelW + kGapX));
-            canvas.fill(x0, y0 + kPanelH, x0 + kPanelW, y0 + kPanelH + 1, kAxis);  // baseline
-            canvas.fill(x0, y0, x0 + 1, y0 + kPanelH, kAxis);                      // y axis
             if (r >= columns[c].rows.size()) continue;
             const std::vector<double>& bins = columns[c].rows[r].bins;
-            const double rowMax = overlay ? overall : *std::max_element(bins.begin(), bins.end());
+            const double rowMax = paper ? peakOf(columns[c].rows[r]) : common[r];
             if (rowMax <= 0) continue;
             const auto n = static_cast<int>(bins.size());
-            int previous = -1;
-            for (int b = 0; b < n; ++b) {
-                const int bx0 = x0 + 1 + b * (kPanelW - 1) / n,
-                          bx1 = std::max(x0 + 1 + (b + 1) * (kPanelW - 1) / n, bx0 + 1);
-                const int barHeight =
-                    static_cast<int>(bins[static_cast<std::size_t>(b)] / rowMax * (kPanelH - 4) + 0.5);
-                const int y = y0 + kPanelH - barHeight;
-                if (!overlay || c == 0) {
-                    canvas.fill(bx0, y, bx1, y0 + kPanelH, kBar);
-                } else {  // a step outline: the bin's top, and the rise from the previous one
-                    canvas.fill(bx0, y - 1, bx1, y + 1, colourOf(c));
-                    if (previous >= 0)
-                        canvas.fill(bx0, std::min(previous, y) - 1, bx0 + 2, std::max(previous, y) + 1, colourOf(c));
+            // AgainstFirst: the first column's bars under every panel, each later column's outline in its own.
+            std::vector<int> targets;
+            if (against && c == 0)
+                for (int p = 0; p < panels; ++p) targets.push_back(p);
+            else
+                targets.push_back(panelOf(c));
+            for (int panel : targets) {
+                const int x0 = panelX(panel);
+                int previous = -1;
+                for (int b = 0; b < n; ++b) {
+                    const int bx0 = x0 + 1 + b * (panelW - 1) / n,
+                              bx1 = std::max(x0 + 1 + (b + 1) * (panelW - 1) / n, bx0 + 1);
+                    const int barHeight =
+                        static_cast<int>(bins[static_cast<std::size_t>(b)] / rowMax * (panelH - 4) + 0.5);
+                    const int y = y0 + panelH - barHeight;
+                    if (c == 0) {
+                        canvas.fill(bx0, y, bx1, y0 + panelH, kBar);
+                    } else {  // a step outline: the bin's top, and the rise from the previous one
+                        canvas.fill(bx0, y - 1, bx1, y + 1, colourOf(c));
+                        if (previous >= 0)
+                            canvas.fill(bx0, std::min(previous, y) - 1, bx0 + 2, std::max(previous, y) + 1,
+                                        colourOf(c));
+                    }
+                    previous = y;
                 }
-                previous = y;
             }
-            if (overlay && c > 0) continue;
-            // The panel's scale, over the bars on a white backing.
+            if (!paper) continue;
+            // The panel's own scale, over the bars on a white backing.
+            const int x0 = panelX(panelOf(c));
             const std::string scale = format("%.3f", rowMax);
-            const int tx = x0 + kPanelW - Canvas::textWidth(scale) - 2;
-            canvas.fill(tx - 2, y0, x0 + kPanelW, y0 + 16, {1, 1, 1});
+            const int tx = x0 + panelW - Canvas::textWidth(scale) - 2;
+            canvas.fill(tx - 2, y0, x0 + panelW, y0 + 16, {1, 1, 1});
             canvas.text(tx, y0 + 2, scale, kAxis);
         }
     }
-    // Grey-value axis under the last row of each column.
-    const int axisY = top + static_cast<int>(rows) * (kPanelH + kGapY) + 2;
-    for (int c = 0; c < panels; ++c) {
-        const int x0 = left + c * (kPanelW + kGapX);
+    // Grey-value axis under the last row of each panel.
+    const int axisY = top + static_cast<int>(rows) * (panelH + kGapY) + 2;
+    for (int p = 0; p < panels; ++p) {
+        const int x0 = panelX(p);
         for (double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
-            const int x = x0 + static_cast<int>(t * (kPanelW - 1));
+            const int x = x0 + static_cast<int>(t * (panelW - 1));
             canvas.fill(x, axisY - 6, x + 1, axisY, kAxis);
             const std::string tick = t == 0 ? "0" : t == 1 ? "1" : format("%.2g", t);
             canvas.text(std::clamp(x - Canvas::textWidth(tick) / 2, 0, width - Canvas::textWidth(tick)), axisY + 2,
                         tick, kInk);
         }
-        canvas.text(x0 + (kPanelW - Canvas::textWidth("grey value")) / 2, axisY + 22, "grey value", kAxis);
+        canvas.text(x0 + (panelW - Canvas::textWidth("grey value")) / 2, axisY + 22, "grey value", kAxis);
     }
     return canvas.take();
 }

@@ -24,12 +24,22 @@ struct PlotColumn {
     std::vector<HistogramRow> rows;
 };
 
+struct PlotStyle {
+    enum class Layout {
+        Columns,       ///< the paper's: a panel per column, each scaled to its largest bin
+        Overlay,       ///< one panel per position: the first column as bars, the others as outlines
+        AgainstFirst,  ///< a panel per later column: the first column as bars, the column as an outline
+    };
+    Layout layout = Layout::Columns;
+    int panelWidth = 256, panelHeight = 60;
+};
+
 /// The figure; columns may hold different numbers of rows and bins. At least one column
-/// with one row. With `overlay`, every column is drawn in one panel per position (the first
-/// as bars, the others as coloured outlines, a legend above), each panel scaled to its
-/// largest bin over all. Row labels and titles are never clipped: the left margin fits the
-/// longest label, and a title wider than its panel is shortened with "..".
-Image plotHistograms(const std::vector<PlotColumn>& columns, bool overlay = false);
+/// with one row. Overlay and AgainstFirst scale a position's panels to its largest bin over
+/// all columns and label that common y axis (fraction of texels: 0, half, the top), with a
+/// legend above. Row labels and titles are never clipped: the left margin fits the longest
+/// label, and a title wider than its panel is shortened with "..".
+Image plotHistograms(const std::vector<PlotColumn>& columns, const PlotStyle& style = {});
 
 /// A labelled image in a contact sheet.
 struct SheetCell {

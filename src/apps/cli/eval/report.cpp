@@ -327,7 +327,10 @@ Status writeReport(const Report& r, const std::vector<std::vector<SheetCell>>& s
     const std::string jsonText_ = jsonText(r.json);
     const Bytes png = encodePng(contactSheet(sheet, 192), 8), tradeoff = encodePng(drawCharts(r.tradeoff, 3), 8),
                 byTheta = encodePng(drawCharts(r.byTheta, 1), 8),
-                histograms = encodePng(plotHistograms(sheetHistograms), 8);
+                histograms = encodePng(
+                    plotHistograms(sheetHistograms,
+                                   {.layout = PlotStyle::Layout::AgainstFirst, .panelWidth = 320, .panelHeight = 120}),
+                    8);
     const std::string dir = o.output;
     if (Status s = writeFilesAtomically({{dir + "/eval.txt", r.text.data(), r.text.size()},
                                          {dir + "/eval.json", jsonText_.data(), jsonText_.size()},
