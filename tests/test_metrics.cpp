@@ -3,6 +3,7 @@
 // The fast pass works in bands of 64 rows with a ring of row sums, so the images here are
 // taller than one band and not a multiple of it.
 #include <doctest/doctest.h>
+#include <set>
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include "core/eval/charts.h"
 #include "core/eval/metrics.h"
 #include "core/histogram/histogram.h"
+#include "core/image/canvas.h"
 #include "core/random.h"
 
 using namespace btflut;
@@ -180,4 +182,36 @@ TEST_CASE("charts: the Pareto front, and panels drawn with missing figures") {
     for (int y = 0; y < chart.height; ++y)
         for (int x = 0; x < chart.width; ++x) coloured += std::abs(chart.at(x, y, 0) - chart.at(x, y, 2)) > 0.2f;
     CHECK(coloured > 100);
+}
+
+TEST_CASE("charts: distinct tick numbers, and labels of coincident points apart") {
+    // L1 figures 0.1452 .. 0.1462 were all labelled 0.146 at three digits.
+    const std::vector<std::string> close = axisTickLabels({0.1452, 0.1462}, false);
+    REQUIRE(close.size() >= 3);
+    CHECK(std::set<std::string>(close.begin(), close.end()).size() == close.size());
+    // Bytes 3..9 on a log axis had one tick (5); every digit where 1, 2, 5 give fewer than three.
+    CHECK(axisTickLabels({3, 7, 9}, true) == std::vector<std::string>{"3", "4", "5", "6", "7", "8", "9"});
+    CHECK(axisTickLabels({1, 1000}, true).front() == "1");
+    // Three labels on one point: each label's pixels are all drawn (none covered by another's).
+    auto colourCount = [](const Image& chart, std::size_t series) {
+        const Rgb c = paletteColour(series);
+        std::size_t n = 0;
+        for (int y = 0; y < chart.height; ++y)
+            for (int x = 0; x < chart.width; ++x)
+                n += std::abs(chart.at(x, y, 0) - c.r) < 1e-3f && std::abs(chart.at(x, y, 1) - c.g) < 1e-3f &&
+                     std::abs(chart.at(x, y, 2) - c.b) < 1e-3f;
+        return n;
+    };
+    ChartPanel crowded{.title = "t", .xLabel = "x", .yLabel = "y"};
+    for (const char* name : {"lut K1 R1 grey", "brdf", "nearest"}) crowded.series.push_back({name, {3.0}, {0.2}});
+    crowded.series.push_back({"far", {9.0}, {0.5}});
+    const Image together = drawCharts({crowded}, 1);
+    for (std::size_t s = 0; s < 3; ++s) {
+        ChartPanel alone = crowded;
+        for (std::size_t other = 0; other < 3; ++other)  // the others' labels and points off the chart's area
+            if (other != s) alone.series[other].y = {std::nan("")};
+        INFO(crowded.series[s].label);
+        // The dots coincide (7x7, the last drawn on top); every text pixel stays.
+        CHECK(colourCount(together, s) + 49 >= colourCount(drawCharts({alone}, 1), s));
+    }
 }

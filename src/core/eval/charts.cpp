@@ -16,10 +16,21 @@ constexpr int kLeft = 76, kRight = 24, kTop = 40, kBottom = 52;  // around it: t
 constexpr int kLegendW = 300;  // line panels: the legend, right of the plot (names of ~27 characters whole)
 constexpr int kCellW = kLeft + kPanelW + kRight, kCellH = kTop + kPanelH + kBottom;
 
-std::string tickText(double v) {
+// A tick's number with as many decimals as the ticks' spacing needs, so that neighbours differ
+// (0.1455 and 0.146, not 0.146 twice); a logarithmic axis's (spacing 0) with three digits.
+std::string tickText(double v, double spacing) {
     char buf[32];
-    std::snprintf(buf, sizeof buf, "%.3g", v);
+    if (spacing > 0) {
+        const int decimals = std::clamp(static_cast<int>(-std::floor(std::log10(spacing) + 1e-9)), 0, 8);
+        std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    } else {
+        std::snprintf(buf, sizeof buf, "%.3g", v);
+    }
     return buf;
+}
+
+double spacingOf(const std::vector<double>& ticks, bool log) {
+    return log || ticks.size() < 2 ? 0 : ticks[1] - ticks[0];
 }
 
 // An axis: [lo, hi] padded, linear or logarithmic, onto [0, length] pixels.
@@ -42,11 +53,16 @@ struct Axis {
     std::vector<double> ticks() const {
         std::vector<double> out;
         if (log) {
-            for (double e = std::floor(lo); e <= hi; e += 1) {
-                for (double m : {1.0, 2.0, 5.0}) {
-                    const double t = std::log10(m) + e;
-                    if (t >= lo && t <= hi) out.push_back(std::pow(10.0, t));
-                }
+            // 1, 2, 5 per decade; where the axis spans less than that gives three ticks, every digit.
+            for (const std::vector<double>& mantissas :
+                 {std::vector<double>{1, 2, 5}, std::vector<double>{1, 2, 3, 4, 5, 6, 7, 8, 9}}) {
+                out.clear();
+                for (double e = std::floor(lo); e <= hi; e += 1)
+                    for (double m : mantissas) {
+                        const double t = std::log10(m) + e;
+                        if (t >= lo && t <= hi) out.push_back(std::pow(10.0, t));
+                    }
+                if (out.size() >= 3) break;
             }
             return out;
         }
@@ -57,6 +73,37 @@ struct Axis {
         return out;
     }
 };
+
+// A rectangle of pixels [x0, x1) x [y0, y1): a label's or a point's, to keep labels apart.
+struct Box {
+    int x0, y0, x1, y1;
+    bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
+// Where a point's label goes: beside it (right or left, above or below) where it overlaps no
+// label placed before and no point, else moved up or down a line at a time (a leader line
+// then joins it to its point); inside the plot area `area`.
+Box placeLabel(double x, double y, int width, const Box& area, const std::vector<Box>& taken) {
+    const int h = Canvas::kTextHeight, px = static_cast<int>(x), py = static_cast<int>(y);
+    auto inside = [&](Box b) {
+        const int dx = std::max(0, area.x0 - b.x0) - std::max(0, b.x1 - area.x1);
+        const int dy = std::max(0, area.y0 - b.y0) - std::max(0, b.y1 - area.y1);
+        return Box{b.x0 + dx, b.y0 + dy, b.x1 + dx, b.y1 + dy};
+    };
+    auto free = [&](const Box& b) {
+        return std::none_of(taken.begin(), taken.end(), [&](const Box& t) { return t.overlaps(b); });
+    };
+    std::vector<Box> candidates;
+    for (int shift = 0; shift <= 8; ++shift)
+        for (int side : {1, -1}) {  // the line above the point, then the one below, moving away
+            const int top = side > 0 ? py - h - 2 - shift * (h + 2) : py + 2 + shift * (h + 2);
+            candidates.push_back(inside({px + 8, top, px + 8 + width, top + h}));
+            candidates.push_back(inside({px - 8 - width, top, px - 8, top + h}));
+        }
+    for (const Box& b : candidates)
+        if (free(b)) return b;
+    return candidates.front();  // crowded everywhere: beside the point, as before
+}
 
 void drawPanel(Canvas& canvas, int left, int top, const ChartPanel& p) {
     std::vector<double> xs, ys;
@@ -77,19 +124,25 @@ void drawPanel(Canvas& canvas, int left, int top, const ChartPanel& p) {
         canvas.text(x0 + 20, y0 + kPanelH / 2, "no figures", kAxisGrey);
         return;
     }
-    for (double t : ax.ticks()) {
-        const int x = static_cast<int>(px(t));
+    int lastTickEnd = -1000;  // a tick's number is skipped where it would touch the previous one's
+    const std::vector<double> xTicks = ax.ticks(), yTicks = ay.ticks();
+    for (double t : xTicks) {
+        const std::string text = tickText(t, spacingOf(xTicks, ax.log));
+        const int x = static_cast<int>(px(t)), from = x - Canvas::textWidth(text) / 2;
         canvas.fill(x, y0 + kPanelH, x + 1, y0 + kPanelH + 6, kAxisGrey);
-        canvas.text(x - Canvas::textWidth(tickText(t)) / 2, y0 + kPanelH + 8, tickText(t), kInk);
+        if (from < lastTickEnd + 8) continue;
+        canvas.text(from, y0 + kPanelH + 8, text, kInk);
+        lastTickEnd = from + Canvas::textWidth(text);
     }
-    for (double t : ay.ticks()) {
+    for (double t : yTicks) {
+        const std::string text = tickText(t, spacingOf(yTicks, false));
         const int y = static_cast<int>(py(t));
         canvas.fill(x0 - 6, y, x0, y + 1, kAxisGrey);
-        canvas.text(x0 - 10 - Canvas::textWidth(tickText(t)), y - Canvas::kTextHeight / 2, tickText(t), kInk);
+        canvas.text(x0 - 10 - Canvas::textWidth(text), y - Canvas::kTextHeight / 2, text, kInk);
     }
     canvas.text(x0 + (kPanelW - Canvas::textWidth(p.xLabel)) / 2, y0 + kPanelH + 30, p.xLabel, kAxisGrey);
-    canvas.text(left + 4, top + 20, p.yLabel, kAxisGrey);
-    if (p.pareto != Better::None && !p.lines) {  // the front first, under the points
+    canvas.text(x0 + 6, top + 20, p.yLabel, kAxisGrey);  // above the plot, clear of the y ticks' numbers
+    if (p.pareto != Better::None && !p.lines) {          // the front first, under the points
         std::vector<double> cost, value;
         for (const ChartSeries& s : p.series)
             for (std::size_t i = 0; i < s.x.size(); ++i) cost.push_back(s.x[i]), value.push_back(s.y[i]);
@@ -102,6 +155,14 @@ void drawPanel(Canvas& canvas, int left, int top, const ChartPanel& p) {
         }
         for (std::size_t k : front) canvas.dot(px(cost[k]), py(value[k]), 13, {0.85f, 0.85f, 0.85f});
     }
+    // Every point's box first, so that no label covers a point drawn after it.
+    std::vector<Box> taken;
+    for (const ChartSeries& series : p.series)
+        for (std::size_t i = 0; i < series.x.size(); ++i)
+            if (!p.lines && std::isfinite(series.x[i]) && std::isfinite(series.y[i]))
+                taken.push_back({static_cast<int>(px(series.x[i])) - 4, static_cast<int>(py(series.y[i])) - 4,
+                                 static_cast<int>(px(series.x[i])) + 5, static_cast<int>(py(series.y[i])) + 5});
+    const Box area{x0 + 2, y0, x0 + kPanelW, y0 + kPanelH - 2};
     int legendY = y0 + 4;
     for (std::size_t s = 0; s < p.series.size(); ++s) {
         const ChartSeries& series = p.series[s];
@@ -112,10 +173,14 @@ void drawPanel(Canvas& canvas, int left, int top, const ChartPanel& p) {
             const double x = px(series.x[i]), y = py(series.y[i]);
             if (p.lines && std::isfinite(lastX)) canvas.line(lastX, lastY, x, y, colour, 2);
             canvas.dot(x, y, p.lines ? 5 : 7, colour);
-            if (!p.lines) {  // the label beside the point, kept inside the panel
+            if (!p.lines) {  // the label beside the point, clear of the others, inside the panel
                 const std::string label = Canvas::fitted(series.label, 160);
-                const int tx = std::min(static_cast<int>(x) + 8, x0 + kPanelW - Canvas::textWidth(label));
-                canvas.text(tx, static_cast<int>(y) - Canvas::kTextHeight - 2, label, colour);
+                const Box at = placeLabel(x, y, Canvas::textWidth(label), area, taken);
+                taken.push_back(at);
+                // Moved off its point: a leader from the point to the label's nearest edge.
+                const double lx = std::clamp(x, at.x0 - 2.0, at.x1 + 2.0), ly = std::clamp(y, at.y0 - 1.0, at.y1 + 1.0);
+                if (ly != y && std::hypot(lx - x, ly - y) > 6) canvas.line(x, y, lx, ly, colour, 1);
+                canvas.text(at.x0, at.y0, label, colour);
             }
             lastX = x, lastY = y;
         }
@@ -130,6 +195,14 @@ void drawPanel(Canvas& canvas, int left, int top, const ChartPanel& p) {
 }
 
 }  // namespace
+
+std::vector<std::string> axisTickLabels(const std::vector<double>& values, bool log) {
+    const Axis axis = Axis::of(values, log);
+    const std::vector<double> ticks = axis.ticks();
+    std::vector<std::string> out;
+    for (double t : ticks) out.push_back(tickText(t, spacingOf(ticks, axis.log)));
+    return out;
+}
 
 std::vector<std::size_t> paretoFront(const std::vector<double>& cost, const std::vector<double>& value, Better better) {
     BTFLUT_CHECK(cost.size() == value.size() && better != Better::None);

@@ -35,7 +35,13 @@ struct ChartPanel {
 /// In order of cost.
 std::vector<std::size_t> paretoFront(const std::vector<double>& cost, const std::vector<double>& value, Better better);
 
-/// The panels in `columns` columns, row by row.
+/// The numbers an axis over `values` (NaN ignored) is labelled with, in order: ticks at 1, 2, 5
+/// per decade on a log axis (every digit where that gives fewer than three), at a round step
+/// on a linear one, each with the decimals its step needs, so no two read the same.
+std::vector<std::string> axisTickLabels(const std::vector<double>& values, bool log);
+
+/// The panels in `columns` columns, row by row. A point's label goes beside it where it covers
+/// no other label or point (moved a line at a time, with a leader line, where it must).
 Image drawCharts(const std::vector<ChartPanel>& panels, int columns);
 
 }  // namespace btflut
