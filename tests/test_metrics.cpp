@@ -215,3 +215,23 @@ TEST_CASE("charts: distinct tick numbers, and labels of coincident points apart"
         CHECK(colourCount(together, s) + 49 >= colourCount(drawCharts({alone}, 1), s));
     }
 }
+
+TEST_CASE("error map: black where a prediction is exact, white at 1/gain, grey outside the mask") {
+    Image photo(3, 1, 3), predicted(3, 1, 1);
+    std::fill(photo.samples.begin(), photo.samples.end(), 0.5f);
+    predicted.samples = {0.5f, 0.75f, 0.9f};  // exact; 0.25 off in every channel; outside the mask
+    const Mask mask{3, 1, {1, 1, 0}};
+    const Image map = errorMap(predicted, photo, mask, 4);
+    REQUIRE(map.channels == 3);
+    for (int c = 0; c < 3; ++c) {
+        CHECK(map.at(0, 0, c) == 0.f);
+        CHECK(map.at(1, 0, c) == doctest::Approx(1.f));
+        CHECK(map.at(2, 0, c) == doctest::Approx(0.85f));
+    }
+    // Half the scale: red full, green half, no blue.
+    predicted.samples[1] = 0.5f + 0.125f;
+    const Image half = errorMap(predicted, photo, mask, 4);
+    CHECK(half.at(1, 0, 0) == doctest::Approx(1.f));
+    CHECK(half.at(1, 0, 1) == doctest::Approx(0.5f));
+    CHECK(half.at(1, 0, 2) == 0.f);
+}

@@ -484,7 +484,12 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     CHECK(byName["ptm"]["bytes_per_texel"] == 9);
     for (const char* file : {"eval.txt", "eval.json", "rows.csv", "contact.png", "tradeoff.png", "error_theta.png"})
         CHECK(fs::exists(dir / ("eval/" + std::string(file))));
-    CHECK(loadImage(dir / "eval/contact.png")->width > 192 * 8);
+    const Image contact = *loadImage(dir / "eval/contact.png");
+    CHECK(contact.width > 192 * 8);
+    // Under each held-out light's row, a row of error maps: six rows of cells for three lights.
+    const Image photo = *loadImage(dataset->images[0].path);
+    CHECK(contact.height > 6 * 192 * photo.height / photo.width);
+    CHECK(contact.height < 9 * 192 * photo.height / photo.width + 6 * 60);
     // The contact sheet: --contact lights (default 4) spread over the held-out images; here 3 are held out.
     CHECK(json["contact_sheet"].size() == 3);
     // Run time against error: the Pareto fronts of each figure and cost, cheapest first. On

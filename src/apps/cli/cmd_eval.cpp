@@ -81,8 +81,9 @@ Status runEval(EvalOptions o) {
     if (views) context = "not measured: the GL figures draw a fixed camera's scene";
     Report r = report(variants, *dataset, o, *folds, mask->count(), context);
     r.json["contact_sheet"] = nlohmann::json::array();  // the held-out images on contact.png, top to bottom
-    for (const std::vector<SheetCell>& row : sheet)
-        r.json["contact_sheet"].push_back(row.front().label.substr(0, row.front().label.rfind(" (photo)")));
+    for (const std::vector<SheetCell>& row : sheet)     // a photograph's row (its error maps' row is under it)
+        if (const std::size_t at = row.front().label.rfind(" (photo)"); at != std::string::npos)
+            r.json["contact_sheet"].push_back(row.front().label.substr(0, at));
     if (!o.output.empty())
         if (Status s = writeReport(r, sheet, sheetHistograms, o); !s) return s;
     if (!o.quiet) std::cout << (o.json ? jsonText(r.json) : r.text);

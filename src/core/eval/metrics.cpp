@@ -235,4 +235,29 @@ ImageErrors compareImages(const Image& predicted, const Image& photo, const Mask
     return compareCodes(toCodes(predicted, photo.bitDepth), toCodes(photo, photo.bitDepth), mask);
 }
 
+Image errorMap(const Image& predicted, const Image& photo, const Mask& mask, float gain) {
+    BTFLUT_CHECK(predicted.width == photo.width && predicted.height == photo.height);
+    BTFLUT_CHECK(mask.inside.size() == photo.pixelCount() && gain > 0);
+    Image map(photo.width, photo.height, 3);
+    for (std::size_t p = 0; p < photo.pixelCount(); ++p) {
+        float* out = &map.samples[p * 3];
+        if (!mask.inside[p]) {
+            out[0] = out[1] = out[2] = 0.85f;
+            continue;
+        }
+        float sum = 0;
+        for (int c = 0; c < photo.channels; ++c) {
+            const int pc = predicted.channels == 1 ? 0 : std::min(c, predicted.channels - 1);
+            sum += std::abs(predicted.samples[p * static_cast<std::size_t>(predicted.channels) + pc] -
+                            photo.samples[p * static_cast<std::size_t>(photo.channels) + c]);
+        }
+        // Hot: red rises over the first third, green the second, blue the last.
+        const float e = std::clamp(gain * sum / static_cast<float>(photo.channels), 0.f, 1.f);
+        out[0] = std::min(1.f, 3 * e);
+        out[1] = std::clamp(3 * e - 1, 0.f, 1.f);
+        out[2] = std::clamp(3 * e - 2, 0.f, 1.f);
+    }
+    return map;
+}
+
 }  // namespace btflut

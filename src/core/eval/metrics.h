@@ -27,6 +27,11 @@ ImageErrors compareImages(const Image& predicted, const Image& photo, const Mask
 /// The same from the images' codes (`predicted` brought to the photo's bit depth first).
 ImageErrors compareCodes(const ImageCodes& predicted, const ImageCodes& photo, const Mask& mask);
 
+/// Where a prediction misses, for the eyes: each pixel's mean |difference| over the photo's
+/// channels (a grey prediction broadcast), times `gain`, on a hot scale (black 0, red, yellow,
+/// white at 1 / gain and above); pixels outside the mask light grey. Same sizes as compareImages.
+Image errorMap(const Image& predicted, const Image& photo, const Mask& mask, float gain);
+
 /// The image quantised to integer codes of `bitDepth` bits (values as code / max code).
 Image quantised(const Image& image, int bitDepth);
 

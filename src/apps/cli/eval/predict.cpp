@@ -162,6 +162,20 @@ Result<Image> nearestTraining(const Dataset& dataset, const Fold& fold, const Lu
     return decoded.at(nearest);
 }
 
+// The contact sheet's error maps: |prediction - photo| times this, on errorMap's hot scale.
+constexpr int kErrorGain = 4;
+
+// errorMap's scale, left to right from 0 to 1/kErrorGain, as a cell of the sheet.
+Image errorScale(int width, int height) {
+    Image ramp(width, height, 3), flat(width, height, 3);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            ramp.at(x, y, 0) = ramp.at(x, y, 1) = ramp.at(x, y, 2) =
+                static_cast<float>(x) / static_cast<float>(std::max(1, width - 1)) / kErrorGain;
+    Mask all{width, height, std::vector<std::uint8_t>(flat.pixelCount(), 1)};
+    return errorMap(ramp, flat, all, kErrorGain);
+}
+
 // A variant's bank relit for held-out image `info` through the code users run.
 Image relitPrediction(Variant& v, const LutBank& bank, const Relighter& relighter, const DatasetImage& info) {
     const auto start = Clock::now();
@@ -222,6 +236,7 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
             Result<Image> photo = loadSameSize(dataset, t, first);
             if (!photo) return Error{photo.error()};
             const bool sheetRow = onSheet.count(t) > 0;
+            std::vector<SheetCell> errorRow;  // the contact sheet's row under it: where each mode misses
             if (sheetRow) {
                 char light[64];
                 std::snprintf(light, sizeof light, "\nlight %.0f, %.0f", info.light.thetaDegrees(),
@@ -268,8 +283,16 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                         std::snprintf(figures, sizeof figures, "\nL1 %.2f", e.l1);
                     else
                         std::snprintf(figures, sizeof figures, "\n%.1f dB  L1 %.2f", e.psnr, e.l1);
+                    if (!std::isnan(e.psnr))
+                        errorRow.push_back({v.name + "\nerror x" + std::to_string(kErrorGain),
+                                            errorMap(predicted, *photo, mask, kErrorGain)});
                     sheet.back().push_back({v.name + figures, std::move(predicted)});
                 }
+            }
+            if (!errorRow.empty()) {  // led by the scale: black no error, white 1/gain and more
+                errorRow.insert(errorRow.begin(), {"error scale\n0 to 1/" + std::to_string(kErrorGain) + "+",
+                                                   errorScale(photo->width, photo->height)});
+                sheet.push_back(std::move(errorRow));
             }
             step();
         }
