@@ -19,6 +19,7 @@ packages=(
   python3 python3-numpy python3-skimage python3-pil  # reference checks in tools/
   xvfb xauth
   glslang-tools spirv-cross  # the include's HLSL and GLSL ES forms (tools/shader-forms.sh)
+  mono-mcs              # parses and runs the Unity example's C# (tests/engine_examples_check.sh)
   chromium libjs-three  # WebGL2 tests in headless Chromium: the three.js recipe
   parallel              # GNU parallel: tools/bake-library.sh bakes materials side by side
   clang libclang-rt-14-dev  # libFuzzer and the sanitizer runtimes (tools/fuzz.sh)
