@@ -8,6 +8,7 @@
 
 #include "core/inverse/classify.h"
 #include "core/inverse/orient.h"
+#include "core/inverse/photometric_stereo.h"
 #include "helpers.h"
 
 using namespace btflut;
@@ -214,4 +215,88 @@ TEST_CASE("classify: 8 synthetic materials, queries at lights not used to build 
     REQUIRE(out["matches"].size() == 3);
     CHECK(out["matches"][0]["material"] == "concrete");
     CHECK(out["matches"][0]["score"].get<double>() <= out["matches"][1]["score"].get<double>());
+}
+
+TEST_CASE("photometric stereo: normals and albedo of a Lambertian bump, shadows and highlights left out") {
+    // A bump whose normal tilts up to ~35 degrees, albedo 0.6 (R), 0.3 (G), linear images.
+    const int size = 24;
+    auto normalAt = [&](int x, int y) {
+        const double u = (x - size / 2.0) / size, v = (y - size / 2.0) / size;
+        return *normalized({-1.4 * u, 1.4 * v, 1.0});  // image rows grow downwards, y up
+    };
+    std::vector<Image> images;
+    std::vector<Direction> lights;
+    for (double phi : {0.0, 60.0, 120.0, 180.0, 240.0, 300.0})
+        for (double theta : {25.0, 50.0}) lights.push_back(Direction::fromDegrees(theta, phi));
+    for (Direction d : lights) {
+        const Vec3 l = toVector(d);
+        Image image(size, size, 2, 16);
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const Vec3 n = normalAt(x, y);
+                const double shading = std::max(0.0, n.x * l.x + n.y * l.y + n.z * l.z);
+                image.at(x, y, 0) = static_cast<float>(0.6 * shading);
+                image.at(x, y, 1) = static_cast<float>(0.3 * shading);
+            }
+        images.push_back(std::move(image));
+    }
+    images[3].at(5, 5, 0) = images[3].at(5, 5, 1) = 1.f;  // a highlight: the brightest, left out
+    std::vector<const Image*> pointers;
+    for (const Image& image : images) pointers.push_back(&image);
+    Mask mask{size, size, std::vector<std::uint8_t>(size * size, 1)};
+    mask.inside[0] = 0;
+    Result<SurfaceMaps> maps = photometricStereo(pointers, lights, mask, {.linear = true});
+    REQUIRE(maps.ok());
+    CHECK(maps->unresolved == 0);
+    Image truth(size, size, 3);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const Vec3 n = normalAt(x, y);
+            truth.at(x, y, 0) = static_cast<float>((n.x + 1) / 2);
+            truth.at(x, y, 1) = static_cast<float>((n.y + 1) / 2);
+            truth.at(x, y, 2) = static_cast<float>((n.z + 1) / 2);
+        }
+    const std::vector<double> angles = normalAngles(maps->normals, truth, mask);
+    REQUIRE(angles.size() == size * size - 1);
+    CHECK(angles.back() < 0.5);  // the worst texel, the highlight's included
+    CHECK(maps->albedo.at(12, 12, 0) == doctest::Approx(0.6).epsilon(0.01));
+    CHECK(maps->albedo.at(12, 12, 1) == doctest::Approx(0.3).epsilon(0.01));
+    CHECK(maps->normals.at(0, 0, 2) == 1.f);  // outside the mask: flat
+    // Lights that fix no normal: all in one plane through the sample (one azimuth), or two.
+    std::vector<Direction> line;
+    for (double theta : {10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 15.0, 25.0, 35.0, 45.0})
+        line.push_back(Direction::fromDegrees(theta, 90.0));
+    CHECK(photometricStereo(pointers, line, mask, {}).error().find("lie in one plane") != std::string::npos);
+    CHECK(photometricStereo({pointers[0], pointers[1]}, {lights[0], lights[1]}, mask, {})
+              .error()
+              .find("at least three") != std::string::npos);
+    // Black images: every texel left flat and counted, nothing NaN.
+    std::vector<Image> black(3, Image(4, 4, 1));
+    const Mask all{4, 4, std::vector<std::uint8_t>(16, 1)};
+    Result<SurfaceMaps> dark =
+        photometricStereo({&black[0], &black[1], &black[2]}, {lights[0], lights[2], lights[4]}, all, {});
+    REQUIRE(dark.ok());
+    CHECK(dark->unresolved == 16);
+    for (float s : dark->normals.samples) CHECK(std::isfinite(s));
+}
+
+TEST_CASE("btflut normals: a capture's normal map and albedo, against a true map, and bad input") {
+    TempDir dir;
+    const std::string material = BTFLUT_DEFAULT_MATERIAL;
+    CliRun made = runCli({"normals", material, "-o", dir / "n.png", "--albedo", dir / "a.png", "--json"});
+    INFO(made.err);
+    REQUIRE(made.status == 0);
+    const auto json = nlohmann::json::parse(made.out);
+    CHECK(json["normals"] == dir / "n.png");
+    CHECK(loadImage(dir / "n.png")->channels == 3);
+    CHECK(loadImage(dir / "a.png").ok());
+    // Its own map as the truth: no angle between them.
+    CliRun same = runCli({"normals", material, "-o", dir / "m.png", "--truth", dir / "n.png", "--json"});
+    REQUIRE(same.status == 0);
+    CHECK(nlohmann::json::parse(same.out)["against_truth"]["p90_degrees"].get<double>() < 1.0);
+    CHECK(runCli({"normals", material, "-o", dir / "x.jpg"}).err.find("-o") != std::string::npos);
+    CliRun missing = runCli({"normals", material, "-o", dir / "y.png", "--truth", dir / "nothing.png"});
+    CHECK(missing.status != 0);
+    CHECK(missing.err.find("nothing.png") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "y.png"));  // nothing written
 }

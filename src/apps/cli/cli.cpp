@@ -192,6 +192,7 @@ int run(const std::vector<std::string>& args) {
     addHistCommand(root, commands);
     addFitCommand(root, commands);
     addOrientCommand(root, commands);
+    addNormalsCommand(root, commands);
     addClassifyCommand(root, commands);
     addBakeCommand(root, commands);
     addRelightCommand(root, commands);

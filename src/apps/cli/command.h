@@ -35,6 +35,7 @@ void addBenchCommand(CLI::App& root, Commands& commands);
 void addViewCommand(CLI::App& root, Commands& commands);
 void addEvalCommand(CLI::App& root, Commands& commands);
 void addOrientCommand(CLI::App& root, Commands& commands);
+void addNormalsCommand(CLI::App& root, Commands& commands);
 void addClassifyCommand(CLI::App& root, Commands& commands);
 void addCompareCommand(CLI::App& root, Commands& commands);
 
