@@ -107,6 +107,37 @@ corner = image.crop((850, 550, 900, 600))  # off the sphere: black
 assert max(centre.getdata()) > 40 and max(corner.getdata()) == 0, "the sphere view is not drawn"
 PY
 echo "export --web: the panel and the sphere view draw"
+# The sphere wraps the sample, not its background: a bank baked with a round mask exports the
+# largest rectangle inside it (material.json's "sample"), and the page's sphere wraps that.
+/usr/bin/python3 - "$default" "$work/round.png" <<'PY'
+import json, sys
+from PIL import Image, ImageDraw
+manifest = json.load(open(sys.argv[1] + "/btflut-dataset.json"))
+first = Image.open(sys.argv[1] + "/" + manifest["images"][0]["file"])
+mask = Image.new("L", first.size, 0)
+ImageDraw.Draw(mask).ellipse((10, 20, first.size[0] - 30, first.size[1] - 10), fill=255)
+mask.save(sys.argv[2])
+PY
+"$btflut" bake "$default" --predictor hsh2 --mask "$work/round.png" -o "$work/round.btflut" -q
+"$btflut" export "$work/round.btflut" --web "$work/round.html" -o "$work/round/" -q
+timeout 180 chromium --headless --no-sandbox --user-data-dir="$work/profile" --use-angle=swiftshader \
+  --enable-unsafe-swiftshader --window-size=600,600 --virtual-time-budget=30000 \
+  --dump-dom "file://$work/round.html#light=20,0&view=sphere&ui=0" >"$work/round-dom.html" 2>/dev/null
+/usr/bin/python3 - "$work/round/material.json" "$work/round-dom.html" "$work/round.png" <<'PY'
+import json, re, sys
+from PIL import Image
+sample = json.load(open(sys.argv[1])).get("sample")
+assert sample, "material.json of a masked bank has no sample rectangle"
+found = re.search(r'data-sphere-window="([0-9,]*)"', open(sys.argv[2]).read())
+assert found, "the page wrote no data-sphere-window"
+window = [int(v) for v in found.group(1).split(",")]
+assert window == [sample[k] for k in ("x", "y", "width", "height")], (window, sample)
+mask = Image.open(sys.argv[3])
+x, y, w, h = window
+assert min(mask.crop((x, y, x + w, y + h)).getdata()) == 255, "the rectangle leaves the mask"
+assert w * h > 0.5 * mask.size[0] * mask.size[1] * 0.6, "the rectangle is far smaller than the mask"
+print(f"export --web: the sphere wraps the mask's largest rectangle {window}")
+PY
 # "Fit" places the material in the area the panel leaves free, at three window sizes (the
 # page writes where it drew the material and the panel: data-material, data-panel).
 for size in 1200,800 400,800 900,600; do

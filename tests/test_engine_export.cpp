@@ -128,6 +128,8 @@ TEST_SUITE("gl") {
             const nlohmann::json material = readJson(folder + "/material.json");
             CHECK(material["version"] == 2);
             CHECK(material["shader_version"] == 2);
+            // No mask, no sample rectangle: the whole image is the sample (tests/browser_check.sh bakes a masked one).
+            CHECK_FALSE(material.contains("sample"));
             const nlohmann::json& predictor = material["predictor"];
             for (const auto& image : predictor["images"]) {
                 Result<Image> planes = loadImage(folder + "/" + image.get<std::string>());

@@ -109,3 +109,19 @@ TEST_CASE("masks must match the image size and hold at least one sample pixel") 
     REQUIRE_FALSE(size.ok());
     CHECK(size.error().find("4x4 but the images are 5x4") != std::string::npos);
 }
+
+TEST_CASE("the largest rectangle inside a mask") {
+    Mask mask{8, 6, std::vector<std::uint8_t>(48, 0)};
+    CHECK(largestRectInside(mask) == PixelRect{});  // empty
+    auto set = [&](int x0, int y0, int x1, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) mask.inside[static_cast<std::size_t>(y) * 8 + x] = 1;
+    };
+    set(1, 1, 4, 5);  // 3 x 4 = 12
+    set(4, 2, 8, 4);  // 4 x 2 beside it: together 7 x 2 = 14 at rows 2-3
+    CHECK(largestRectInside(mask) == PixelRect{1, 2, 7, 2});
+    set(4, 1, 8, 5);  // now a 7 x 4 block
+    CHECK(largestRectInside(mask) == PixelRect{1, 1, 7, 4});
+    std::fill(mask.inside.begin(), mask.inside.end(), 1);
+    CHECK(largestRectInside(mask) == PixelRect{0, 0, 8, 6});
+}

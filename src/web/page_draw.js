@@ -17,7 +17,8 @@ uniform int mode;            // 0: 2D, 1: sphere
 uniform vec2 origin;         // 2D: the view pixel of texel (0, 0)'s corner, GL's y up
 uniform float zoom;          // 2D: view pixels per texel
 uniform vec3 sphere;         // centre (view pixels) and radius
-uniform vec2 tiles;          // sphere: the texture's repeats around and up
+uniform vec2 tiles;          // sphere: the window's repeats around (even) and up
+uniform vec4 window;         // sphere: the sample's rectangle in texture coordinates (x, y, width, height)
 uniform vec3 light;          // 2D: the direction; sphere: towards the point light (from the centre)
 uniform float lightDistance; // sphere: the point light's distance from the centre, in radii
 uniform float exposure;
@@ -38,7 +39,12 @@ void main() {
   if (rr >= 1.0) return;
   vec3 n = vec3(p, sqrt(1.0 - rr));
   float longitude = atan(n.x, n.z), latitude = asin(clamp(n.y, -1.0, 1.0));
-  vec2 uv = vec2(longitude / 6.2831853 * tiles.x, (latitude / 3.1415927 + 0.5) * tiles.y);
+  // The sample's window repeated mirrored (every other tile flipped), so tiles meet without
+  // seams and the mask's background never shows. The tangent frame is not flipped with it:
+  // both sides of a seam see the light alike, so the seam does not show in the shading either.
+  vec2 t = vec2(longitude / 6.2831853 * tiles.x, (latitude / 3.1415927 + 0.5) * tiles.y);
+  vec2 f = fract(t), local = mix(f, 1.0 - f, mod(floor(t), 2.0));
+  vec2 uv = window.xy + local * window.zw;
   vec3 u = vec3(cos(longitude), 0.0, -sin(longitude)), v = cross(n, u);  // the tangent frame: +u, +v, the normal
   vec3 towards = light * lightDistance - n;
   float d = length(towards);
@@ -128,8 +134,9 @@ async function load() {
     }
   gl.uniform1i(at('hasPredictor'), m.kind !== 'luts');
   gl.uniform2f(at('size'), m.size[0], m.size[1]);
-  for (const name of ['mode', 'origin', 'zoom', 'sphere', 'tiles', 'light', 'lightDistance', 'exposure']) uniforms[name] = at(name);
+  for (const name of ['mode', 'origin', 'zoom', 'sphere', 'tiles', 'window', 'light', 'lightDistance', 'exposure']) uniforms[name] = at(name);
   state.size = m.size;
+  state.sample = m.json.sample || null;  // the sample's rectangle, for the sphere
   const error = gl.getError();
   if (error !== gl.NO_ERROR) throw new Error('WebGL error ' + error + ' while uploading the material');
 }
@@ -185,7 +192,12 @@ function draw() {
   gl.uniform2f(uniforms.origin, origin[0], origin[1]);
   gl.uniform1f(uniforms.zoom, zoom);
   gl.uniform3f(uniforms.sphere, width / 2, height / 2, radius);
-  gl.uniform2f(uniforms.tiles, Math.max(1, Math.round(2 * Math.PI * radius / w)), Math.max(1, Math.round(Math.PI * radius / h)));
+  // The sphere wraps the sample's rectangle (material.json's "sample"; else the whole image),
+  // texels about square, an even count around so that the mirrored tiles close up.
+  const sample = state.sample || {x: 0, y: 0, width: w, height: h};
+  gl.uniform4f(uniforms.window, sample.x / w, (h - sample.y - sample.height) / h, sample.width / w, sample.height / h);
+  gl.uniform2f(uniforms.tiles, 2 * Math.max(1, Math.round(Math.PI * radius / sample.width)),
+               Math.max(1, Math.round(Math.PI * radius / sample.height)));
   gl.uniform3f(uniforms.light, ...lightVector());
   gl.uniform1f(uniforms.lightDistance, 4);
   gl.uniform1f(uniforms.exposure, state.exposure);
@@ -196,6 +208,7 @@ function draw() {
     .map((v) => Math.round(v / dpr)).join(',');
   view.dataset.panel = state.ui ? [box.left, box.top, box.right, box.bottom].map(Math.round).join(',') : '';
   view.dataset.size = [view.clientWidth, view.clientHeight].join(',');
+  view.dataset.sphereWindow = [sample.x, sample.y, sample.width, sample.height].join(',');  // what the sphere wraps
   const error = gl.getError();
   if (error !== gl.NO_ERROR) console.error('WebGL error ' + error + ' while drawing');
   updatePanel();

@@ -68,8 +68,8 @@ Status runNormals(const NormalsOptions& o) {
         for (double a : angles) sum += a;
         const double mean = sum / static_cast<double>(angles.size()), median = angles[angles.size() / 2],
                      p90 = angles[angles.size() * 9 / 10];
-        out["against_truth"] = {{"file", o.truth}, {"mean_degrees", mean}, {"median_degrees", median},
-                                {"p90_degrees", p90}};
+        out["against_truth"] = {
+            {"file", o.truth}, {"mean_degrees", mean}, {"median_degrees", median}, {"p90_degrees", p90}};
         char line[160];
         std::snprintf(line, sizeof line, "; against %s: mean %.2f, median %.2f, 90%% within %.2f degrees",
                       o.truth.c_str(), mean, median, p90);
@@ -86,8 +86,8 @@ Status runNormals(const NormalsOptions& o) {
     if (o.json) {
         std::cout << jsonText(out);
     } else if (!o.quiet) {
-        std::cout << "wrote " << o.output << (o.albedo.empty() ? "" : " and " + o.albedo) << " from "
-                  << decoded.size() << " images (" << maps->unresolved << " texels left flat)" << compared << "\n";
+        std::cout << "wrote " << o.output << (o.albedo.empty() ? "" : " and " + o.albedo) << " from " << decoded.size()
+                  << " images (" << maps->unresolved << " texels left flat)" << compared << "\n";
     }
     return success();
 }

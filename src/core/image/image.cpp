@@ -241,6 +241,30 @@ std::size_t Mask::count() const {
     return static_cast<std::size_t>(std::count_if(inside.begin(), inside.end(), [](std::uint8_t v) { return v != 0; }));
 }
 
+PixelRect largestRectInside(const Mask& mask) {
+    // Row by row, the run of inside pixels above each column; the largest rectangle under that
+    // histogram by a stack of rising heights (each bar's reach left and right), O(width x height).
+    PixelRect best;
+    std::vector<int> run(static_cast<std::size_t>(mask.width) + 1, 0), stack;
+    for (int y = 0; y < mask.height; ++y) {
+        for (int x = 0; x < mask.width; ++x)
+            run[static_cast<std::size_t>(x)] =
+                mask.inside[static_cast<std::size_t>(y) * mask.width + x] ? run[static_cast<std::size_t>(x)] + 1 : 0;
+        stack.clear();
+        for (int x = 0; x <= mask.width; ++x) {  // run[width] stays 0: empties the stack
+            while (!stack.empty() && run[static_cast<std::size_t>(stack.back())] >= run[static_cast<std::size_t>(x)]) {
+                const int height = run[static_cast<std::size_t>(stack.back())];
+                stack.pop_back();
+                const int left = stack.empty() ? 0 : stack.back() + 1;
+                if (static_cast<long>(height) * (x - left) > static_cast<long>(best.width) * best.height)
+                    best = {left, y - height + 1, x - left, height};
+            }
+            stack.push_back(x);
+        }
+    }
+    return best;
+}
+
 Result<ImageCodes> decodeImageCodes(const Bytes& bytes, const std::string& name, int expectedWidth,
                                     int expectedHeight) {
     if (bytes.empty()) return Error{name + ": empty file"};

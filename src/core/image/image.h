@@ -68,6 +68,17 @@ struct Mask {
     std::size_t count() const;
 };
 
+/// A rectangle of pixels, rows top first.
+struct PixelRect {
+    int x = 0, y = 0, width = 0, height = 0;
+    bool operator==(const PixelRect&) const = default;
+};
+
+/// The largest axis-aligned rectangle of pixels all inside the mask (by area; the first such
+/// from the top left); empty for an empty mask. A surface wrapped with it shows the sample and
+/// none of its background.
+PixelRect largestRectInside(const Mask& mask);
+
 /// The default of maxImagePixels(): 2^28 pixels (16384 x 16384). A decoded image takes
 /// 4 bytes per sample (12 per RGB pixel), plus the decoder's buffer while decoding.
 constexpr std::uint64_t kDefaultMaxImagePixels = std::uint64_t{1} << 28;

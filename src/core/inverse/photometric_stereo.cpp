@@ -48,8 +48,9 @@ Result<SurfaceMaps> photometricStereo(const std::vector<const Image*>& images, c
     const double zero[3] = {0, 0, 0};
     double unused[3];
     if (!solve3(span, zero, unused))
-        return Error{"photometric stereo: the lights lie in one plane through the sample (on a line of the disk), "
-                     "so they do not fix a normal"};
+        return Error{
+            "photometric stereo: the lights lie in one plane through the sample (on a line of the disk), "
+            "so they do not fix a normal"};
     const int channels = first.channels;
     SurfaceMaps maps{Image(first.width, first.height, 3), Image(first.width, first.height, channels), 0};
     const std::size_t n = images.size();
@@ -78,9 +79,8 @@ Result<SurfaceMaps> photometricStereo(const std::vector<const Image*>& images, c
             }
             // The kept samples: neither the darkest (shadows) nor the brightest (highlights).
             std::iota(order.begin(), order.end(), std::size_t{0});
-            std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-                return grey[a] != grey[b] ? grey[a] < grey[b] : a < b;
-            });
+            std::sort(order.begin(), order.end(),
+                      [&](std::size_t a, std::size_t b) { return grey[a] != grey[b] ? grey[a] < grey[b] : a < b; });
             double a[9] = {}, b[3] = {};
             for (std::size_t r = drop; r < keepTo; ++r) {
                 const std::size_t k = order[r];

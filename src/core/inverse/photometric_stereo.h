@@ -28,8 +28,8 @@ struct PhotometricStereoOptions {
 };
 
 struct SurfaceMaps {
-    Image normals;              ///< RGB, (n + 1) / 2; outside the mask (0.5, 0.5, 1)
-    Image albedo;               ///< the images' channels, linear reflectance (rho, clamped to 1)
+    Image normals;               ///< RGB, (n + 1) / 2; outside the mask (0.5, 0.5, 1)
+    Image albedo;                ///< the images' channels, linear reflectance (rho, clamped to 1)
     std::size_t unresolved = 0;  ///< texels in the mask left flat (degenerate lights or black)
 };
 
