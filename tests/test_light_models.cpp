@@ -3,8 +3,11 @@
 // captures, version 5 files, and the validated choice on the shared data.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include "core/bake/auto_bake.h"
 #include "core/bake/bake.h"
@@ -13,6 +16,7 @@
 #include "core/eval/metrics.h"
 #include "core/predict/light_model.h"
 #include "core/predict/model_predictor.h"
+#include "core/predict/rti_file.h"
 #include "core/relight/relighter.h"
 #include "helpers.h"
 
@@ -359,4 +363,75 @@ TEST_CASE("the match LUTs baked over the grid: close to the exact run-time LUT, 
     Result<LutBank> refused = decodeBank(encodeBank(broken), "broken.btflut");
     REQUIRE_FALSE(refused.ok());
     CHECK(refused.error().find("match grid is not monotonic") != std::string::npos);
+}
+
+TEST_CASE("export --rti: an HSH model as RTIViewer's file, read back as CHI's viewers read it") {
+    // Decodes the file as CHI's RTI viewers do (comments, type 3, sizes, terms; scales and
+    // biases; bytes per pixel, band and term, rows top first) and evaluates it at `light`.
+    auto evaluate = [](const Bytes& file, Direction light, int& width, int& height) {
+        std::string text(file.begin(), file.end());
+        std::size_t at = 0;
+        while (text[at] == '#') at = text.find('\n', at) + 1;
+        std::istringstream header(text.substr(at, 64));
+        int type = 0, bands = 0, terms = 0, basisType = 0, elementSize = 0;
+        header >> type >> width >> height >> bands >> terms >> basisType >> elementSize;
+        REQUIRE(type == 3);
+        REQUIRE(bands == 3);
+        REQUIRE(elementSize == 1);
+        for (int line = 0; line < 3; ++line) at = text.find('\n', at) + 1;
+        std::vector<float> scale(static_cast<std::size_t>(terms)), bias(static_cast<std::size_t>(terms));
+        std::memcpy(scale.data(), file.data() + at, scale.size() * 4);
+        std::memcpy(bias.data(), file.data() + at + scale.size() * 4, bias.size() * 4);
+        const std::uint8_t* bytes = file.data() + at + 8 * scale.size();
+        REQUIRE(file.size() == at + 8 * scale.size() + static_cast<std::size_t>(width) * height * 3 * terms);
+        const std::vector<double> t =
+            basisTerms(LightBasis::Hsh, static_cast<int>(std::lround(std::sqrt(terms))), light);
+        Image out(width, height, 3);
+        for (std::size_t i = 0; i < out.samples.size(); ++i) {
+            double v = 0;
+            for (int q = 0; q < terms; ++q)
+                v += (*bytes++ / 255.0 * scale[static_cast<std::size_t>(q)] + bias[static_cast<std::size_t>(q)]) *
+                     t[static_cast<std::size_t>(q)];
+            out.samples[i] = static_cast<float>(std::clamp(v, 0.0, 1.0));
+        }
+        return out;
+    };
+    const Relief relief;  // colour: the model has an LRGB albedo
+    const std::vector<Direction> lights = dome(30, 70);
+    std::vector<Image> images;
+    for (Direction l : lights) images.push_back(reliefImage(relief, l));
+    const Mask mask = fullMask(relief.size, relief.size);
+    for (int order : {2, 3}) {
+        Result<LightModel> model = fit(images, lights, mask, {.basis = LightBasis::Hsh, .order = order});
+        REQUIRE(model.ok());
+        const Bytes file = encodeHshRtiFile(*model);
+        CHECK(std::string(file.begin(), file.begin() + 8) == "#HSH1.2\n");
+        for (Direction l : {Direction::fromDegrees(20, 30), Direction::fromDegrees(55, 250)}) {
+            int width = 0, height = 0;
+            const Image read = evaluate(file, l, width, height);
+            CHECK(width == relief.size);
+            CHECK(height == relief.size);
+            const ImageErrors e = compareImages(read, model->render(l), mask);
+            INFO("hsh" << order << " at " << l.thetaDegrees() << ": max " << e.maxDifference * 255 << "/255");
+            CHECK(e.maxDifference * 255 < 3);
+            CHECK(e.meanDifference * 255 < 0.5);
+        }
+    }
+}
+
+TEST_CASE("export --rti: written for HSH banks, refused for others naming what to bake") {
+    TempDir dir;
+    const std::string material = BTFLUT_DEFAULT_MATERIAL;
+    REQUIRE(runCli({"bake", material, "--predictor", "hsh2", "-o", dir / "h.btflut", "-q"}).status == 0);
+    REQUIRE(runCli({"bake", material, "--references", "1", "-o", dir / "k.btflut", "-q"}).status == 0);
+    const CliRun written = runCli({"export", dir / "h.btflut", "--rti", dir / "h.rti", "--json"});
+    INFO(written.err);
+    REQUIRE(written.status == 0);
+    CHECK(nlohmann::json::parse(written.out)["rti"] == dir / "h.rti");
+    CHECK(readFile(dir / "h.rti")->size() > 256 * 256 * 3 * 4);
+    const CliRun refused = runCli({"export", dir / "k.btflut", "--rti", dir / "k.rti"});
+    CHECK(refused.status != 0);
+    CHECK(refused.err.find("--predictor hsh2 or hsh3") != std::string::npos);
+    CHECK_FALSE(fs::exists(dir / "k.rti"));
+    CHECK(runCli({"export", dir / "h.btflut", "--rti", dir / "h.ptm"}).err.find("--rti") != std::string::npos);
 }

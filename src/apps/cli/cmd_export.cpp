@@ -21,6 +21,7 @@
 #include "core/predict/model_predictor.h"
 #include "core/predict/ptm_file.h"
 #include "core/predict/reference_blend.h"
+#include "core/predict/rti_file.h"
 #include "core/relight/engine_material.h"
 #include "core/relight/material_json.h"
 #include "core/relight/relighter.h"
@@ -44,6 +45,7 @@ struct ExportOptions {
     std::string bank;
     std::string output;
     std::string ptm;
+    std::string rti;
     std::string web;
     int grid = 0;
     bool force = false;
@@ -369,15 +371,33 @@ Status exportPtm(const ExportOptions& o, const LutBank& b) {
     return success();
 }
 
+// --rti FILE.rti: an HSH model as RTIViewer's hemispherical-harmonics file.
+Status exportRti(const ExportOptions& o, const LutBank& b) {
+    if (Status s = requireExtension(o.rti, {"rti"}, "--rti"); !s) return s;
+    const ModelPredictor* model = b.predictorAs<ModelPredictor>();
+    if (!model || model->bankPtm() || model->model().basis != LightBasis::Hsh)
+        return Error{o.bank + ": its predictor is " +
+                     (b.makesLuts() ? b.predictorName() : std::string("none (a bank of LUTs)")) +
+                     "; an .rti file holds hemispherical harmonics: bake with --predictor hsh2 or hsh3 (or export "
+                     "--ptm FILE.ptm from a bank baked with --ptm)"};
+    if (Status s = writeFileAtomically(o.rti, encodeHshRtiFile(model->model())); !s) return s;
+    if (!o.quiet)
+        std::cout << "wrote " << o.rti << " (HSH order " << model->model().order << ", " << model->model().width << "x"
+                  << model->model().height << ", RGB)\n";
+    return success();
+}
+
 Status runExport(const ExportOptions& o) {
-    if (o.output.empty() && o.ptm.empty() && o.web.empty())
-        return Error{"give -o DIR (or -o atlas.png), --web PAGE.html and/or --ptm FILE.ptm"};
+    if (o.output.empty() && o.ptm.empty() && o.web.empty() && o.rti.empty())
+        return Error{"give -o DIR (or -o atlas.png), --web PAGE.html, --ptm FILE.ptm and/or --rti FILE.rti"};
     if (!o.web.empty())
         if (Status s = requireExtension(o.web, {"html", "htm"}, "--web"); !s) return s;
     Result<LutBank> bank = loadBank(o.bank);
     if (!bank) return Error{bank.error()};
     if (!o.ptm.empty())
         if (Status s = exportPtm(o, *bank); !s) return s;
+    if (!o.rti.empty())
+        if (Status s = exportRti(o, *bank); !s) return s;
     if (o.output.empty() && o.web.empty()) return success();
     if (o.grid > 0 && o.grid != bank->gridSize) {  // resampled from the measured directions
         const std::size_t length = bank->makesLuts() ? bank->matchLength() : bank->lutLength();
@@ -414,6 +434,7 @@ Status runExportReporting(ExportOptions o) {
     if (Status s = runExport(o); !s || !json) return s;
     nlohmann::json out = nlohmann::json::object();
     if (!o.ptm.empty()) out["ptm"] = o.ptm;
+    if (!o.rti.empty()) out["rti"] = o.rti;
     if (!o.web.empty()) out["web"] = {{"page", o.web}, {"open", "chromium '" + fileUrl(o.web) + "#light=30,90'"}};
     if (!o.output.empty() && fileExtension(o.output) == "png") {
         out["atlas"] = o.output;
@@ -447,6 +468,9 @@ void addExportCommand(CLI::App& root, Commands& commands) {
         "PAGE.html: one page that opens from disk (no network) and relights the material with WebGL2: the "
         "export's files inside it, the light on a disk, 2D and a sphere; #light=THETA,PHI&zoom=1&view=2d|sphere&ui=0");
     app->add_option("--ptm", o->ptm, "FILE.ptm: the bank's PTM (bake --ptm) as a PTM 1.2 LRGB file for RTI viewers");
+    app->add_option("--rti", o->rti,
+                    "FILE.rti: the bank's HSH model (bake --predictor hsh2 or hsh3) as RTIViewer's hemispherical-"
+                    "harmonics file");
     app->add_option(
            "--grid", o->grid,
            "resample the LUT grid at N x N light directions from the measured ones (default: the bank's; finer "
