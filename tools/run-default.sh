@@ -7,10 +7,14 @@ cd "$(dirname "$0")/.."
 bash tools/setup.sh
 build="${BTFLUT_BUILD_DIR:-build}"
 if [ ! -x "$build/btflut" ]; then
-  echo "building btflut (the first build takes about 5 minutes on 2 cores; later runs only what changed) ..."
+  echo "building btflut (the first build takes 3 to 4 minutes on 2 cores; later runs only what changed) ..."
 fi
 start=$(date +%s)
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+# Ninja for a new build folder: it keeps both cores busy across targets, where make's
+# recursion waits for each library (a first build 244 s with make, 184 s with Ninja).
+generator=()
+[ -f "$build/CMakeCache.txt" ] || ! command -v ninja >/dev/null || generator=(-G Ninja)
+cmake -S . -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release >/dev/null
 # The program and the default material it renders at build time; the progress on one line,
 # the compiler's output in a log shown when the build fails.
 log="$build/build.log"
@@ -18,7 +22,7 @@ log="$build/build.log"
 cmake --build "$build" -j "$(nproc)" --target btflut default_material >"$log" 2>&1 &
 pid=$!
 while kill -0 "$pid" 2>/dev/null; do
-  printf "\r  building: %s " "$(grep -so '^\[ *[0-9]*%\]' "$log" | tail -1)"
+  printf "\r  building: %s " "$(grep -so '^\[[ 0-9/%]*\]' "$log" | tail -1)"
   sleep 2
 done
 if ! wait "$pid"; then

@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config git
+  build-essential cmake ninja-build pkg-config git
   libstb-dev            # stb_image (decodes TGA and BMP)
   libspng-dev zlib1g-dev  # PNG decode and encode (8/16-bit), CRC-32 for .btflut files
   libturbojpeg0-dev     # JPEG decode (libjpeg-turbo)

@@ -32,9 +32,9 @@ Bytes encodeHshRtiFile(const LightModel& model) {
     const std::string header = "#HSH1.2\n# written by btflut export --rti (hemispherical harmonics, order " +
                                std::to_string(model.order) + ")\n3\n" + std::to_string(model.width) + " " +
                                std::to_string(model.height) + " 3\n" + std::to_string(terms) + " 2 1\n";
-    Bytes out(header.begin(), header.end());
-    const std::size_t floats = out.size();
-    out.resize(floats + 2 * terms * sizeof(float) + texels * 3 * terms);
+    const std::size_t floats = header.size();
+    Bytes out(floats + 2 * terms * sizeof(float) + texels * 3 * terms);
+    std::memcpy(out.data(), header.data(), floats);
     std::memcpy(out.data() + floats, scale.data(), terms * sizeof(float));
     std::memcpy(out.data() + floats + terms * sizeof(float), bias.data(), terms * sizeof(float));
     std::uint8_t* bytes = out.data() + floats + 2 * terms * sizeof(float);
