@@ -11,6 +11,7 @@
 #include "core/eval/charts.h"
 #include "core/eval/metrics.h"
 #include "core/histogram/histogram.h"
+#include "core/histogram/lut.h"
 #include "core/image/canvas.h"
 #include "core/random.h"
 
@@ -234,4 +235,22 @@ TEST_CASE("error map: black where a prediction is exact, white at 1/gain, grey o
     CHECK(half.at(1, 0, 0) == doctest::Approx(1.f));
     CHECK(half.at(1, 0, 1) == doctest::Approx(0.5f));
     CHECK(half.at(1, 0, 2) == 0.f);
+}
+
+TEST_CASE("a target's L1: its own distribution scores near 0, a disjoint one 2, regions weighed by their texels") {
+    Image photo(32, 32, 1);
+    LevelCounts counts;
+    counts.counts.assign(256, 0);
+    for (std::size_t i = 0; i < photo.pixelCount(); ++i) {
+        const int code = 40 + static_cast<int>(i % 97);
+        photo.samples[i] = static_cast<float>(code) / 255.f;
+        ++counts.counts[static_cast<std::size_t>(code)];
+    }
+    const Mask all{32, 32, std::vector<std::uint8_t>(photo.pixelCount(), 1)};
+    const std::vector<float> own = quantileFunction(counts, 1024);
+    CHECK(targetL1({own}, {1.0}, photo, all) < 0.02);
+    const std::vector<float> bright(1024, 0.95f);
+    CHECK(targetL1({bright}, {1.0}, photo, all) == doctest::Approx(2.0));
+    // Two regions: the photo's own distribution with 3/4 of the weight, a disjoint one with 1/4.
+    CHECK(targetL1({own, bright}, {3.0, 1.0}, photo, all) == doctest::Approx(0.5).epsilon(0.05));
 }

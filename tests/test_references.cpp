@@ -460,6 +460,16 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     CHECK(sweptNames == std::vector<std::string>{"lut auto match 0 budget 1", "lut auto match 0 budget 4",
                                                  "lut auto match 1 budget 1", "lut auto match 1 budget 4",
                                                  "lut hsh2 R1 grey match 0", "lut hsh2 R1 grey match 1"});
+    // A predictor's bank reports its target's own L1 beside the relit image's: matched fully,
+    // the two agree (the relit histogram is the target's, up to its codes); the paper's bank
+    // (a bank of LUTs) has none.
+    for (const auto& mode : sweptJson["modes"])
+        if (mode["name"] == "lut hsh2 R1 grey match 1") {
+            REQUIRE(mode["target_l1"].is_number());
+            CHECK(mode["target_l1"].get<double>() == doctest::Approx(mode["l1"].get<double>()).epsilon(0.1));
+        }
+    CHECK(byName["lut K1 R1 grey"]["target_l1"].is_null());
+    CHECK(byName["lut ptm R2 grey"]["target_l1"].get<double>() > 0);
     // lut auto says what bake chose in each fold (one fold here), and only lut auto does.
     for (const auto& mode : sweptJson["modes"]) {
         INFO(mode["name"]);

@@ -8,6 +8,8 @@
 // Both images are first quantised to the photo's bit depth, as a saved prediction would be.
 // A grey prediction of a colour photo is compared as grey in every channel.
 
+#include <vector>
+
 #include "core/image/image.h"
 
 namespace btflut {
@@ -26,6 +28,15 @@ ImageErrors compareImages(const Image& predicted, const Image& photo, const Mask
 
 /// The same from the images' codes (`predicted` brought to the photo's bit depth first).
 ImageErrors compareCodes(const ImageCodes& predicted, const ImageCodes& photo, const Mask& mask);
+
+/// The histogram L1 of a target distribution against the photo, as compareImages measures a
+/// prediction's: a mixture of quantile functions (values 0..1, evenly spaced probabilities;
+/// `weights` their shares, e.g. regions' texel counts) binned into the photo's 64 grey bins
+/// (each value at the nearest code of the photo's grey), against the photo's masked grey
+/// histogram. How far the estimate of the histogram at a light is from the truth, apart from
+/// how well a prediction was matched to it.
+double targetL1(const std::vector<std::vector<float>>& quantiles, const std::vector<double>& weights,
+                const Image& photo, const Mask& mask);
 
 /// Where a prediction misses, for the eyes: each pixel's mean |difference| over the photo's
 /// channels (a grey prediction broadcast), times `gain`, on a hot scale (black 0, red, yellow,

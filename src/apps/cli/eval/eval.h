@@ -101,6 +101,9 @@ struct Variant {
     /// domain (its lookup extrapolated, or modelled), so the bank clamped (or modelled) it.
     std::vector<bool> outside;
     std::vector<double> bakeSeconds, relightSeconds;
+    /// lut with a predictor (grey): per prediction, the L1 of the bank's target at the held-out
+    /// light (its estimate of the histogram there) against the photograph's; NaN otherwise.
+    std::vector<double> targetL1;
     /// lut auto: what bake chose in each fold ("hsh2 match 0.50"), in fold order.
     std::vector<std::string> chosen;
     double bytesPerTexel = 0;

@@ -176,6 +176,26 @@ Image errorScale(int width, int height) {
     return errorMap(ramp, flat, all, kErrorGain);
 }
 
+// The L1 of a bank's target at a held-out image's light (its quantile functions there, a
+// region each, weighted by the region's sample texels) against the photograph's histogram:
+// banks with a predictor matched on one channel; NaN for others (a bank of LUTs reproduces its
+// target: its own L1 is the target's).
+double targetL1Of(const LutBank& bank, const DatasetImage& info, const Image& photo, const Mask& mask) {
+    if (!bank.makesLuts() || bank.channels() != 1) return std::nan("");
+    const std::vector<float> values = bank.lookup(info.light, info.view).values;
+    const auto samples = static_cast<std::size_t>(bank.blend.quantiles);
+    const auto regions = static_cast<std::size_t>(bank.blend.regions);
+    std::vector<std::vector<float>> quantiles;
+    std::vector<double> weights(regions, 0.0);
+    for (std::size_t r = 0; r < regions; ++r)
+        quantiles.emplace_back(values.begin() + static_cast<std::ptrdiff_t>(r * samples),
+                               values.begin() + static_cast<std::ptrdiff_t>((r + 1) * samples));
+    const LutBank::Blend& blend = bank.blend;
+    for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
+        if (blend.mask.inside[i]) weights[blend.labels.empty() ? 0 : blend.labels[i]] += 1;
+    return targetL1(quantiles, weights, photo, mask);
+}
+
 // A variant's bank relit for held-out image `info` through the code users run.
 Image relitPrediction(Variant& v, const LutBank& bank, const Relighter& relighter, const DatasetImage& info) {
     const auto start = Clock::now();
@@ -269,6 +289,8 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                     }
                 }
                 v.errors.push_back(compareImages(predicted, *photo, mask));
+                v.targetL1.push_back(v.mode == RenderMode::Lut && !v.basis ? targetL1Of(bank, info, *photo, mask)
+                                                                           : std::nan(""));
                 v.images.push_back(info.name);
                 const BankLookup at = bank.lookup(info.light, info.view);
                 auto beyond = [](Provenance p) { return p == Provenance::Clamped || p == Provenance::Modelled; };

@@ -155,6 +155,7 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         dataset.source.c_str(), dataset.images.size(), o.holdout.c_str(), folds.size(), tests, maskPixels);
     std::string text = line;
     std::string chosenText;                             // lut auto's choice per fold, after the table
+    std::string targetText;                             // the targets' own L1, after the table
     std::map<std::string, const DatasetImage*> byName;  // each held-out image's light and view, for the rows
     for (const DatasetImage& image : dataset.images) byName[image.name] = &image;
     std::snprintf(line, sizeof line, "%-30s %7s %7s %7s %6s %9s %9s %8s %9s %8s %8s\n", "mode", "L1", "EMD", "PSNR",
@@ -214,6 +215,19 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                                  {"gpu_max_diff_255", number(v.gpuMaxDiff)}});
         const auto outside = static_cast<std::size_t>(std::count(v.outside.begin(), v.outside.end(), true));
         nlohmann::json& mode = json["modes"].back();
+        // The target's own L1 beside the mode's: the histogram estimate's error apart from the match's.
+        double targetSum = 0;
+        std::size_t targets = 0;
+        for (double t : v.targetL1)
+            if (std::isfinite(t)) targetSum += t, ++targets;
+        mode["target_l1"] =
+            targets ? nlohmann::json(targetSum / static_cast<double>(targets)) : nlohmann::json(nullptr);
+        if (targets) {
+            char row[160];
+            std::snprintf(row, sizeof row, "  %-30s target %6.4f   relit %6.4f\n", v.name.c_str(),
+                          targetSum / static_cast<double>(targets), l1);
+            targetText += row;
+        }
         if (!v.chosen.empty()) {  // lut auto: what bake chose in each fold
             mode["chosen"] = v.chosen;
             chosenText += "  " + v.name + ":";
@@ -259,6 +273,11 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                                     {"ssim", pixels ? nlohmann::json(v.errors[i].ssim) : nlohmann::json(nullptr)}});
         }
     }
+    if (!targetText.empty())
+        text +=
+            "\nhistogram L1 of each bank's target at the held-out lights (its estimate of the histogram there)\n"
+            "against the photographs', beside the relit image's:\n" +
+            targetText;
     if (!chosenText.empty())
         text += "\nlut auto chose, per fold (bake's validation on the fold's training lights):\n" + chosenText;
     // Bins outside the measured hull (the bank clamped or modelled them) apart from those inside.
