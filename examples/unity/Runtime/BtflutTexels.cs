@@ -115,42 +115,34 @@ namespace Btflut
             return halves;
         }
 
-        /// An 8-bit image as RGBA32 texels, rows bottom first (texture v = 0 at the image's bottom,
-        /// so +v is image up, the tangent frame's +y); grey in R, G and B, alpha 255 where it has none.
-        public static byte[] Rgba32BottomFirst(PngImage image, string name)
+        // An image as RGBA texels, rows bottom first (texture v = 0 at the image's bottom, so +v
+        // is image up, the tangent frame's +y); grey in R, G and B, `opaque` where it has no alpha.
+        static T[] RgbaBottomFirst<T>(PngImage image, Func<ushort, T> convert, T opaque)
         {
-            if (image.Depth != 8) throw new InvalidDataException(name + ": not an 8-bit image");
-            var out_ = new byte[(long)image.Width * image.Height * 4];
+            var out_ = new T[(long)image.Width * image.Height * 4];
             for (int y = 0; y < image.Height; ++y)
                 for (int x = 0; x < image.Width; ++x)
                 {
                     long from = ((long)(image.Height - 1 - y) * image.Width + x) * image.Channels,
                          to = ((long)y * image.Width + x) * 4;
                     for (int c = 0; c < 4; ++c)
-                        out_[to + c] = (byte)(c < 3 ? image.Samples[from + (image.Channels < 3 ? 0 : c)]
-                                              : image.Channels == 2 || image.Channels == 4
-                                                  ? image.Samples[from + image.Channels - 1] : 255);
+                        out_[to + c] = c < 3 ? convert(image.Samples[from + (image.Channels < 3 ? 0 : c)])
+                                       : image.Channels == 2 || image.Channels == 4
+                                           ? convert(image.Samples[from + image.Channels - 1]) : opaque;
                 }
             return out_;
         }
 
-        /// A 16-bit image as RGBAHalf texels, rows bottom first, as Rgba32BottomFirst.
-        public static ushort[] RgbaHalfBottomFirst(PngImage image)
+        /// An 8-bit image as RGBA32 texels, rows bottom first, alpha 255 where it has none.
+        public static byte[] Rgba32BottomFirst(PngImage image, string name)
         {
-            var out_ = new ushort[(long)image.Width * image.Height * 4];
-            for (int y = 0; y < image.Height; ++y)
-                for (int x = 0; x < image.Width; ++x)
-                {
-                    long from = ((long)(image.Height - 1 - y) * image.Width + x) * image.Channels,
-                         to = ((long)y * image.Width + x) * 4;
-                    for (int c = 0; c < 4; ++c)
-                        out_[to + c] = c < 3 ? ToHalf(image.Samples[from + (image.Channels < 3 ? 0 : c)] / 65535f)
-                                             : image.Channels == 2 || image.Channels == 4
-                                                   ? ToHalf(image.Samples[from + image.Channels - 1] / 65535f)
-                                                   : (ushort)0x3c00;
-                }
-            return out_;
+            if (image.Depth != 8) throw new InvalidDataException(name + ": not an 8-bit image");
+            return RgbaBottomFirst(image, s => (byte)s, (byte)255);
         }
+
+        /// A 16-bit image as RGBAHalf texels, rows bottom first, alpha 1 where it has none.
+        public static ushort[] RgbaHalfBottomFirst(PngImage image) =>
+            RgbaBottomFirst(image, s => ToHalf(s / 65535f), (ushort)0x3c00);
 
         /// weights.bin (float32 little-endian, [layer][j][i][4]) as RGBAFloat texels, layer by layer;
         /// row j is the texture's row j (the include reads it with exact texel fetches).

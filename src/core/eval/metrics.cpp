@@ -263,35 +263,25 @@ Image errorMap(const Image& predicted, const Image& photo, const Mask& mask, flo
 double targetL1(const std::vector<std::vector<float>>& quantiles, const std::vector<double>& weights,
                 const Image& photo, const Mask& mask) {
     BTFLUT_CHECK(quantiles.size() == weights.size() && !quantiles.empty());
-    BTFLUT_CHECK(mask.inside.size() == photo.pixelCount());
-    const int maxCode = photo.bitDepth == 16 ? 65535 : 255;
-    const auto last = static_cast<std::uint64_t>(photo.channels) * static_cast<std::uint64_t>(maxCode);
-    auto binOf = [last](std::uint64_t code) { return std::min<std::uint64_t>(code * 64 / last, 63); };
-    std::vector<double> measured(64, 0.0), target(64, 0.0);
-    double pixels = 0;
-    for (std::size_t p = 0; p < photo.pixelCount(); ++p) {
-        if (!mask.inside[p]) continue;
-        std::uint64_t sum = 0;
-        for (int c = 0; c < photo.channels; ++c)
-            sum += static_cast<std::uint64_t>(
-                std::lround(std::clamp(photo.samples[p * static_cast<std::size_t>(photo.channels) + c], 0.f, 1.f) *
-                            static_cast<float>(maxCode)));
-        measured[binOf(sum)] += 1;
-        pixels += 1;
-    }
+    // The photo's side as compareImages bins it: grey codes (the channels' codes summed), 64 bins.
+    const LevelCounts levels = countGreyLevels(photo, mask);
+    const std::vector<double> measured = binHistogram(levels, 64);
+    const std::uint64_t last = levels.counts.size() - 1;
     double total = 0;
     for (double w : weights) total += w;
-    if (!(pixels > 0) || !(total > 0)) return std::nan("");
+    if (levels.total() == 0 || !(total > 0)) return std::nan("");
+    std::vector<double> target(64, 0.0);
     for (std::size_t r = 0; r < quantiles.size(); ++r) {
         if (quantiles[r].empty()) continue;
         const double share = weights[r] / total / static_cast<double>(quantiles[r].size());
-        for (float v : quantiles[r])
-            target[binOf(static_cast<std::uint64_t>(
-                std::llround(std::clamp(double{v}, 0.0, 1.0) * static_cast<double>(last))))] += share;
+        for (float v : quantiles[r]) {  // at the nearest grey code, in that code's bin (binHistogram's)
+            const auto code =
+                static_cast<std::uint64_t>(std::llround(std::clamp(double{v}, 0.0, 1.0) * static_cast<double>(last)));
+            target[std::min<std::uint64_t>(code * 64 / last, 63)] += share;
+        }
     }
     double l1 = 0;
-    for (int k = 0; k < 64; ++k)
-        l1 += std::abs(measured[static_cast<std::size_t>(k)] / pixels - target[static_cast<std::size_t>(k)]);
+    for (std::size_t k = 0; k < 64; ++k) l1 += std::abs(measured[k] - target[k]);
     return l1;
 }
 

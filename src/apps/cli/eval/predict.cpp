@@ -176,13 +176,13 @@ Image errorScale(int width, int height) {
     return errorMap(ramp, flat, all, kErrorGain);
 }
 
-// The L1 of a bank's target at a held-out image's light (its quantile functions there, a
+// The L1 of a bank's target at a held-out image's light (`at`: its quantile functions there, a
 // region each, weighted by the region's sample texels) against the photograph's histogram:
 // banks with a predictor matched on one channel; NaN for others (a bank of LUTs reproduces its
 // target: its own L1 is the target's).
-double targetL1Of(const LutBank& bank, const DatasetImage& info, const Image& photo, const Mask& mask) {
+double targetL1Of(const LutBank& bank, const BankLookup& at, const Image& photo, const Mask& mask) {
     if (!bank.makesLuts() || bank.channels() != 1) return std::nan("");
-    const std::vector<float> values = bank.lookup(info.light, info.view).values;
+    const std::vector<float>& values = at.values;
     const auto samples = static_cast<std::size_t>(bank.blend.quantiles);
     const auto regions = static_cast<std::size_t>(bank.blend.regions);
     std::vector<std::vector<float>> quantiles;
@@ -289,10 +289,10 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                     }
                 }
                 v.errors.push_back(compareImages(predicted, *photo, mask));
-                v.targetL1.push_back(v.mode == RenderMode::Lut && !v.basis ? targetL1Of(bank, info, *photo, mask)
+                const BankLookup at = bank.lookup(info.light, info.view);
+                v.targetL1.push_back(v.mode == RenderMode::Lut && !v.basis ? targetL1Of(bank, at, *photo, mask)
                                                                            : std::nan(""));
                 v.images.push_back(info.name);
-                const BankLookup at = bank.lookup(info.light, info.view);
                 auto beyond = [](Provenance p) { return p == Provenance::Clamped || p == Provenance::Modelled; };
                 v.outside.push_back(beyond(at.lightProvenance) || beyond(at.viewProvenance));
                 if (sheetRow) {
@@ -301,13 +301,13 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                     // Each cell's figures under its name: how close it came to the photograph.
                     const ImageErrors& e = v.errors.back();
                     char figures[64];
-                    if (std::isnan(e.psnr))  // views not rectified to one frame: no pixels compared
+                    if (std::isnan(e.psnr)) {  // views not rectified to one frame: no pixels compared
                         std::snprintf(figures, sizeof figures, "\nL1 %.2f", e.l1);
-                    else
+                    } else {
                         std::snprintf(figures, sizeof figures, "\n%.1f dB  L1 %.2f", e.psnr, e.l1);
-                    if (!std::isnan(e.psnr))
                         errorRow.push_back({v.name + "\nerror x" + std::to_string(kErrorGain),
                                             errorMap(predicted, *photo, mask, kErrorGain)});
+                    }
                     sheet.back().push_back({v.name + figures, std::move(predicted)});
                 }
             }
