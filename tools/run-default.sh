@@ -31,9 +31,9 @@ fi
 printf "\r%-40s\r" ""
 echo "built in $(( $(date +%s) - start )) s"
 mkdir -p out
-./"$build"/btflut bake "$build"/assets/default -o out/default.btflut
-./"$build"/btflut info out/default.btflut
-./"$build"/btflut relight out/default.btflut --light 50,30 -o out/default-relit-50-30.png
-./"$build"/btflut export out/default.btflut --web out/default.html -q
+"$build"/btflut bake "$build"/assets/default -o out/default.btflut
+"$build"/btflut info out/default.btflut
+"$build"/btflut relight out/default.btflut --light 50,30 -o out/default-relit-50-30.png
+"$build"/btflut export out/default.btflut --web out/default.html -q
 echo "relit image: $(pwd)/out/default-relit-50-30.png (bank: $(pwd)/out/default.btflut)"
 echo "in a browser (WebGL2, no server): file://$(pwd)/out/default.html#light=50,30"
