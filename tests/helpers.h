@@ -144,6 +144,17 @@ inline std::string writeSyntheticDataset(const TempDir& dir, const std::vector<S
     return path;
 }
 
+/// `count` lights spread over the cap up to `maxTheta` degrees (a golden-angle spiral of equal
+/// solid angles, as a dome's rings).
+inline std::vector<Direction> dome(int count, double maxTheta) {
+    std::vector<Direction> lights;
+    for (int i = 0; i < count; ++i) {
+        const double t = (i + 0.5) / count;
+        lights.push_back(Direction::fromDegrees(maxTheta * std::sqrt(t), std::fmod(137.5 * i, 360.0)));
+    }
+    return lights;
+}
+
 /// A scene whose quad (normal +z, tangent +x) fills a w x h image texel for texel under a
 /// frontal camera, so each pixel centre samples one texel centre (GL tests against CPU twins).
 inline Scene frontalScene(const std::string& bank, const std::string& images, int w, int h) {

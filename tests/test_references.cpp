@@ -322,7 +322,7 @@ TEST_CASE("the same inputs give the same bank bytes, whatever the threads (the P
     }
 }
 
-TEST_CASE("version 3 and 5 files round-trip, and every cut and flipped bit is refused") {
+TEST_CASE("version 3 and 6 files round-trip, and every cut and flipped bit is refused") {
     TempDir dir;
     const Material m = renderedMaterial(dir);
     auto dataset = openDataset(m.colour);
@@ -332,14 +332,21 @@ TEST_CASE("version 3 and 5 files round-trip, and every cut and flipped bit is re
                                 BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}, .regions = 2}}) {
         auto bank = bakeBank(*dataset, options);
         REQUIRE(bank.ok());
-        CHECK(bankFormatVersion(*bank) == 5);  // the LUTs baked over the grid (MGRD) are version 5
-        if (!options.model) {                  // without them, the references' banks are what version 3 readers read
-            LutBank plain = *bank;
+        CHECK(bankFormatVersion(*bank) == 6);  // the choice of target between the lights (TFIT) is version 6
+        if (!options.model) {
+            // Without it (the blend alone), the LUTs baked over the grid (MGRD) are version 5, and
+            // without those the references' banks are what version 3 readers read.
+            BakeOptions blendOnly = options;
+            blendOnly.fitTargets = false;
+            Result<LutBank> blended = bakeBank(*dataset, blendOnly);
+            REQUIRE(blended.ok());
+            CHECK(bankFormatVersion(*blended) == 5);
+            LutBank plain = *blended;
             for (ViewLayer& layer : plain.layers) layer.matchGridLuts.clear();
             CHECK(bankFormatVersion(plain) == 3);
             Result<LutBank> back3 = decodeBank(encodeBank(plain), "v3.btflut");
             REQUIRE(back3.ok());
-            const Relighter a(*bank), b(*back3);  // the grid made again on reading
+            const Relighter a(*blended), b(*back3);  // the grid made again on reading
             const Direction light = Direction::fromDegrees(35, 70);
             CHECK(a.apply(a.gridFrame(light), true).samples == b.apply(b.gridFrame(light), true).samples);
         }
@@ -387,8 +394,9 @@ TEST_CASE("bake refuses bad settings of references, regions and labels with one 
         0);
     CliRun info = runCli({"info", out});
     REQUIRE(info.status == 0);
-    CHECK(info.out.find("format version 5") != std::string::npos);
+    CHECK(info.out.find("format version 6") != std::string::npos);
     CHECK(info.out.find("4 reference(s) blended per light") != std::string::npos);
+    CHECK(info.out.find("  between:   ") != std::string::npos);
     CHECK(info.out.find("2 region(s)") != std::string::npos);
     REQUIRE(runCli({"relight", out, "--light", "30,40", "-o", dir / "r.png", "-q"}).status == 0);
     CHECK(loadImage(dir / "r.png")->channels == 3);

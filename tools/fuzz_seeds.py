@@ -91,6 +91,12 @@ try:
         bank = os.path.join(work, name + '.btflut')
         run('bake', folder, '-o', bank, '--grid', '3', '--entries', '16', '-q', *args)
         seed('bank', name + '.btflut', open(bank, 'rb').read())
+    # version 6: a target fitted over the light between the measured lights (TFIT), per region
+    run('synth', '--preset', 'concrete', '--geometry', 'rti-49', '--size', '16', '--correlation-length', '4', '-q', '-o',
+        os.path.join(work, 'dome'))
+    run('bake', os.path.join(work, 'dome'), '-o', os.path.join(work, 'fit.btflut'), '--predictor', 'hsh2', '--regions', '2',
+        '--grid', '3', '--entries', '16', '--quantiles', '16', '-q')
+    seed('bank', 'target-fit.btflut', open(os.path.join(work, 'fit.btflut'), 'rb').read())
     run('synth', '--preset', 'foil', '--size', '16', '--correlation-length', '4', '-q', '-o', os.path.join(work, 'curet'))
     run('bake', os.path.join(work, 'curet'), '-o', os.path.join(work, 'iso.btflut'), '--grid', '2', '--entries', '8', '-q')
     seed('bank', 'isotropic.btflut', open(os.path.join(work, 'iso.btflut'), 'rb').read())

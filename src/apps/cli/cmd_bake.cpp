@@ -12,6 +12,7 @@
 #include "cli/command.h"
 #include "core/bake/auto_bake.h"
 #include "core/bake/bake.h"
+#include "core/bake/target_choice.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/fit.h"
 #include "core/inverse/model_fill.h"
@@ -149,7 +150,10 @@ std::string predictorSummary(const LutBank& bank) {
            (b.match == 1   ? " matched"
             : b.match == 0 ? " matched at the measured lights, unmatched between"
                            : std::string(" matched at the measured lights, ") + match + " between") +
-           ", " + std::to_string(b.regions) + " region(s)";
+           ", " + std::to_string(b.regions) + " region(s)" +
+           (b.target == LutBank::Blend::Target::Measured
+                ? ", targets between the measured lights: " + targetChoiceSummary(bank)
+                : std::string());
 }
 
 Status runBake(const BakeCommandOptions& given, const CLI::App& app) {

@@ -134,9 +134,10 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
         ->capture_default_str();
     app->add_option(
            "--target", o->targets,
-           "lut with a predictor: measured (each light's target blended from the measured distributions), corrections "
-           "(each node's LUT from the prediction to its measurement, blended at the light), or both: "
-           "measured,corrections")
+           "lut with a predictor: measured (each light's target from the measured distributions, between the "
+           "lights as bake's validation chooses: their blend, or the blend corrected by a smooth fit over the light), "
+           "blend (the measured distributions blended alone), corrections (each node's LUT from the prediction to "
+           "its measurement, blended at the light), or several: measured,blend")
         ->capture_default_str();
     app->add_option("--mask", o->mask, "sample mask instead of the dataset's own");
     app->add_option("--grid", o->grids, "banks' grid sizes, a list (e.g. 17,33,65)")->capture_default_str();

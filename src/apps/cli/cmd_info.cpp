@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command.h"
+#include "core/bake/target_choice.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
 #include "core/predict/model_predictor.h"
@@ -56,6 +57,35 @@ void printSelection(const std::string& selection) {
                           c.value("bytes", 0), v.value("match", 1.0), v.value("psnr", 0.0), v.value("l1", 0.0));
             std::cout << line;
         }
+    }
+}
+
+// How the targets are estimated between the measured lights: the choice, and each
+// candidate's validation L1 in the first layer (per region).
+void printTargetChoice(const LutBank& b) {
+    const nlohmann::json s = nlohmann::json::parse(b.targetChoice, nullptr, false);
+    std::cout << "  between:   " << targetChoiceSummary(b);
+    if (!s.is_object() || !s.contains("layers") || !s["layers"].is_array() || s["layers"].empty()) {
+        std::cout << "\n";
+        return;
+    }
+    const nlohmann::json& layer = s["layers"][0];
+    if (layer.contains("skipped")) {
+        std::cout << " (" << layer["skipped"].get<std::string>() << ")\n";
+        return;
+    }
+    std::cout << ", by validation: each of the " << layer.value("lights", 0)
+              << " measured lights estimated from the others (" << layer.value("folds", 0) << " folds; "
+              << s.value("rule", std::string()) << ")\n";
+    if (s["layers"].size() > 1) std::cout << "             layer 0 of " << s["layers"].size() << ":\n";
+    std::cout << "             estimate               L1 (64 bins) per region\n";
+    for (const nlohmann::json& c : layer.value("candidates", nlohmann::json::array())) {
+        char line[64];
+        std::snprintf(line, sizeof line, "             %-20s", c.value("name", std::string("?")).c_str());
+        std::cout << line;
+        for (const nlohmann::json& l1 : c.value("l1", nlohmann::json::array()))
+            std::cout << "  " << (l1.is_number() ? fixed(l1.get<double>(), 4) : std::string("  -   "));
+        std::cout << "\n";
     }
 }
 
@@ -124,6 +154,7 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
         }
     }
     if (!b.selection.empty()) out["selection"] = nlohmann::json::parse(b.selection, nullptr, false);
+    if (!b.targetChoice.empty()) out["target_choice"] = nlohmann::json::parse(b.targetChoice, nullptr, false);
     if (!b.modelFill.empty()) out["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
     for (std::size_t l = 0; l < b.layers.size(); ++l) {
         const LayerSummary s = summarise(b, b.layers[l]);
@@ -181,8 +212,12 @@ Status runInfo(const InfoOptions& o) {
                                 " (ramped over " + fixed(matchRampRadius(b), 3) + " of the light disk)")
                   << (b.blend.target == LutBank::Blend::Target::Corrections
                           ? ", through the nodes' corrections blended at the light"
-                          : ", to the measured distributions blended at the light")
+                          : ", to the measured distributions: at a measured light its own, between them " +
+                                std::string(targetChoiceSummary(b) == "blend"
+                                                ? "their blend"
+                                                : "their blend corrected by a fit over the light (below)"))
                   << "\n";
+        if (!b.targetChoice.empty()) printTargetChoice(b);
         if (const ReferenceBlend* references = b.predictorAs<ReferenceBlend>())
             for (std::size_t k = 0; k < references->lights().size(); ++k)
                 std::cout << "    reference " << k << ": " << references->lights()[k].name << ", light "

@@ -24,8 +24,10 @@ struct Candidate {
     int bytes = 0;
     bool classic = false;  // the paper's bank: one reference, its LUTs (matched fully by definition)
     std::string skipped;   // why it was not validated (over the budget, its bake failed)
-    // Per match strength: sums over the validation images.
+    // Per match strength: sums over the validation images, and each image's L1 (in one order
+    // for every candidate: the folds', then their images').
     std::map<float, std::pair<double, double>> sums;  // match -> (psnr, l1)
+    std::map<float, std::vector<double>> l1s;
     std::size_t images = 0;
 };
 
@@ -152,6 +154,7 @@ void validate(std::vector<Candidate>& candidates, const Validation& v, const Aut
             } else {
                 c.skipped = baked.error();
                 c.sums.clear();  // a candidate is compared on every fold or on none
+                c.l1s.clear();
                 c.images = 0;
                 continue;
             }
@@ -165,7 +168,7 @@ void validate(std::vector<Candidate>& candidates, const Validation& v, const Aut
                                                v.decoded[fold.test[k]], v.mask);
                 });
                 auto& [psnr, l1] = c.sums[strength];
-                for (const ImageErrors& e : figures) psnr += e.psnr, l1 += e.l1;
+                for (const ImageErrors& e : figures) psnr += e.psnr, l1 += e.l1, c.l1s[strength].push_back(e.l1);
             }
             c.images += fold.test.size();
             if (options.base.progress) options.base.progress(++done, steps);
@@ -179,11 +182,31 @@ struct Choice {
     nlohmann::json rows = nlohmann::json::array();  ///< every candidate's figures
 };
 
-// The best PSNR among the settings whose L1 the one-reference bank's allows.
+// How much more L1 a setting gives up than the one-reference bank, at most, as far as the
+// validation images tell: the mean of the per-image differences plus its standard error.
+double l1Excess(const std::vector<double>& l1, const std::vector<double>& classic) {
+    if (l1.size() != classic.size() || l1.empty()) return INFINITY;
+    double sum = 0, squares = 0;
+    for (std::size_t i = 0; i < l1.size(); ++i) {
+        const double d = l1[i] - classic[i];
+        sum += d;
+        squares += d * d;
+    }
+    const auto n = static_cast<double>(l1.size());
+    const double mean = sum / n, variance = std::max(0.0, squares / n - mean * mean);
+    return mean + std::sqrt(variance / std::max(1.0, n - 1));
+}
+
+// The best PSNR among the settings whose L1 gives up at most the tolerance against the
+// one-reference bank's and against the same predictor's matched fully (its target's
+// histograms), each by the mean per-image difference plus its standard error (issue 34).
+// Against the one-reference bank alone, partial matches whose mean L1 only just fitted did not
+// carry over to held-out lights (a painted panel, 0.2233 against 0.2102; dome-synth, once its
+// target improved, 0.1504 against 0.1463): the one-reference bank clamps at the hull, so its
+// validation figure moves with which lights the folds leave out.
 Choice choose(const std::vector<Candidate>& candidates) {
     const Candidate& classic = candidates.front();
-    double bound = INFINITY;
-    if (classic.images > 0) bound = classic.sums.at(1.f).second / static_cast<double>(classic.images) + kL1Tolerance;
+    const std::vector<double> classicL1 = classic.images > 0 ? classic.l1s.at(1.f) : std::vector<double>{};
     Choice out;
     double chosenPsnr = -INFINITY;
     for (const Candidate& c : candidates) {
@@ -197,8 +220,12 @@ Choice choose(const std::vector<Candidate>& candidates) {
         for (const auto& [strength, sum] : c.sums) {
             const double psnr = sum.first / static_cast<double>(c.images),
                          l1 = sum.second / static_cast<double>(c.images);
-            row["validation"].push_back({{"match", strength}, {"psnr", psnr}, {"l1", l1}});
-            if (l1 <= bound && psnr > chosenPsnr) out.chosen = &c, out.match = strength, chosenPsnr = psnr;
+            const std::vector<double>& matched = c.l1s.rbegin()->second;  // at the strongest match tried
+            const double excess =
+                c.classic ? 0.0
+                          : std::max(l1Excess(c.l1s.at(strength), classicL1), l1Excess(c.l1s.at(strength), matched));
+            row["validation"].push_back({{"match", strength}, {"psnr", psnr}, {"l1", l1}, {"l1_excess", excess}});
+            if (excess <= kL1Tolerance && psnr > chosenPsnr) out.chosen = &c, out.match = strength, chosenPsnr = psnr;
         }
         out.rows.push_back(row);
     }
@@ -229,7 +256,9 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
     std::vector<Candidate> candidates = candidatesFor(options.base, first.channels, options.budget, n);
     nlohmann::json selection{
         {"budget", options.budget},
-        {"rule", "the highest validation PSNR with histogram L1 within 0.002 of the one-reference bank's"}};
+        {"rule",
+         "the highest validation PSNR with histogram L1 within 0.002 of the one-reference bank's and of the same "
+         "predictor's matched fully, each by the mean of the per-image differences plus its standard error"}};
     Result<Mask> mask = loadDatasetMask(dataset, first.width, first.height);
     if (!mask) return Error{mask.error()};
     const Validation validation{

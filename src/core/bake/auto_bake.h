@@ -12,8 +12,10 @@
 // baked from the others, and each left-out image is predicted at match strengths 0, 1/4,
 // ..., 1 (LutBank::Blend::match) and compared with the photograph (eval/metrics.h). The
 // choice is the highest PSNR among the settings whose histogram L1 stays within 0.002 of
-// the one-reference bank's (the histograms are the method's point; the predictor only
-// places them). Never a held-out image of an outer evaluation: only `dataset` is used.
+// the one-reference bank's and of the same predictor's matched fully, each by the mean of the
+// per-image differences plus its standard error (the histograms are the method's point; the
+// predictor only places them). Never a held-out image of an outer evaluation: only `dataset`
+// is used.
 // A basis that collapses (lights too clustered for it) validates badly and is not chosen.
 
 #include <functional>

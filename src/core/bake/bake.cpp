@@ -1,4 +1,5 @@
 #include "core/bake/bake.h"
+#include "core/bake/target_choice.h"
 
 #include <algorithm>
 #include <cmath>
@@ -379,6 +380,10 @@ public:
             m_bank.reference = *m_ref;
         if (Status s = setPredictor(); !s) return Error{s.error()};
         if (Status s = setNodes(m_bank, luts, m_options.domain, m_dataset.source); !s) return Error{s.error()};
+        if (m_bank.makesLuts() && m_options.fitTargets) {
+            chooseTargetFits(m_bank, m_options.threads);
+            m_bank.fillGrids();  // the grid's targets between the lights are the chosen estimate's
+        }
         if (m_ptm) {
             Result<Ptm> fitted = m_ptm->finish(m_dataset.source);
             if (!fitted) return Error{fitted.error()};

@@ -39,7 +39,10 @@ struct BakeOptions {
     float match = 1;  ///< with a model or references: how far each light's LUT matches (LutBank::Blend::match)
     LutBank::Blend::Target target =
         LutBank::Blend::Target::Measured;  ///< with a model or references (LutBank::Blend::target)
-    bool matchGrid = true;   ///< banks with a predictor: bake the LUTs over the grid (LutBank::matchGridLuts)
+    bool matchGrid = true;  ///< banks with a predictor: bake the LUTs over the grid (LutBank::matchGridLuts)
+    /// Banks with a predictor and measured targets: estimate the target between measured
+    /// lights as validation chooses (target_choice.h); false: the blend alone.
+    bool fitTargets = true;
     int regions = 1;         ///< regions segmented from the images' responses over the lights
     std::string labelsPath;  ///< instead: a label image (each grey value one region)
     int quantiles = 1024;    ///< samples of the targets' quantile functions (banks that make LUTs)

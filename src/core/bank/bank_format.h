@@ -26,7 +26,8 @@ constexpr std::uint32_t tagOf(const char (&t)[5]) {
 constexpr std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
                         kEnd = tagOf("END "), kReferences = tagOf("REFS"), kMask = tagOf("MASK"),
                         kLabels = tagOf("LABL"), kAlbedo = tagOf("ALBD"), kFill = tagOf("FILL"),
-                        kLightModel = tagOf("LMDL"), kSelection = tagOf("CHOS"), kMatchGrid = tagOf("MGRD");
+                        kLightModel = tagOf("LMDL"), kSelection = tagOf("CHOS"), kMatchGrid = tagOf("MGRD"),
+                        kTargetFit = tagOf("TFIT");
 
 // The HEAD's predictor (version 5): the references blended (REFS), the bank's PTM (PTMC), or a
 // light model (LMDL).

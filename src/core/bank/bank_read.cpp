@@ -190,6 +190,8 @@ public:
                 return matchGrid(chunk);
             case kSelection:
                 return selection(in);
+            case kTargetFit:
+                return targetFit(in);
             case kPtm:
                 return ptm(chunk);
             default:
@@ -205,6 +207,7 @@ public:
         if (m_head.embedded && !m_haveReference) return fail("reference image chunk is missing");
         if (m_matchGrids != 0 && m_matchGrids != m_bank.layers.size())
             return fail("a match grid (MGRD) for some layers only");
+        for (std::size_t l = 0; l < m_fits.size(); ++l) m_bank.layers[l].fit = std::move(m_fits[l]);
         if (m_fill)
             if (Status s = fillFlags(); !s) return s;
         if (!m_head.embedded) {  // keep the description, without pixels
@@ -339,6 +342,38 @@ private:
         return success();
     }
 
+    // TFIT: the choice of estimate between the lights (JSON) and each layer's fit, kept until
+    // the layers are all read (finish).
+    Status targetFit(Reader& in) {
+        if (m_haveTargetFit || m_chunks.version < 6 || !m_bank.makesLuts() || m_bank.domain != BankDomain::Layers)
+            return fail("unexpected TFIT chunk");
+        m_haveTargetFit = true;
+        m_bank.targetChoice = in.getString();
+        const auto layers = in.get<std::uint32_t>();
+        if (!in.ok() || layers != m_head.layerCount) return fail("TFIT chunk: truncated, or not one fit per layer");
+        if (!m_bank.targetChoice.empty())
+            if (Result<nlohmann::json> parsed = parseJsonText(m_bank.targetChoice, m_name + " (TFIT chunk)"); !parsed)
+                return Error{parsed.error()};
+        const std::size_t length = m_bank.nodeLength();
+        for (std::uint32_t l = 0; l < layers; ++l) {
+            TargetFit fit;
+            const auto degree = in.get<std::uint32_t>();
+            if (!in.ok() || degree > static_cast<std::uint32_t>(kMaxFitDegree))
+                return fail("TFIT chunk: truncated, or a fit of an invalid degree");
+            fit.degree = static_cast<int>(degree);
+            const std::size_t values = degree == 0 ? 0 : static_cast<std::size_t>(fitTermCount(fit.degree)) * length;
+            if (values > in.remaining() / sizeof(float)) return fail("TFIT chunk: truncated coefficients");
+            fit.coefficients.resize(values);
+            if (values > 0)
+                std::memcpy(fit.coefficients.data(), in.getBytes(values * sizeof(float)), values * sizeof(float));
+            for (float c : fit.coefficients)
+                if (!std::isfinite(c)) return fail("TFIT chunk: a coefficient is not finite");
+            m_fits.push_back(std::move(fit));
+        }
+        if (in.remaining() != 0) return fail("TFIT chunk has the wrong size");
+        return success();
+    }
+
     // PTMC: the baseline PTM, decoded when asked for or when it is the predictor.
     Status ptm(const Chunk& chunk) {
         if (m_havePtm) return fail("two PTMC chunks");
@@ -405,7 +440,8 @@ private:
     const BankReadOptions& m_options;
     LutBank& m_bank;
     const std::vector<bool> m_wanted;  // empty: every layer's LUTs
-    bool m_haveReference = false, m_havePtm = false, m_haveSelection = false;
+    bool m_haveReference = false, m_havePtm = false, m_haveSelection = false, m_haveTargetFit = false;
+    std::vector<TargetFit> m_fits;  // TFIT's, one per layer
     PredictorParts m_parts;
     std::size_t m_matchGrids = 0, m_totalNodes = 0;
     const Chunk* m_fill = nullptr;

@@ -105,6 +105,9 @@ FilePredictor filePredictor(const LutBank& bank) {
 std::uint32_t bankFormatVersion(const LutBank& bank) {
     // The oldest version that holds everything: readers of version 1 keep reading the banks
     // they always could.
+    if (!bank.targetChoice.empty() ||
+        std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) { return !l.fit.empty(); }))
+        return 6;
     if ((bank.makesLuts() && (filePredictor(bank) == FilePredictor::Model || bank.blend.match != 1 ||
                               bank.blend.target != LutBank::Blend::Target::Measured)) ||
         !bank.selection.empty() || std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) {
@@ -226,6 +229,16 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         Writer w;
         w.putString(bank.selection);
         putChunk(file, kSelection, w.bytes());
+    }
+    if (version >= 6) {  // how the targets are estimated between the lights, and each layer's fit
+        Writer w;
+        w.putString(bank.targetChoice);
+        w.put(static_cast<std::uint32_t>(bank.layers.size()));
+        for (const ViewLayer& layer : bank.layers) {
+            w.put(static_cast<std::uint32_t>(layer.fit.degree));
+            w.putBytes(layer.fit.coefficients.data(), layer.fit.coefficients.size() * sizeof(float));
+        }
+        putChunk(file, kTargetFit, w.bytes());
     }
     if (!bank.ptm.empty()) putChunk(file, kPtm, encodePtm(bank.ptm));
     putChunk(file, kEnd, {});

@@ -85,6 +85,8 @@ void LutBank::buildTriangulations() {
             (node.modelled ? modelled : points).push_back(toDisk(node.light));
         }
         layer.measuredNodes = points.size();
+        layer.measuredReach = 0;
+        for (const DiskPoint& p : points) layer.measuredReach = std::max(layer.measuredReach, std::hypot(p.x, p.y));
         layer.lights = Triangulation(std::move(points));
         layer.modelLights = modelled.empty() ? Triangulation() : Triangulation(std::move(modelled));
         viewPoints.push_back(toDisk(layer.view));
@@ -275,9 +277,23 @@ public:
         for (std::size_t k = 0; k < m_sum.size(); ++k) m_sum[k] += weight * lut[k];
     }
 
+    // A layer's fit at the light, for its measured nodes' share `weight` (target_fit.h).
+    void addFit(const ViewLayer& layer, Direction light, const Weights& w, double weight) {
+        if (layer.fit.empty() || weight == 0) return;
+        std::vector<Direction> lights;
+        std::vector<double> weights;
+        for (int l = 0; l < w.count; ++l) {
+            lights.push_back(layer.nodes[static_cast<std::size_t>(w.index[l])].light);
+            weights.push_back(w.weight[l]);
+        }
+        addFitCorrection(layer.fit, light, lights, weights, weight, m_sum);
+        m_fitted = true;
+    }
+
     BankLookup finish() {
         look.values.assign(m_sum.size(), 0.f);
         for (std::size_t k = 0; k < m_sum.size(); ++k) look.values[k] = static_cast<float>(m_sum[k]);
+        if (m_fitted) makeQuantileFunctions(look.values, m_bank.segmentLength());
         look.provenance = combine(look.lightProvenance, look.viewProvenance);
         return look;
     }
@@ -287,6 +303,7 @@ public:
 private:
     const LutBank& m_bank;
     std::vector<double> m_sum;
+    bool m_fitted = false;
 };
 
 // Isotropic banks: the light and view pair's point in the pairs' domain.
@@ -318,8 +335,9 @@ void addIsotropic(const LutBank& bank, Direction light, Direction view, NodeBlen
 
 // View layer `layer`'s share `viewWeight` of a light: its measured nodes around the light,
 // and beyond their hull another view's measurements or the fitted model's nodes.
-void addLayer(const LutBank& bank, std::size_t layer, double viewWeight, DiskPoint lightPoint, NodeBlend& blend) {
+void addLayer(const LutBank& bank, std::size_t layer, double viewWeight, Direction light, NodeBlend& blend) {
     const ViewLayer& lights = bank.layers[layer];
+    const DiskPoint lightPoint = toDisk(light);
     const Weights lw = lights.lights.weightsAt(lightPoint);
     // Beyond the measured hull the measurements clamped to it give way to other data over
     // one grid step, so a LUT never jumps at the hull: their share of the blend.
@@ -358,6 +376,15 @@ void addLayer(const LutBank& bank, std::size_t layer, double viewWeight, DiskPoi
     }
     for (int l = 0; l < lw.count; ++l)
         blend.add({layer, static_cast<std::size_t>(lw.index[l])}, viewWeight * lw.weight[l] * measured);
+    // The fit's correction, read at the light pulled in to the farthest measured light's
+    // radius on the disk: around the hull of a ring of lights it extrapolates as far as the
+    // ring reaches (validation tests that: the ring's lights are left out in turn), never
+    // beyond the lights' reach (the target is then constant outwards, as the clamp is).
+    const double radius = std::hypot(lightPoint.x, lightPoint.y);
+    const double reach = lights.measuredReach;
+    const Direction fitLight =
+        radius > reach ? fromDisk({lightPoint.x * reach / radius, lightPoint.y * reach / radius}) : light;
+    blend.addFit(lights, fitLight, lw, viewWeight * measured);
 }
 
 }  // namespace
@@ -383,9 +410,8 @@ BankLookup LutBank::lookup(Direction light, Direction view, bool interpolate) co
     }
     const Weights vw = views.weightsAt(toDisk(view));
     sum.look.viewProvenance = provenanceOf(vw);
-    const DiskPoint lightPoint = toDisk(light);
     for (int v = 0; v < vw.count; ++v)
-        if (vw.weight[v] != 0) addLayer(*this, static_cast<std::size_t>(vw.index[v]), vw.weight[v], lightPoint, sum);
+        if (vw.weight[v] != 0) addLayer(*this, static_cast<std::size_t>(vw.index[v]), vw.weight[v], light, sum);
     return sum.finish();
 }
 

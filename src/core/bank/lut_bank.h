@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "core/bank/target_fit.h"
 #include "core/data/dataset.h"
 #include "core/direction/triangulation.h"
 #include "core/histogram/lut.h"
@@ -96,7 +97,11 @@ struct ViewLayer {
     Triangulation lights;                    ///< over the measured nodes' disk points (they come first)
     Triangulation modelLights;               ///< over the modelled nodes' (index + measuredNodes); empty without
     std::size_t measuredNodes = 0;
-    bool lutsLoaded = true;  ///< false: read without its LUTs (BankReadOptions::views)
+    double measuredReach = 0;  ///< the disk radius of the farthest measured light
+    bool lutsLoaded = true;    ///< false: read without its LUTs (BankReadOptions::views)
+    /// Banks that make their LUTs: the smooth fit their lookups add to the blend of the
+    /// measured targets between measured lights (target_fit.h); empty: the blend alone.
+    TargetFit fit;
 };
 
 struct BankLookup {
@@ -162,6 +167,10 @@ struct LutBank {
     /// How `bake --predictor auto` chose the predictor: the candidates and their validation
     /// figures, JSON (docs/predictors.md); empty for banks baked otherwise.
     std::string selection;
+    /// How bake chose each layer's and region's estimate of the target between measured
+    /// lights (ViewLayer::fit): the candidates and their validation figures, JSON
+    /// (docs/predictors.md); empty for banks without the choice.
+    std::string targetChoice;
 
     /// True for banks that make their LUTs at run time (see Blend).
     bool makesLuts() const { return blend.quantiles > 0; }

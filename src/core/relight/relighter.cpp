@@ -72,8 +72,13 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
         corrections->blend.quantiles = bank.entries;  // its node values: regions x channels x entries
         const auto samples = static_cast<std::size_t>(blend.quantiles);
         for (const ViewLayer& layer : bank.layers) {
-            ViewLayer copy{layer.view,        layer.nodes,         {},  {}, {}, {}, layer.lights,
-                           layer.modelLights, layer.measuredNodes, true};
+            ViewLayer copy;  // the directions and triangulations; its own values
+            copy.view = layer.view;
+            copy.nodes = layer.nodes;
+            copy.lights = layer.lights;
+            copy.modelLights = layer.modelLights;
+            copy.measuredNodes = layer.measuredNodes;
+            copy.measuredReach = layer.measuredReach;
             for (std::size_t n = 0; n < layer.nodes.size(); ++n) {
                 const RelightFrame f = predictionFrame(layer.nodes[n].light);
                 const float* targets = &layer.nodeLuts[n * bank.nodeLength()];

@@ -71,11 +71,13 @@ struct Variant {
     std::string predictor = "references";
     int references = 1, regions = 1;
     ColourMode colour = ColourMode::Grey;
-    bool filled = false;       // bake --fill model (fitted to the training images)
-    int grid = 17;             // the bank's grid size
-    bool fromGrid = false;     // lut: the LUT read from the bank's grid (as an engine does), not made at the light
-    bool corrections = false;  // lut with a predictor: the nodes' corrections blended (LutBank::Blend::Target)
-    bool blendedLuts = false;  // the alternative: per-reference LUTs blended
+    bool filled = false;    // bake --fill model (fitted to the training images)
+    int grid = 17;          // the bank's grid size
+    bool fromGrid = false;  // lut: the LUT read from the bank's grid (as an engine does), not made at the light
+    /// lut with a predictor: measured (the targets as bake estimates them between the lights),
+    /// blend (the measured targets blended alone) or corrections (LutBank::Blend::Target)
+    std::string target = "measured";
+    bool blendedLuts = false;                    // the alternative: per-reference LUTs blended
     std::optional<BankDomain> domain;            // the bank's domain (and nearest's distance); empty: bake's choice
     std::optional<float> match;                  // lut with a predictor: the match strength; empty: bake's
     std::optional<int> budget;                   // lut auto: bytes per texel; empty: bake's
@@ -87,12 +89,12 @@ struct Variant {
     std::string modeName() const { return basis ? lightBasisName(basis->basis) : renderModeName(mode); }
     bool base() const {
         return predictor == "references" && references == 1 && regions == 1 && colour == ColourMode::Grey && !filled &&
-               !corrections;
+               target == "measured";
     }
-    using Setting = std::tuple<std::string, int, int, ColourMode, bool, bool, int, std::optional<BankDomain>,
+    using Setting = std::tuple<std::string, int, int, ColourMode, bool, std::string, int, std::optional<BankDomain>,
                                std::optional<float>, std::optional<int>>;
     Setting setting() const {
-        return {predictor, references, regions, colour, filled, corrections, grid, domain, match, budget};
+        return {predictor, references, regions, colour, filled, target, grid, domain, match, budget};
     }
 
     std::vector<ImageErrors> errors;

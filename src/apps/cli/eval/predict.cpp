@@ -46,7 +46,7 @@ public:
 
     static Variant::Setting keyOf(const Variant& v) {
         if (v.mode == RenderMode::Lut) return v.setting();
-        return {"references", 1, 1, ColourMode::Grey, false, false, v.grid, v.domain, std::nullopt, std::nullopt};
+        return {"references", 1, 1, ColourMode::Grey, false, "measured", v.grid, v.domain, std::nullopt, std::nullopt};
     }
 
     Result<LutBank*> bankFor(Variant& v) {
@@ -68,8 +68,8 @@ public:
 private:
     Status bake(const Variant& v, const Variant::Setting& key) {
         Variant setting = v;
-        std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled,
-                 setting.corrections, setting.grid, setting.domain, setting.match, setting.budget) = key;
+        std::tie(setting.predictor, setting.references, setting.regions, setting.colour, setting.filled, setting.target,
+                 setting.grid, setting.domain, setting.match, setting.budget) = key;
         const auto start = Clock::now();
         const BakeOptions options = bakeOptionsOf(setting, m_ptm && setting.base());
         // lut auto: bake's validated choice, from the fold's training images alone

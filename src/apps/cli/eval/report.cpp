@@ -268,6 +268,7 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                                     {"view_phi", image.view.phiDegrees()},
                                     {"outside_hull", static_cast<bool>(v.outside[i])},
                                     {"l1", v.errors[i].l1},
+                                    {"target_l1", i < v.targetL1.size() ? number(v.targetL1[i]) : nlohmann::json()},
                                     {"emd", v.errors[i].emd},
                                     {"psnr", pixels ? nlohmann::json(v.errors[i].psnr) : nlohmann::json(nullptr)},
                                     {"ssim", pixels ? nlohmann::json(v.errors[i].ssim) : nlohmann::json(nullptr)}});

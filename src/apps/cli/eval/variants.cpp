@@ -35,12 +35,16 @@ std::vector<std::string> split(const std::string& text) {
 }
 
 // A comma-separated list of --flag's two choices, at least one.
-Result<std::vector<std::string>> parseChoices(const std::string& text, const std::string& flag, const std::string& a,
-                                              const std::string& b) {
+Result<std::vector<std::string>> parseChoices(const std::string& text, const std::string& flag,
+                                              const std::vector<std::string>& allowed) {
     std::vector<std::string> items = split(text);
     if (items.empty()) return Error{"--" + flag + " is empty"};
+    std::string words;
+    for (std::size_t k = 0; k < allowed.size(); ++k)
+        words += (k == 0 ? "" : k + 1 == allowed.size() ? " or " : ", ") + allowed[k];
     for (const std::string& item : items)
-        if (item != a && item != b) return Error{"--" + flag + " '" + item + "' is not " + a + " or " + b};
+        if (std::ranges::find(allowed, item) == allowed.end())
+            return Error{"--" + flag + " '" + item + "' is not " + words};
     return items;
 }
 
@@ -119,7 +123,7 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
         }
     }
     // Each lut bank clamped, filled from the model, or both.
-    Result<std::vector<std::string>> fillChoices = parseChoices(o.fills, "fill", "clamp", "model");
+    Result<std::vector<std::string>> fillChoices = parseChoices(o.fills, "fill", {"clamp", "model"});
     if (!fillChoices) return Error{fillChoices.error()};
     const std::vector<std::string>& fills = *fillChoices;
     std::vector<Variant> all;
@@ -132,24 +136,29 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             all.push_back(f);
         }
     variants = std::move(all);
-    // Lut variants with a predictor: measured targets, the nodes' corrections, or both.
-    Result<std::vector<std::string>> targetChoices = parseChoices(o.targets, "target", "measured", "corrections");
+    // Lut variants with a predictor: measured targets (between the lights as validated, or
+    // blended alone), the nodes' corrections, or several.
+    Result<std::vector<std::string>> targetChoices =
+        parseChoices(o.targets, "target", {"measured", "blend", "corrections"});
     if (!targetChoices) return Error{targetChoices.error()};
     const std::vector<std::string>& targets = *targetChoices;
     all.clear();
     for (const Variant& v : variants)
         for (const std::string& t : targets) {
-            const bool predicts = v.mode == RenderMode::Lut && v.predictor != "auto" &&
-                                  bakePredicts(v.references, v.regions, false, v.colour, v.predictor != "references");
+            // auto chooses its own predictor, each blended or validated between the lights
+            const bool predicts = v.mode == RenderMode::Lut &&
+                                  (v.predictor == "auto" ? t != "corrections"
+                                                         : bakePredicts(v.references, v.regions, false, v.colour,
+                                                                        v.predictor != "references"));
             if (!predicts && t != targets.front()) continue;
             Variant r = v;
-            r.corrections = predicts && t == "corrections";
-            if (predicts && targets.size() > 1) r.name += t == "corrections" ? " corrections" : " measured";
+            r.target = predicts ? t : "measured";
+            if (predicts && targets.size() > 1) r.name += " " + t;
             all.push_back(r);
         }
     variants = std::move(all);
     // Each lut bank at every grid size, its LUTs made at the light, read from the grid, or both.
-    Result<std::vector<std::string>> sourceChoices = parseChoices(o.lutSources, "luts", "exact", "grid");
+    Result<std::vector<std::string>> sourceChoices = parseChoices(o.lutSources, "luts", {"exact", "grid"});
     if (!sourceChoices) return Error{sourceChoices.error()};
     const std::vector<std::string>& sources = *sourceChoices;
     all.clear();
@@ -267,7 +276,8 @@ BakeOptions bakeOptionsOf(const Variant& v, bool ptm) {
     b.domain = v.domain;
     b.references = v.references;
     if (std::optional<Result<LightModelOptions>> model = lightModelNamed(v.predictor)) b.model = **model;
-    if (v.corrections) b.target = LutBank::Blend::Target::Corrections;
+    if (v.target == "corrections") b.target = LutBank::Blend::Target::Corrections;
+    b.fitTargets = v.target != "blend";
     if (v.match) b.match = *v.match;
     b.regions = v.regions;
     b.colour = v.colour;

@@ -1,0 +1,235 @@
+#include "core/bake/target_choice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/io/json_text.h"
+#include "core/parallel.h"
+
+namespace btflut {
+
+namespace {
+
+constexpr std::size_t kMaxTargetFolds = 8;
+constexpr int kHistogramBins = 64;  // as eval compares histograms (eval/metrics.h)
+// A fit is a candidate where its fold's lights number at least two per coefficient (the
+// constant included): psm-rock's 11 lights let a degree-2 fit (9 coefficients) look good at
+// ten of them in turn and miss the eleventh by 0.08.
+constexpr std::size_t kLightsPerTerm = 2;
+// And is chosen where it beats the blend by more than two standard errors of the per-light
+// differences (about a one-sided 97.5% test).
+constexpr double kStandardErrors = 2;
+
+struct Estimator {
+    std::string name;
+    FitChoice choice;
+};
+
+// Simplest first: the blend, then by degree, the strongest ridge first (the rule's order).
+std::vector<Estimator> estimators() {
+    std::vector<Estimator> out{{"blend", {}}};
+    for (int degree = 1; degree <= 5; ++degree)
+        for (double ridge : {1e-2, 1e-3, 1e-4, 1e-5}) {
+            char name[40];
+            std::snprintf(name, sizeof name, "poly%d ridge %g", degree, ridge);
+            out.push_back({name, {degree, ridge}});
+        }
+    return out;
+}
+
+// 64-bin histogram L1 of two quantile functions (values in [0, 1], equally weighted).
+double histogramL1(const float* a, const float* b, std::size_t samples) {
+    std::array<double, kHistogramBins> difference{};
+    auto bin = [](float v) {
+        return std::min(static_cast<int>(std::clamp(v, 0.f, 1.f) * kHistogramBins), kHistogramBins - 1);
+    };
+    for (std::size_t k = 0; k < samples; ++k) {
+        difference[static_cast<std::size_t>(bin(a[k]))] += 1;
+        difference[static_cast<std::size_t>(bin(b[k]))] -= 1;
+    }
+    double l1 = 0;
+    for (double d : difference) l1 += std::abs(d);
+    return l1 / static_cast<double>(samples);
+}
+
+// A bank of one layer: `layer`'s measured nodes that `keep` says, for lookups only.
+LutBank trainingBank(const LutBank& bank, const ViewLayer& layer, const std::vector<bool>& keep) {
+    LutBank out;
+    out.entries = bank.entries;
+    out.colour = bank.colour;
+    out.gridSize = bank.gridSize;
+    out.domain = BankDomain::Layers;
+    out.blend.regions = bank.blend.regions;
+    out.blend.quantiles = bank.blend.quantiles;
+    ViewLayer copy;
+    copy.view = layer.view;
+    const std::size_t length = bank.nodeLength();
+    for (std::size_t n = 0; n < keep.size(); ++n)
+        if (keep[n]) {
+            copy.nodes.push_back(layer.nodes[n]);
+            copy.nodeLuts.insert(copy.nodeLuts.end(), layer.nodeLuts.begin() + static_cast<std::ptrdiff_t>(n * length),
+                                 layer.nodeLuts.begin() + static_cast<std::ptrdiff_t>((n + 1) * length));
+        }
+    out.layers.push_back(std::move(copy));
+    out.buildTriangulations();
+    return out;
+}
+
+std::vector<Direction> lightsOf(const ViewLayer& layer) {
+    std::vector<Direction> out;
+    for (const LightNode& n : layer.nodes) out.push_back(n.light);
+    return out;
+}
+
+// One layer: every candidate's L1 per region at each measured node, estimated without it.
+// errors[candidate][region][node]; NaN where a candidate has more terms than lights to fit.
+using Errors = std::vector<std::vector<std::vector<double>>>;
+
+Errors validate(const LutBank& bank, const ViewLayer& layer, std::size_t lights, const std::vector<Estimator>& list,
+                int threads) {
+    const std::size_t folds = std::min(lights, kMaxTargetFolds);
+    const auto regions = static_cast<std::size_t>(bank.blend.regions);
+    const std::size_t length = bank.nodeLength(), run = length / regions, samples = bank.segmentLength();
+    Errors errors(list.size(), std::vector<std::vector<double>>(regions, std::vector<double>(lights, NAN)));
+    parallelFor(folds, threads, [&](std::size_t fold) {
+        std::vector<bool> keep(lights);
+        for (std::size_t n = 0; n < lights; ++n) keep[n] = n % folds != fold;
+        LutBank training = trainingBank(bank, layer, keep);
+        ViewLayer& trained = training.layers.front();
+        const std::vector<Direction> trainingLights = lightsOf(trained);
+        for (std::size_t c = 0; c < list.size(); ++c) {
+            const FitChoice& choice = list[c].choice;
+            if ((fitTermCount(choice.degree) + 1) * kLightsPerTerm > trainingLights.size()) continue;
+            trained.fit =
+                fitTargets(trainingLights, trained.nodeLuts.data(), length, std::vector<FitChoice>(regions, choice));
+            for (std::size_t n = 0; n < lights; ++n) {
+                if (keep[n]) continue;
+                const std::vector<float> estimate = training.lookup(layer.nodes[n].light, layer.view).values;
+                const float* measured = &layer.nodeLuts[n * length];
+                for (std::size_t r = 0; r < regions; ++r) {
+                    double sum = 0;
+                    for (std::size_t at = r * run; at < (r + 1) * run; at += samples)
+                        sum += histogramL1(&estimate[at], measured + at, samples);
+                    errors[c][r][n] = sum / static_cast<double>(run / samples);
+                }
+            }
+        }
+    });
+    return errors;
+}
+
+// Mean and standard error of a - b over the nodes; NaN where either has no figure.
+struct Difference {
+    double mean = NAN, standardError = NAN;
+};
+
+Difference difference(const std::vector<double>& a, const std::vector<double>& b) {
+    double sum = 0, squares = 0;
+    for (std::size_t n = 0; n < a.size(); ++n) {
+        const double d = a[n] - b[n];
+        if (std::isnan(d)) return {};
+        sum += d;
+        squares += d * d;
+    }
+    const auto n = static_cast<double>(a.size());
+    const double mean = sum / n, variance = std::max(0.0, squares / n - mean * mean);
+    return {mean, std::sqrt(variance / std::max(1.0, n - 1))};
+}
+
+double mean(const std::vector<double>& v) {
+    double sum = 0;
+    for (double e : v) sum += e;
+    return sum / static_cast<double>(v.size());
+}
+
+}  // namespace
+
+void chooseTargetFits(LutBank& bank, int threads) {
+    if (!bank.makesLuts() || bank.domain != BankDomain::Layers || bank.blend.target != LutBank::Blend::Target::Measured)
+        return;
+    const std::vector<Estimator> list = estimators();
+    const auto regions = static_cast<std::size_t>(bank.blend.regions);
+    nlohmann::json layers = nlohmann::json::array();
+    for (ViewLayer& layer : bank.layers) {
+        layer.fit = {};
+        nlohmann::json row{{"view", {layer.view.thetaDegrees(), layer.view.phiDegrees()}},
+                           {"lights", layer.measuredNodes}};
+        if (layer.measuredNodes < kMinFitLights) {
+            row["skipped"] = "fewer than " + std::to_string(kMinFitLights) + " measured lights: the blend";
+            layers.push_back(row);
+            continue;
+        }
+        const Errors errors = validate(bank, layer, layer.measuredNodes, list, threads);
+        std::vector<FitChoice> chosen(regions);
+        nlohmann::json figures = nlohmann::json::array(), names = nlohmann::json::array();
+        for (std::size_t r = 0; r < regions; ++r) {
+            std::size_t best = 0;  // the blend, unless a fit beats it beyond the nodes' noise
+            double bestMean = mean(errors[0][r]);
+            for (std::size_t c = 1; c < list.size(); ++c) {
+                const Difference d = difference(errors[c][r], errors[0][r]);
+                if (d.mean + kStandardErrors * d.standardError < 0 && mean(errors[c][r]) < bestMean) {
+                    best = c;
+                    bestMean = mean(errors[c][r]);
+                }
+            }
+            chosen[r] = list[best].choice;
+            names.push_back(list[best].name);
+        }
+        for (std::size_t c = 0; c < list.size(); ++c) {
+            nlohmann::json l1 = nlohmann::json::array(), gain = nlohmann::json::array();
+            for (std::size_t r = 0; r < regions; ++r) {
+                const Difference d = difference(errors[c][r], errors[0][r]);
+                l1.push_back(std::isnan(d.mean) ? nlohmann::json() : nlohmann::json(mean(errors[c][r])));
+                gain.push_back(std::isnan(d.mean) ? nlohmann::json() : nlohmann::json(d.standardError));
+            }
+            figures.push_back({{"name", list[c].name}, {"l1", l1}, {"se_of_difference", gain}});
+        }
+        std::vector<Direction> lights = lightsOf(layer);
+        lights.resize(layer.measuredNodes);
+        layer.fit = fitTargets(lights, layer.nodeLuts.data(), bank.nodeLength(), chosen);
+        row["folds"] = std::min(layer.measuredNodes, kMaxTargetFolds);
+        row["candidates"] = figures;
+        row["chosen"] = names;
+        layers.push_back(row);
+    }
+    bank.targetChoice = jsonText(
+        {{"rule",
+          "per region, the fit of the lowest mean 64-bin L1 at the measured lights (each estimated without it) "
+          "among those below the blend's by more than two standard errors of the per-light differences, with two "
+          "lights per coefficient; else the blend"},
+         {"layers", layers}},
+        -1);
+}
+
+std::string targetChoiceSummary(const LutBank& bank) {
+    const nlohmann::json choice = nlohmann::json::parse(bank.targetChoice, nullptr, false);
+    std::vector<std::pair<std::string, int>> counts;
+    auto count = [&](const std::string& name) {
+        auto at = std::ranges::find_if(counts, [&](const auto& c) { return c.first == name; });
+        if (at == counts.end())
+            counts.emplace_back(name, 1);
+        else
+            ++at->second;
+    };
+    if (choice.is_object() && choice.contains("layers") && choice["layers"].is_array())
+        for (const nlohmann::json& layer : choice["layers"]) {
+            if (!layer.contains("chosen") || !layer["chosen"].is_array()) {
+                count("blend");
+                continue;
+            }
+            for (const nlohmann::json& name : layer["chosen"]) count(name.is_string() ? name.get<std::string>() : "?");
+        }
+    if (counts.empty()) return "blend";
+    if (counts.size() == 1) return counts.front().first;
+    std::string out;
+    if (choice["layers"].size() == 1) {  // one layer: each region's in order
+        for (const nlohmann::json& name : choice["layers"][0]["chosen"])
+            out += (out.empty() ? "per region: " : ", ") + (name.is_string() ? name.get<std::string>() : "?");
+        return out;
+    }
+    for (const auto& [name, n] : counts) out += (out.empty() ? "" : ", ") + name + " x" + std::to_string(n);
+    return out;
+}
+
+}  // namespace btflut

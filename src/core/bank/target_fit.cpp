@@ -1,0 +1,88 @@
+#include "core/bank/target_fit.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+
+#include "core/check.h"
+
+namespace btflut {
+
+int fitTermCount(int degree) { return (degree + 1) * (degree + 1) - 1; }
+
+std::vector<double> fitTerms(Direction light, int degree) {
+    const Vec3 v = toVector(light);
+    std::vector<double> terms;
+    terms.reserve(static_cast<std::size_t>(fitTermCount(degree)));
+    for (int total = 1; total <= degree; ++total)
+        for (int c = 0; c <= 1 && c <= total; ++c)
+            for (int a = total - c; a >= 0; --a) {
+                const int b = total - c - a;
+                terms.push_back(std::pow(v.x, a) * std::pow(v.y, b) * (c ? v.z : 1.0));
+            }
+    return terms;
+}
+
+TargetFit fitTargets(const std::vector<Direction>& lights, const float* values, std::size_t length,
+                     const std::vector<FitChoice>& choices) {
+    BTFLUT_CHECK(!choices.empty() && length % choices.size() == 0);
+    TargetFit fit;
+    for (const FitChoice& c : choices) fit.degree = std::max(fit.degree, c.degree);
+    if (fit.degree == 0) return fit;
+    const auto nodes = static_cast<Eigen::Index>(lights.size());
+    const std::size_t run = length / choices.size();
+    fit.coefficients.assign(static_cast<std::size_t>(fitTermCount(fit.degree)) * length, 0.f);
+    for (std::size_t r = 0; r < choices.size(); ++r) {
+        const FitChoice& choice = choices[r];
+        if (choice.degree == 0) continue;
+        const Eigen::Index terms = fitTermCount(choice.degree);
+        Eigen::MatrixXd f(nodes, terms);
+        for (Eigen::Index n = 0; n < nodes; ++n) {
+            const std::vector<double> t = fitTerms(lights[static_cast<std::size_t>(n)], choice.degree);
+            for (Eigen::Index k = 0; k < terms; ++k) f(n, k) = t[static_cast<std::size_t>(k)];
+        }
+        Eigen::MatrixXd q(nodes, static_cast<Eigen::Index>(run));
+        for (Eigen::Index n = 0; n < nodes; ++n)
+            for (std::size_t k = 0; k < run; ++k)
+                q(n, static_cast<Eigen::Index>(k)) = values[static_cast<std::size_t>(n) * length + r * run + k];
+        // Centred, so the unpenalised constant (which lookups cancel) absorbs the mean.
+        f.rowwise() -= f.colwise().mean();
+        q.rowwise() -= q.colwise().mean();
+        Eigen::MatrixXd normal = f.transpose() * f;
+        normal.diagonal().array() += choice.ridge * static_cast<double>(nodes);
+        const Eigen::MatrixXd c = normal.ldlt().solve(f.transpose() * q);
+        for (Eigen::Index t = 0; t < terms; ++t)
+            for (std::size_t k = 0; k < run; ++k)
+                fit.coefficients[static_cast<std::size_t>(t) * length + r * run + k] =
+                    static_cast<float>(c(t, static_cast<Eigen::Index>(k)));
+    }
+    return fit;
+}
+
+void addFitCorrection(const TargetFit& fit, Direction light, const std::vector<Direction>& nodeLights,
+                      const std::vector<double>& nodeWeights, double weight, std::vector<double>& sum) {
+    if (fit.empty() || weight == 0) return;
+    BTFLUT_CHECK(nodeLights.size() == nodeWeights.size());
+    std::vector<double> difference = fitTerms(light, fit.degree);
+    for (std::size_t n = 0; n < nodeLights.size(); ++n) {
+        const std::vector<double> at = fitTerms(nodeLights[n], fit.degree);
+        for (std::size_t t = 0; t < at.size(); ++t) difference[t] -= nodeWeights[n] * at[t];
+    }
+    const std::size_t length = sum.size();
+    BTFLUT_CHECK(fit.coefficients.size() == difference.size() * length);
+    for (std::size_t t = 0; t < difference.size(); ++t) {
+        const double d = weight * difference[t];
+        if (d == 0) continue;
+        const float* c = &fit.coefficients[t * length];
+        for (std::size_t k = 0; k < length; ++k) sum[k] += d * c[k];
+    }
+}
+
+void makeQuantileFunctions(std::vector<float>& values, std::size_t segment) {
+    BTFLUT_CHECK(segment > 0 && values.size() % segment == 0);
+    for (float& v : values) v = std::clamp(v, 0.f, 1.f);
+    for (std::size_t at = 0; at < values.size(); at += segment)
+        std::sort(values.begin() + static_cast<std::ptrdiff_t>(at),
+                  values.begin() + static_cast<std::ptrdiff_t>(at + segment));
+}
+
+}  // namespace btflut

@@ -1,0 +1,65 @@
+#pragma once
+// A smooth estimate of a layer's targets between its measured lights (issue 34). The blend of
+// the measured quantile functions over the light triangulation (lut_bank.h) follows only the
+// three nodes around a light; a low-degree polynomial in the light vector, ridge-fitted to
+// every node, follows how the whole set moves (a shadow's growth towards the horizon). The
+// bank adds the fit's difference from the blend of the fit at those three nodes:
+//
+//   target(L) = sum_n w_n(L) q_n + fit(L) - sum_n w_n(L) fit(L_n)
+//
+// so a measured light keeps its measured target exactly (w is 1 at its node), and between
+// lights the blend's residual from the fit is interpolated. Sorting each quantile function
+// afterwards (the monotone rearrangement) and clamping it to [0, 1] keep it a distribution.
+// The degree and the ridge weight are chosen per region by validation on the measured lights
+// (bake/target_choice.h).
+//
+//   TargetFit fit = fitTargets(lights, nodeValues, layout, {{.degree = 3, .ridge = 1e-4}});
+//   std::vector<double> t = fitTerms(light, fit.degree);     // what lookups weigh
+
+#include <cstddef>
+#include <vector>
+
+#include "core/direction/direction.h"
+
+namespace btflut {
+
+/// The polynomial's terms other than the constant (which the difference above cancels): the
+/// monomials x^a y^b z^c of the light vector with c <= 1 (z^2 = 1 - x^2 - y^2) and
+/// a + b + c <= degree, by total degree, so a lower degree's terms lead a higher one's.
+/// (degree + 1)^2 - 1 of them: the span of the spherical harmonics up to that degree.
+int fitTermCount(int degree);
+std::vector<double> fitTerms(Direction light, int degree);
+
+/// The largest degree a file may hold (docs/btflut-format.md, TFIT).
+constexpr int kMaxFitDegree = 8;
+
+/// A layer's fit: coefficients of each term for each of the node values (regions x channels x
+/// quantiles); zero for a region that keeps the blend alone. Empty (degree 0): no fit.
+struct TargetFit {
+    int degree = 0;
+    std::vector<float> coefficients;  ///< fitTermCount(degree) x values, term-major
+
+    bool empty() const { return degree == 0; }
+};
+
+/// One region's estimator: the blend alone (degree 0) or a polynomial of `degree` fitted with
+/// ridge weight `ridge` (per node, on the terms of the unit light vector).
+struct FitChoice {
+    int degree = 0;
+    double ridge = 0;
+};
+
+/// Fits `values` (lights.size() x length, node-major; each region one run of
+/// length / choices.size() values) with each region's choice. Lights must be distinct.
+TargetFit fitTargets(const std::vector<Direction>& lights, const float* values, std::size_t length,
+                     const std::vector<FitChoice>& choices);
+
+/// Adds weight x the fit's difference from the blend of the fit at the nodes (w, their
+/// lights) to `sum` (length values): the correction a lookup makes at `light`.
+void addFitCorrection(const TargetFit& fit, Direction light, const std::vector<Direction>& nodeLights,
+                      const std::vector<double>& nodeWeights, double weight, std::vector<double>& sum);
+
+/// Each run of `segment` values sorted and clamped to [0, 1]: quantile functions again.
+void makeQuantileFunctions(std::vector<float>& values, std::size_t segment);
+
+}  // namespace btflut

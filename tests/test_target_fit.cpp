@@ -1,0 +1,277 @@
+// The target between measured lights (issue 34): the fit over the light that corrects the
+// blend of the measured quantile functions, its validated choice, and its chunk.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <tuple>
+
+#include "core/bake/bake.h"
+#include "core/bake/target_choice.h"
+#include "core/bank/bank_file.h"
+#include "core/bank/target_fit.h"
+#include "core/data/dataset.h"
+#include "core/predict/light_model.h"
+#include "helpers.h"
+
+using namespace btflut;
+
+namespace {
+
+constexpr int kSamples = 32;
+
+// A distribution that moves with the light as a shadowed surface's does: darker and wider
+// towards the horizon, a tail of shadow that grows with theta and follows phi.
+std::vector<float> shadowed(Direction light) {
+    const Vec3 l = toVector(light);
+    std::vector<float> q(kSamples);
+    for (int k = 0; k < kSamples; ++k) {
+        const double u = (k + 0.5) / kSamples;
+        const double shadow = std::max(0.0, 0.6 * (1 - l.z) + 0.1 * l.x - u);
+        q[static_cast<std::size_t>(k)] = static_cast<float>(std::clamp(0.15 + 0.7 * l.z * u - 0.5 * shadow, 0.0, 1.0));
+    }
+    std::sort(q.begin(), q.end());
+    return q;
+}
+
+// A bank that makes its LUTs whose measured targets are `target` at `lights` (no predictor:
+// lookups need none).
+LutBank quantileBank(const std::vector<Direction>& lights, const std::function<std::vector<float>(Direction)>& target) {
+    LutBank bank;
+    bank.entries = 16;
+    bank.gridSize = 9;
+    bank.blend.quantiles = kSamples;
+    bank.reference = Image(4, 4, 1);
+    std::vector<DirectionalLut> luts;
+    for (std::size_t n = 0; n < lights.size(); ++n)
+        luts.push_back({"l" + std::to_string(n), lights[n], {}, target(lights[n])});
+    REQUIRE(setNodes(bank, luts, BankDomain::Layers, "test").ok());
+    return bank;
+}
+
+double meanAbs(const std::vector<float>& a, const std::vector<float>& b) {
+    double sum = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) sum += std::abs(a[k] - b[k]);
+    return sum / static_cast<double>(a.size());
+}
+
+// Every lookup over the hemisphere finite, in [0, 1] and non-decreasing.
+void requireQuantileFunctions(const LutBank& bank) {
+    for (double theta = 0; theta <= 90; theta += 7.5)
+        for (double phi = 0; phi < 360; phi += 22.5) {
+            const std::vector<float> v = bank.lookup(Direction::fromDegrees(theta, phi)).values;
+            for (float x : v) REQUIRE((std::isfinite(x) && x >= 0 && x <= 1));
+            for (std::size_t at = 0; at < v.size(); at += bank.segmentLength())
+                REQUIRE(std::is_sorted(v.begin() + static_cast<std::ptrdiff_t>(at),
+                                       v.begin() + static_cast<std::ptrdiff_t>(at + bank.segmentLength())));
+        }
+}
+
+}  // namespace
+
+TEST_CASE("the fit's terms: (degree + 1)^2 - 1 monomials of the light vector, a lower degree's leading") {
+    const Direction light = Direction::fromDegrees(40, 75);
+    for (int degree = 1; degree <= kMaxFitDegree; ++degree) {
+        const std::vector<double> t = fitTerms(light, degree);
+        CHECK(static_cast<int>(t.size()) == fitTermCount(degree));
+        CHECK(t.size() == static_cast<std::size_t>((degree + 1) * (degree + 1) - 1));
+        const std::vector<double> lower = fitTerms(light, degree - 1);
+        CHECK(std::equal(lower.begin(), lower.end(), t.begin()));
+    }
+    const Vec3 v = toVector(light);
+    const std::vector<double> one = fitTerms(light, 1);
+    CHECK(one[0] == doctest::Approx(v.x));
+    CHECK(one[1] == doctest::Approx(v.y));
+    CHECK(one[2] == doctest::Approx(v.z));
+}
+
+TEST_CASE("a fit corrects the blend between measured lights, and measured lights keep their targets exactly") {
+    const std::vector<Direction> lights = test::dome(49, 80);
+    LutBank blended = quantileBank(lights, shadowed);
+    LutBank fitted = blended;
+    chooseTargetFits(fitted, 2);
+    REQUIRE_FALSE(fitted.layers[0].fit.empty());
+    CHECK(targetChoiceSummary(fitted).rfind("poly", 0) == 0);
+    CHECK(targetChoiceSummary(blended) == "blend");
+    // Exact at every measured light: the fit's difference vanishes at a node.
+    for (std::size_t n = 0; n < lights.size(); ++n) {
+        const float* node = &fitted.layers[0].nodeLuts[n * fitted.nodeLength()];
+        CHECK(fitted.lookup(lights[n]).values == std::vector<float>(node, node + fitted.nodeLength()));
+    }
+    // Between them, closer to the truth than the blend, on average over the hemisphere.
+    double blendError = 0, fitError = 0;
+    int count = 0;
+    for (double theta = 5; theta <= 75; theta += 10)
+        for (double phi = 10; phi < 360; phi += 40) {
+            const Direction at = Direction::fromDegrees(theta, phi);
+            blendError += meanAbs(blended.lookup(at).values, shadowed(at));
+            fitError += meanAbs(fitted.lookup(at).values, shadowed(at));
+            ++count;
+        }
+    MESSAGE("mean |q - truth| between the lights: blend " << blendError / count << ", fitted " << fitError / count);
+    CHECK(fitError < 0.8 * blendError);
+    requireQuantileFunctions(fitted);
+    // The figures are recorded: every candidate, the blend first, and the choice.
+    const nlohmann::json choice = nlohmann::json::parse(fitted.targetChoice);
+    CHECK(choice["layers"][0]["candidates"][0]["name"] == "blend");
+    CHECK(choice["layers"][0]["lights"] == 49);
+    CHECK(choice["layers"][0]["chosen"][0].get<std::string>().rfind("poly", 0) == 0);
+}
+
+TEST_CASE("beyond the farthest light's radius the fit does not extrapolate further") {
+    const LutBank blended = quantileBank(test::dome(40, 40), shadowed);
+    LutBank bank = blended;
+    chooseTargetFits(bank, 2);
+    REQUIRE_FALSE(bank.layers[0].fit.empty());
+    const ViewLayer& layer = bank.layers[0];
+    // Beyond the lights' reach (40 degrees) the fit is read at the reach on the light's azimuth.
+    for (double theta : {55.0, 70.0, 89.0}) {
+        const Direction far = Direction::fromDegrees(theta, 200);
+        const DiskPoint p = toDisk(far);
+        const double scale = layer.measuredReach / std::hypot(p.x, p.y);
+        const Weights w = layer.lights.weightsAt(p);
+        std::vector<Direction> lights;
+        std::vector<double> weights;
+        for (int k = 0; k < w.count; ++k) {
+            lights.push_back(layer.nodes[static_cast<std::size_t>(w.index[k])].light);
+            weights.push_back(w.weight[k]);
+        }
+        const std::vector<float> blend = blended.lookup(far).values;
+        std::vector<double> sum(blend.begin(), blend.end());
+        addFitCorrection(layer.fit, fromDisk({p.x * scale, p.y * scale}), lights, weights, 1, sum);
+        std::vector<float> expected(sum.begin(), sum.end());
+        makeQuantileFunctions(expected, bank.segmentLength());
+        const std::vector<float> got = bank.lookup(far).values;
+        for (std::size_t k = 0; k < got.size(); ++k) CHECK(got[k] == doctest::Approx(expected[k]).epsilon(1e-6));
+    }
+    requireQuantileFunctions(bank);
+}
+
+TEST_CASE(
+    "few, ringed, collinear, clustered lights and flat targets: finite monotone targets, the blend where unvalidated") {
+    const auto flat = [](float v) { return [v](Direction) { return std::vector<float>(kSamples, v); }; };
+    std::vector<std::pair<std::string, std::vector<Direction>>> sets;
+    sets.push_back({"2 lights", {Direction::fromDegrees(10, 0), Direction::fromDegrees(40, 90)}});
+    sets.push_back({"3 lights", test::dome(3, 50)});
+    sets.push_back({"5 lights", test::dome(5, 50)});
+    sets.push_back({"12 lights", test::dome(12, 40)});
+    std::vector<Direction> ring, line, cluster;
+    for (int i = 0; i < 16; ++i) ring.push_back(Direction::fromDegrees(60, 22.5 * i));
+    for (int i = 0; i < 16; ++i) line.push_back(Direction::fromDegrees(5 + 5 * i, i % 2 ? 30 : 210));
+    for (int i = 0; i < 16; ++i) cluster.push_back(Direction::fromDegrees(30 + 0.01 * i, 45 + 0.01 * i * i));
+    sets.push_back({"a ring", ring});
+    sets.push_back({"a line", line});
+    sets.push_back({"a cluster", cluster});
+    for (const auto& [what, lights] : sets)
+        for (const auto& target :
+             std::vector<std::function<std::vector<float>(Direction)>>{shadowed, flat(0.f), flat(1.f), flat(0.5f)}) {
+            CAPTURE(what);
+            LutBank bank = quantileBank(lights, target);
+            chooseTargetFits(bank, 1);
+            if (lights.size() < kMinFitLights) {
+                CHECK(bank.layers[0].fit.empty());
+                CHECK(nlohmann::json::parse(bank.targetChoice)["layers"][0].contains("skipped"));
+            }
+            for (float c : bank.layers[0].fit.coefficients) REQUIRE(std::isfinite(c));
+            requireQuantileFunctions(bank);
+        }
+}
+
+TEST_CASE("the fit travels in TFIT (version 6): round trip, and corrupt fits refused naming the chunk") {
+    // A baked bank whose images darken towards the horizon, and a degree-2 fit of its targets.
+    TempDir dir;
+    std::vector<test::SyntheticShot> shots;
+    for (const Direction& l : test::dome(36, 75))
+        shots.push_back(
+            {l.thetaDegrees(), l.phiDegrees(), 0, 0, static_cast<int>(std::lround(60 * std::cos(l.theta))), 1});
+    Result<Dataset> dataset = openDataset(test::writeSyntheticDataset(dir, shots));
+    REQUIRE(dataset.ok());
+    Result<LutBank> baked = bakeBank(*dataset, {.model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2}});
+    REQUIRE_MESSAGE(baked.ok(), baked.error());
+    LutBank& bank = *baked;
+    std::vector<Direction> lights;
+    for (const LightNode& n : bank.layers[0].nodes) lights.push_back(n.light);
+    bank.layers[0].fit = fitTargets(lights, bank.layers[0].nodeLuts.data(), bank.nodeLength(), {{2, 1e-4}});
+    bank.fillGrids();
+    REQUIRE_FALSE(bank.layers[0].fit.empty());
+    CHECK(bankFormatVersion(bank) == 6);
+    const Bytes bytes = encodeBank(bank);
+    Result<LutBank> back = decodeBank(bytes, "fit.btflut");
+    REQUIRE_MESSAGE(back.ok(), back.error());
+    CHECK(back->targetChoice == bank.targetChoice);
+    CHECK(back->layers[0].fit.degree == bank.layers[0].fit.degree);
+    CHECK(back->layers[0].fit.coefficients == bank.layers[0].fit.coefficients);
+    const Direction between = Direction::fromDegrees(33, 123);
+    CHECK(back->lookup(between).values == bank.lookup(between).values);
+    CHECK(encodeBank(*back) == bytes);
+
+    // Without the choice and the fit the bank is what version 5 readers read.
+    LutBank plain = bank;
+    plain.targetChoice.clear();
+    plain.layers[0].fit = {};
+    CHECK(bankFormatVersion(plain) == 5);
+
+    auto corrupt = [&](const std::function<void(LutBank&)>& change, const std::string& needle) {
+        LutBank b = bank;
+        change(b);
+        Result<LutBank> read = decodeBank(encodeBank(b), "bad.btflut");
+        REQUIRE_FALSE(read.ok());
+        CHECK_MESSAGE(read.error().find(needle) != std::string::npos, read.error());
+        CHECK(read.error().find("bad.btflut") == 0);
+    };
+    corrupt([](LutBank& b) { b.layers[0].fit.coefficients[3] = NAN; }, "TFIT chunk: a coefficient is not finite");
+    corrupt([](LutBank& b) { b.layers[0].fit.coefficients[0] = INFINITY; }, "TFIT chunk: a coefficient is not finite");
+    corrupt([](LutBank& b) { b.targetChoice = "{not json"; }, "TFIT chunk");
+    corrupt(
+        [](LutBank& b) {
+            b.layers[0].fit.degree = kMaxFitDegree + 1;
+            b.layers[0].fit.coefficients.resize(static_cast<std::size_t>(fitTermCount(kMaxFitDegree + 1)) *
+                                                b.nodeLength());
+        },
+        "TFIT chunk: truncated, or a fit of an invalid degree");
+    corrupt([](LutBank& b) { b.layers[0].fit.coefficients.pop_back(); }, "TFIT chunk");
+}
+
+TEST_CASE("shared data: the validated target beats the blend at held-out lights, and never loses beyond noise") {
+    // dome-synth (49 lights, every 4th held out): the fit's target 0.117 against the blend's 0.151
+    // (issue 34 asks 20% less); psm-rock (12 lights, leave-one-out): too few lights for a fit to
+    // be trusted, the blend's own figure.
+    for (const auto& [name, path, holdout, ratio] :
+         {std::tuple{"dome-synth", "/dome-synth/dirs.lp", "every:4", 0.8}, {"psm-rock", "/psm-rock", "loo", 1.0}}) {
+        if (!haveSharedData(name)) continue;
+        CliRun run = runCli({"eval", sharedDataDir() + path, "--holdout", holdout, "--modes", "lut", "--predictor",
+                             "hsh2", "--target", "measured,blend", "--no-gl", "--json"});
+        REQUIRE_MESSAGE(run.status == 0, run.err);
+        const nlohmann::json report = nlohmann::json::parse(run.out);
+        std::map<std::string, double> target;
+        for (const nlohmann::json& m : report["modes"]) target[m["name"]] = m["target_l1"].get<double>();
+        const double fitted = target.at("lut hsh2 R1 grey measured"), blended = target.at("lut hsh2 R1 grey blend");
+        MESSAGE(std::string(name) << ": target L1 at the held-out lights " << fitted << ", the blend's " << blended);
+        CHECK(fitted <= ratio * blended + 1e-9);
+    }
+}
+
+TEST_CASE("eval --target: measured, blend and corrections side by side; another word is one line") {
+    TempDir dir;
+    std::vector<test::SyntheticShot> shots;
+    for (const Direction& l : test::dome(16, 70))
+        shots.push_back(
+            {l.thetaDegrees(), l.phiDegrees(), 0, 0, static_cast<int>(std::lround(60 * std::cos(l.theta))), 1});
+    const std::string dataset = test::writeSyntheticDataset(dir, shots);
+    CliRun run = runCli({"eval", dataset, "--modes", "lut", "--predictor", "hsh2,auto", "--target",
+                         "measured,blend,corrections", "--no-gl", "--json"});
+    REQUIRE_MESSAGE(run.status == 0, run.err);
+    std::vector<std::string> names;
+    const nlohmann::json report = nlohmann::json::parse(run.out);
+    for (const nlohmann::json& m : report["modes"]) names.push_back(m["name"]);
+    for (const char* name : {"lut hsh2 R1 grey measured", "lut hsh2 R1 grey blend", "lut hsh2 R1 grey corrections",
+                             "lut auto measured", "lut auto blend"})
+        CHECK_MESSAGE(std::ranges::find(names, name) != names.end(), name);
+    CHECK(std::ranges::find(names, "lut auto corrections") == names.end());  // auto chooses its own
+    requireOneLineError(runCli({"eval", dataset, "--modes", "lut", "--target", "smooth", "--no-gl"}),
+                        "--target 'smooth' is not measured, blend or corrections");
+}
