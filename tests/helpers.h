@@ -109,6 +109,7 @@ inline Image randomGreyImage(int w, int h, unsigned seed) {
 
 #include "core/data/scene.h"
 
+#include "core/bank/lut_bank.h"
 #include "core/direction/direction.h"
 
 namespace btflut::test {
@@ -142,6 +143,14 @@ inline std::string writeSyntheticDataset(const TempDir& dir, const std::vector<S
     std::string path = dir / "btflut-dataset.json";
     std::ofstream(path) << manifest.dump(1);
     return path;
+}
+
+/// The format version a bank is written as: 6 where validation chose a fit between the lights
+/// (TFIT), else `withoutFit`.
+inline std::uint32_t expectedVersion(const LutBank& bank, std::uint32_t withoutFit) {
+    const bool fitted =
+        std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) { return !l.fit.empty(); });
+    return fitted ? 6 : withoutFit;
 }
 
 /// `count` lights spread over the cap up to `maxTheta` degrees (a golden-angle spiral of equal

@@ -217,13 +217,14 @@ Status runInfo(const InfoOptions& o) {
                                                 ? "their blend"
                                                 : "their blend corrected by a fit over the light (below)"))
                   << "\n";
-        if (!b.targetChoice.empty()) printTargetChoice(b);
+        printTargetChoice(b);
         if (const ReferenceBlend* references = b.predictorAs<ReferenceBlend>())
             for (std::size_t k = 0; k < references->lights().size(); ++k)
                 std::cout << "    reference " << k << ": " << references->lights()[k].name << ", light "
                           << degrees(references->lights()[k].light) << "\n";
     }
     if (!b.selection.empty()) printSelection(b.selection);
+    if (!b.makesLuts() && b.domain == BankDomain::Layers) printTargetChoice(b);
     if (!b.ptm.empty())
         std::cout << "  ptm: " << b.ptm.width << "x" << b.ptm.height << ", 6 coefficients + RGB albedo per texel ("
                   << b.ptm.coefficients.size() + b.ptm.albedo.size() << " bytes)\n";

@@ -380,8 +380,9 @@ public:
             m_bank.reference = *m_ref;
         if (Status s = setPredictor(); !s) return Error{s.error()};
         if (Status s = setNodes(m_bank, luts, m_options.domain, m_dataset.source); !s) return Error{s.error()};
-        if (m_bank.makesLuts() && m_options.fitTargets) {
-            chooseTargetFits(m_bank, m_options.threads);
+        if (m_options.fitTargets) {
+            chooseTargetFits(m_bank, m_options.threads,
+                             m_bank.makesLuts() ? std::vector<std::vector<double>>{} : entryWeights());
             m_bank.fillGrids();  // the grid's targets between the lights are the chosen estimate's
         }
         if (m_ptm) {
@@ -414,6 +415,20 @@ private:
             Lut lut = matchLut(m_refLevels[c], levels[c], m_bank.entries);
             values.insert(values.end(), lut.values.begin(), lut.values.end());
         }
+    }
+
+    // A bank of LUTs: per channel, the reference's share of the sample at each LUT entry (the
+    // weight of the entry's value in the relit histogram), as the LUTs are read (nearest entry).
+    std::vector<std::vector<double>> entryWeights() const {
+        std::vector<std::vector<double>> weights;
+        const auto last = static_cast<double>(m_bank.entries - 1);
+        for (const LevelCounts& levels : m_refLevels) {
+            std::vector<double>& w = weights.emplace_back(static_cast<std::size_t>(m_bank.entries), 0.0);
+            for (std::size_t code = 0; code < levels.counts.size(); ++code)
+                w[static_cast<std::size_t>(std::lround(levels.valueOf(code) * last))] +=
+                    static_cast<double>(levels.counts[code]);
+        }
+        return weights;
     }
 
     // The predictor's parts in the bank: the model, or the references, their lights and the

@@ -12,7 +12,9 @@ namespace btflut {
 namespace {
 
 constexpr std::size_t kMaxTargetFolds = 8;
-constexpr int kHistogramBins = 64;  // as eval compares histograms (eval/metrics.h)
+constexpr int kHistogramBins = 64;
+const std::vector<double>
+    kEqually;  // histogramL1's weights: every entry alike  // as eval compares histograms (eval/metrics.h)
 // A fit is a candidate where its fold's lights number at least two per coefficient (the
 // constant included): psm-rock's 11 lights let a degree-2 fit (9 coefficients) look good at
 // ten of them in turn and miss the eleventh by 0.08.
@@ -38,19 +40,24 @@ std::vector<Estimator> estimators() {
     return out;
 }
 
-// 64-bin histogram L1 of two quantile functions (values in [0, 1], equally weighted).
-double histogramL1(const float* a, const float* b, std::size_t samples) {
+// 64-bin histogram L1 of the distributions of two runs of values (quantile functions, or LUTs
+// applied to the reference) whose entries weigh `weights` (empty: equally).
+double histogramL1(const float* a, const float* b, std::size_t samples, const std::vector<double>& weights) {
     std::array<double, kHistogramBins> difference{};
     auto bin = [](float v) {
-        return std::min(static_cast<int>(std::clamp(v, 0.f, 1.f) * kHistogramBins), kHistogramBins - 1);
+        return static_cast<std::size_t>(
+            std::min(static_cast<int>(std::clamp(v, 0.f, 1.f) * kHistogramBins), kHistogramBins - 1));
     };
+    double total = 0;
     for (std::size_t k = 0; k < samples; ++k) {
-        difference[static_cast<std::size_t>(bin(a[k]))] += 1;
-        difference[static_cast<std::size_t>(bin(b[k]))] -= 1;
+        const double w = weights.empty() ? 1.0 : weights[k];
+        difference[bin(a[k])] += w;
+        difference[bin(b[k])] -= w;
+        total += w;
     }
     double l1 = 0;
     for (double d : difference) l1 += std::abs(d);
-    return l1 / static_cast<double>(samples);
+    return total > 0 ? l1 / total : 0.0;
 }
 
 // A bank of one layer: `layer`'s measured nodes that `keep` says, for lookups only.
@@ -76,6 +83,11 @@ LutBank trainingBank(const LutBank& bank, const ViewLayer& layer, const std::vec
     return out;
 }
 
+// A bank of LUTs is one region.
+std::size_t regionsOf(const LutBank& bank) {
+    return bank.makesLuts() ? static_cast<std::size_t>(bank.blend.regions) : 1;
+}
+
 std::vector<Direction> lightsOf(const ViewLayer& layer) {
     std::vector<Direction> out;
     for (const LightNode& n : layer.nodes) out.push_back(n.light);
@@ -87,10 +99,11 @@ std::vector<Direction> lightsOf(const ViewLayer& layer) {
 using Errors = std::vector<std::vector<std::vector<double>>>;
 
 Errors validate(const LutBank& bank, const ViewLayer& layer, std::size_t lights, const std::vector<Estimator>& list,
-                int threads) {
+                const std::vector<std::vector<double>>& weights, int threads) {
     const std::size_t folds = std::min(lights, kMaxTargetFolds);
-    const auto regions = static_cast<std::size_t>(bank.blend.regions);
+    const std::size_t regions = regionsOf(bank);
     const std::size_t length = bank.nodeLength(), run = length / regions, samples = bank.segmentLength();
+    const std::size_t channels = run / samples;
     Errors errors(list.size(), std::vector<std::vector<double>>(regions, std::vector<double>(lights, NAN)));
     parallelFor(folds, threads, [&](std::size_t fold) {
         std::vector<bool> keep(lights);
@@ -109,9 +122,12 @@ Errors validate(const LutBank& bank, const ViewLayer& layer, std::size_t lights,
                 const float* measured = &layer.nodeLuts[n * length];
                 for (std::size_t r = 0; r < regions; ++r) {
                     double sum = 0;
-                    for (std::size_t at = r * run; at < (r + 1) * run; at += samples)
-                        sum += histogramL1(&estimate[at], measured + at, samples);
-                    errors[c][r][n] = sum / static_cast<double>(run / samples);
+                    for (std::size_t ch = 0; ch < channels; ++ch) {
+                        const std::size_t at = r * run + ch * samples;
+                        sum += histogramL1(&estimate[at], measured + at, samples,
+                                           weights.empty() ? kEqually : weights[ch]);
+                    }
+                    errors[c][r][n] = sum / static_cast<double>(channels);
                 }
             }
         }
@@ -145,11 +161,12 @@ double mean(const std::vector<double>& v) {
 
 }  // namespace
 
-void chooseTargetFits(LutBank& bank, int threads) {
-    if (!bank.makesLuts() || bank.domain != BankDomain::Layers || bank.blend.target != LutBank::Blend::Target::Measured)
+void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<double>>& entryWeights) {
+    if (bank.domain != BankDomain::Layers ||
+        (bank.makesLuts() && bank.blend.target != LutBank::Blend::Target::Measured))
         return;
     const std::vector<Estimator> list = estimators();
-    const auto regions = static_cast<std::size_t>(bank.blend.regions);
+    const std::size_t regions = regionsOf(bank);
     nlohmann::json layers = nlohmann::json::array();
     for (ViewLayer& layer : bank.layers) {
         layer.fit = {};
@@ -160,7 +177,7 @@ void chooseTargetFits(LutBank& bank, int threads) {
             layers.push_back(row);
             continue;
         }
-        const Errors errors = validate(bank, layer, layer.measuredNodes, list, threads);
+        const Errors errors = validate(bank, layer, layer.measuredNodes, list, entryWeights, threads);
         std::vector<FitChoice> chosen(regions);
         nlohmann::json figures = nlohmann::json::array(), names = nlohmann::json::array();
         for (std::size_t r = 0; r < regions; ++r) {

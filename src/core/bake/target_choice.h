@@ -1,6 +1,7 @@
 #pragma once
 // How a bank estimates its target between measured lights, chosen by validation on the
-// measured lights themselves (issue 34): the blend of the measured quantile functions alone,
+// measured lights themselves (issue 34): the blend of the measured quantile functions (or of a
+// bank of LUTs' LUTs) alone,
 // or the blend corrected by a polynomial fit over the light (bank/target_fit.h) of degree 1
 // to 5 with one of four ridge weights. Per layer, the measured lights are left out in turn
 // (each once: up to 8 folds, every 8th light a fold), each candidate estimates them from the
@@ -20,10 +21,13 @@ namespace btflut {
 /// A layer needs this many measured lights for its targets to be fitted and validated.
 constexpr std::size_t kMinFitLights = 6;
 
-/// Chooses and fits each layer's estimate (ViewLayer::fit) of a bank that makes its LUTs
-/// against measured targets, in the layers domain; records the candidates' figures in
-/// bank.targetChoice. Leaves other banks as they are. The grids are not refilled (the caller's).
-void chooseTargetFits(LutBank& bank, int threads);
+/// Chooses and fits each layer's estimate (ViewLayer::fit) of a bank in the layers domain:
+/// one that makes its LUTs against measured targets (its quantile functions), or a bank of
+/// LUTs (its LUTs: each a quantile function read at the reference's levels, so the same fit
+/// applies, scored with each entry weighed by `entryWeights[channel][entry]`, the reference's
+/// share of texels there); records the candidates' figures in bank.targetChoice. Leaves other
+/// banks as they are. The grids are not refilled (the caller's).
+void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<double>>& entryWeights = {});
 
 /// In words, what bank.targetChoice chose: "blend" or a fit's name ("poly3 ridge 0.0001");
 /// where regions differ, each region's ("per region: poly1 ridge 0.0001, blend"), and where

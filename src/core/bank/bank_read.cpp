@@ -345,7 +345,7 @@ private:
     // TFIT: the choice of estimate between the lights (JSON) and each layer's fit, kept until
     // the layers are all read (finish).
     Status targetFit(Reader& in) {
-        if (m_haveTargetFit || m_chunks.version < 6 || !m_bank.makesLuts() || m_bank.domain != BankDomain::Layers)
+        if (m_haveTargetFit || m_chunks.version < 6 || m_bank.domain != BankDomain::Layers)
             return fail("unexpected TFIT chunk");
         m_haveTargetFit = true;
         m_bank.targetChoice = in.getString();

@@ -105,8 +105,9 @@ FilePredictor filePredictor(const LutBank& bank) {
 std::uint32_t bankFormatVersion(const LutBank& bank) {
     // The oldest version that holds everything: readers of version 1 keep reading the banks
     // they always could.
-    if (!bank.targetChoice.empty() ||
-        std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) { return !l.fit.empty(); }))
+    // A fit between the lights; a choice of the blend everywhere changes no lookup, and such
+    // banks stay readable where they were (the choice's figures are then not kept).
+    if (std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) { return !l.fit.empty(); }))
         return 6;
     if ((bank.makesLuts() && (filePredictor(bank) == FilePredictor::Model || bank.blend.match != 1 ||
                               bank.blend.target != LutBank::Blend::Target::Measured)) ||

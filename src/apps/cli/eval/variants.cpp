@@ -145,15 +145,17 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
     all.clear();
     for (const Variant& v : variants)
         for (const std::string& t : targets) {
-            // auto chooses its own predictor, each blended or validated between the lights
-            const bool predicts = v.mode == RenderMode::Lut &&
-                                  (v.predictor == "auto" ? t != "corrections"
-                                                         : bakePredicts(v.references, v.regions, false, v.colour,
-                                                                        v.predictor != "references"));
-            if (!predicts && t != targets.front()) continue;
+            // Every lut bank estimates its targets between the lights (blend or validated);
+            // corrections are for a bank with a predictor (not auto, which chooses its own).
+            const bool lut = v.mode == RenderMode::Lut;
+            const bool applies =
+                lut &&
+                (t != "corrections" || (v.predictor != "auto" && bakePredicts(v.references, v.regions, false, v.colour,
+                                                                              v.predictor != "references")));
+            if (!applies && t != targets.front()) continue;
             Variant r = v;
-            r.target = predicts ? t : "measured";
-            if (predicts && targets.size() > 1) r.name += " " + t;
+            r.target = applies ? t : "measured";
+            if (applies && targets.size() > 1) r.name += " " + t;
             all.push_back(r);
         }
     variants = std::move(all);
@@ -264,7 +266,7 @@ Status adaptToViews(EvalOptions& o, const Dataset& dataset) {
             return Error{"--modes " + mode + ": predicts a fixed camera's images only; " + where +
                          " (eval's modes there: lut, nearest, brdf, flat)"};
     if (o.predictors != "references" || o.references != "1" || o.regions != "1" || o.colours == "lrgb" ||
-        o.blendedLuts || o.targets != defaults.targets)
+        o.blendedLuts || o.targets.find("corrections") != std::string::npos)
         return Error{"lut across views is the paper's bank of one reference (--references 1, no predictor); " + where};
     if (o.lutSources != defaults.lutSources) return Error{"--luts grid reads a fixed camera's grid; " + where};
     return success();
