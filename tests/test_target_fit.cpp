@@ -272,6 +272,10 @@ TEST_CASE("eval --target: measured, blend and corrections side by side; another 
                              "lut auto measured", "lut auto blend"})
         CHECK_MESSAGE(std::ranges::find(names, name) != names.end(), name);
     CHECK(std::ranges::find(names, "lut auto corrections") == names.end());  // auto chooses its own
+    // bake's summary names the estimate, for the paper's bank too
+    const CliRun bake = runCli({"bake", dataset, "--references", "1", "-o", dir / "k1.btflut"});
+    REQUIRE(bake.status == 0);
+    CHECK(bake.out.find("targets between the measured lights: ") != std::string::npos);
     requireOneLineError(runCli({"eval", dataset, "--modes", "lut", "--target", "smooth", "--no-gl"}),
                         "--target 'smooth' is not measured, blend or corrections");
 }

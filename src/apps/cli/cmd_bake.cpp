@@ -135,9 +135,12 @@ Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, 
     return success();
 }
 
-// What `bank` predicts with, for the summary line.
+// What `bank` predicts with and how its targets are estimated between the lights, for the
+// summary line.
 std::string predictorSummary(const LutBank& bank) {
-    if (!bank.makesLuts()) return "";
+    if (!bank.makesLuts())
+        return bank.domain == BankDomain::Layers ? ", targets between the measured lights: " + targetChoiceSummary(bank)
+                                                 : std::string();
     const LutBank::Blend& b = bank.blend;
     // The name `--predictor` takes (bln9c, not the planes it unpacks to), as info prints it.
     const ReferenceBlend* references = bank.predictorAs<ReferenceBlend>();
