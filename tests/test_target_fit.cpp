@@ -59,6 +59,16 @@ double meanAbs(const std::vector<float>& a, const std::vector<float>& b) {
     return sum / static_cast<double>(a.size());
 }
 
+// A dataset (its manifest) of `count` lights up to `maxTheta` degrees whose images darken
+// towards the horizon: codes shifted by 60 cos(theta).
+std::string darkeningDataset(const TempDir& dir, int count, double maxTheta) {
+    std::vector<test::SyntheticShot> shots;
+    for (const Direction& l : test::dome(count, maxTheta))
+        shots.push_back(
+            {l.thetaDegrees(), l.phiDegrees(), 0, 0, static_cast<int>(std::lround(60 * std::cos(l.theta))), 1});
+    return test::writeSyntheticDataset(dir, shots);
+}
+
 // Every lookup over the hemisphere finite, in [0, 1] and non-decreasing.
 void requireQuantileFunctions(const LutBank& bank) {
     for (double theta = 0; theta <= 90; theta += 7.5)
@@ -184,11 +194,7 @@ TEST_CASE(
 TEST_CASE("the fit travels in TFIT (version 6): round trip, and corrupt fits refused naming the chunk") {
     // A baked bank whose images darken towards the horizon, and a degree-2 fit of its targets.
     TempDir dir;
-    std::vector<test::SyntheticShot> shots;
-    for (const Direction& l : test::dome(36, 75))
-        shots.push_back(
-            {l.thetaDegrees(), l.phiDegrees(), 0, 0, static_cast<int>(std::lround(60 * std::cos(l.theta))), 1});
-    Result<Dataset> dataset = openDataset(test::writeSyntheticDataset(dir, shots));
+    Result<Dataset> dataset = openDataset(darkeningDataset(dir, 36, 75));
     REQUIRE(dataset.ok());
     Result<LutBank> baked = bakeBank(*dataset, {.model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2}});
     REQUIRE_MESSAGE(baked.ok(), baked.error());
@@ -257,11 +263,7 @@ TEST_CASE("shared data: the validated target beats the blend at held-out lights,
 
 TEST_CASE("eval --target: measured, blend and corrections side by side; another word is one line") {
     TempDir dir;
-    std::vector<test::SyntheticShot> shots;
-    for (const Direction& l : test::dome(16, 70))
-        shots.push_back(
-            {l.thetaDegrees(), l.phiDegrees(), 0, 0, static_cast<int>(std::lround(60 * std::cos(l.theta))), 1});
-    const std::string dataset = test::writeSyntheticDataset(dir, shots);
+    const std::string dataset = darkeningDataset(dir, 16, 70);
     CliRun run = runCli({"eval", dataset, "--modes", "lut", "--predictor", "hsh2,auto", "--target",
                          "measured,blend,corrections", "--no-gl", "--json"});
     REQUIRE_MESSAGE(run.status == 0, run.err);

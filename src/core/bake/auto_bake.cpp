@@ -185,16 +185,8 @@ struct Choice {
 // How much more L1 a setting gives up than the one-reference bank, at most, as far as the
 // validation images tell: the mean of the per-image differences plus its standard error.
 double l1Excess(const std::vector<double>& l1, const std::vector<double>& classic) {
-    if (l1.size() != classic.size() || l1.empty()) return INFINITY;
-    double sum = 0, squares = 0;
-    for (std::size_t i = 0; i < l1.size(); ++i) {
-        const double d = l1[i] - classic[i];
-        sum += d;
-        squares += d * d;
-    }
-    const auto n = static_cast<double>(l1.size());
-    const double mean = sum / n, variance = std::max(0.0, squares / n - mean * mean);
-    return mean + std::sqrt(variance / std::max(1.0, n - 1));
+    const PairedDifference d = pairedDifference(l1, classic);
+    return std::isnan(d.mean) ? INFINITY : d.mean + d.standardError;
 }
 
 // The best PSNR among the settings whose L1 gives up at most the tolerance against the

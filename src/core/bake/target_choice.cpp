@@ -4,6 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "core/eval/metrics.h"
 #include "core/io/json_text.h"
 #include "core/parallel.h"
 
@@ -12,9 +13,8 @@ namespace btflut {
 namespace {
 
 constexpr std::size_t kMaxTargetFolds = 8;
-constexpr int kHistogramBins = 64;
-const std::vector<double>
-    kEqually;  // histogramL1's weights: every entry alike  // as eval compares histograms (eval/metrics.h)
+constexpr int kHistogramBins = 64;   // as eval compares histograms (eval/metrics.h)
+const std::vector<double> kEqually;  // histogramL1's weights: every entry alike
 // A fit is a candidate where its fold's lights number at least two per coefficient (the
 // constant included): psm-rock's 11 lights let a degree-2 fit (9 coefficients) look good at
 // ten of them in turn and miss the eleventh by 0.08.
@@ -135,24 +135,6 @@ Errors validate(const LutBank& bank, const ViewLayer& layer, std::size_t lights,
     return errors;
 }
 
-// Mean and standard error of a - b over the nodes; NaN where either has no figure.
-struct Difference {
-    double mean = NAN, standardError = NAN;
-};
-
-Difference difference(const std::vector<double>& a, const std::vector<double>& b) {
-    double sum = 0, squares = 0;
-    for (std::size_t n = 0; n < a.size(); ++n) {
-        const double d = a[n] - b[n];
-        if (std::isnan(d)) return {};
-        sum += d;
-        squares += d * d;
-    }
-    const auto n = static_cast<double>(a.size());
-    const double mean = sum / n, variance = std::max(0.0, squares / n - mean * mean);
-    return {mean, std::sqrt(variance / std::max(1.0, n - 1))};
-}
-
 double mean(const std::vector<double>& v) {
     double sum = 0;
     for (double e : v) sum += e;
@@ -180,11 +162,15 @@ void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<
         const Errors errors = validate(bank, layer, layer.measuredNodes, list, entryWeights, threads);
         std::vector<FitChoice> chosen(regions);
         nlohmann::json figures = nlohmann::json::array(), names = nlohmann::json::array();
+        // Each candidate against the blend, per region, over the measured lights.
+        std::vector<std::vector<PairedDifference>> gains(list.size());
+        for (std::size_t c = 0; c < list.size(); ++c)
+            for (std::size_t r = 0; r < regions; ++r) gains[c].push_back(pairedDifference(errors[c][r], errors[0][r]));
         for (std::size_t r = 0; r < regions; ++r) {
             std::size_t best = 0;  // the blend, unless a fit beats it beyond the nodes' noise
             double bestMean = mean(errors[0][r]);
             for (std::size_t c = 1; c < list.size(); ++c) {
-                const Difference d = difference(errors[c][r], errors[0][r]);
+                const PairedDifference& d = gains[c][r];
                 if (d.mean + kStandardErrors * d.standardError < 0 && mean(errors[c][r]) < bestMean) {
                     best = c;
                     bestMean = mean(errors[c][r]);
@@ -194,13 +180,13 @@ void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<
             names.push_back(list[best].name);
         }
         for (std::size_t c = 0; c < list.size(); ++c) {
-            nlohmann::json l1 = nlohmann::json::array(), gain = nlohmann::json::array();
+            nlohmann::json l1 = nlohmann::json::array(), se = nlohmann::json::array();
             for (std::size_t r = 0; r < regions; ++r) {
-                const Difference d = difference(errors[c][r], errors[0][r]);
+                const PairedDifference& d = gains[c][r];
                 l1.push_back(std::isnan(d.mean) ? nlohmann::json() : nlohmann::json(mean(errors[c][r])));
-                gain.push_back(std::isnan(d.mean) ? nlohmann::json() : nlohmann::json(d.standardError));
+                se.push_back(std::isnan(d.mean) ? nlohmann::json() : nlohmann::json(d.standardError));
             }
-            figures.push_back({{"name", list[c].name}, {"l1", l1}, {"se_of_difference", gain}});
+            figures.push_back({{"name", list[c].name}, {"l1", l1}, {"se_of_difference", se}});
         }
         std::vector<Direction> lights = lightsOf(layer);
         lights.resize(layer.measuredNodes);

@@ -260,6 +260,20 @@ Image errorMap(const Image& predicted, const Image& photo, const Mask& mask, flo
     return map;
 }
 
+PairedDifference pairedDifference(const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size() || a.empty()) return {};
+    double sum = 0, squares = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const double d = a[i] - b[i];
+        if (std::isnan(d)) return {};
+        sum += d;
+        squares += d * d;
+    }
+    const auto n = static_cast<double>(a.size());
+    const double mean = sum / n, variance = std::max(0.0, squares / n - mean * mean);
+    return {mean, std::sqrt(variance / std::max(1.0, n - 1))};
+}
+
 double targetL1(const std::vector<std::vector<float>>& quantiles, const std::vector<double>& weights,
                 const Image& photo, const Mask& mask) {
     BTFLUT_CHECK(quantiles.size() == weights.size() && !quantiles.empty());

@@ -8,6 +8,7 @@
 // Both images are first quantised to the photo's bit depth, as a saved prediction would be.
 // A grey prediction of a colour photo is compared as grey in every channel.
 
+#include <cmath>
 #include <vector>
 
 #include "core/image/image.h"
@@ -37,6 +38,14 @@ ImageErrors compareCodes(const ImageCodes& predicted, const ImageCodes& photo, c
 /// how well a prediction was matched to it.
 double targetL1(const std::vector<std::vector<float>>& quantiles, const std::vector<double>& weights,
                 const Image& photo, const Mask& mask);
+
+/// How two methods' figures on the same items (images, lights) differ: the mean of the
+/// per-item differences a - b and its standard error; both NaN when the lists differ in
+/// length, are empty, or hold a NaN.
+struct PairedDifference {
+    double mean = NAN, standardError = NAN;
+};
+PairedDifference pairedDifference(const std::vector<double>& a, const std::vector<double>& b);
 
 /// Where a prediction misses, for the eyes: each pixel's mean |difference| over the photo's
 /// channels (a grey prediction broadcast), times `gain`, on a hot scale (black 0, red, yellow,
