@@ -244,8 +244,8 @@ TEST_CASE("the fit travels in TFIT (version 6): round trip, and corrupt fits ref
 
 TEST_CASE("shared data: the validated target beats the blend at held-out lights, and never loses beyond noise") {
     // dome-synth (49 lights, every 4th held out): the fit's target 0.117 against the blend's 0.151
-    // (issue 34 asks 20% less); psm-rock (12 lights, leave-one-out): too few lights for a fit to
-    // be trusted, the blend's own figure.
+    // (issue 34 asks 20% less); psm-rock (12 lights, leave-one-out): 0.172 against 0.174, the
+    // fitted model's change mixed with a plane where validation trusts it, else the blend.
     for (const auto& [name, path, holdout, ratio] :
          {std::tuple{"dome-synth", "/dome-synth/dirs.lp", "every:4", 0.8}, {"psm-rock", "/psm-rock", "loo", 1.0}}) {
         if (!haveSharedData(name)) continue;
@@ -280,4 +280,67 @@ TEST_CASE("eval --target: measured, blend and corrections side by side; another 
     CHECK(bake.out.find("targets between the measured lights: ") != std::string::npos);
     requireOneLineError(runCli({"eval", dataset, "--modes", "lut", "--target", "smooth", "--no-gl"}),
                         "--target 'smooth' is not measured, blend or corrections");
+}
+
+TEST_CASE("two corrections mixed: the weighted sum of each, whatever their degrees") {
+    const std::vector<Direction> lights = test::dome(49, 80);
+    LutBank bank = quantileBank(lights, shadowed);
+    const std::size_t length = bank.nodeLength();
+    const TargetFit two = fitTargets(lights, bank.layers[0].nodeLuts.data(), length, {{2, 1e-4}});
+    const TargetFit four = fitTargets(lights, bank.layers[0].nodeLuts.data(), length, {{4, 1e-4}});
+    const TargetFit mixed = mixFits(two, 0.25, four, 0.75);
+    CHECK(mixed.degree == 4);
+    const std::vector<Direction> nodes{lights[0], lights[5], lights[9]};
+    const std::vector<double> weights{0.2, 0.5, 0.3};
+    for (const Direction at : {Direction::fromDegrees(35, 80), Direction::fromDegrees(70, 300)}) {
+        std::vector<double> expected(length, 0.0), got(length, 0.0);
+        addFitCorrection(two, at, nodes, weights, 0.25, expected);
+        addFitCorrection(four, at, nodes, weights, 0.75, expected);
+        addFitCorrection(mixed, at, nodes, weights, 1, got);
+        for (std::size_t k = 0; k < length; ++k) CHECK(got[k] == doctest::Approx(expected[k]).epsilon(1e-5));
+    }
+    // With no fit on one side, the other scaled.
+    const TargetFit half = mixFits({}, 0.5, two, 0.5);
+    REQUIRE(half.coefficients.size() == two.coefficients.size());
+    for (std::size_t k = 0; k < half.coefficients.size(); ++k)
+        CHECK(half.coefficients[k] == 0.5f * two.coefficients[k]);
+}
+
+TEST_CASE("the fitted rough-surface model: a candidate estimate between the lights, exact at them") {
+    // A rendered Gaussian rough surface, as the model describes: the model's change between the
+    // lights estimates their targets closer than the blend. Measured lights stay exact.
+    TempDir dir;
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "rti-49", "--size", "64", "--correlation-length",
+                    "4", "-q", "-o", dir / "concrete"})
+                .status == 0);
+    Result<Dataset> dataset = openDataset(dir / "concrete");
+    REQUIRE(dataset.ok());
+    for (const bool lutBank : {false, true}) {
+        CAPTURE(lutBank);
+        BakeOptions options;
+        if (!lutBank) options.model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2};
+        Result<LutBank> bank = bakeBank(*dataset, options);
+        REQUIRE_MESSAGE(bank.ok(), bank.error());
+        const nlohmann::json choice = nlohmann::json::parse(bank->targetChoice);
+        REQUIRE_MESSAGE(choice["model"].contains("roughness"), choice["model"].dump());
+        const double roughness = choice["model"]["roughness"].get<double>();
+        CHECK((roughness > 0.1 && roughness < 2));
+        std::map<std::string, double> l1;
+        for (const nlohmann::json& c : choice["layers"][0]["candidates"])
+            if (c["l1"][0].is_number()) l1[c["name"]] = c["l1"][0].get<double>();
+        MESSAGE("validation L1: blend " << l1.at("blend") << ", model " << l1.at("model") << "; chosen "
+                                        << targetChoiceSummary(*bank));
+        CHECK(l1.at("model") < 0.8 * l1.at("blend"));
+        CHECK(l1.count("model + poly1 ridge 0.01") == 1);
+        CHECK(targetChoiceSummary(*bank).find("model") != std::string::npos);
+        const ViewLayer& layer = bank->layers[0];
+        for (std::size_t n = 0; n < layer.measuredNodes; ++n) {
+            const float* node = &layer.nodeLuts[n * bank->nodeLength()];
+            CHECK(bank->lookup(layer.nodes[n].light).values == std::vector<float>(node, node + bank->nodeLength()));
+        }
+    }
+    // The model describes the whole sample: not a candidate where each region has its target.
+    Result<LutBank> regions = bakeBank(*dataset, {.regions = 2});
+    REQUIRE_MESSAGE(regions.ok(), regions.error());
+    CHECK(nlohmann::json::parse(regions->targetChoice)["model"].is_null());
 }

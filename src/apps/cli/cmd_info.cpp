@@ -78,10 +78,10 @@ void printTargetChoice(const LutBank& b) {
               << " measured lights estimated from the others (" << layer.value("folds", 0) << " folds; "
               << s.value("rule", std::string()) << ")\n";
     if (s["layers"].size() > 1) std::cout << "             layer 0 of " << s["layers"].size() << ":\n";
-    std::cout << "             estimate               L1 (64 bins) per region\n";
+    std::cout << "             estimate                     L1 (64 bins) per region\n";
     for (const nlohmann::json& c : layer.value("candidates", nlohmann::json::array())) {
         char line[64];
-        std::snprintf(line, sizeof line, "             %-20s", c.value("name", std::string("?")).c_str());
+        std::snprintf(line, sizeof line, "             %-26s", c.value("name", std::string("?")).c_str());
         std::cout << line;
         for (const nlohmann::json& l1 : c.value("l1", nlohmann::json::array()))
             std::cout << "  " << (l1.is_number() ? fixed(l1.get<double>(), 4) : std::string("  -   "));

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "core/eval/metrics.h"
+#include "core/inverse/model_target.h"
 #include "core/io/json_text.h"
 #include "core/parallel.h"
 
@@ -25,19 +27,37 @@ constexpr double kStandardErrors = 2;
 
 struct Estimator {
     std::string name;
-    FitChoice choice;
+    FitChoice poly;    // the polynomial fitted to the measurements; degree 0: none
+    double model = 0;  // the model's share of the correction: 0, kMixed (with the polynomial), 1
 };
 
-// Simplest first: the blend, then by degree, the strongest ridge first (the rule's order).
-std::vector<Estimator> estimators() {
-    std::vector<Estimator> out{{"blend", {}}};
+constexpr double kMixed = 0.5;
+
+// Simplest first: the blend, then by degree, the strongest ridge first (the rule's order);
+// with the model, the model alone and mixed half and half with each polynomial.
+std::vector<Estimator> estimators(bool withModel) {
+    std::vector<Estimator> polys;
     for (int degree = 1; degree <= 5; ++degree)
         for (double ridge : {1e-2, 1e-3, 1e-4, 1e-5}) {
             char name[40];
             std::snprintf(name, sizeof name, "poly%d ridge %g", degree, ridge);
-            out.push_back({name, {degree, ridge}});
+            polys.push_back({name, {degree, ridge}});
         }
+    std::vector<Estimator> out{{"blend", {}}};
+    out.insert(out.end(), polys.begin(), polys.end());
+    if (!withModel) return out;
+    out.push_back({"model", {}, 1});
+    for (const Estimator& p : polys) out.push_back({"model + " + p.name, p.poly, kMixed});
     return out;
+}
+
+// A candidate's correction from the measured lights and their values (regions runs of
+// length / regions values each): the polynomial's, the model's, or the two mixed.
+TargetFit estimate(const Estimator& e, const std::vector<Direction>& lights, const float* values, std::size_t length,
+                   std::size_t regions, const TargetFit& model) {
+    TargetFit poly =
+        e.poly.degree > 0 ? fitTargets(lights, values, length, std::vector<FitChoice>(regions, e.poly)) : TargetFit{};
+    return e.model > 0 ? mixFits(poly, 1 - e.model, model, e.model) : poly;
 }
 
 // 64-bin histogram L1 of the distributions of two runs of values (quantile functions, or LUTs
@@ -99,7 +119,7 @@ std::vector<Direction> lightsOf(const ViewLayer& layer) {
 using Errors = std::vector<std::vector<std::vector<double>>>;
 
 Errors validate(const LutBank& bank, const ViewLayer& layer, std::size_t lights, const std::vector<Estimator>& list,
-                const std::vector<std::vector<double>>& weights, int threads) {
+                const TargetFit& model, const std::vector<std::vector<double>>& weights, int threads) {
     const std::size_t folds = std::min(lights, kMaxTargetFolds);
     const std::size_t regions = regionsOf(bank);
     const std::size_t length = bank.nodeLength(), run = length / regions, samples = bank.segmentLength();
@@ -112,10 +132,8 @@ Errors validate(const LutBank& bank, const ViewLayer& layer, std::size_t lights,
         ViewLayer& trained = training.layers.front();
         const std::vector<Direction> trainingLights = lightsOf(trained);
         for (std::size_t c = 0; c < list.size(); ++c) {
-            const FitChoice& choice = list[c].choice;
-            if ((fitTermCount(choice.degree) + 1) * kLightsPerTerm > trainingLights.size()) continue;
-            trained.fit =
-                fitTargets(trainingLights, trained.nodeLuts.data(), length, std::vector<FitChoice>(regions, choice));
+            if ((fitTermCount(list[c].poly.degree) + 1) * kLightsPerTerm > trainingLights.size()) continue;
+            trained.fit = estimate(list[c], trainingLights, trained.nodeLuts.data(), length, regions, model);
             for (std::size_t n = 0; n < lights; ++n) {
                 if (keep[n]) continue;
                 const std::vector<float> estimate = training.lookup(layer.nodes[n].light, layer.view).values;
@@ -147,10 +165,34 @@ void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<
     if (bank.domain != BankDomain::Layers ||
         (bank.makesLuts() && bank.blend.target != LutBank::Blend::Target::Measured))
         return;
-    const std::vector<Estimator> list = estimators();
     const std::size_t regions = regionsOf(bank);
+    // The model: where the nodes hold one grey distribution per light and some layer chooses.
+    std::optional<ModelTargets> model;
+    nlohmann::json modelRow;
+    const bool chooses =
+        std::ranges::any_of(bank.layers, [](const ViewLayer& l) { return l.measuredNodes >= kMinFitLights; });
+    if (chooses && regions == 1 && bank.channels() == 1) {
+        const NodeForm form = bank.makesLuts() ? NodeForm{.quantiles = bank.blend.quantiles}
+                                               : NodeForm{.entries = bank.entries,
+                                                          .reference = entryWeights.empty() ? std::vector<double>{}
+                                                                                            : entryWeights.front()};
+        Result<ModelTargets> fitted = modelTargetFits(bank, form);
+        if (fitted) {
+            model = std::move(*fitted);
+            modelRow = {{"brdf", "lambert"},
+                        {"roughness", model->model.roughness},
+                        {"gain", model->model.gain},
+                        {"rms", model->rms}};
+        } else {
+            modelRow = {{"error", fitted.error()}};
+        }
+    }
+    const std::vector<Estimator> list = estimators(model.has_value());
+    const TargetFit noModel;
     nlohmann::json layers = nlohmann::json::array();
-    for (ViewLayer& layer : bank.layers) {
+    for (std::size_t l = 0; l < bank.layers.size(); ++l) {
+        ViewLayer& layer = bank.layers[l];
+        const TargetFit& modelFit = model ? model->layers[l] : noModel;
         layer.fit = {};
         nlohmann::json row{{"view", {layer.view.thetaDegrees(), layer.view.phiDegrees()}},
                            {"lights", layer.measuredNodes}};
@@ -159,8 +201,9 @@ void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<
             layers.push_back(row);
             continue;
         }
-        const Errors errors = validate(bank, layer, layer.measuredNodes, list, entryWeights, threads);
+        const Errors errors = validate(bank, layer, layer.measuredNodes, list, modelFit, entryWeights, threads);
         std::vector<FitChoice> chosen(regions);
+        std::size_t chosenFirst = 0;  // region 0's (the only one where the model is a candidate)
         nlohmann::json figures = nlohmann::json::array(), names = nlohmann::json::array();
         // Each candidate against the blend, per region, over the measured lights.
         std::vector<std::vector<PairedDifference>> gains(list.size());
@@ -176,7 +219,8 @@ void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<
                     bestMean = mean(errors[c][r]);
                 }
             }
-            chosen[r] = list[best].choice;
+            chosen[r] = list[best].poly;
+            if (r == 0) chosenFirst = best;
             names.push_back(list[best].name);
         }
         for (std::size_t c = 0; c < list.size(); ++c) {
@@ -190,7 +234,9 @@ void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<
         }
         std::vector<Direction> lights = lightsOf(layer);
         lights.resize(layer.measuredNodes);
-        layer.fit = fitTargets(lights, layer.nodeLuts.data(), bank.nodeLength(), chosen);
+        layer.fit = regions == 1
+                        ? estimate(list[chosenFirst], lights, layer.nodeLuts.data(), bank.nodeLength(), 1, modelFit)
+                        : fitTargets(lights, layer.nodeLuts.data(), bank.nodeLength(), chosen);
         row["folds"] = std::min(layer.measuredNodes, kMaxTargetFolds);
         row["candidates"] = figures;
         row["chosen"] = names;
@@ -201,6 +247,7 @@ void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<
           "per region, the fit of the lowest mean 64-bin L1 at the measured lights (each estimated without it) "
           "among those below the blend's by more than two standard errors of the per-light differences, with two "
           "lights per coefficient; else the blend"},
+         {"model", modelRow},
          {"layers", layers}},
         -1);
 }

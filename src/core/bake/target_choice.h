@@ -1,10 +1,11 @@
 #pragma once
 // How a bank estimates its target between measured lights, chosen by validation on the
 // measured lights themselves (issue 34): the blend of the measured quantile functions (or of a
-// bank of LUTs' LUTs) alone,
-// or the blend corrected by a polynomial fit over the light (bank/target_fit.h) of degree 1
-// to 5 with one of four ridge weights. Per layer, the measured lights are left out in turn
-// (each once: up to 8 folds, every 8th light a fold), each candidate estimates them from the
+// bank of LUTs' LUTs) alone, or the blend corrected by a polynomial fit over the light
+// (bank/target_fit.h) of degree 1 to 5 with one of four ridge weights, by the fitted
+// rough-surface model's change over the light (inverse/model_target.h; where the nodes hold one
+// grey distribution in one region), or by the model and each polynomial half and half. Per layer, the measured lights
+// are left out in turn (each once: up to 8 folds, every 8th light a fold), each candidate estimates them from the
 // others through the bank's own lookup, and each region is scored by the 64-bin histogram L1
 // of the estimate against the measured distribution. Per region the rule takes the fit of the
 // lowest mean among those that beat the blend by more than two standard errors of the

@@ -58,6 +58,22 @@ TargetFit fitTargets(const std::vector<Direction>& lights, const float* values, 
     return fit;
 }
 
+TargetFit mixFits(const TargetFit& a, double wa, const TargetFit& b, double wb) {
+    if (a.empty() || b.empty()) {
+        TargetFit out = a.empty() ? b : a;
+        for (float& c : out.coefficients) c *= static_cast<float>(a.empty() ? wb : wa);
+        return out;
+    }
+    const std::size_t length = a.coefficients.size() / static_cast<std::size_t>(fitTermCount(a.degree));
+    BTFLUT_CHECK(b.coefficients.size() == static_cast<std::size_t>(fitTermCount(b.degree)) * length);
+    TargetFit out{std::max(a.degree, b.degree), {}};
+    out.coefficients.assign(static_cast<std::size_t>(fitTermCount(out.degree)) * length, 0.f);
+    for (const auto& [fit, w] : {std::pair{&a, wa}, std::pair{&b, wb}})
+        for (std::size_t k = 0; k < fit->coefficients.size(); ++k)
+            out.coefficients[k] += static_cast<float>(w) * fit->coefficients[k];
+    return out;
+}
+
 void addFitCorrection(const TargetFit& fit, Direction light, const std::vector<Direction>& nodeLights,
                       const std::vector<double>& nodeWeights, double weight, std::vector<double>& sum) {
     if (fit.empty() || weight == 0) return;

@@ -54,6 +54,10 @@ struct FitChoice {
 TargetFit fitTargets(const std::vector<Direction>& lights, const float* values, std::size_t length,
                      const std::vector<FitChoice>& choices);
 
+/// wa a + wb b: the two corrections mixed (the lower degree's terms lead the higher's, so its
+/// coefficients are padded with zeros). Both fit the same values.
+TargetFit mixFits(const TargetFit& a, double wa, const TargetFit& b, double wb);
+
 /// Adds weight x the fit's difference from the blend of the fit at the nodes (w, their
 /// lights) to `sum` (length values): the correction a lookup makes at `light`.
 void addFitCorrection(const TargetFit& fit, Direction light, const std::vector<Direction>& nodeLights,

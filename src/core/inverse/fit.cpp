@@ -197,7 +197,8 @@ Result<SurfaceFit> fitSurfaceModel(const std::vector<HistogramRow>& measured, Fi
     covarianceOptions.null_space_rank = -1;
     ceres::Covariance estimate(covarianceOptions);
     const std::vector<std::pair<const double*, const double*>> blocks{{p.data(), p.data()}};
-    if (estimate.Compute(blocks, &problem)) estimate.GetCovarianceBlock(p.data(), p.data(), covariance.data());
+    if (options.standardErrors && estimate.Compute(blocks, &problem))
+        estimate.GetCovarianceBlock(p.data(), p.data(), covariance.data());
     for (std::size_t k = 0; k < p.size(); ++k) {
         const double error = std::sqrt(std::max(0.0, covariance[k * p.size() + k] * variance));
         // A direction the data do not constrain lies in the Jacobian's null space: no error.

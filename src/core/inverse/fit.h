@@ -54,6 +54,7 @@ struct SurfaceFit {
 struct FitOptions {
     int nodes = 32;  ///< quadrature nodes per axis and piece while fitting
     int maxIterations = 100;
+    bool standardErrors = true;  ///< false: NaN, sparing the covariance (a fit used only for its model)
 };
 
 /// Fits the model; errors: fewer directions than parameters, histograms of different bin
