@@ -344,3 +344,38 @@ TEST_CASE("the fitted rough-surface model: a candidate estimate between the ligh
     REQUIRE_MESSAGE(regions.ok(), regions.error());
     CHECK(nlohmann::json::parse(regions->targetChoice)["model"].is_null());
 }
+
+TEST_CASE("across views: the model, fitted to every view's lights together, estimates a view's few lights") {
+    // btf-9: 9 views of 9 lights, too few per view for a polynomial; the model is one fit of
+    // every view's histograms (its view an input).
+    TempDir dir;
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "btf-9", "--size", "48", "--correlation-length", "4",
+                    "-q", "-o", dir / "btf"})
+                .status == 0);
+    Result<Dataset> dataset = openDataset(dir / "btf");
+    REQUIRE(dataset.ok());
+    Result<LutBank> bank = bakeBank(*dataset, {});
+    REQUIRE_MESSAGE(bank.ok(), bank.error());
+    REQUIRE(bank->layers.size() == 9);
+    const nlohmann::json choice = nlohmann::json::parse(bank->targetChoice);
+    REQUIRE(choice["model"].contains("roughness"));
+    int modelled = 0;
+    double blend = 0, model = 0;
+    for (const nlohmann::json& layer : choice["layers"]) {
+        for (const nlohmann::json& c : layer["candidates"]) {
+            if (c["name"] == "blend") blend += c["l1"][0].get<double>();
+            if (c["name"] == "model") model += c["l1"][0].get<double>();
+        }
+        modelled += layer["chosen"][0].get<std::string>().find("model") != std::string::npos;
+    }
+    MESSAGE("validation L1 summed over the views: blend " << blend << ", model " << model << "; " << modelled
+                                                          << " of 9 views chose it");
+    CHECK(model < 0.8 * blend);
+    CHECK(modelled >= 5);
+    for (const ViewLayer& layer : bank->layers)
+        for (std::size_t n = 0; n < layer.measuredNodes; ++n) {
+            const float* node = &layer.nodeLuts[n * bank->nodeLength()];
+            CHECK(bank->lookup(layer.nodes[n].light, layer.view).values ==
+                  std::vector<float>(node, node + bank->nodeLength()));
+        }
+}
