@@ -333,6 +333,11 @@ TEST_CASE("the fitted rough-surface model: a candidate estimate between the ligh
         CHECK(l1.at("model") < 0.8 * l1.at("blend"));
         CHECK(l1.count("model + poly1 ridge 0.01") == 1);
         CHECK(targetChoiceSummary(*bank).find("model") != std::string::npos);
+        // info prints the model's fit above the candidates' figures.
+        REQUIRE(saveBank(*bank, dir / "bank.btflut").ok());
+        const CliRun info = runCli({"info", dir / "bank.btflut"});
+        REQUIRE(info.status == 0);
+        CHECK(info.out.find("model: lambert rough surface fitted to the measured histograms, r ") != std::string::npos);
         const ViewLayer& layer = bank->layers[0];
         for (std::size_t n = 0; n < layer.measuredNodes; ++n) {
             const float* node = &layer.nodeLuts[n * bank->nodeLength()];

@@ -77,6 +77,13 @@ void printTargetChoice(const LutBank& b) {
     std::cout << ", by validation: each of the " << layer.value("lights", 0)
               << " measured lights estimated from the others (" << layer.value("folds", 0) << " folds; "
               << s.value("rule", std::string()) << ")\n";
+    // The rough-surface model behind the "model" candidates: its fit, or why there is none.
+    if (const nlohmann::json& m = s.value("model", nlohmann::json()); m.contains("roughness"))
+        std::cout << "             model: lambert rough surface fitted to the measured histograms, r "
+                  << fixed(m.value("roughness", 0.0), 3) << ", gain " << fixed(m.value("gain", 0.0), 3) << ", rms "
+                  << fixed(m.value("rms", 0.0), 4) << "\n";
+    else if (m.contains("error"))
+        std::cout << "             model: not a candidate (" << m.value("error", std::string()) << ")\n";
     if (s["layers"].size() > 1) std::cout << "             layer 0 of " << s["layers"].size() << ":\n";
     std::cout << "             estimate                     L1 (64 bins) per region\n";
     for (const nlohmann::json& c : layer.value("candidates", nlohmann::json::array())) {
