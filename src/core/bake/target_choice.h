@@ -4,14 +4,14 @@
 // bank of LUTs' LUTs) alone, or the blend corrected by a polynomial fit over the light
 // (bank/target_fit.h) of degree 1 to 5 with one of four ridge weights, by the fitted
 // rough-surface model's change over the light (inverse/model_target.h; where the nodes hold one
-// grey distribution in one region), or by the model and each polynomial half and half. Per layer, the measured lights
-// are left out in turn (each once: up to 8 folds, every 8th light a fold), each candidate estimates them from the
-// others through the bank's own lookup, and each region is scored by the 64-bin histogram L1
-// of the estimate against the measured distribution. Per region the rule takes the fit of the
-// lowest mean among those that beat the blend by more than two standard errors of the
-// per-light differences, and only fits with two of a fold's lights per coefficient are tried:
-// few or badly spread lights keep the blend. A layer of fewer than kMinFitLights measured
-// lights keeps the blend unvalidated.
+// grey distribution in one region), or by the model and each polynomial half and half. Per
+// layer, the measured lights are left out in turn (each once: up to 8 folds, every 8th light
+// a fold), each candidate estimates them from the others through the bank's own lookup, and
+// each region is scored by the 64-bin histogram L1 of the estimate against the measured
+// distribution. Per region the rule takes the fit of the lowest mean among those that beat the
+// blend by more than two standard errors of the per-light differences, and only fits with two of a fold's lights per
+// coefficient are tried: few or badly spread lights keep the blend. A layer of fewer than kMinFitLights measured lights
+// keeps the blend unvalidated.
 //
 //   chooseTargetFits(bank, threads);   // sets each layer's fit and bank.targetChoice (JSON)
 

@@ -43,16 +43,6 @@ std::vector<Direction> unmeasuredLights(const LutBank& bank, const ViewLayer& la
 
 constexpr int kTransportEntries = 4096;
 
-// The model's histogram as masses per code: bin b covers [b, b + 1) / bins, the cell of code
-// b + 1 on a bins + 1 code scale.
-std::vector<double> modelMass(const SurfaceModel& model, Direction light, Direction view,
-                              const SimulationOptions& options) {
-    const std::vector<double> histogram = simulateHistogram(model, light, view, options);
-    std::vector<double> mass(histogram.size() + 1, 0.0);
-    std::copy(histogram.begin(), histogram.end(), mass.begin() + 1);
-    return mass;
-}
-
 }  // namespace
 
 Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& params, const std::string& description) {
@@ -94,8 +84,8 @@ Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& para
                 for (std::size_t e = 0; e < length; ++e) measured[e] += w.weight[k] * layer.nodeLuts[node * length + e];
             }
             const Lut transport =
-                matchLut(modelMass(params.model, fromDisk(anchor), layer.view, simulation),
-                         modelMass(params.model, lights[i], layer.view, simulation), kTransportEntries);
+                matchLut(simulateMass(params.model, fromDisk(anchor), layer.view, simulation),
+                         simulateMass(params.model, lights[i], layer.view, simulation), kTransportEntries);
             for (std::size_t e = 0; e < length; ++e)
                 values[i * length + e] = transport.apply(static_cast<float>(measured[e]));
         });

@@ -49,10 +49,7 @@ std::vector<double> histogramOf(const float* values, const NodeForm& form) {
 // The model's distribution at one light as the nodes hold one.
 std::vector<float> nodeValues(const SurfaceModel& model, const SimulationOptions& simulation, Direction light,
                               Direction view, const NodeForm& form) {
-    const std::vector<double> histogram = simulateHistogram(model, light, view, simulation);
-    // bin b covers [b, b + 1) / bins: the cell of code b + 1 on a bins + 1 code scale
-    std::vector<double> mass(histogram.size() + 1, 0.0);
-    std::copy(histogram.begin(), histogram.end(), mass.begin() + 1);
+    const std::vector<double> mass = simulateMass(model, light, view, simulation);
     if (form.quantiles > 0) return quantileFunction(mass, form.quantiles);
     return matchLut(form.reference, mass, form.entries).values;
 }

@@ -33,9 +33,9 @@ struct ModelTargets {
 
 /// The model fitted (Lambertian) to the 64-bin histograms of the bank's measured nodes (at
 /// most kModelFitNodes of them, evenly spread over the layers; the same histograms fitted
-/// again are answered from memory), then each layer's fit. The
-/// bank's node values must be one channel of one region. Errors: another form, a fit that
-/// fails (too few lights, no convergence).
+/// again are answered from memory), then each layer's fit. The bank's node values must be one
+/// channel of one region. Errors: another form, a fit that fails (too few lights, no
+/// convergence), distributions that are not finite.
 constexpr std::size_t kModelFitNodes = 16;
 Result<ModelTargets> modelTargetFits(const LutBank& bank, const NodeForm& form);
 

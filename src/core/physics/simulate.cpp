@@ -299,6 +299,14 @@ const char* simulationMethodName(SimulationMethod m) {
     return "?";
 }
 
+std::vector<double> simulateMass(const SurfaceModel& model, Direction light, Direction view,
+                                 const SimulationOptions& options) {
+    const std::vector<double> histogram = simulateHistogram(model, light, view, options);
+    std::vector<double> mass(histogram.size() + 1, 0.0);
+    std::copy(histogram.begin(), histogram.end(), mass.begin() + 1);
+    return mass;
+}
+
 std::vector<double> smoothHistogram(const std::vector<double>& h, double width) {
     if (width <= 0) return h;
     const int n = static_cast<int>(h.size());

@@ -48,6 +48,11 @@ struct SimulationOptions {
 std::vector<double> simulateHistogram(const SurfaceModel& model, Direction light, Direction view,
                                       const SimulationOptions& options);
 
+/// simulateHistogram as masses per code, what matchLut and quantileFunction take (lut.h): bin b
+/// covers [b, b + 1) / bins, the cell of code b + 1 on a bins + 1 code scale (code 0 empty).
+std::vector<double> simulateMass(const SurfaceModel& model, Direction light, Direction view,
+                                 const SimulationOptions& options);
+
 /// Gaussian smoothing with a width of `width` bins; mass is kept (the kernel is renormalised
 /// where it meets the ends).
 std::vector<double> smoothHistogram(const std::vector<double>& h, double width);
