@@ -96,9 +96,10 @@ Result<ModelTargets> answer(const Question& q, std::size_t length) {
     ModelTargets out{.model = fit->model, .rms = fit->rms};
     for (const auto& [theta, phi, reach] : q.layers) {
         const std::vector<Direction> lights = sampleLights(reach);
+        const Direction view{theta, phi};  // a lambda may not capture a structured binding before C++20 in clang 15
         std::vector<float> values(lights.size() * length);
         parallelFor(lights.size(), 0, [&](std::size_t i) {
-            const std::vector<float> v = nodeValues(fit->model, simulation, lights[i], Direction{theta, phi}, form);
+            const std::vector<float> v = nodeValues(fit->model, simulation, lights[i], view, form);
             std::copy(v.begin(), v.end(), values.begin() + static_cast<std::ptrdiff_t>(i * length));
         });
         out.layers.push_back(fitTargets(lights, values.data(), length, {{kModelDegree, kModelRidge}}));
