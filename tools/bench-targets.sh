@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Issue 34's measurements, side by side: two btflut builds (before and after a change to how
-# banks estimate their targets between measured lights) on the shared data and a rendered
-# concrete. Prints, per dataset and build, eval's lut auto, lut hsh2 and the paper's bank
-# (held-out L1, PSNR and the target's own L1); across views (synth btf-25, the new build) the
-# paper's bank with the validated target and with the blend; then the default bake's time
-# (validation included; the two builds alternating, best of two) and their ratio.
+# banks estimate their targets between measured lights) on the bundled material, the shared
+# data and a rendered concrete. Prints, per dataset and build, eval's lut auto, lut hsh2 and
+# the paper's bank (held-out L1, PSNR and the target's own L1); across views (synth btf-25,
+# the new build) the paper's bank with the validated target and with the blend; then the
+# default bake's time (validation included; the two builds alternating, best of two) and
+# their ratio.
 #
 #   bash tools/bench-targets.sh OLD/btflut NEW/btflut     # e.g. a worktree of main, build/btflut
 set -euo pipefail
@@ -17,7 +18,7 @@ trap 'rm -rf "$work"' EXIT
 "$new" synth --preset concrete --geometry rti-49 -q -o "$work/concrete"
 "$new" synth --preset concrete --geometry btf-25 --size 64 --correlation-length 6 -q -o "$work/btf"
 
-for spec in "$data/dome-synth every:4" "$work/concrete every:4" "$data/psm-rock loo" "$data/psm-rock every:4"; do
+for spec in "build/assets/default every:4" "$data/dome-synth every:4" "$work/concrete every:4" "$data/psm-rock loo" "$data/psm-rock every:4"; do
   set -- $spec
   for build in old new; do
     "${!build}" eval "$1" --holdout "$2" --no-gl --modes lut --predictor auto,hsh2,references --json -o "$work/eval" \

@@ -275,6 +275,7 @@ public:
         BTFLUT_CHECK(layer.lutsLoaded);
         const float* lut = &layer.nodeLuts[n.node * m_sum.size()];
         for (std::size_t k = 0; k < m_sum.size(); ++k) m_sum[k] += weight * lut[k];
+        if (weight > 0) m_ranges.include(lut, m_sum.size(), m_bank.segmentLength());
     }
 
     // A layer's fit at the light, for its measured nodes' share `weight` (target_fit.h).
@@ -293,7 +294,7 @@ public:
     BankLookup finish() {
         look.values.assign(m_sum.size(), 0.f);
         for (std::size_t k = 0; k < m_sum.size(); ++k) look.values[k] = static_cast<float>(m_sum[k]);
-        if (m_fitted) makeQuantileFunctions(look.values, m_bank.segmentLength());
+        if (m_fitted) makeQuantileFunctions(look.values, m_bank.segmentLength(), m_ranges, m_bank.targetCode());
         look.provenance = combine(look.lightProvenance, look.viewProvenance);
         return look;
     }
@@ -303,6 +304,7 @@ public:
 private:
     const LutBank& m_bank;
     std::vector<double> m_sum;
+    SegmentRanges m_ranges;  // the levels of the nodes blended, which a fit's correction keeps
     bool m_fitted = false;
 };
 

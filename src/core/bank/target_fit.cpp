@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 
 #include "core/check.h"
 
@@ -93,12 +94,34 @@ void addFitCorrection(const TargetFit& fit, Direction light, const std::vector<D
     }
 }
 
-void makeQuantileFunctions(std::vector<float>& values, std::size_t segment) {
-    BTFLUT_CHECK(segment > 0 && values.size() % segment == 0);
-    for (float& v : values) v = std::clamp(v, 0.f, 1.f);
-    for (std::size_t at = 0; at < values.size(); at += segment)
-        std::sort(values.begin() + static_cast<std::ptrdiff_t>(at),
-                  values.begin() + static_cast<std::ptrdiff_t>(at + segment));
+void SegmentRanges::include(const float* values, std::size_t length, std::size_t segment) {
+    BTFLUT_CHECK(segment > 0 && length % segment == 0);
+    const std::size_t runs = length / segment;
+    if (low.empty()) {
+        low.assign(runs, 1.f);
+        high.assign(runs, 0.f);
+    }
+    BTFLUT_CHECK(low.size() == runs);
+    for (std::size_t r = 0; r < runs; ++r) {
+        const auto [lo, hi] = std::minmax_element(values + r * segment, values + (r + 1) * segment);
+        low[r] = std::min(low[r], *lo);
+        high[r] = std::max(high[r], *hi);
+    }
+}
+
+void makeQuantileFunctions(std::vector<float>& values, std::size_t segment, const SegmentRanges& ranges, float code) {
+    BTFLUT_CHECK(segment > 0 && values.size() % segment == 0 && ranges.low.size() == values.size() / segment);
+    const float half = std::isfinite(code) && code > 0 ? code / 2 : 0.f;
+    for (std::size_t r = 0, at = 0; at < values.size(); ++r, at += segment) {
+        const auto first = values.begin() + static_cast<std::ptrdiff_t>(at);
+        const auto last = first + static_cast<std::ptrdiff_t>(segment);
+        const float low = std::clamp(ranges.low[r], 0.f, 1.f), high = std::clamp(ranges.high[r], low, 1.f);
+        // Where the clamped values go: inside the range, so a measured light's own values stay.
+        const float below = low > 0 ? std::min(low + half, high) : 0.f;
+        const float above = high < 1 ? std::max(high - half, low) : 1.f;
+        for (auto v = first; v != last; ++v) *v = *v < low ? below : *v > high ? above : *v;
+        std::sort(first, last);
+    }
 }
 
 }  // namespace btflut

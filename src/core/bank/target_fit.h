@@ -8,8 +8,9 @@
 //   target(L) = sum_n w_n(L) q_n + fit(L) - sum_n w_n(L) fit(L_n)
 //
 // so a measured light keeps its measured target exactly (w is 1 at its node), and between
-// lights the blend's residual from the fit is interpolated. Sorting each quantile function
-// afterwards (the monotone rearrangement) and clamping it to [0, 1] keep it a distribution.
+// lights the blend's residual from the fit is interpolated. Clamping each quantile function
+// afterwards to the range of the nodes blended and sorting it (the monotone rearrangement)
+// keep it a distribution within the measurements' levels.
 // The degree and the ridge weight are chosen per region by validation on the measured lights
 // (bake/target_choice.h).
 //
@@ -63,7 +64,22 @@ TargetFit mixFits(const TargetFit& a, double wa, const TargetFit& b, double wb);
 void addFitCorrection(const TargetFit& fit, Direction light, const std::vector<Direction>& nodeLights,
                       const std::vector<double>& nodeWeights, double weight, std::vector<double>& sum);
 
-/// Each run of `segment` values sorted and clamped to [0, 1]: quantile functions again.
-void makeQuantileFunctions(std::vector<float>& values, std::size_t segment);
+/// The range a correction may move a lookup's values within: per run of `segment` values, the
+/// lowest and highest of the nodes it blends. The measurements keep their levels: a shadow the
+/// fitted model adds falls at the capture's black level (camera floor, ambient light), which
+/// the model lacks, not below it (the bundled material's held-out target 0.2435 -> 0.1794).
+struct SegmentRanges {
+    std::vector<float> low, high;
+
+    /// Widens each run's range to hold `values` (length values, runs of `segment`).
+    void include(const float* values, std::size_t length, std::size_t segment);
+};
+
+/// Each run of `segment` values clamped to its range and sorted: quantile functions again.
+/// A range's ends are the edges of its darkest and brightest code's cells (a code y's values
+/// lie in (y - 1, y], lut.h), where the dithered output rounds a tie: a shelf of clamped values
+/// there would render on either side, so the values outside go to those cells' centres, half
+/// a `code` in (0 and 1 stay: black stays black). Values within the range stay as they are.
+void makeQuantileFunctions(std::vector<float>& values, std::size_t segment, const SegmentRanges& ranges, float code);
 
 }  // namespace btflut
