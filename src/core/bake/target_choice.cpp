@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/eval/metrics.h"
+#include "core/histogram/histogram.h"
 #include "core/inverse/model_target.h"
 #include "core/io/json_text.h"
 #include "core/parallel.h"
@@ -63,21 +64,11 @@ TargetFit estimate(const Estimator& e, const std::vector<Direction>& lights, con
 // 64-bin histogram L1 of the distributions of two runs of values (quantile functions, or LUTs
 // applied to the reference) whose entries weigh `weights` (empty: equally).
 double histogramL1(const float* a, const float* b, std::size_t samples, const std::vector<double>& weights) {
-    std::array<double, kHistogramBins> difference{};
-    auto bin = [](float v) {
-        return static_cast<std::size_t>(
-            std::min(static_cast<int>(std::clamp(v, 0.f, 1.f) * kHistogramBins), kHistogramBins - 1));
-    };
-    double total = 0;
-    for (std::size_t k = 0; k < samples; ++k) {
-        const double w = weights.empty() ? 1.0 : weights[k];
-        difference[bin(a[k])] += w;
-        difference[bin(b[k])] -= w;
-        total += w;
-    }
+    const std::vector<double> ha = binValues({a, samples}, weights, kHistogramBins),
+                              hb = binValues({b, samples}, weights, kHistogramBins);
     double l1 = 0;
-    for (double d : difference) l1 += std::abs(d);
-    return total > 0 ? l1 / total : 0.0;
+    for (std::size_t k = 0; k < ha.size(); ++k) l1 += std::abs(ha[k] - hb[k]);
+    return l1;
 }
 
 // A bank of one layer: `layer`'s measured nodes that `keep` says, for lookups only.

@@ -55,6 +55,21 @@ LevelCounts countChannelLevels(const Image& image, const Mask& mask, int channel
     return levels;
 }
 
+std::vector<double> binValues(std::span<const float> values, std::span<const double> weights, int bins) {
+    BTFLUT_CHECK(bins >= 1 && (weights.empty() || weights.size() == values.size()));
+    std::vector<double> h(static_cast<std::size_t>(bins), 0.0);
+    double total = 0;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+        const double w = weights.empty() ? 1.0 : weights[k];
+        const int b = std::min(static_cast<int>(std::clamp(values[k], 0.f, 1.f) * static_cast<float>(bins)), bins - 1);
+        h[static_cast<std::size_t>(b)] += w;
+        total += w;
+    }
+    if (total > 0)
+        for (double& v : h) v /= total;
+    return h;
+}
+
 std::vector<double> binHistogram(const LevelCounts& levels, int bins) {
     BTFLUT_CHECK(bins >= 1 && levels.counts.size() >= 2);
     std::vector<double> h(static_cast<std::size_t>(bins), 0.0);

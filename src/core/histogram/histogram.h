@@ -9,6 +9,7 @@
 // 766 codes; one 8-bit channel has 256; 16-bit sources keep their 65536 (x3) codes.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,11 @@ LevelCounts countChannelLevels(const Image& image, const Mask& mask, int channel
 /// Normalised histogram with `bins` equal bins over [0, 1] (value 1 falls in the last).
 /// Empty counts give all-zero bins.
 std::vector<double> binHistogram(const LevelCounts& levels, int bins);
+
+/// Normalised histogram with `bins` equal bins over [0, 1] of `values` (clamped to it; 1 falls
+/// in the last), each weighing its `weights` entry, or alike where `weights` is empty: a
+/// quantile function's samples, or a LUT's entries weighed by the reference's share there.
+std::vector<double> binValues(std::span<const float> values, std::span<const double> weights, int bins);
 
 /// One histogram with the directions it belongs to.
 struct HistogramRow {

@@ -6,6 +6,7 @@
 #include <deque>
 #include <mutex>
 
+#include "core/histogram/histogram.h"
 #include "core/inverse/fit.h"
 #include "core/parallel.h"
 #include "core/physics/simulate.h"
@@ -34,16 +35,7 @@ constexpr double kModelRidge = 1e-7;
 // entry by the reference's share there.
 std::vector<double> histogramOf(const float* values, const NodeForm& form) {
     const std::size_t samples = form.quantiles > 0 ? static_cast<std::size_t>(form.quantiles) : form.reference.size();
-    std::vector<double> bins(kFitBins, 0.0);
-    double total = 0;
-    for (std::size_t k = 0; k < samples; ++k) {
-        const double w = form.quantiles > 0 ? 1.0 : form.reference[k];
-        const int b = std::min(static_cast<int>(std::clamp(values[k], 0.f, 1.f) * kFitBins), kFitBins - 1);
-        bins[static_cast<std::size_t>(b)] += w;
-        total += w;
-    }
-    for (double& b : bins) b /= total;
-    return bins;
+    return binValues({values, samples}, form.quantiles > 0 ? std::span<const double>{} : form.reference, kFitBins);
 }
 
 // The model's distribution at one light as the nodes hold one.
