@@ -100,6 +100,12 @@ try:
     run('synth', '--preset', 'foil', '--size', '16', '--correlation-length', '4', '-q', '-o', os.path.join(work, 'curet'))
     run('bake', os.path.join(work, 'curet'), '-o', os.path.join(work, 'iso.btflut'), '--grid', '2', '--entries', '8', '-q')
     seed('bank', 'isotropic.btflut', open(os.path.join(work, 'iso.btflut'), 'rb').read())
+    # version 7: the isotropic domain's target fitted over the pairs (TFIT, one fit)
+    run('synth', '--preset', 'concrete', '--geometry', 'btf-9', '--size', '16', '--correlation-length', '4', '-q', '-o',
+        os.path.join(work, 'btf'))
+    run('bake', os.path.join(work, 'btf'), '-o', os.path.join(work, 'pairs.btflut'), '--domain', 'isotropic', '--grid', '2',
+        '--entries', '8', '-q')
+    seed('bank', 'pair-fit.btflut', open(os.path.join(work, 'pairs.btflut'), 'rb').read())
 
     # Text files of real datasets.
     seed('manifest', 'synth.json', open(os.path.join(tiny, 'btflut-dataset.json')).read())

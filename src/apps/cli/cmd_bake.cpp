@@ -139,8 +139,9 @@ Status fillFromFittedModel(const BakeCommandOptions& o, const Dataset& dataset, 
 // summary line.
 std::string predictorSummary(const LutBank& bank) {
     if (!bank.makesLuts())
-        return bank.domain == BankDomain::Layers ? ", targets between the measured lights: " + targetChoiceSummary(bank)
-                                                 : std::string();
+        return bank.domain == BankDomain::Layers
+                   ? ", targets between the measured lights: " + targetChoiceSummary(bank)
+                   : ", targets between the measured light and view pairs: " + targetChoiceSummary(bank);
     const LutBank::Blend& b = bank.blend;
     // The name `--predictor` takes (bln9c, not the planes it unpacks to), as info prints it.
     const ReferenceBlend* references = bank.predictorAs<ReferenceBlend>();

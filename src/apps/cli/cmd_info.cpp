@@ -74,8 +74,10 @@ void printTargetChoice(const LutBank& b) {
         std::cout << " (" << layer["skipped"].get<std::string>() << ")\n";
         return;
     }
+    const bool pairs = layer.value("domain", std::string()) == "pairs";  // the isotropic domain: one choice
     std::cout << ", by validation: each of the " << layer.value("lights", 0)
-              << " measured lights estimated from the others (" << layer.value("folds", 0) << " folds; "
+              << (pairs ? " measured light and view pairs (points of the isotropic domain)" : " measured lights")
+              << " estimated from the others (" << layer.value("folds", 0) << " folds; "
               << s.value("rule", std::string()) << ")\n";
     // The rough-surface model behind the "model" candidates: its fit, or why there is none.
     if (const nlohmann::json& m = s.value("model", nlohmann::json()); m.contains("roughness"))
@@ -231,7 +233,7 @@ Status runInfo(const InfoOptions& o) {
                           << degrees(references->lights()[k].light) << "\n";
     }
     if (!b.selection.empty()) printSelection(b.selection);
-    if (!b.makesLuts() && b.domain == BankDomain::Layers) printTargetChoice(b);
+    if (!b.makesLuts()) printTargetChoice(b);
     if (!b.ptm.empty())
         std::cout << "  ptm: " << b.ptm.width << "x" << b.ptm.height << ", 6 coefficients + RGB albedo per texel ("
                   << b.ptm.coefficients.size() + b.ptm.albedo.size() << " bytes)\n";

@@ -61,6 +61,14 @@ TargetFit estimate(const Estimator& e, const std::vector<Direction>& lights, con
     return e.model > 0 ? mixFits(poly, 1 - e.model, model, e.model) : poly;
 }
 
+// The same over the isotropic domain's points.
+TargetFit estimatePairs(const Estimator& e, const std::vector<Point3>& points, const float* values, std::size_t length,
+                        std::size_t regions, const TargetFit& model) {
+    TargetFit poly = e.poly.degree > 0 ? fitPairTargets(points, values, length, std::vector<FitChoice>(regions, e.poly))
+                                       : TargetFit{.domain = FitDomain::Pair};
+    return e.model > 0 ? mixFits(poly, 1 - e.model, model, e.model) : poly;
+}
+
 // 64-bin histogram L1 of the distributions of two runs of values (quantile functions, or LUTs
 // applied to the reference) whose entries weigh `weights` (empty: equally).
 double histogramL1(const float* a, const float* b, std::size_t samples, const std::vector<double>& weights) {
@@ -71,15 +79,21 @@ double histogramL1(const float* a, const float* b, std::size_t samples, const st
     return l1;
 }
 
-// A bank of one layer: `layer`'s measured nodes that `keep` says, for lookups only.
-LutBank trainingBank(const LutBank& bank, const ViewLayer& layer, const std::vector<bool>& keep) {
+// A bank without nodes whose nodes would be of `bank`'s form, in `domain`: for lookups only.
+LutBank formOf(const LutBank& bank, BankDomain domain) {
     LutBank out;
     out.entries = bank.entries;
     out.colour = bank.colour;
     out.gridSize = bank.gridSize;
-    out.domain = BankDomain::Layers;
+    out.domain = domain;
     out.blend.regions = bank.blend.regions;
     out.blend.quantiles = bank.blend.quantiles;
+    return out;
+}
+
+// A bank of one layer: `layer`'s measured nodes that `keep` says, for lookups only.
+LutBank trainingBank(const LutBank& bank, const ViewLayer& layer, const std::vector<bool>& keep) {
+    LutBank out = formOf(bank, BankDomain::Layers);
     ViewLayer copy;
     copy.view = layer.view;
     const std::size_t length = bank.nodeLength();
@@ -105,6 +119,23 @@ std::vector<Direction> lightsOf(const ViewLayer& layer) {
     return out;
 }
 
+// A node's L1 per region (channels averaged) between its estimate and its measured values,
+// into errors[region][node].
+void scoreNode(const LutBank& bank, const std::vector<float>& estimate, const float* measured,
+               const std::vector<std::vector<double>>& weights, std::vector<std::vector<double>>& errors,
+               std::size_t node) {
+    const std::size_t regions = regionsOf(bank), run = bank.nodeLength() / regions, samples = bank.segmentLength();
+    const std::size_t channels = run / samples;
+    for (std::size_t r = 0; r < regions; ++r) {
+        double sum = 0;
+        for (std::size_t ch = 0; ch < channels; ++ch) {
+            const std::size_t at = r * run + ch * samples;
+            sum += histogramL1(&estimate[at], measured + at, samples, weights.empty() ? kEqually : weights[ch]);
+        }
+        errors[r][node] = sum / static_cast<double>(channels);
+    }
+}
+
 // One layer: every candidate's L1 per region at each measured node, estimated without it.
 // errors[candidate][region][node]; NaN where a candidate has more terms than lights to fit.
 using Errors = std::vector<std::vector<std::vector<double>>>;
@@ -112,9 +143,7 @@ using Errors = std::vector<std::vector<std::vector<double>>>;
 Errors validate(const LutBank& bank, const ViewLayer& layer, std::size_t lights, const std::vector<Estimator>& list,
                 const TargetFit& model, const std::vector<std::vector<double>>& weights, int threads) {
     const std::size_t folds = std::min(lights, kMaxTargetFolds);
-    const std::size_t regions = regionsOf(bank);
-    const std::size_t length = bank.nodeLength(), run = length / regions, samples = bank.segmentLength();
-    const std::size_t channels = run / samples;
+    const std::size_t regions = regionsOf(bank), length = bank.nodeLength();
     Errors errors(list.size(), std::vector<std::vector<double>>(regions, std::vector<double>(lights, NAN)));
     parallelFor(folds, threads, [&](std::size_t fold) {
         std::vector<bool> keep(lights);
@@ -125,19 +154,66 @@ Errors validate(const LutBank& bank, const ViewLayer& layer, std::size_t lights,
         for (std::size_t c = 0; c < list.size(); ++c) {
             if ((fitTermCount(list[c].poly.degree) + 1) * kLightsPerTerm > trainingLights.size()) continue;
             trained.fit = estimate(list[c], trainingLights, trained.nodeLuts.data(), length, regions, model);
-            for (std::size_t n = 0; n < lights; ++n) {
-                if (keep[n]) continue;
-                const std::vector<float> estimate = training.lookup(layer.nodes[n].light, layer.view).values;
-                const float* measured = &layer.nodeLuts[n * length];
-                for (std::size_t r = 0; r < regions; ++r) {
-                    double sum = 0;
-                    for (std::size_t ch = 0; ch < channels; ++ch) {
-                        const std::size_t at = r * run + ch * samples;
-                        sum += histogramL1(&estimate[at], measured + at, samples,
-                                           weights.empty() ? kEqually : weights[ch]);
-                    }
-                    errors[c][r][n] = sum / static_cast<double>(channels);
+            for (std::size_t n = 0; n < lights; ++n)
+                if (!keep[n])
+                    scoreNode(bank, training.lookup(layer.nodes[n].light, layer.view).values,
+                              &layer.nodeLuts[n * length], weights, errors[c], n);
+        }
+    });
+    return errors;
+}
+
+// Every node's values in the isotropic domain at each point of the bank's pairs: the mean of
+// the nodes the symmetry puts there (as lookups average them).
+std::vector<float> pointValues(const LutBank& bank) {
+    const std::size_t length = bank.nodeLength();
+    std::vector<float> out(bank.pairNodes.size() * length, 0.f);
+    for (std::size_t p = 0; p < bank.pairNodes.size(); ++p)
+        for (const LutBank::NodeRef& n : bank.pairNodes[p])
+            for (std::size_t k = 0; k < length; ++k)
+                out[p * length + k] +=
+                    bank.layers[n.layer].nodeLuts[n.node * length + k] / static_cast<float>(bank.pairNodes[p].size());
+    return out;
+}
+
+// The isotropic domain: every candidate's L1 per region at each measured pair's point,
+// estimated without it (folds of every eighth point), through a bank of the other points.
+Errors validatePairs(const LutBank& bank, const std::vector<Estimator>& list, const TargetFit& model,
+                     const std::vector<std::vector<double>>& weights, int threads) {
+    const std::size_t points = bank.pairNodes.size(), folds = std::min(points, kMaxTargetFolds);
+    const std::size_t regions = regionsOf(bank), length = bank.nodeLength();
+    const std::vector<float> values = pointValues(bank);
+    Errors errors(list.size(), std::vector<std::vector<double>>(regions, std::vector<double>(points, NAN)));
+    parallelFor(folds, threads, [&](std::size_t fold) {
+        LutBank training = formOf(bank, BankDomain::Isotropic);  // the nodes at the kept points
+        std::vector<std::vector<bool>> kept(bank.layers.size());
+        for (std::size_t l = 0; l < bank.layers.size(); ++l) kept[l].assign(bank.layers[l].nodes.size(), false);
+        for (std::size_t p = 0; p < points; ++p)
+            for (const LutBank::NodeRef& n : bank.pairNodes[p]) kept[n.layer][n.node] = p % folds != fold;
+        for (std::size_t l = 0; l < bank.layers.size(); ++l) {
+            const ViewLayer& from = bank.layers[l];
+            ViewLayer layer;
+            layer.view = from.view;
+            for (std::size_t n = 0; n < from.nodes.size(); ++n)
+                if (kept[l][n]) {
+                    layer.nodes.push_back(from.nodes[n]);
+                    layer.nodeLuts.insert(layer.nodeLuts.end(),
+                                          from.nodeLuts.begin() + static_cast<std::ptrdiff_t>(n * length),
+                                          from.nodeLuts.begin() + static_cast<std::ptrdiff_t>((n + 1) * length));
                 }
+            if (!layer.nodes.empty()) training.layers.push_back(std::move(layer));
+        }
+        training.buildTriangulations();
+        const std::vector<Point3>& trainingPoints = training.pairs.points();
+        const std::vector<float> trainingValues = pointValues(training);
+        for (std::size_t c = 0; c < list.size(); ++c) {
+            if ((pairTermCount(list[c].poly.degree) + 1) * kLightsPerTerm > trainingPoints.size()) continue;
+            training.pairFit = estimatePairs(list[c], trainingPoints, trainingValues.data(), length, regions, model);
+            for (std::size_t p = fold; p < points; p += folds) {
+                const LutBank::NodeRef n = bank.pairNodes[p].front();
+                scoreNode(bank,
+                          training.lookup(bank.layers[n.layer].nodes[n.node].light, bank.layers[n.layer].view).values,
+                          &values[p * length], weights, errors[c], p);
             }
         }
     });
@@ -150,18 +226,87 @@ double mean(const std::vector<double>& v) {
     return sum / static_cast<double>(v.size());
 }
 
+// What the rule chose from one set of validation figures: per region the candidate, its name,
+// and every candidate's figures for the record.
+struct EstimatorPick {
+    std::vector<std::size_t> chosen;  // per region, an index of the list
+    nlohmann::json names = nlohmann::json::array(), figures = nlohmann::json::array();
+};
+
+EstimatorPick choose(const Errors& errors, const std::vector<Estimator>& list, std::size_t regions) {
+    EstimatorPick out;
+    // Each candidate against the blend, per region, over the measured nodes.
+    std::vector<std::vector<PairedDifference>> gains(list.size());
+    for (std::size_t c = 0; c < list.size(); ++c)
+        for (std::size_t r = 0; r < regions; ++r) gains[c].push_back(pairedDifference(errors[c][r], errors[0][r]));
+    for (std::size_t r = 0; r < regions; ++r) {
+        std::size_t best = 0;  // the blend, unless a fit beats it beyond the nodes' noise
+        double bestMean = mean(errors[0][r]);
+        for (std::size_t c = 1; c < list.size(); ++c) {
+            const PairedDifference& d = gains[c][r];
+            if (d.mean + kStandardErrors * d.standardError < 0 && mean(errors[c][r]) < bestMean) {
+                best = c;
+                bestMean = mean(errors[c][r]);
+            }
+        }
+        out.chosen.push_back(best);
+        out.names.push_back(list[best].name);
+    }
+    for (std::size_t c = 0; c < list.size(); ++c) {
+        nlohmann::json l1 = nlohmann::json::array(), se = nlohmann::json::array();
+        for (std::size_t r = 0; r < regions; ++r) {
+            const PairedDifference& d = gains[c][r];
+            l1.push_back(std::isnan(d.mean) ? nlohmann::json() : nlohmann::json(mean(errors[c][r])));
+            se.push_back(std::isnan(d.mean) ? nlohmann::json() : nlohmann::json(d.standardError));
+        }
+        out.figures.push_back({{"name", list[c].name}, {"l1", l1}, {"se_of_difference", se}});
+    }
+    return out;
+}
+
+std::vector<FitChoice> polysOf(const EstimatorPick& choice, const std::vector<Estimator>& list) {
+    std::vector<FitChoice> out;
+    for (std::size_t c : choice.chosen) out.push_back(list[c].poly);
+    return out;
+}
+
+// The isotropic domain: one estimate over every measured pair, chosen as a layer's is.
+nlohmann::json choosePairFit(LutBank& bank, const std::vector<Estimator>& list, const TargetFit& model,
+                             const std::vector<std::vector<double>>& weights, int threads) {
+    const std::size_t regions = regionsOf(bank), points = bank.pairNodes.size();
+    bank.pairFit = {};
+    nlohmann::json row{{"domain", "pairs"}, {"lights", points}};
+    if (points < kMinFitLights) {
+        row["skipped"] = "fewer than " + std::to_string(kMinFitLights) + " measured light and view pairs: the blend";
+        return row;
+    }
+    const EstimatorPick choice = choose(validatePairs(bank, list, model, weights, threads), list, regions);
+    const std::vector<float> values = pointValues(bank);
+    bank.pairFit =
+        regions == 1
+            ? estimatePairs(list[choice.chosen[0]], bank.pairs.points(), values.data(), bank.nodeLength(), 1, model)
+            : fitPairTargets(bank.pairs.points(), values.data(), bank.nodeLength(), polysOf(choice, list));
+    row["folds"] = std::min(points, kMaxTargetFolds);
+    row["candidates"] = choice.figures;
+    row["chosen"] = choice.names;
+    return row;
+}
+
 }  // namespace
 
 void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<double>>& entryWeights) {
-    if (bank.domain != BankDomain::Layers ||
-        (bank.makesLuts() && bank.blend.target != LutBank::Blend::Target::Measured))
+    if (bank.makesLuts() && bank.blend.target != LutBank::Blend::Target::Measured) return;
+    const bool pairs = bank.domain == BankDomain::Isotropic;
+    // Model-filled nodes stand where nothing was measured: the isotropic choice has none.
+    if (pairs && std::ranges::any_of(bank.layers, [](const ViewLayer& l) { return l.measuredNodes < l.nodes.size(); }))
         return;
     const std::size_t regions = regionsOf(bank);
     // The model: where the nodes hold one grey distribution per light and some layer chooses.
     std::optional<ModelTargets> model;
     nlohmann::json modelRow;
     const bool chooses =
-        std::ranges::any_of(bank.layers, [](const ViewLayer& l) { return l.measuredNodes >= kMinFitLights; });
+        pairs ? bank.pairNodes.size() >= kMinFitLights
+              : std::ranges::any_of(bank.layers, [](const ViewLayer& l) { return l.measuredNodes >= kMinFitLights; });
     if (chooses && regions == 1 && bank.channels() == 1) {
         const NodeForm form = bank.makesLuts() ? NodeForm{.quantiles = bank.blend.quantiles}
                                                : NodeForm{.entries = bank.entries,
@@ -179,59 +324,36 @@ void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<
         }
     }
     const std::vector<Estimator> list = estimators(model.has_value());
-    const TargetFit noModel;
     nlohmann::json layers = nlohmann::json::array();
-    for (std::size_t l = 0; l < bank.layers.size(); ++l) {
-        ViewLayer& layer = bank.layers[l];
-        const TargetFit& modelFit = model ? model->layers[l] : noModel;
-        layer.fit = {};
-        nlohmann::json row{{"view", {layer.view.thetaDegrees(), layer.view.phiDegrees()}},
-                           {"lights", layer.measuredNodes}};
-        if (layer.measuredNodes < kMinFitLights) {
-            row["skipped"] = "fewer than " + std::to_string(kMinFitLights) + " measured lights: the blend";
+    if (pairs) {
+        layers.push_back(choosePairFit(bank, list, model ? model->pairs : TargetFit{.domain = FitDomain::Pair},
+                                       entryWeights, threads));
+    } else {
+        const TargetFit noModel;
+        for (std::size_t l = 0; l < bank.layers.size(); ++l) {
+            ViewLayer& layer = bank.layers[l];
+            const TargetFit& modelFit = model ? model->layers[l] : noModel;
+            layer.fit = {};
+            nlohmann::json row{{"view", {layer.view.thetaDegrees(), layer.view.phiDegrees()}},
+                               {"lights", layer.measuredNodes}};
+            if (layer.measuredNodes < kMinFitLights) {
+                row["skipped"] = "fewer than " + std::to_string(kMinFitLights) + " measured lights: the blend";
+                layers.push_back(row);
+                continue;
+            }
+            const EstimatorPick choice = choose(
+                validate(bank, layer, layer.measuredNodes, list, modelFit, entryWeights, threads), list, regions);
+            std::vector<Direction> lights = lightsOf(layer);
+            lights.resize(layer.measuredNodes);
+            layer.fit =
+                regions == 1
+                    ? estimate(list[choice.chosen[0]], lights, layer.nodeLuts.data(), bank.nodeLength(), 1, modelFit)
+                    : fitTargets(lights, layer.nodeLuts.data(), bank.nodeLength(), polysOf(choice, list));
+            row["folds"] = std::min(layer.measuredNodes, kMaxTargetFolds);
+            row["candidates"] = choice.figures;
+            row["chosen"] = choice.names;
             layers.push_back(row);
-            continue;
         }
-        const Errors errors = validate(bank, layer, layer.measuredNodes, list, modelFit, entryWeights, threads);
-        std::vector<FitChoice> chosen(regions);
-        std::size_t chosenFirst = 0;  // region 0's (the only one where the model is a candidate)
-        nlohmann::json figures = nlohmann::json::array(), names = nlohmann::json::array();
-        // Each candidate against the blend, per region, over the measured lights.
-        std::vector<std::vector<PairedDifference>> gains(list.size());
-        for (std::size_t c = 0; c < list.size(); ++c)
-            for (std::size_t r = 0; r < regions; ++r) gains[c].push_back(pairedDifference(errors[c][r], errors[0][r]));
-        for (std::size_t r = 0; r < regions; ++r) {
-            std::size_t best = 0;  // the blend, unless a fit beats it beyond the nodes' noise
-            double bestMean = mean(errors[0][r]);
-            for (std::size_t c = 1; c < list.size(); ++c) {
-                const PairedDifference& d = gains[c][r];
-                if (d.mean + kStandardErrors * d.standardError < 0 && mean(errors[c][r]) < bestMean) {
-                    best = c;
-                    bestMean = mean(errors[c][r]);
-                }
-            }
-            chosen[r] = list[best].poly;
-            if (r == 0) chosenFirst = best;
-            names.push_back(list[best].name);
-        }
-        for (std::size_t c = 0; c < list.size(); ++c) {
-            nlohmann::json l1 = nlohmann::json::array(), se = nlohmann::json::array();
-            for (std::size_t r = 0; r < regions; ++r) {
-                const PairedDifference& d = gains[c][r];
-                l1.push_back(std::isnan(d.mean) ? nlohmann::json() : nlohmann::json(mean(errors[c][r])));
-                se.push_back(std::isnan(d.mean) ? nlohmann::json() : nlohmann::json(d.standardError));
-            }
-            figures.push_back({{"name", list[c].name}, {"l1", l1}, {"se_of_difference", se}});
-        }
-        std::vector<Direction> lights = lightsOf(layer);
-        lights.resize(layer.measuredNodes);
-        layer.fit = regions == 1
-                        ? estimate(list[chosenFirst], lights, layer.nodeLuts.data(), bank.nodeLength(), 1, modelFit)
-                        : fitTargets(lights, layer.nodeLuts.data(), bank.nodeLength(), chosen);
-        row["folds"] = std::min(layer.measuredNodes, kMaxTargetFolds);
-        row["candidates"] = figures;
-        row["chosen"] = names;
-        layers.push_back(row);
     }
     bank.targetChoice = jsonText(
         {{"rule",

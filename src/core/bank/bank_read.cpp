@@ -207,7 +207,11 @@ public:
         if (m_head.embedded && !m_haveReference) return fail("reference image chunk is missing");
         if (m_matchGrids != 0 && m_matchGrids != m_bank.layers.size())
             return fail("a match grid (MGRD) for some layers only");
-        for (std::size_t l = 0; l < m_fits.size(); ++l) m_bank.layers[l].fit = std::move(m_fits[l]);
+        if (m_bank.domain == BankDomain::Isotropic) {
+            if (!m_fits.empty()) m_bank.pairFit = std::move(m_fits.front());
+        } else {
+            for (std::size_t l = 0; l < m_fits.size(); ++l) m_bank.layers[l].fit = std::move(m_fits[l]);
+        }
         if (m_fill)
             if (Status s = fillFlags(); !s) return s;
         if (!m_head.embedded) {  // keep the description, without pixels
@@ -343,25 +347,28 @@ private:
     }
 
     // TFIT: the choice of estimate between the lights (JSON) and each layer's fit, kept until
-    // the layers are all read (finish).
+    // the layers are all read (finish); in the isotropic domain (version 7) one fit over the
+    // pairs' points.
     Status targetFit(Reader& in) {
-        if (m_haveTargetFit || m_chunks.version < 6 || m_bank.domain != BankDomain::Layers)
-            return fail("unexpected TFIT chunk");
+        const bool pairs = m_bank.domain == BankDomain::Isotropic;
+        if (m_haveTargetFit || m_chunks.version < (pairs ? 7 : 6)) return fail("unexpected TFIT chunk");
         m_haveTargetFit = true;
         m_bank.targetChoice = in.getString();
         const auto layers = in.get<std::uint32_t>();
-        if (!in.ok() || layers != m_head.layerCount) return fail("TFIT chunk: truncated, or not one fit per layer");
+        if (!in.ok() || layers != (pairs ? 1 : m_head.layerCount))
+            return fail(pairs ? "TFIT chunk: truncated, or not one fit over the pairs"
+                              : "TFIT chunk: truncated, or not one fit per layer");
         if (!m_bank.targetChoice.empty())
             if (Result<nlohmann::json> parsed = parseJsonText(m_bank.targetChoice, m_name + " (TFIT chunk)"); !parsed)
                 return Error{parsed.error()};
         const std::size_t length = m_bank.nodeLength();
         for (std::uint32_t l = 0; l < layers; ++l) {
-            TargetFit fit;
+            TargetFit fit{.domain = pairs ? FitDomain::Pair : FitDomain::Light};
             const auto degree = in.get<std::uint32_t>();
             if (!in.ok() || degree > static_cast<std::uint32_t>(kMaxFitDegree))
                 return fail("TFIT chunk: truncated, or a fit of an invalid degree");
             fit.degree = static_cast<int>(degree);
-            const std::size_t values = degree == 0 ? 0 : static_cast<std::size_t>(fitTermCount(fit.degree)) * length;
+            const std::size_t values = degree == 0 ? 0 : static_cast<std::size_t>(fit.termCount()) * length;
             if (values > in.remaining() / sizeof(float)) return fail("TFIT chunk: truncated coefficients");
             fit.coefficients.resize(values);
             if (values > 0)

@@ -107,6 +107,7 @@ std::uint32_t bankFormatVersion(const LutBank& bank) {
     // they always could.
     // A fit between the lights; a choice of the blend everywhere changes no lookup, and such
     // banks stay readable where they were (the choice's figures are then not kept).
+    if (!bank.pairFit.empty()) return 7;  // the isotropic domain's fit
     if (std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) { return !l.fit.empty(); }))
         return 6;
     if ((bank.makesLuts() && (filePredictor(bank) == FilePredictor::Model || bank.blend.match != 1 ||
@@ -234,10 +235,16 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     if (version >= 6) {  // how the targets are estimated between the lights, and each layer's fit
         Writer w;
         w.putString(bank.targetChoice);
-        w.put(static_cast<std::uint32_t>(bank.layers.size()));
-        for (const ViewLayer& layer : bank.layers) {
-            w.put(static_cast<std::uint32_t>(layer.fit.degree));
-            w.putBytes(layer.fit.coefficients.data(), layer.fit.coefficients.size() * sizeof(float));
+        auto put = [&](const TargetFit& fit) {
+            w.put(static_cast<std::uint32_t>(fit.degree));
+            w.putBytes(fit.coefficients.data(), fit.coefficients.size() * sizeof(float));
+        };
+        if (bank.domain == BankDomain::Isotropic) {  // one fit over the pairs' points
+            w.put(std::uint32_t{1});
+            put(bank.pairFit);
+        } else {
+            w.put(static_cast<std::uint32_t>(bank.layers.size()));
+            for (const ViewLayer& layer : bank.layers) put(layer.fit);
         }
         putChunk(file, kTargetFit, w.bytes());
     }

@@ -291,6 +291,13 @@ public:
         m_fitted = true;
     }
 
+    // The isotropic domain's fit at q, for the points blended (`points`, their weights).
+    void addPairFit(Point3 q, const std::vector<Point3>& points, const std::vector<double>& weights) {
+        if (m_bank.pairFit.empty()) return;
+        addPairFitCorrection(m_bank.pairFit, q, points, weights, 1, m_sum);
+        m_fitted = true;
+    }
+
     BankLookup finish() {
         look.values.assign(m_sum.size(), 0.f);
         for (std::size_t k = 0; k < m_sum.size(); ++k) look.values[k] = static_cast<float>(m_sum[k]);
@@ -312,9 +319,13 @@ private:
 void addIsotropic(const LutBank& bank, Direction light, Direction view, NodeBlend& blend) {
     const Point3 q = isotropicPoint(light, view);
     const Weights w = bank.pairs.weightsAt(q);
+    std::vector<Point3> points;  // those blended, and their weights: the fit's correction
+    std::vector<double> weights;
     auto addPoint = [&](std::size_t point, double weight) {
         const std::vector<LutBank::NodeRef>& nodes = bank.pairNodes[point];
         for (LutBank::NodeRef n : nodes) blend.add(n, weight / static_cast<double>(nodes.size()));
+        points.push_back(bank.pairs.points()[point]);
+        weights.push_back(weight);
     };
     // Beyond the hull, the clamp to its boundary gives way to the nearest measured pair
     // over one grid step. Measurements along a path (CUReT's light and view moving
@@ -331,6 +342,17 @@ void addIsotropic(const LutBank& bank, Direction light, Direction view, NodeBlen
         addPoint(bank.nearestPair(q), 1 - clamped);
     }
     for (int p = 0; p < w.count; ++p) addPoint(static_cast<std::size_t>(w.index[p]), w.weight[p] * clamped);
+    // The fit read at q pulled into the box of the measured points: it extrapolates beyond
+    // their hull as far as they reach along each axis, never beyond.
+    if (!bank.pairFit.empty() && !bank.pairs.points().empty()) {
+        Point3 lo = bank.pairs.points().front(), hi = lo;
+        for (const Point3& p : bank.pairs.points()) {
+            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+        }
+        blend.addPairFit({std::clamp(q.x, lo.x, hi.x), std::clamp(q.y, lo.y, hi.y), std::clamp(q.z, lo.z, hi.z)},
+                         points, weights);
+    }
     // One domain point carries both: measured only where light and view are.
     blend.look.lightProvenance = blend.look.viewProvenance = provenanceOf(w);
 }

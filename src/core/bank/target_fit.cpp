@@ -23,24 +23,40 @@ std::vector<double> fitTerms(Direction light, int degree) {
     return terms;
 }
 
-TargetFit fitTargets(const std::vector<Direction>& lights, const float* values, std::size_t length,
-                     const std::vector<FitChoice>& choices) {
+int pairTermCount(int degree) { return (degree + 1) * (degree + 2) * (degree + 3) / 6 - 1; }
+
+std::vector<double> pairTerms(Point3 q, int degree) {
+    std::vector<double> terms;
+    terms.reserve(static_cast<std::size_t>(pairTermCount(degree)));
+    for (int total = 1; total <= degree; ++total)
+        for (int a = total; a >= 0; --a)
+            for (int b = total - a; b >= 0; --b)
+                terms.push_back(std::pow(q.x, a) * std::pow(q.y, b) * std::pow(q.z, total - a - b));
+    return terms;
+}
+
+namespace {
+
+// Ridge least squares of each region's run of `values` on the terms at each node (`terms`:
+// every node's at the largest degree; a lower degree's are their first termCount).
+TargetFit fitOnTerms(FitDomain domain, const std::vector<std::vector<double>>& terms, const float* values,
+                     std::size_t length, const std::vector<FitChoice>& choices) {
     BTFLUT_CHECK(!choices.empty() && length % choices.size() == 0);
     TargetFit fit;
+    fit.domain = domain;
     for (const FitChoice& c : choices) fit.degree = std::max(fit.degree, c.degree);
     if (fit.degree == 0) return fit;
-    const auto nodes = static_cast<Eigen::Index>(lights.size());
+    const auto nodes = static_cast<Eigen::Index>(terms.size());
     const std::size_t run = length / choices.size();
-    fit.coefficients.assign(static_cast<std::size_t>(fitTermCount(fit.degree)) * length, 0.f);
+    fit.coefficients.assign(static_cast<std::size_t>(fit.termCount()) * length, 0.f);
     for (std::size_t r = 0; r < choices.size(); ++r) {
         const FitChoice& choice = choices[r];
         if (choice.degree == 0) continue;
-        const Eigen::Index terms = fitTermCount(choice.degree);
-        Eigen::MatrixXd f(nodes, terms);
-        for (Eigen::Index n = 0; n < nodes; ++n) {
-            const std::vector<double> t = fitTerms(lights[static_cast<std::size_t>(n)], choice.degree);
-            for (Eigen::Index k = 0; k < terms; ++k) f(n, k) = t[static_cast<std::size_t>(k)];
-        }
+        const Eigen::Index count = TargetFit{choice.degree, {}, domain}.termCount();
+        Eigen::MatrixXd f(nodes, count);
+        for (Eigen::Index n = 0; n < nodes; ++n)
+            for (Eigen::Index k = 0; k < count; ++k)
+                f(n, k) = terms[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)];
         Eigen::MatrixXd q(nodes, static_cast<Eigen::Index>(run));
         for (Eigen::Index n = 0; n < nodes; ++n)
             for (std::size_t k = 0; k < run; ++k)
@@ -51,12 +67,51 @@ TargetFit fitTargets(const std::vector<Direction>& lights, const float* values, 
         Eigen::MatrixXd normal = f.transpose() * f;
         normal.diagonal().array() += choice.ridge * static_cast<double>(nodes);
         const Eigen::MatrixXd c = normal.ldlt().solve(f.transpose() * q);
-        for (Eigen::Index t = 0; t < terms; ++t)
+        for (Eigen::Index t = 0; t < count; ++t)
             for (std::size_t k = 0; k < run; ++k)
                 fit.coefficients[static_cast<std::size_t>(t) * length + r * run + k] =
                     static_cast<float>(c(t, static_cast<Eigen::Index>(k)));
     }
     return fit;
+}
+
+int largestDegree(const std::vector<FitChoice>& choices) {
+    int degree = 0;
+    for (const FitChoice& c : choices) degree = std::max(degree, c.degree);
+    return degree;
+}
+
+// Adds weight x (the terms at the lookup - the nodes' blend of theirs) . coefficients.
+void addTermCorrection(const TargetFit& fit, std::vector<double> difference,
+                       const std::vector<std::vector<double>>& nodeTerms, const std::vector<double>& nodeWeights,
+                       double weight, std::vector<double>& sum) {
+    BTFLUT_CHECK(nodeTerms.size() == nodeWeights.size());
+    for (std::size_t n = 0; n < nodeTerms.size(); ++n)
+        for (std::size_t t = 0; t < difference.size(); ++t) difference[t] -= nodeWeights[n] * nodeTerms[n][t];
+    const std::size_t length = sum.size();
+    BTFLUT_CHECK(fit.coefficients.size() == difference.size() * length);
+    for (std::size_t t = 0; t < difference.size(); ++t) {
+        const double d = weight * difference[t];
+        if (d == 0) continue;
+        const float* c = &fit.coefficients[t * length];
+        for (std::size_t k = 0; k < length; ++k) sum[k] += d * c[k];
+    }
+}
+
+}  // namespace
+
+TargetFit fitTargets(const std::vector<Direction>& lights, const float* values, std::size_t length,
+                     const std::vector<FitChoice>& choices) {
+    std::vector<std::vector<double>> terms;
+    for (const Direction& l : lights) terms.push_back(fitTerms(l, largestDegree(choices)));
+    return fitOnTerms(FitDomain::Light, terms, values, length, choices);
+}
+
+TargetFit fitPairTargets(const std::vector<Point3>& points, const float* values, std::size_t length,
+                         const std::vector<FitChoice>& choices) {
+    std::vector<std::vector<double>> terms;
+    for (const Point3& q : points) terms.push_back(pairTerms(q, largestDegree(choices)));
+    return fitOnTerms(FitDomain::Pair, terms, values, length, choices);
 }
 
 TargetFit mixFits(const TargetFit& a, double wa, const TargetFit& b, double wb) {
@@ -65,10 +120,11 @@ TargetFit mixFits(const TargetFit& a, double wa, const TargetFit& b, double wb) 
         for (float& c : out.coefficients) c *= static_cast<float>(a.empty() ? wb : wa);
         return out;
     }
-    const std::size_t length = a.coefficients.size() / static_cast<std::size_t>(fitTermCount(a.degree));
-    BTFLUT_CHECK(b.coefficients.size() == static_cast<std::size_t>(fitTermCount(b.degree)) * length);
-    TargetFit out{std::max(a.degree, b.degree), {}};
-    out.coefficients.assign(static_cast<std::size_t>(fitTermCount(out.degree)) * length, 0.f);
+    BTFLUT_CHECK(a.domain == b.domain);
+    const std::size_t length = a.coefficients.size() / static_cast<std::size_t>(a.termCount());
+    BTFLUT_CHECK(b.coefficients.size() == static_cast<std::size_t>(b.termCount()) * length);
+    TargetFit out{std::max(a.degree, b.degree), {}, a.domain};
+    out.coefficients.assign(static_cast<std::size_t>(out.termCount()) * length, 0.f);
     for (const auto& [fit, w] : {std::pair{&a, wa}, std::pair{&b, wb}})
         for (std::size_t k = 0; k < fit->coefficients.size(); ++k)
             out.coefficients[k] += static_cast<float>(w) * fit->coefficients[k];
@@ -78,20 +134,19 @@ TargetFit mixFits(const TargetFit& a, double wa, const TargetFit& b, double wb) 
 void addFitCorrection(const TargetFit& fit, Direction light, const std::vector<Direction>& nodeLights,
                       const std::vector<double>& nodeWeights, double weight, std::vector<double>& sum) {
     if (fit.empty() || weight == 0) return;
-    BTFLUT_CHECK(nodeLights.size() == nodeWeights.size());
-    std::vector<double> difference = fitTerms(light, fit.degree);
-    for (std::size_t n = 0; n < nodeLights.size(); ++n) {
-        const std::vector<double> at = fitTerms(nodeLights[n], fit.degree);
-        for (std::size_t t = 0; t < at.size(); ++t) difference[t] -= nodeWeights[n] * at[t];
-    }
-    const std::size_t length = sum.size();
-    BTFLUT_CHECK(fit.coefficients.size() == difference.size() * length);
-    for (std::size_t t = 0; t < difference.size(); ++t) {
-        const double d = weight * difference[t];
-        if (d == 0) continue;
-        const float* c = &fit.coefficients[t * length];
-        for (std::size_t k = 0; k < length; ++k) sum[k] += d * c[k];
-    }
+    BTFLUT_CHECK(fit.domain == FitDomain::Light);
+    std::vector<std::vector<double>> nodeTerms;
+    for (const Direction& l : nodeLights) nodeTerms.push_back(fitTerms(l, fit.degree));
+    addTermCorrection(fit, fitTerms(light, fit.degree), nodeTerms, nodeWeights, weight, sum);
+}
+
+void addPairFitCorrection(const TargetFit& fit, Point3 q, const std::vector<Point3>& nodePoints,
+                          const std::vector<double>& nodeWeights, double weight, std::vector<double>& sum) {
+    if (fit.empty() || weight == 0) return;
+    BTFLUT_CHECK(fit.domain == FitDomain::Pair);
+    std::vector<std::vector<double>> nodeTerms;
+    for (const Point3& p : nodePoints) nodeTerms.push_back(pairTerms(p, fit.degree));
+    addTermCorrection(fit, pairTerms(q, fit.degree), nodeTerms, nodeWeights, weight, sum);
 }
 
 void SegmentRanges::include(const float* values, std::size_t length, std::size_t segment) {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/direction/direction.h"
+#include "core/direction/triangulation.h"
 
 namespace btflut {
 
@@ -31,16 +32,28 @@ namespace btflut {
 int fitTermCount(int degree);
 std::vector<double> fitTerms(Direction light, int degree);
 
+/// The isotropic domain's (lut_bank.h): the monomials x^a y^b z^c of a pair's point
+/// (isotropicPoint: the light's disk point turned to the view's azimuth, and the view's disk
+/// radius) with 1 <= a + b + c <= degree, by total degree: (degree + 3 choose 3) - 1 of them.
+int pairTermCount(int degree);
+std::vector<double> pairTerms(Point3 q, int degree);
+
 /// The largest degree a file may hold (docs/btflut-format.md, TFIT).
 constexpr int kMaxFitDegree = 8;
 
-/// A layer's fit: coefficients of each term for each of the node values (regions x channels x
-/// quantiles); zero for a region that keeps the blend alone. Empty (degree 0): no fit.
+/// Where a fit's terms are read: a layer's light vector, or the isotropic domain's point.
+enum class FitDomain { Light, Pair };
+
+/// A layer's fit (or, in the isotropic domain, the bank's over every pair): coefficients of
+/// each term for each of the node values (regions x channels x quantiles); zero for a region
+/// that keeps the blend alone. Empty (degree 0): no fit.
 struct TargetFit {
     int degree = 0;
-    std::vector<float> coefficients;  ///< fitTermCount(degree) x values, term-major
+    std::vector<float> coefficients;  ///< termCount() x values, term-major
+    FitDomain domain = FitDomain::Light;
 
     bool empty() const { return degree == 0; }
+    int termCount() const { return domain == FitDomain::Light ? fitTermCount(degree) : pairTermCount(degree); }
 };
 
 /// One region's estimator: the blend alone (degree 0) or a polynomial of `degree` fitted with
@@ -54,6 +67,10 @@ struct FitChoice {
 /// length / choices.size() values) with each region's choice. Lights must be distinct.
 TargetFit fitTargets(const std::vector<Direction>& lights, const float* values, std::size_t length,
                      const std::vector<FitChoice>& choices);
+
+/// The same over pairs' points (the isotropic domain): a FitDomain::Pair fit.
+TargetFit fitPairTargets(const std::vector<Point3>& points, const float* values, std::size_t length,
+                         const std::vector<FitChoice>& choices);
 
 /// wa a + wb b: the two corrections mixed (the lower degree's terms lead the higher's, so its
 /// coefficients are padded with zeros). Both fit the same values.
@@ -74,6 +91,10 @@ struct SegmentRanges {
     /// Widens each run's range to hold `values` (length values, runs of `segment`).
     void include(const float* values, std::size_t length, std::size_t segment);
 };
+
+/// The same in the isotropic domain: the fit read at `q`, its nodes at their points.
+void addPairFitCorrection(const TargetFit& fit, Point3 q, const std::vector<Point3>& nodePoints,
+                          const std::vector<double>& nodeWeights, double weight, std::vector<double>& sum);
 
 /// Each run of `segment` values clamped to its range and sorted: quantile functions again.
 /// A range's ends are the edges of its darkest and brightest code's cells (a code y's values

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <deque>
 #include <mutex>
+#include <numbers>
+#include <optional>
 
 #include "core/histogram/histogram.h"
 #include "core/inverse/fit.h"
@@ -58,16 +60,36 @@ std::vector<Direction> sampleLights(double reach) {
     return out;
 }
 
+// The isotropic domain's points where the model is sampled: a 9 x 5 x 5 grid over the box
+// the measured points span, those whose light is above the horizon, as a light and a view.
+std::vector<std::pair<Direction, Direction>> samplePairs(const std::array<double, 6>& box) {
+    std::vector<std::pair<Direction, Direction>> out;
+    constexpr int kAlong[3] = {9, 5, 5};
+    for (int i = 0; i < kAlong[0]; ++i)
+        for (int j = 0; j < kAlong[1]; ++j)
+            for (int k = 0; k < kAlong[2]; ++k) {
+                const double x = std::lerp(box[0], box[3], i / (kAlong[0] - 1.0));
+                const double y = std::lerp(box[1], box[4], j / (kAlong[1] - 1.0));
+                const double z = std::lerp(box[2], box[5], k / (kAlong[2] - 1.0));
+                if (x * x + y * y > 1) continue;
+                const double viewTheta = 2 * std::asin(std::clamp(z / std::numbers::sqrt2, 0.0, 1.0));
+                out.emplace_back(fromDisk({x, y}), Direction{viewTheta, 0});
+            }
+    return out;
+}
+
 // What modelTargetFits answers from: the histograms fitted, the nodes' form and each layer's
-// view and measured reach.
+// view and measured reach, or (isotropic domain) the box of the measured points.
 struct Question {
     std::vector<HistogramRow> rows;
     int quantiles = 0, entries = 0;
     std::vector<double> reference;
-    std::vector<std::array<double, 3>> layers;  // view theta, phi; reach
+    std::vector<std::array<double, 3>> layers;     // view theta, phi; reach
+    std::optional<std::array<double, 6>> pairBox;  // lowest x, y, z, then highest
 
     bool operator==(const Question& o) const {
         return quantiles == o.quantiles && entries == o.entries && reference == o.reference && layers == o.layers &&
+               pairBox == o.pairBox &&
                std::ranges::equal(rows, o.rows, [](const HistogramRow& a, const HistogramRow& b) {
                    return a.light.theta == b.light.theta && a.light.phi == b.light.phi &&
                           a.view.theta == b.view.theta && a.view.phi == b.view.phi && a.bins == b.bins;
@@ -86,6 +108,22 @@ Result<ModelTargets> answer(const Question& q, std::size_t length) {
                                        .threads = 1};
     const NodeForm form{q.quantiles, q.entries, q.reference};
     ModelTargets out{.model = fit->model, .rms = fit->rms};
+    auto finite = [](const TargetFit& f) {
+        return std::ranges::all_of(f.coefficients, [](float c) { return std::isfinite(c); });
+    };
+    if (q.pairBox) {
+        const std::vector<std::pair<Direction, Direction>> pairs = samplePairs(*q.pairBox);
+        std::vector<Point3> points;
+        std::vector<float> values(pairs.size() * length);
+        for (const auto& [light, view] : pairs) points.push_back(isotropicPoint(light, view));
+        parallelFor(pairs.size(), 0, [&](std::size_t i) {
+            const std::vector<float> v = nodeValues(fit->model, simulation, pairs[i].first, pairs[i].second, form);
+            std::copy(v.begin(), v.end(), values.begin() + static_cast<std::ptrdiff_t>(i * length));
+        });
+        out.pairs = fitPairTargets(points, values.data(), length, {{kModelDegree, kModelRidge}});
+        if (!finite(out.pairs)) return Error{"the fitted model's distributions are not finite"};
+        return out;
+    }
     for (const auto& [theta, phi, reach] : q.layers) {
         const std::vector<Direction> lights = sampleLights(reach);
         const Direction view{theta, phi};  // a lambda may not capture a structured binding before C++20 in clang 15
@@ -95,8 +133,7 @@ Result<ModelTargets> answer(const Question& q, std::size_t length) {
             std::copy(v.begin(), v.end(), values.begin() + static_cast<std::ptrdiff_t>(i * length));
         });
         out.layers.push_back(fitTargets(lights, values.data(), length, {{kModelDegree, kModelRidge}}));
-        if (!std::ranges::all_of(out.layers.back().coefficients, [](float c) { return std::isfinite(c); }))
-            return Error{"the fitted model's distributions are not finite"};
+        if (!finite(out.layers.back())) return Error{"the fitted model's distributions are not finite"};
     }
     return out;
 }
@@ -114,8 +151,17 @@ Result<ModelTargets> modelTargetFits(const LutBank& bank, const NodeForm& form) 
         return Error{"a bank of LUTs needs its reference's share of texels at each of its " + std::to_string(samples) +
                      " entries"};
     Question q{.quantiles = form.quantiles, .entries = form.entries, .reference = form.reference};
+    if (bank.domain == BankDomain::Isotropic && !bank.pairs.points().empty()) {
+        std::array<double, 6> box{};
+        const Point3 first = bank.pairs.points().front();
+        box = {first.x, first.y, first.z, first.x, first.y, first.z};
+        for (const Point3& p : bank.pairs.points())
+            box = {std::min(box[0], p.x), std::min(box[1], p.y), std::min(box[2], p.z),
+                   std::max(box[3], p.x), std::max(box[4], p.y), std::max(box[5], p.z)};
+        q.pairBox = box;
+    }
     for (const ViewLayer& layer : bank.layers) {
-        q.layers.push_back({layer.view.theta, layer.view.phi, layer.measuredReach});
+        if (!q.pairBox) q.layers.push_back({layer.view.theta, layer.view.phi, layer.measuredReach});
         for (std::size_t n = 0; n < layer.measuredNodes; ++n)
             q.rows.push_back({layer.nodes[n].name, layer.nodes[n].light, layer.view,
                               histogramOf(&layer.nodeLuts[n * length], form)});
