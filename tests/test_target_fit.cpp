@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -482,6 +483,36 @@ TEST_CASE("the isotropic domain: one estimate over every pair, exact at them, cl
                  blended = l1.at("lut K1 R1 grey blend isotropic");
     MESSAGE("held-out L1 over the pairs: validated " << measured << ", the blend " << blended);
     CHECK(measured < 0.85 * blended);
+}
+
+TEST_CASE("the isotropic domain's few or planar pairs: finite monotone targets, the blend where unvalidated") {
+    // curet-c2: 11 pairs along one plane of the domain; the first 4 of them: too few to choose.
+    TempDir dir;
+    REQUIRE(runCli({"synth", "--preset", "foil", "--geometry", "curet-c2", "--size", "32", "--correlation-length", "4",
+                    "-q", "-o", dir / "c2"})
+                .status == 0);
+    nlohmann::json manifest = nlohmann::json::parse(readText(dir / "c2/btflut-dataset.json"));
+    manifest["images"].erase(manifest["images"].begin() + 4, manifest["images"].end());
+    {
+        std::ofstream out(dir / "c2/four.json");
+        out << manifest.dump();
+    }
+    for (const auto& [name, skipped] : {std::pair{"c2", false}, {"c2/four.json", true}}) {
+        CAPTURE(name);
+        Result<Dataset> dataset = openDataset(dir / name);
+        REQUIRE_MESSAGE(dataset.ok(), dataset.error());
+        Result<LutBank> bank = bakeBank(*dataset, {.domain = BankDomain::Isotropic});
+        REQUIRE_MESSAGE(bank.ok(), bank.error());
+        const nlohmann::json row = nlohmann::json::parse(bank->targetChoice)["layers"][0];
+        CHECK(row["domain"] == "pairs");
+        CHECK(row.contains("skipped") == skipped);
+        if (skipped) CHECK(bank->pairFit.empty());
+        requireQuantileFunctions(*bank);
+        for (const Direction& view : {Direction::fromDegrees(0, 0), Direction::fromDegrees(60, 90)})
+            for (double theta = 0; theta <= 85; theta += 17)
+                for (float v : bank->lookup(Direction::fromDegrees(theta, 30), view).values)
+                    REQUIRE((std::isfinite(v) && v >= 0 && v <= 1));
+    }
 }
 
 TEST_CASE("across views: the model, fitted to every view's lights together, estimates a view's few lights") {
