@@ -178,11 +178,11 @@ std::vector<float> pointValues(const LutBank& bank) {
 
 // The isotropic domain: every candidate's L1 per region at each measured pair's point,
 // estimated without it (folds of every eighth point), through a bank of the other points.
-Errors validatePairs(const LutBank& bank, const std::vector<Estimator>& list, const TargetFit& model,
-                     const std::vector<std::vector<double>>& weights, int threads) {
+// `values`: pointValues(bank).
+Errors validatePairs(const LutBank& bank, const std::vector<float>& values, const std::vector<Estimator>& list,
+                     const TargetFit& model, const std::vector<std::vector<double>>& weights, int threads) {
     const std::size_t points = bank.pairNodes.size(), folds = std::min(points, kMaxTargetFolds);
     const std::size_t regions = regionsOf(bank), length = bank.nodeLength();
-    const std::vector<float> values = pointValues(bank);
     Errors errors(list.size(), std::vector<std::vector<double>>(regions, std::vector<double>(points, NAN)));
     parallelFor(folds, threads, [&](std::size_t fold) {
         LutBank training = formOf(bank, BankDomain::Isotropic);  // the nodes at the kept points
@@ -280,8 +280,8 @@ nlohmann::json choosePairFit(LutBank& bank, const std::vector<Estimator>& list, 
         row["skipped"] = "fewer than " + std::to_string(kMinFitLights) + " measured light and view pairs: the blend";
         return row;
     }
-    const EstimatorPick choice = choose(validatePairs(bank, list, model, weights, threads), list, regions);
     const std::vector<float> values = pointValues(bank);
+    const EstimatorPick choice = choose(validatePairs(bank, values, list, model, weights, threads), list, regions);
     bank.pairFit =
         regions == 1
             ? estimatePairs(list[choice.chosen[0]], bank.pairs.points(), values.data(), bank.nodeLength(), 1, model)

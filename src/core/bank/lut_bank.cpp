@@ -94,6 +94,7 @@ void LutBank::buildTriangulations() {
     views = Triangulation(std::move(viewPoints));
     pairs = {};
     pairNodes.clear();
+    pairsLow = pairsHigh = {};
     if (domain != BankDomain::Isotropic) return;
     // Points that the symmetry maps onto one another become one point of the domain.
     std::vector<Point3> points;
@@ -109,6 +110,11 @@ void LutBank::buildTriangulations() {
             }
             pairNodes[it->second].push_back({l, n});
         }
+    if (!points.empty()) pairsLow = pairsHigh = points.front();
+    for (const Point3& p : points) {
+        pairsLow = {std::min(pairsLow.x, p.x), std::min(pairsLow.y, p.y), std::min(pairsLow.z, p.z)};
+        pairsHigh = {std::max(pairsHigh.x, p.x), std::max(pairsHigh.y, p.y), std::max(pairsHigh.z, p.z)};
+    }
     pairs = Triangulation3(std::move(points));
 }
 
@@ -275,7 +281,7 @@ public:
         BTFLUT_CHECK(layer.lutsLoaded);
         const float* lut = &layer.nodeLuts[n.node * m_sum.size()];
         for (std::size_t k = 0; k < m_sum.size(); ++k) m_sum[k] += weight * lut[k];
-        if (weight > 0) m_ranges.include(lut, m_sum.size(), m_bank.segmentLength());
+        if (weight > 0) m_blended.push_back(lut);
     }
 
     // A layer's fit at the light, for its measured nodes' share `weight` (target_fit.h).
@@ -301,7 +307,11 @@ public:
     BankLookup finish() {
         look.values.assign(m_sum.size(), 0.f);
         for (std::size_t k = 0; k < m_sum.size(); ++k) look.values[k] = static_cast<float>(m_sum[k]);
-        if (m_fitted) makeQuantileFunctions(look.values, m_bank.segmentLength(), m_ranges, m_bank.targetCode());
+        if (m_fitted) {  // within the levels of the nodes blended
+            SegmentRanges ranges;
+            for (const float* lut : m_blended) ranges.include(lut, m_sum.size(), m_bank.segmentLength());
+            makeQuantileFunctions(look.values, m_bank.segmentLength(), ranges, m_bank.targetCode());
+        }
         look.provenance = combine(look.lightProvenance, look.viewProvenance);
         return look;
     }
@@ -311,7 +321,7 @@ public:
 private:
     const LutBank& m_bank;
     std::vector<double> m_sum;
-    SegmentRanges m_ranges;  // the levels of the nodes blended, which a fit's correction keeps
+    std::vector<const float*> m_blended;  // the values of the nodes of a nonzero weight
     bool m_fitted = false;
 };
 
@@ -319,11 +329,13 @@ private:
 void addIsotropic(const LutBank& bank, Direction light, Direction view, NodeBlend& blend) {
     const Point3 q = isotropicPoint(light, view);
     const Weights w = bank.pairs.weightsAt(q);
+    const bool fitted = !bank.pairFit.empty();
     std::vector<Point3> points;  // those blended, and their weights: the fit's correction
     std::vector<double> weights;
     auto addPoint = [&](std::size_t point, double weight) {
         const std::vector<LutBank::NodeRef>& nodes = bank.pairNodes[point];
         for (LutBank::NodeRef n : nodes) blend.add(n, weight / static_cast<double>(nodes.size()));
+        if (!fitted) return;
         points.push_back(bank.pairs.points()[point]);
         weights.push_back(weight);
     };
@@ -344,12 +356,8 @@ void addIsotropic(const LutBank& bank, Direction light, Direction view, NodeBlen
     for (int p = 0; p < w.count; ++p) addPoint(static_cast<std::size_t>(w.index[p]), w.weight[p] * clamped);
     // The fit read at q pulled into the box of the measured points: it extrapolates beyond
     // their hull as far as they reach along each axis, never beyond.
-    if (!bank.pairFit.empty() && !bank.pairs.points().empty()) {
-        Point3 lo = bank.pairs.points().front(), hi = lo;
-        for (const Point3& p : bank.pairs.points()) {
-            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-        }
+    if (fitted) {
+        const Point3 &lo = bank.pairsLow, &hi = bank.pairsHigh;
         blend.addPairFit({std::clamp(q.x, lo.x, hi.x), std::clamp(q.y, lo.y, hi.y), std::clamp(q.z, lo.z, hi.z)},
                          points, weights);
     }

@@ -126,6 +126,9 @@ struct LutBank {
     /// isotropic domain: the nodes at each point of `pairs` (several where the symmetry
     /// maps measurements onto one point; they are averaged).
     std::vector<std::vector<NodeRef>> pairNodes;
+    /// isotropic domain: the corners of the box the points of `pairs` span (lowest x, y, z;
+    /// highest), where pairFit is read.
+    Point3 pairsLow, pairsHigh;
     /// isotropic domain: the estimate of the targets between the measured pairs chosen by
     /// validation (bake/target_choice.h), over the pairs' points; empty: their blend alone.
     TargetFit pairFit;

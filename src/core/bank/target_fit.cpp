@@ -37,14 +37,18 @@ std::vector<double> pairTerms(Point3 q, int degree) {
 
 namespace {
 
+int largestDegree(const std::vector<FitChoice>& choices) {
+    int degree = 0;
+    for (const FitChoice& c : choices) degree = std::max(degree, c.degree);
+    return degree;
+}
+
 // Ridge least squares of each region's run of `values` on the terms at each node (`terms`:
 // every node's at the largest degree; a lower degree's are their first termCount).
 TargetFit fitOnTerms(FitDomain domain, const std::vector<std::vector<double>>& terms, const float* values,
                      std::size_t length, const std::vector<FitChoice>& choices) {
     BTFLUT_CHECK(!choices.empty() && length % choices.size() == 0);
-    TargetFit fit;
-    fit.domain = domain;
-    for (const FitChoice& c : choices) fit.degree = std::max(fit.degree, c.degree);
+    TargetFit fit{.degree = largestDegree(choices), .domain = domain};
     if (fit.degree == 0) return fit;
     const auto nodes = static_cast<Eigen::Index>(terms.size());
     const std::size_t run = length / choices.size();
@@ -73,12 +77,6 @@ TargetFit fitOnTerms(FitDomain domain, const std::vector<std::vector<double>>& t
                     static_cast<float>(c(t, static_cast<Eigen::Index>(k)));
     }
     return fit;
-}
-
-int largestDegree(const std::vector<FitChoice>& choices) {
-    int degree = 0;
-    for (const FitChoice& c : choices) degree = std::max(degree, c.degree);
-    return degree;
 }
 
 // Adds weight x (the terms at the lookup - the nodes' blend of theirs) . coefficients.

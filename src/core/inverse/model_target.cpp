@@ -152,13 +152,8 @@ Result<ModelTargets> modelTargetFits(const LutBank& bank, const NodeForm& form) 
                      " entries"};
     Question q{.quantiles = form.quantiles, .entries = form.entries, .reference = form.reference};
     if (bank.domain == BankDomain::Isotropic && !bank.pairs.points().empty()) {
-        std::array<double, 6> box{};
-        const Point3 first = bank.pairs.points().front();
-        box = {first.x, first.y, first.z, first.x, first.y, first.z};
-        for (const Point3& p : bank.pairs.points())
-            box = {std::min(box[0], p.x), std::min(box[1], p.y), std::min(box[2], p.z),
-                   std::max(box[3], p.x), std::max(box[4], p.y), std::max(box[5], p.z)};
-        q.pairBox = box;
+        const Point3 &lo = bank.pairsLow, &hi = bank.pairsHigh;
+        q.pairBox = {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z};
     }
     for (const ViewLayer& layer : bank.layers) {
         if (!q.pairBox) q.layers.push_back({layer.view.theta, layer.view.phi, layer.measuredReach});
