@@ -25,51 +25,6 @@ using namespace btflut::test;
 
 namespace {
 
-// A Lambertian relief under `lights`: a normal map of bumps, an albedo varying in colour,
-// cast-shadow-free shading, and a black border of `border` pixels (masked out when > 0).
-struct Relief {
-    int size = 48, border = 0;
-    bool colour = true;
-};
-
-Image reliefImage(const Relief& r, Direction light) {
-    Image im(r.size, r.size, r.colour ? 3 : 1);
-    const Vec3 l = toVector(light);
-    for (int y = 0; y < r.size; ++y)
-        for (int x = 0; x < r.size; ++x) {
-            const bool inside = x >= r.border && y >= r.border && x < r.size - r.border && y < r.size - r.border;
-            const double p = 0.6 * std::sin(0.31 * x) * std::cos(0.23 * y), q = 0.5 * std::cos(0.27 * x + 0.4 * y);
-            const double norm = std::sqrt(p * p + q * q + 1);
-            const double shade = std::max(0.0, (-p * l.x - q * l.y + l.z) / norm);
-            for (int c = 0; c < im.channels; ++c) {
-                const double albedo = 0.55 + 0.3 * std::sin(0.11 * (x + 3 * c) + 0.07 * y);
-                im.at(x, y, c) =
-                    inside ? static_cast<float>(std::lround(std::clamp(albedo * shade, 0.0, 1.0) * 255) / 255.0) : 0.f;
-            }
-        }
-    return im;
-}
-
-// The relief's images as a dataset on disk (and its mask when it has a border).
-std::string writeRelief(const TempDir& dir, const Relief& r, const std::vector<Direction>& lights) {
-    nlohmann::json manifest{{"btflut_dataset", 1}, {"images", nlohmann::json::array()}};
-    for (std::size_t i = 0; i < lights.size(); ++i) {
-        const std::string name = "l" + std::to_string(i) + ".png";
-        REQUIRE(savePng(reliefImage(r, lights[i]), dir / name).ok());
-        manifest["images"].push_back(
-            {{"file", name}, {"light", {{"theta", lights[i].thetaDegrees()}, {"phi", lights[i].phiDegrees()}}}});
-    }
-    if (r.border > 0) {
-        Image mask(r.size, r.size, 1);
-        for (int y = r.border; y < r.size - r.border; ++y)
-            for (int x = r.border; x < r.size - r.border; ++x) mask.at(x, y, 0) = 1;
-        REQUIRE(savePng(mask, dir / "mask.png").ok());
-        manifest["mask"] = "mask.png";
-    }
-    std::ofstream(dir / "btflut-dataset.json") << manifest.dump(1);
-    return dir / "btflut-dataset.json";
-}
-
 std::vector<LightModelOptions> everyBasis() {
     return {{.basis = LightBasis::Ptm},
             {.basis = LightBasis::Hsh, .order = 2},

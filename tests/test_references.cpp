@@ -554,7 +554,7 @@ TEST_CASE("hold-out folds, and eval end to end on a small material") {
     requireOneLineError(runCli({"eval", m.grey, "--holdout", "every:2", "--modes", "ptm", "--no-gl"}),
                         "the PTM fits six terms");
     requireOneLineError(runCli({"eval", m.grey, "--modes", "lut,shiny", "--no-gl"}),
-                        "'shiny' is not a mode eval measures: lut, brdf, nearest, flat, or a light model (ptm, hsh");
+                        "'shiny' is not a mode eval measures: lut, brdf, nearest, flat, a light model (ptm, hsh");
     requireOneLineError(runCli({"eval", m.grey, "--references", "1,x", "--no-gl"}), "--references '1,x'");
 }
 

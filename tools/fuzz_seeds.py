@@ -106,6 +106,10 @@ try:
     run('bake', os.path.join(work, 'btf'), '-o', os.path.join(work, 'pairs.btflut'), '--domain', 'isotropic', '--grid', '2',
         '--entries', '8', '-q')
     seed('bank', 'pair-fit.btflut', open(os.path.join(work, 'pairs.btflut'), 'rb').read())
+    # version 8: a learned predictor (LRND)
+    run('bake', colour, '-o', os.path.join(work, 'neural.btflut'), '--predictor', 'neural4', '--colour', 'rgb', '--grid',
+        '3', '--entries', '16', '--quantiles', '8', '-q')
+    seed('bank', 'learned.btflut', open(os.path.join(work, 'neural.btflut'), 'rb').read())
 
     # Text files of real datasets.
     seed('manifest', 'synth.json', open(os.path.join(tiny, 'btflut-dataset.json')).read())

@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "core/relight/engine_material.h"
 #include "gl/blend_textures.h"
 #include "gl/objects.h"
 #include "gl/relight_pass.h"
@@ -28,6 +29,7 @@ GlTexture uploadReference(const Image& image) {
 Result<Image> renderNative(const LutBank& bank, Direction light, Direction view, bool dither, bool interpolate) {
     const Image& ref = bank.reference;
     if (ref.samples.empty()) return Error{"the bank has no reference image inside"};
+    if (Status s = drawnOnGpu(bank); !s) return Error{s.error()};
     GLint maxSize = 0;
     gl.GetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
     if (ref.width > maxSize || ref.height > maxSize)

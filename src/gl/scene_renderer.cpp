@@ -4,6 +4,7 @@
 
 #include "core/bank/bank_file.h"
 #include "core/check.h"
+#include "core/relight/engine_material.h"
 #include "gl/shader.h"
 #include "gl/textures.h"
 
@@ -54,6 +55,7 @@ Result<std::unique_ptr<SceneRenderer>> SceneRenderer::create(const Scene& scene,
             r->m_stats.viewLayers += bank->layers.size();
             for (const ViewLayer& layer : bank->layers) r->m_stats.viewLayersLoaded += layer.lutsLoaded;
             if (bank->reference.samples.empty()) return Error{path + ": the bank has no reference image inside"};
+            if (Status s = drawnOnGpu(*bank); !s) return Error{path + ": " + s.error()};
             Material& m = r->m_materials[name];
             m.bank = std::move(*bank);
             m.relighter.emplace(m.bank);

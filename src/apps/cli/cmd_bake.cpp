@@ -193,12 +193,11 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     if (o.domain != "auto") options.domain = *parseDomain(o.domain);
     options.references = o.references;
     if (o.predictor != "auto" && o.predictor != "references") {
-        std::optional<Result<LightModelOptions>> model = lightModelNamed(o.predictor);
+        std::optional<Status> model = setModelNamed(options, o.predictor);
         if (!model)
             return Error{"--predictor '" + o.predictor +
-                         "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN or blnN"};
+                         "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN, blnN or neuralN"};
         if (!*model) return Error{"--predictor " + model->error()};
-        options.model = **model;
     }
     if (o.match >= 0) options.match = o.match;
     options.regions = o.regions;

@@ -399,6 +399,7 @@ Status runExport(const ExportOptions& o) {
     if (!o.rti.empty())
         if (Status s = exportRti(o, *bank); !s) return s;
     if (o.output.empty() && o.web.empty()) return success();
+    if (Status s = drawnOnGpu(*bank); !s) return Error{o.bank + ": " + s.error()};
     if (o.grid > 0 && o.grid != bank->gridSize) {  // resampled from the measured directions
         const std::size_t length = bank->makesLuts() ? bank->matchLength() : bank->lutLength();
         const std::uint64_t bytes = static_cast<std::uint64_t>(o.grid) * o.grid * length * 2 * bank->layers.size();

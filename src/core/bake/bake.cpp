@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/parallel.h"
+#include "core/predict/learned_predictor.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/reference_blend.h"
 #include "core/predict/references.h"
@@ -124,7 +125,7 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
     if (options.references < 1 || static_cast<std::size_t>(options.references) > distinct)
         return Error{"--references " + std::to_string(options.references) + " must be within 1.." +
                      std::to_string(distinct) + " (the distinct light directions of " + dataset.source + ")"};
-    if (options.model) {
+    if (options.fitsModel()) {
         // no references: the model is fitted to every image
     } else if (options.colour == ColourMode::Lrgb && options.references > 16)
         return Error{"--colour lrgb packs at most 16 references (four per texture layer); --references " +
@@ -170,10 +171,12 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
     return setup;
 }
 
-// Decodes every image into `decoded` (the reference copied) and fits the light model to those
-// of the reference's view.
-Result<LightModel> fitModel(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex, const Image& ref,
-                            const Mask& mask, const ImageProvider& images, std::vector<Image>& decoded) {
+// Decodes every image into `decoded` (the reference copied) and fits the model (a light
+// model or a learned one) to those of the reference's view, as the bank's predictor.
+Result<std::shared_ptr<const Predictor>> fitModel(const Dataset& dataset, const BakeOptions& options,
+                                                  std::size_t refIndex, const Image& ref, const Mask& mask,
+                                                  const ImageProvider& images, std::vector<Image>& decoded,
+                                                  bool perChannel) {
     decoded.assign(dataset.images.size(), Image());
     std::vector<std::string> errors(dataset.images.size());
     parallelFor(dataset.images.size(), options.threads, [&](std::size_t i) {
@@ -204,9 +207,18 @@ Result<LightModel> fitModel(const Dataset& dataset, const BakeOptions& options, 
         view.push_back(&decoded[i]);
         lights.push_back(dataset.images[i].light);
     }
+    if (options.learned) {
+        LearnedOptions o = *options.learned;
+        o.threads = options.threads;
+        Result<LearnedModel> model = fitLearnedModel(view, lights, mask, o, dataset.source);
+        if (!model) return Error{model.error()};
+        return std::shared_ptr<const Predictor>(std::make_shared<LearnedPredictor>(std::move(*model), perChannel));
+    }
     LightModelOptions o = *options.model;
     o.threads = options.threads;
-    return fitLightModel(view, lights, mask, o, dataset.source);
+    Result<LightModel> model = fitLightModel(view, lights, mask, o, dataset.source);
+    if (!model) return Error{model.error()};
+    return std::shared_ptr<const Predictor>(std::make_shared<ModelPredictor>(std::move(*model), perChannel));
 }
 
 // A reference as the blend stores it: 8-bit (blends are integer sums of 8-bit codes,
@@ -289,9 +301,10 @@ public:
     // Classic banks keep each image's LUT from the reference: its levels are counted.
     Status preparePredictor() {
         const DatasetImage& refInfo = m_dataset.images[m_refIndex];
-        if (m_options.model && (m_options.references > 1 || m_options.colour == ColourMode::Lrgb))
-            return Error{"--predictor " + std::string(lightBasisName(m_options.model->basis)) +
-                         " relights with a light model: it takes no --references, and its colour is the model's (grey "
+        if (m_options.fitsModel() && (m_options.references > 1 || m_options.colour == ColourMode::Lrgb))
+            return Error{"--predictor " +
+                         (m_options.model ? std::string(lightBasisName(m_options.model->basis)) : "neural") +
+                         " relights with a model: it takes no --references, and its colour is the model's (grey "
                          "or rgb)"};
         if (!(m_options.match >= 0 && m_options.match <= 1))
             return Error{"--match must be from 0 (not at all) to 1 (fully)"};
@@ -310,8 +323,10 @@ public:
                                  "LUT can give it another histogram; choose another "
                                  "with --reference"};
         }
-        if (m_options.model) {
-            Result<LightModel> model = fitModel(m_dataset, m_options, m_refIndex, *m_ref, m_mask, m_images, m_decoded);
+        if (m_options.fitsModel()) {
+            Result<std::shared_ptr<const Predictor>> model =
+                fitModel(m_dataset, m_options, m_refIndex, *m_ref, m_mask, m_images, m_decoded,
+                         m_bank.colour == ColourMode::Rgb);
             if (!model) return Error{model.error()};
             m_model = std::move(*model);
         }
@@ -322,7 +337,7 @@ public:
     // PTM and the lrgb albedo accumulate on the way, the blend's references are kept.
     Result<std::vector<DirectionalLut>> measure() {
         const ImageProvider fromMemory = [&](std::size_t i, Image&) -> Result<const Image*> { return &m_decoded[i]; };
-        const ImageProvider& pass = m_options.model ? fromMemory : m_images;
+        const ImageProvider& pass = m_options.fitsModel() ? fromMemory : m_images;
         const DatasetImage& refInfo = m_dataset.images[m_refIndex];
         const Image& ref = *m_ref;
         const std::size_t length = m_bank.nodeLength();
@@ -442,7 +457,7 @@ private:
         blend.mask = m_mask;
         const bool perChannel = m_bank.colour == ColourMode::Rgb;
         if (m_model) {
-            blend.predictor = std::make_shared<ModelPredictor>(std::move(*m_model), perChannel);
+            blend.predictor = std::move(m_model);
             return success();
         }
         for (const Image& r : m_blendReferences) {
@@ -473,12 +488,28 @@ private:
     std::vector<LevelCounts> m_refLevels;  // classic banks: the reference's levels per channel
     std::vector<Image> m_decoded;          // a light model's images, decoded once for the fit and the pass
     std::vector<Image> m_blendReferences;
-    std::optional<LightModel> m_model;  // the predictor's, fitted before the images are measured
+    std::shared_ptr<const Predictor> m_model;  // a fitted model, before the images are measured
     std::optional<PtmFitter> m_ptm;
     std::optional<AlbedoAccumulator> m_albedo;
 };
 
 }  // namespace
+
+std::optional<Status> setModelNamed(BakeOptions& options, const std::string& name) {
+    if (std::optional<Result<LightModelOptions>> model = lightModelNamed(name)) {
+        if (!*model) return Status{Error{model->error()}};
+        options.model = **model;
+        options.learned.reset();
+        return success();
+    }
+    if (std::optional<Result<LearnedOptions>> learned = learnedModelNamed(name)) {
+        if (!*learned) return Status{Error{learned->error()}};
+        options.learned = **learned;
+        options.model.reset();
+        return success();
+    }
+    return std::nullopt;
+}
 
 Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options, const ImageProvider& provider) {
     const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {

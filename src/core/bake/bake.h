@@ -12,6 +12,7 @@
 
 #include "core/bank/lut_bank.h"
 #include "core/data/dataset.h"
+#include "core/predict/learned_model.h"
 
 namespace btflut {
 
@@ -36,6 +37,8 @@ struct BakeOptions {
     /// Instead of references: a light model (light_model.h) fitted to every image, relit,
     /// then matched. Every image is held in memory while baking (the fit needs them all).
     std::optional<LightModelOptions> model;
+    /// Or a learned model (learned_model.h), trained on every image, held in memory likewise.
+    std::optional<LearnedOptions> learned;
     float match = 1;  ///< with a model or references: how far each light's LUT matches (LutBank::Blend::match)
     LutBank::Blend::Target target =
         LutBank::Blend::Target::Measured;  ///< with a model or references (LutBank::Blend::target)
@@ -51,8 +54,15 @@ struct BakeOptions {
 
     /// True when these options bake a bank with a predictor (one that makes its LUTs at run
     /// time: LutBank::makesLuts), false for the paper's bank of one reference's LUTs.
-    bool predicts() const { return bakePredicts(references, regions, !labelsPath.empty(), colour, model.has_value()); }
+    bool predicts() const { return bakePredicts(references, regions, !labelsPath.empty(), colour, fitsModel()); }
+    /// True when a model (a light model or a learned one) is fitted to every image.
+    bool fitsModel() const { return model.has_value() || learned.has_value(); }
 };
+
+/// Sets the options' model from a `--predictor` name: a light model (lightModelNamed) or a
+/// learned one (learnedModelNamed). Nothing when the name names neither, an error for a
+/// number out of range.
+std::optional<Status> setModelNamed(BakeOptions& options, const std::string& name);
 
 /// Supplies image `index` of a dataset: decodes it into `storage` and returns &storage, or
 /// returns an image it already holds (benchmarks time the baking without the decoding).

@@ -8,6 +8,7 @@
 #include "core/bank/bank_reader.h"
 #include "core/check.h"
 #include "core/io/json_text.h"
+#include "core/predict/learned_predictor.h"
 #include "core/predict/model_predictor.h"
 
 namespace btflut {
@@ -89,7 +90,7 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
         const auto predictor = in.get<std::uint32_t>();
         const auto match = in.get<float>();
         const auto target = in.get<std::uint32_t>();
-        if (in.ok() && (predictor > 2 || !(match >= 0 && match <= 1) || target > 1 ||
+        if (in.ok() && (predictor > (version >= 8 ? 3u : 2u) || !(match >= 0 && match <= 1) || target > 1 ||
                         (bank.blend.quantiles > 0 ? (head.references == 0) != (predictor != 0)
                                                   : predictor != 0 || match != 1 || target != 0)))
             return fail("predictor, match or target out of range, or not what the references say");
@@ -186,6 +187,8 @@ public:
                 return readBlendChunk(chunk.tag, in, m_name, m_head, m_bank, m_parts);
             case kLightModel:
                 return lightModel(in);
+            case kLearnedModel:
+                return learnedModel(in);
             case kMatchGrid:
                 return matchGrid(chunk);
             case kSelection:
@@ -316,6 +319,16 @@ private:
         return success();
     }
 
+    // LRND: the learned model of a bank predicted by one.
+    Status learnedModel(Reader& in) {
+        if (m_parts.learned || !m_bank.makesLuts() || m_head.predictor != FilePredictor::Learned)
+            return fail("unexpected LRND chunk");
+        Result<LearnedModel> model = decodeLearnedModel(in, m_name, m_head);
+        if (!model) return Error{model.error()};
+        m_parts.learned = std::move(*model);
+        return success();
+    }
+
     // MGRD: one per layer, in order, after the layers: the LUTs over the grid of a bank with
     // a predictor.
     Status matchGrid(const Chunk& chunk) {
@@ -423,6 +436,9 @@ private:
             return fail("a PTM-predicted bank without its PTM");
         if (kind == FilePredictor::Model && (!m_parts.model || m_bank.colour == ColourMode::Lrgb))
             return fail("a bank predicted by a light model without its model (LMDL chunk)");
+        if (kind == FilePredictor::Learned && (!m_parts.learned || m_bank.colour == ColourMode::Lrgb ||
+                                               (m_bank.colour == ColourMode::Rgb && m_parts.learned->channels != 3)))
+            return fail("a bank predicted by a learned model without its model (LRND chunk), or of another colour");
         if (!m_head.embedded || m_parts.references.size() != m_head.references || blend.mask.inside.empty() ||
             (blend.regions > 1) != !blend.labels.empty() ||
             (m_bank.colour == ColourMode::Lrgb) != !m_parts.albedo.samples.empty() || m_bank.layers.size() != 1)
@@ -435,6 +451,8 @@ private:
             blend.predictor = std::make_shared<ModelPredictor>(lightModelFromPtm(m_bank.ptm), perChannel, true);
         else if (kind == FilePredictor::Model)
             blend.predictor = std::make_shared<ModelPredictor>(std::move(*m_parts.model), perChannel);
+        else if (kind == FilePredictor::Learned)
+            blend.predictor = std::make_shared<LearnedPredictor>(std::move(*m_parts.learned), perChannel);
         else
             blend.predictor = std::make_shared<ReferenceBlend>(std::move(m_parts.references), std::move(m_parts.lights),
                                                                perChannel, std::move(m_parts.albedo));

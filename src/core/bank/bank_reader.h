@@ -12,6 +12,7 @@
 
 #include "core/bank/bank_format.h"
 #include "core/bank/lut_bank.h"
+#include "core/predict/learned_model.h"
 #include "core/predict/light_model.h"
 #include "core/predict/ptm.h"
 #include "core/predict/reference_blend.h"
@@ -80,7 +81,11 @@ struct PredictorParts {
     std::vector<ReferenceLight> lights;
     Image albedo;
     std::optional<LightModel> model;
+    std::optional<LearnedModel> learned;
 };
+
+// LRND: the learned model of a bank predicted by one (encodeLearnedModel in bank_write.cpp).
+Result<LearnedModel> decodeLearnedModel(Reader& in, const std::string& name, const Head& head);
 
 // LMDL: the light model of a bank predicted by one (encodeLightModel in bank_write.cpp).
 Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const Head& head);

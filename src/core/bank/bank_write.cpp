@@ -6,6 +6,7 @@
 #include "core/bank/bank_file.h"
 #include "core/bank/bank_format.h"
 #include "core/check.h"
+#include "core/predict/learned_predictor.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/reference_blend.h"
 
@@ -93,8 +94,38 @@ Bytes encodeLightModel(const LightModel& m) {
     return std::move(w.bytes());
 }
 
+// LRND payload (docs/btflut-format.md): the model's sizes, each code's scale and bias, the
+// light network's and the residual network's parameters, then the codes three to an RGB PNG.
+Bytes encodeLearnedModel(const LearnedModel& m) {
+    Writer w;
+    w.put(static_cast<std::uint32_t>(m.codes));
+    w.put(static_cast<std::uint32_t>(m.channels));
+    for (const std::vector<int>* widths : {&m.lightHidden, &m.hidden}) {
+        w.put(static_cast<std::uint32_t>(widths->size()));
+        for (int h : *widths) w.put(static_cast<std::uint32_t>(h));
+    }
+    for (float v : m.scale) w.put(v);
+    for (float v : m.bias) w.put(v);
+    for (const std::vector<float>* network : {&m.lightNetwork, &m.decoder}) {
+        w.put(static_cast<std::uint32_t>(network->size()));
+        w.putBytes(network->data(), network->size() * sizeof(float));
+    }
+    const auto N = static_cast<std::size_t>(m.codes);
+    for (std::size_t first = 0; first < N; first += 3) {
+        Image image(m.width, m.height, 3);
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3 && first + c < N; ++c)
+                image.samples[i * 3 + c] = static_cast<float>(m.coefficients[i * N + first + c]) / 255.f;
+        const Bytes png = encodePng(image, 8);
+        w.put(static_cast<std::uint32_t>(png.size()));
+        w.putBytes(png.data(), png.size());
+    }
+    return std::move(w.bytes());
+}
+
 // The HEAD's predictor of a bank that makes its LUTs.
 FilePredictor filePredictor(const LutBank& bank) {
+    if (bank.predictorAs<LearnedPredictor>()) return FilePredictor::Learned;
     if (const ModelPredictor* m = bank.predictorAs<ModelPredictor>())
         return m->bankPtm() ? FilePredictor::Ptm : FilePredictor::Model;
     return FilePredictor::References;
@@ -107,6 +138,7 @@ std::uint32_t bankFormatVersion(const LutBank& bank) {
     // they always could.
     // A fit between the lights; a choice of the blend everywhere changes no lookup, and such
     // banks stay readable where they were (the choice's figures are then not kept).
+    if (bank.makesLuts() && filePredictor(bank) == FilePredictor::Learned) return 8;
     if (!bank.pairFit.empty()) return 7;  // the isotropic domain's fit
     if (std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) { return !l.fit.empty(); }))
         return 6;
@@ -220,6 +252,8 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
             putChunk(file, kAlbedo, encodePng(references->albedo(), 8));
         if (filePredictor(bank) == FilePredictor::Model)
             putChunk(file, kLightModel, encodeLightModel(bank.predictorAs<ModelPredictor>()->model()));
+        if (filePredictor(bank) == FilePredictor::Learned)
+            putChunk(file, kLearnedModel, encodeLearnedModel(bank.predictorAs<LearnedPredictor>()->model()));
     }
     for (const ViewLayer& layer : bank.layers)  // version 5: every layer's or none
         if (!layer.matchGridLuts.empty())

@@ -114,6 +114,69 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
     return m;
 }
 
+// LRND (encodeLearnedModel in bank_write.cpp): every count checked before anything is
+// allocated by it, the decoder's parameters as many as its sizes need and finite, the codes
+// the reference's size.
+Result<LearnedModel> decodeLearnedModel(Reader& in, const std::string& name, const Head& head) {
+    auto fail = [&](const std::string& what) { return Error{name + ": LRND chunk: " + what}; };
+    LearnedModel m;
+    const auto codes = in.get<std::uint32_t>(), channels = in.get<std::uint32_t>();
+    if (!in.ok() || codes < 1 || codes > static_cast<std::uint32_t>(LearnedModel::kMaxCodes) ||
+        (channels != 1 && channels != 3) || channels > head.refChannels)
+        return fail("invalid description");
+    m.codes = static_cast<int>(codes);
+    m.channels = static_cast<int>(channels);
+    m.width = static_cast<int>(head.refWidth);
+    m.height = static_cast<int>(head.refHeight);
+    for (std::vector<int>* widths : {&m.lightHidden, &m.hidden}) {
+        const auto layers = in.get<std::uint32_t>();
+        if (!in.ok() || layers > 8 || (widths == &m.hidden && layers < 1)) return fail("invalid layer count");
+        for (std::uint32_t k = 0; k < layers; ++k) {
+            const auto width = in.get<std::uint32_t>();
+            if (!in.ok() || width < 1 || width > 256) return fail("invalid hidden layer width");
+            widths->push_back(static_cast<int>(width));
+        }
+    }
+    for (std::uint32_t k = 0; k < codes; ++k) m.scale.push_back(in.get<float>());
+    for (std::uint32_t k = 0; k < codes; ++k) m.bias.push_back(in.get<float>());
+    if (!in.ok()) return fail("truncated");
+    for (std::uint32_t k = 0; k < codes; ++k)
+        if (!std::isfinite(m.scale[k]) || !(m.scale[k] > 0) || !std::isfinite(m.bias[k]))
+            return fail("invalid scale or bias");
+    for (std::vector<float>* network : {&m.lightNetwork, &m.decoder}) {
+        const auto parameters = in.get<std::uint32_t>();
+        const std::size_t expected =
+            LearnedModel::parameterCount(network == &m.decoder ? m.decoderSizes() : m.lightSizes());
+        if (!in.ok() || parameters != expected || expected > static_cast<std::size_t>(LearnedModel::kMaxParameters) ||
+            parameters > in.remaining() / 4)
+            return fail("a network's parameters do not fit its sizes");
+        network->resize(parameters);
+        if (const std::uint8_t* bytes = in.getBytes(parameters * sizeof(float)); bytes)
+            std::memcpy(network->data(), bytes, parameters * sizeof(float));
+        for (float v : *network)
+            if (!std::isfinite(v)) return fail("a network parameter is not finite");
+    }
+    const std::size_t N = codes;
+    m.coefficients.resize(m.texels() * N);
+    for (std::size_t first = 0; first < N; first += 3) {
+        const auto length = in.get<std::uint32_t>();
+        const std::uint8_t* bytes = in.getBytes(length);
+        const std::string what = "codes " + std::to_string(first) + "-" + std::to_string(std::min(N, first + 3) - 1);
+        if (!in.ok()) return fail("truncated " + what);
+        Result<Image> image =
+            decodeImage(Bytes(bytes, bytes + length), name + " (learned " + what + ")", m.width, m.height);
+        if (!image) return Error{image.error()};
+        if (image->width != m.width || image->height != m.height || image->channels != 3 || image->bitDepth != 8)
+            return fail(what + " is not an RGB8 image of the reference's size");
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3 && first + c < N; ++c)
+                m.coefficients[i * N + first + c] =
+                    static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
+    }
+    if (in.remaining() != 0) return fail("has the wrong size");
+    return m;
+}
+
 // The PTM of a bank whose reference image is width x height (from HEAD, already checked
 // against the pixel limit): its own size must match before anything is allocated.
 Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t width, std::uint32_t height) {

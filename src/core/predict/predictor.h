@@ -6,6 +6,7 @@
 // file here, not a branch in every evaluator:
 //   reference_blend.h   K references blended with the light's barycentric weights
 //   model_predictor.h   a linear light model (ptm, hsh, rbf, bln; a bank's PTM as one)
+//   learned_predictor.h a learned model: per-texel codes and a small decoder network
 //
 //   const Predictor& p = bank.predictor();           // lut_bank.h: the bank holds one
 //   PredictorFrame f = p.frameAt(light);             // per light change: integers
@@ -17,6 +18,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -47,12 +49,14 @@ struct ShaderValues {
 };
 
 /// A predictor's integers at one light: the references blended and their weights (a
-/// reference blend), or the light model's per-light integers.
+/// reference blend), the light model's per-light integers, or a learned model's prediction.
 struct PredictorFrame {
     int count = 1;  ///< references blended, 1 to 3 (0 for a light model)
     std::array<int, 3> references{0, 0, 0};
     std::array<std::int32_t, 3> weights{kWeightUnit, 0, 0};  ///< in 1 / kWeightUnit, summing to kWeightUnit
     LightModelFixed model;                                   ///< a light model's per-light integers
+    /// A learned model's decoded prediction at the light: every texel's channel codes (0..255).
+    std::shared_ptr<const std::vector<std::uint8_t>> decoded;
 };
 
 class Predictor {

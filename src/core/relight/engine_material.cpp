@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/check.h"
+#include "core/predict/learned_predictor.h"
 #include "core/predict/light_model.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/reference_blend.h"
@@ -80,7 +81,15 @@ void setModel(EngineMaterial& out, const LightModel& m) {
 
 }  // namespace
 
+Status drawnOnGpu(const LutBank& bank) {
+    if (bank.makesLuts() && bank.predictorAs<LearnedPredictor>())
+        return Error{"a bank predicted by a learned model (" + bank.predictorName() +
+                     ") is relit on the CPU only (btflut relight, eval); no GPU path draws it yet"};
+    return success();
+}
+
 Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& name) {
+    if (Status s = drawnOnGpu(bank); !s) return Error{name + ": " + s.error()};
     if (bank.reference.samples.empty())
         return Error{name + ": the bank holds no reference image (baked with --no-reference)"};
     EngineMaterial out;

@@ -69,4 +69,8 @@ constexpr int kEngineWeightGrid = 129;
 /// bank in the error.
 Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& name);
 
+/// Whether a GPU can draw the bank: a learned predictor's decoder (learned_model.h) is
+/// evaluated on the CPU only (relight, eval), for now. The error names no file.
+Status drawnOnGpu(const LutBank& bank);
+
 }  // namespace btflut

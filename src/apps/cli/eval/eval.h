@@ -82,11 +82,16 @@ struct Variant {
     std::optional<float> match;                  // lut with a predictor: the match strength; empty: bake's
     std::optional<int> budget;                   // lut auto: bytes per texel; empty: bake's
     BankDomain bankDomain = BankDomain::Layers;  // what the bank has: `domain`, or bake's choice
-    /// An RTI basis on its own, unmatched (modes hsh, rbf, bln; a number after the name is
-    /// the hsh order or the planes): fitted to the fold's training images.
+    /// An RTI basis or a learned model on its own, unmatched (modes hsh, rbf, bln, neural; a
+    /// number after the name is the hsh order, the planes or the codes): fitted to the fold's
+    /// training images.
     std::optional<LightModelOptions> basis;
-    /// The mode as the report names it: the render mode, or the basis.
-    std::string modeName() const { return basis ? lightBasisName(basis->basis) : renderModeName(mode); }
+    std::optional<LearnedOptions> learned;
+    bool unmatched() const { return basis || learned; }
+    /// The mode as the report names it: the render mode, or the model's kind.
+    std::string modeName() const {
+        return basis ? lightBasisName(basis->basis) : learned ? "neural" : renderModeName(mode);
+    }
     bool base() const {
         return predictor == "references" && references == 1 && regions == 1 && colour == ColourMode::Grey && !filled &&
                target == "measured";

@@ -111,13 +111,13 @@ Result<Image> loadSameSize(const Dataset& dataset, std::size_t i, const Image& f
     return image;
 }
 
-// The RTI bases on their own (variants with a basis), fitted to the fold's training images
-// (decoded once), by variant name.
-Result<std::map<std::string, LightModel>> fitBases(std::vector<Variant>& variants, const Dataset& dataset,
-                                                   const Fold& fold, const Image& first, const Mask& mask) {
-    std::map<std::string, LightModel> models;
-    if (std::none_of(variants.begin(), variants.end(), [](const Variant& v) { return v.basis.has_value(); }))
-        return models;
+// The RTI bases and learned models on their own (unmatched variants), fitted to the fold's
+// training images (decoded once): by variant name, what each predicts at a light.
+using Rendering = std::function<Image(Direction)>;
+Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants, const Dataset& dataset,
+                                                  const Fold& fold, const Image& first, const Mask& mask) {
+    std::map<std::string, Rendering> models;
+    if (std::none_of(variants.begin(), variants.end(), [](const Variant& v) { return v.unmatched(); })) return models;
     std::vector<Image> decoded;
     std::vector<const Image*> images;
     std::vector<Direction> lights;
@@ -129,13 +129,23 @@ Result<std::map<std::string, LightModel>> fitBases(std::vector<Variant>& variant
     }
     for (const Image& image : decoded) images.push_back(&image);
     for (Variant& v : variants) {
-        if (!v.basis) continue;
+        if (!v.unmatched()) continue;
         const auto start = Clock::now();
+        if (v.learned) {
+            Result<LearnedModel> model = fitLearnedModel(images, lights, mask, *v.learned, dataset.source);
+            if (!model) return Error{model.error()};
+            v.bakeSeconds.push_back(seconds(start));
+            v.bytesPerTexel = model->codes;
+            models[v.name] = [m = std::make_shared<LearnedModel>(std::move(*model))](Direction l) {
+                return m->render(l);
+            };
+            continue;
+        }
         Result<LightModel> model = fitLightModel(images, lights, mask, *v.basis, dataset.source);
         if (!model) return Error{model.error()};
         v.bakeSeconds.push_back(seconds(start));
         v.bytesPerTexel = model->bytesPerTexel();
-        models[v.name] = std::move(*model);
+        models[v.name] = [m = std::make_shared<LightModel>(std::move(*model))](Direction l) { return m->render(l); };
     }
     return models;
 }
@@ -247,7 +257,7 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
             if (Result<LutBank*> b = banks.bankFor(v); !b) return Error{b.error()};
             step();
         }
-        Result<std::map<std::string, LightModel>> models = fitBases(variants, dataset, fold, first, mask);
+        Result<std::map<std::string, Rendering>> models = fitBases(variants, dataset, fold, first, mask);
         if (!models) return Error{models.error()};
 
         std::map<std::size_t, Image> trainImages;  // nearest: decoded once per fold
@@ -270,8 +280,8 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 const LutBank& bank = **found;
                 v.bankDomain = bank.domain;
                 Image predicted;
-                if (v.basis) {
-                    predicted = models->at(v.name).render(info.light);
+                if (v.unmatched()) {
+                    predicted = models->at(v.name)(info.light);
                 } else if (v.mode == RenderMode::Lut) {
                     predicted = relitPrediction(v, bank, banks.relighter(v), info);
                 } else if (v.mode == RenderMode::Ptm) {
@@ -290,8 +300,8 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 }
                 v.errors.push_back(compareImages(predicted, *photo, mask));
                 const BankLookup at = bank.lookup(info.light, info.view);
-                v.targetL1.push_back(v.mode == RenderMode::Lut && !v.basis ? targetL1Of(bank, at, *photo, mask)
-                                                                           : std::nan(""));
+                v.targetL1.push_back(v.mode == RenderMode::Lut && !v.unmatched() ? targetL1Of(bank, at, *photo, mask)
+                                                                                 : std::nan(""));
                 v.images.push_back(info.name);
                 auto beyond = [](Provenance p) { return p == Provenance::Clamped || p == Provenance::Modelled; };
                 v.outside.push_back(beyond(at.lightProvenance) || beyond(at.viewProvenance));

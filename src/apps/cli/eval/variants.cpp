@@ -61,18 +61,26 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
     if (modes.empty()) return Error{"--modes is empty"};
     for (const std::string& name : modes) {
         Result<RenderMode> mode = parseRenderMode(name);
-        if (!mode)
+        if (!mode) {
             if (std::optional<Result<LightModelOptions>> basis = lightModelNamed(name)) {
                 if (!*basis) return Error{"--modes: " + basis->error()};
                 Variant v{name, RenderMode::Flat};
                 v.basis = **basis;
                 variants.push_back(v);
                 continue;
+            } else if (std::optional<Result<LearnedOptions>> learned = learnedModelNamed(name)) {
+                if (!*learned) return Error{"--modes: " + learned->error()};
+                Variant v{name, RenderMode::Flat};
+                v.learned = **learned;
+                variants.push_back(v);
+                continue;
             }
+        }
         if (!mode)
             return Error{"--modes: '" + name +
-                         "' is not a mode eval measures: lut, brdf, nearest, flat, or a light model (ptm, hsh, hsh2, "
-                         "hsh3, rbf, bln, rbfN, blnN, blnNc); the default is lut,ptm,hsh,rbf,bln,nearest,brdf"};
+                         "' is not a mode eval measures: lut, brdf, nearest, flat, a light model (ptm, hsh, hsh2, "
+                         "hsh3, rbf, bln, rbfN, blnN, blnNc) or a learned one (neural, neuralN); the default is "
+                         "lut,ptm,hsh,rbf,bln,nearest,brdf"};
         if (*mode != RenderMode::Lut) {
             variants.push_back({name, *mode});
             continue;
@@ -84,9 +92,11 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
                 variants.push_back(v);
                 continue;
             }
-            std::optional<Result<LightModelOptions>> model = lightModelNamed(predictor);
+            BakeOptions named;
+            std::optional<Status> model = setModelNamed(named, predictor);
             if (!model)
-                return Error{"--predictor '" + predictor + "' is not auto, references or a basis (ptm, hsh, rbf, bln)"};
+                return Error{"--predictor '" + predictor +
+                             "' is not auto, references, a basis (ptm, hsh, rbf, bln) or neural"};
             if (!*model) return Error{"--predictor " + model->error()};
             for (const std::string& colourText : split(o.colours)) {
                 if (colourText != "grey" && colourText != "rgb")
@@ -277,7 +287,7 @@ BakeOptions bakeOptionsOf(const Variant& v, bool ptm) {
     b.gridSize = v.grid;
     b.domain = v.domain;
     b.references = v.references;
-    if (std::optional<Result<LightModelOptions>> model = lightModelNamed(v.predictor)) b.model = **model;
+    setModelNamed(b, v.predictor);  // references and auto name no model
     if (v.target == "corrections") b.target = LutBank::Blend::Target::Corrections;
     b.fitTargets = v.target != "blend";
     if (v.match) b.match = *v.match;

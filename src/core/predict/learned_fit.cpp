@@ -1,0 +1,381 @@
+// Training a learned model (learned_model.h): codes from a linear encoder of each texel's
+// samples and the decoder, started from a smooth linear basis (linearStart), trained together
+// by Adam on sampled texels under every training light for as many steps as a first run,
+// validated on held-out lights, found best; then the codes quantised to 8 bits and the
+// decoder tuned to them.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/parallel.h"
+#include "core/predict/learned_decoder.h"
+#include "core/predict/learned_model.h"
+
+namespace btflut {
+namespace {
+
+constexpr std::size_t kBatchSamples = 2048;         // texel-light samples per step
+constexpr std::size_t kMaxSampleFloats = 1u << 25;  // 128 MB of training samples at most
+constexpr float kRate = 2e-2f;                      // Adam's peak rate (the residual network's)
+constexpr std::size_t kMinLights = 16;              // fewer: the linear start, not trained
+constexpr std::size_t kEpochs = 50;                 // passes over the samples at most
+// The linear basis (encoder and light network) starts where it should be: it moves slower.
+constexpr float kLinearRate = 0.05f;
+// Decoupled weight decay of the residual network (AdamW's): what keeps it smooth between the
+// lights it is trained on (without it, on the concrete, held-out lights' error rises from the
+// first few hundred steps).
+constexpr float kWeightDecay = 0.1f;
+
+// The values a texel's code is made from: its samples under every light, lights x channels.
+struct TexelSamples {
+    const std::vector<const Image*>& images;
+    int channels;  // 1: the grey value; 3: RGB
+    std::size_t size() const { return images.size() * static_cast<std::size_t>(channels); }
+    void read(std::size_t texel, float* out) const {
+        for (const Image* image : images) {
+            if (channels == 1) {
+                *out++ = image->grey(texel);
+            } else {
+                const float* p = &image->samples[texel * 3];
+                *out++ = p[0];
+                *out++ = p[1];
+                *out++ = p[2];
+            }
+        }
+    }
+    Matrix block(std::span<const std::uint32_t> texels) const {
+        Matrix m(static_cast<Eigen::Index>(size()), static_cast<Eigen::Index>(texels.size()));
+        for (std::size_t j = 0; j < texels.size(); ++j) read(texels[j], m.col(static_cast<Eigen::Index>(j)).data());
+        return m;
+    }
+};
+
+// The start of training: each texel's samples fitted per channel by the light features
+// (ridge least squares: its hemispherical harmonics, F per channel), and the N principal
+// components of those F C coefficients over the sample texels. The encoder gives a texel
+// those components' coordinates, whitened (unit variance over the sample); the light network
+// gives, per light, the components' (and the mean's) values there. So training starts from
+// the best rank-N linear basis that is smooth between the lights (hsh3's, its colour shared
+// by the codes), and the residual network from zero.
+struct LinearStart {
+    Network encoder, light;
+};
+LinearStart linearStart(const Matrix& samples, const Matrix& features, int codes, int channels) {
+    const Eigen::Index L = features.cols(), F = features.rows(), C = channels, D = samples.rows(), N = codes;
+    const Eigen::MatrixXd h = features.transpose().cast<double>();  // L x F
+    Eigen::MatrixXd normal = h.transpose() * h;
+    normal.diagonal().array() += 1e-3 * normal.trace() / static_cast<double>(F);
+    const Eigen::MatrixXd project = normal.ldlt().solve(h.transpose());  // F x L
+    Eigen::MatrixXd q = Eigen::MatrixXd::Zero(F * C, D);  // samples (light-major) -> coefficients (channel-major)
+    for (Eigen::Index c = 0; c < C; ++c)
+        for (Eigen::Index l = 0; l < L; ++l) q.block(c * F, l * C + c, F, 1) = project.col(l);
+    const Eigen::MatrixXd z = q * samples.cast<double>();
+    const Eigen::VectorXd mean = z.rowwise().mean();
+    const Eigen::MatrixXd centred = z.colwise() - mean;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(centred * centred.transpose() /
+                                                               static_cast<double>(z.cols()));
+    const Eigen::Index Z = z.rows();
+    Eigen::MatrixXd encode = Eigen::MatrixXd::Zero(N, Z), components = Eigen::MatrixXd::Zero(Z, N);
+    for (Eigen::Index k = 0; k < N && k < Z; ++k) {
+        const double variance = eigen.eigenvalues()(Z - 1 - k);
+        if (!(variance > 1e-12)) break;
+        encode.row(k) = eigen.eigenvectors().col(Z - 1 - k).transpose() / std::sqrt(variance);
+        components.col(k) = eigen.eigenvectors().col(Z - 1 - k) * std::sqrt(variance);
+    }
+    LinearStart start;
+    const std::vector<int> encoderSizes{static_cast<int>(D), codes},
+        lightSizes{static_cast<int>(F), static_cast<int>(C * (N + 1))};
+    start.encoder =
+        Network::fromParameters(encoderSizes, std::vector<float>(Network::parameterCount(encoderSizes), 0.f));
+    start.encoder.weights(0) = (encode * q).cast<float>();
+    start.encoder.bias(0) = (-encode * mean).cast<float>();
+    start.light = Network::fromParameters(lightSizes, std::vector<float>(Network::parameterCount(lightSizes), 0.f));
+    for (Eigen::Index c = 0; c < C; ++c)
+        for (Eigen::Index f = 0; f < F; ++f) {
+            for (Eigen::Index k = 0; k < N; ++k)
+                start.light.weights(0)(c * (N + 1) + k, f) = static_cast<float>(components(c * F + f, k));
+            start.light.weights(0)(c * (N + 1) + N, f) = static_cast<float>(mean(c * F + f));
+        }
+    return start;
+}
+
+// The samples of a batch's texels as the decoder orders them (light-major: l T + t).
+Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels) {
+    const Eigen::Index T = samples.cols(), C = channels;
+    Matrix target(C, lights * T);
+    for (Eigen::Index l = 0; l < lights; ++l) target.block(0, l * T, C, T) = samples.block(l * C, 0, C, T);
+    return target;
+}
+
+// d loss / d output of the mean squared error; returns the loss.
+float squaredError(const Matrix& output, const Matrix& target, Matrix& gradient) {
+    gradient = output - target;
+    const float loss = gradient.squaredNorm() / static_cast<float>(gradient.size());
+    gradient *= 2.f / static_cast<float>(gradient.size());
+    return loss;
+}
+
+// Cosine decay from `peak` after a short warm-up.
+float rateAt(int step, int steps, float peak) {
+    const int warmup = std::max(1, steps / 50);
+    if (step < warmup) return peak * static_cast<float>(step + 1) / static_cast<float>(warmup);
+    const double t = static_cast<double>(step - warmup) / std::max(1, steps - warmup);
+    return static_cast<float>(peak * (0.02 + 0.98 * 0.5 * (1 + std::cos(3.14159265358979 * t))));
+}
+
+struct Trained {
+    Network encoder;
+    LearnedDecoder decoder;
+    bool finite = false;
+};
+
+// Adam for both of the decoder's networks.
+struct DecoderAdam {
+    Adam light, residual;
+    explicit DecoderAdam(const LearnedDecoder& d) : light(d.light), residual(d.residual) {}
+    void step(LearnedDecoder& d, const LearnedDecoder::Gradient& g, float rate) {
+        light.step(d.light, g.light, rate * kLinearRate);
+        residual.step(d.residual, g.residual, rate);
+        for (std::size_t k = 0; k < d.residual.layers(); ++k) d.residual.weights(k) *= 1 - rate * kWeightDecay;
+    }
+};
+
+LearnedDecoder randomDecoder(const LearnedOptions& o, int channels, Random& random) {
+    std::vector<int> light{kLearnedLightFeatures}, residual{o.codes + kLearnedLightFeatures};
+    light.insert(light.end(), o.lightHidden.begin(), o.lightHidden.end());
+    light.push_back(channels * (o.codes + 1));
+    residual.insert(residual.end(), o.hidden.begin(), o.hidden.end());
+    residual.push_back(channels);
+    return {Network::random(light, random), Network::random(residual, random)};
+}
+
+// Lights held out of a first training run: the sample texels' codes from their samples under
+// the other lights, decoded at the held-out lights.
+struct Validation {
+    Matrix inputs;    // the training lights' samples, D' x T'
+    Matrix features;  // F x L'
+    Matrix target;    // C x L' T'
+};
+
+float validationLoss(const Trained& t, const Validation& v) {
+    NetworkPass encoded;
+    LearnedDecoder::Pass decoded;
+    t.encoder.forward(v.inputs, encoded);
+    t.decoder.forward(encoded.output(), v.features, decoded);
+    return (decoded.output - v.target).squaredNorm() / static_cast<float>(v.target.size());
+}
+
+// Phase 1: encoder and decoder together on the sample texels' samples, `steps` Adam steps.
+// With a validation, the step (a multiple of steps / 16, 0 the linear start) where its loss
+// was least goes to `best`.
+Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedOptions& o, int channels, int steps,
+                     float peak, std::uint64_t seed, const Validation* validation, int* best,
+                     const std::function<void(double)>& progress) {
+    Random random(seed);
+    Trained t;
+    LinearStart start = linearStart(samples, lights, o.codes, channels);
+    t.encoder = std::move(start.encoder);
+    t.decoder = randomDecoder(o, channels, random);
+    if (t.decoder.light.layers() == 1) t.decoder.light = std::move(start.light);
+    t.decoder.residual.weights(t.decoder.residual.layers() - 1).setZero();
+    Adam encoderAdam(t.encoder);
+    DecoderAdam decoderAdam(t.decoder);
+    const auto L = static_cast<std::size_t>(lights.cols());
+    const std::size_t perBatch = std::max<std::size_t>(1, kBatchSamples / L);
+    const auto T = static_cast<std::size_t>(samples.cols());
+    Matrix x(samples.rows(), static_cast<Eigen::Index>(perBatch)), gradient;
+    NetworkPass encoded;
+    LearnedDecoder::Pass decoded;
+    const int every = std::max(1, steps / 16);
+    float least = validation ? validationLoss(t, *validation) : 0.f;
+    if (best) *best = 0;
+    for (int step = 0; step < steps; ++step) {
+        for (std::size_t j = 0; j < perBatch; ++j)
+            x.col(static_cast<Eigen::Index>(j)) = samples.col(static_cast<Eigen::Index>(random.next() % T));
+        t.encoder.forward(x, encoded);
+        t.decoder.forward(encoded.output(), lights, decoded);
+        const float loss = squaredError(decoded.output, decoderTarget(x, lights.cols(), channels), gradient);
+        if (!std::isfinite(loss)) return t;
+        const LearnedDecoder::Gradient g = t.decoder.backward(decoded, gradient);
+        const NetworkGradient e = t.encoder.backward(encoded, g.codes, false);
+        const float rate = rateAt(step, steps, peak);
+        decoderAdam.step(t.decoder, g, rate);
+        encoderAdam.step(t.encoder, e, rate * kLinearRate);
+        if (validation && (step + 1) % every == 0) {
+            const float v = validationLoss(t, *validation);
+            if (v < least) {
+                least = v;
+                *best = step + 1;
+            }
+        }
+        if (progress && step % 64 == 0) progress(static_cast<double>(step) / steps);
+    }
+    t.finite = t.encoder.finite() && t.decoder.light.finite() && t.decoder.residual.finite();
+    return t;
+}
+
+// The rows of `samples` (light-major, C per light) of the lights `keep`.
+Matrix lightRows(const Matrix& samples, const std::vector<std::size_t>& keep, int channels) {
+    const Eigen::Index C = channels;
+    Matrix out(static_cast<Eigen::Index>(keep.size()) * C, samples.cols());
+    for (std::size_t j = 0; j < keep.size(); ++j)
+        out.middleRows(static_cast<Eigen::Index>(j) * C, C) =
+            samples.middleRows(static_cast<Eigen::Index>(keep[j]) * C, C);
+    return out;
+}
+
+Matrix columns(const Matrix& m, const std::vector<std::size_t>& keep) {
+    Matrix out(m.rows(), static_cast<Eigen::Index>(keep.size()));
+    for (std::size_t j = 0; j < keep.size(); ++j)
+        out.col(static_cast<Eigen::Index>(j)) = m.col(static_cast<Eigen::Index>(keep[j]));
+    return out;
+}
+
+}  // namespace
+
+Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
+                                     const Mask& mask, const LearnedOptions& o, const std::string& what) {
+    if (images.size() != lights.size() || images.empty()) return Error{what + ": no images to learn from"};
+    if (images.size() < 3) return Error{what + ": a learned model needs at least 3 lights"};
+    if (o.codes < 1 || o.codes > LearnedModel::kMaxCodes || o.hidden.empty() || o.steps < 1)
+        return Error{what + ": invalid learned model options"};
+    for (const std::vector<int>* widths : {&o.hidden, &o.lightHidden})
+        for (int h : *widths)
+            if (h < 1 || h > 256) return Error{what + ": a hidden layer of the learned model has 1 to 256 units"};
+    const Image& first = *images.front();
+    LearnedModel m;
+    m.width = first.width;
+    m.height = first.height;
+    m.codes = o.codes;
+    m.channels = o.colour && first.channels == 3 ? 3 : 1;
+    m.hidden = o.hidden;
+    m.lightHidden = o.lightHidden;
+    if (Network::parameterCount(m.decoderSizes()) > static_cast<std::size_t>(LearnedModel::kMaxParameters) ||
+        Network::parameterCount(m.lightSizes()) > static_cast<std::size_t>(LearnedModel::kMaxParameters))
+        return Error{what + ": a network of the learned model is larger than " +
+                     std::to_string(LearnedModel::kMaxParameters) + " parameters"};
+    const TexelSamples texelSamples{images, m.channels};
+
+    // The sample texels: the mask's, at most as many as the options and the memory bound allow.
+    std::vector<std::uint32_t> inside;
+    for (std::size_t i = 0; i < m.texels(); ++i)
+        if (mask.inside.empty() || mask.inside[i]) inside.push_back(static_cast<std::uint32_t>(i));
+    if (inside.empty()) return Error{what + ": the mask has no sample texels to learn from"};
+    const std::size_t keep = std::min({inside.size(), o.sampleTexels, kMaxSampleFloats / texelSamples.size()});
+    Random pick(o.seed ^ 0x5eed);
+    for (std::size_t i = 0; i < keep; ++i)  // a partial Fisher-Yates shuffle: `keep` drawn without repeats
+        std::swap(inside[i], inside[i + pick.next() % (inside.size() - i)]);
+    std::vector<std::uint32_t> sampleTexels(inside.begin(), inside.begin() + static_cast<std::ptrdiff_t>(keep));
+    std::sort(sampleTexels.begin(), sampleTexels.end());
+    const Matrix samples = texelSamples.block(sampleTexels);
+    Matrix lightXY(kLearnedLightFeatures, static_cast<Eigen::Index>(lights.size()));
+    for (std::size_t l = 0; l < lights.size(); ++l) {
+        const std::vector<float> h = learnedLightFeatures(lights[l]);
+        lightXY.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Vector>(h.data(), kLearnedLightFeatures);
+    }
+
+    // How long to train: validated on every fifth light held out (a residual network learns
+    // the training lights' shadows, which need not generalise: with few lights the linear
+    // start can be best). Fewer than kMinLights lights keep the linear start.
+    const float rate = kRate;
+    // At most kEpochs passes over the samples: a small capture trains in proportion.
+    const std::size_t epochSteps = keep * lights.size() / kBatchSamples + 1;
+    const int budget = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(o.steps), kEpochs * epochSteps));
+    int steps = 0;
+    if (lights.size() >= kMinLights) {
+        std::vector<std::size_t> train, held;
+        for (std::size_t l = 0; l < lights.size(); ++l) (l % 5 == 2 ? held : train).push_back(l);
+        std::vector<std::size_t> checked(std::min<std::size_t>(keep, 4096));
+        std::iota(checked.begin(), checked.end(), std::size_t{0});
+        const Matrix trainSamples = lightRows(samples, train, m.channels);
+        Validation v{columns(trainSamples, checked), columns(lightXY, held),
+                     decoderTarget(columns(lightRows(samples, held, m.channels), checked),
+                                   static_cast<Eigen::Index>(held.size()), m.channels)};
+        Trained validated;
+        float peak = rate;
+        for (int attempt = 0; attempt < 3 && !validated.finite; ++attempt, peak /= 4)
+            validated = trainJointly(trainSamples, columns(lightXY, train), o, m.channels, budget, peak,
+                                     o.seed + static_cast<std::uint64_t>(attempt), &v, &steps, [&](double f) {
+                                         if (o.progress) o.progress(0.5 * f);
+                                     });
+        if (!validated.finite) return Error{what + ": training the learned model diverged (the loss is not finite)"};
+    }
+
+    // Phase 1 on every light, retried at a quarter of the rate when it diverges.
+    Trained t;
+    float peak = rate;
+    for (int attempt = 0; attempt < 3 && !t.finite; ++attempt, peak /= 4)
+        t = trainJointly(samples, lightXY, o, m.channels, steps, peak, o.seed + static_cast<std::uint64_t>(attempt),
+                         nullptr, nullptr, [&](double f) {
+                             if (o.progress) o.progress(0.5 + 0.4 * f);
+                         });
+    if (!t.finite) return Error{what + ": training the learned model diverged (the loss is not finite)"};
+
+    // Every texel's code, in blocks of a fixed size (the same sums for any thread count).
+    const auto N = static_cast<std::size_t>(m.codes);
+    std::vector<float> codes(m.texels() * N);
+    constexpr std::size_t kBlock = 1024;
+    parallelFor((m.texels() + kBlock - 1) / kBlock, o.threads, [&](std::size_t b) {
+        const std::size_t begin = b * kBlock, end = std::min(m.texels(), begin + kBlock);
+        std::vector<std::uint32_t> block(end - begin);
+        std::iota(block.begin(), block.end(), static_cast<std::uint32_t>(begin));
+        NetworkPass pass;
+        t.encoder.forward(texelSamples.block(block), pass);
+        for (std::size_t j = 0; j < block.size(); ++j)
+            for (std::size_t k = 0; k < N; ++k)
+                codes[(begin + j) * N + k] = pass.output()(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j));
+    });
+
+    // 8 bits per code over the range the sample texels span (others clamped into it).
+    m.scale.assign(N, 1.f);
+    m.bias.assign(N, 0.f);
+    m.coefficients.resize(codes.size());
+    for (std::size_t k = 0; k < N; ++k) {
+        float low = 1e30f, high = -1e30f;
+        for (std::uint32_t i : inside) {
+            low = std::min(low, codes[i * N + k]);
+            high = std::max(high, codes[i * N + k]);
+        }
+        if (high - low > 1e-6f) m.scale[k] = (high - low) / 255.f;
+        m.bias[k] = -low / m.scale[k];
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            m.coefficients[i * N + k] =
+                static_cast<std::uint8_t>(std::lround(std::clamp((codes[i * N + k] - low) / m.scale[k], 0.f, 255.f)));
+    }
+
+    // Phase 2: the decoder tuned to the quantised codes.
+    Matrix quantised(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(sampleTexels.size()));
+    for (std::size_t j = 0; j < sampleTexels.size(); ++j)
+        for (std::size_t k = 0; k < N; ++k)
+            quantised(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) =
+                (static_cast<float>(m.coefficients[sampleTexels[j] * N + k]) - m.bias[k]) * m.scale[k];
+    LearnedDecoder decoder = t.decoder;
+    {
+        DecoderAdam adam(decoder);
+        Random random(o.seed + 17);
+        const auto L = static_cast<Eigen::Index>(lights.size());
+        const std::size_t perBatch = std::max<std::size_t>(1, kBatchSamples / lights.size()), T = sampleTexels.size();
+        const int tuning = steps / 5;
+        Matrix codeBatch(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(perBatch)),
+            x(samples.rows(), static_cast<Eigen::Index>(perBatch)), gradient;
+        LearnedDecoder::Pass pass;
+        for (int step = 0; step < tuning; ++step) {
+            for (std::size_t j = 0; j < perBatch; ++j) {
+                const auto at = static_cast<Eigen::Index>(random.next() % T);
+                codeBatch.col(static_cast<Eigen::Index>(j)) = quantised.col(at);
+                x.col(static_cast<Eigen::Index>(j)) = samples.col(at);
+            }
+            decoder.forward(codeBatch, lightXY, pass);
+            if (!std::isfinite(squaredError(pass.output, decoderTarget(x, L, m.channels), gradient))) break;
+            adam.step(decoder, decoder.backward(pass, gradient), rateAt(step, tuning, peak / 8));
+            if (o.progress && step % 64 == 0) o.progress(0.9 + 0.1 * step / tuning);
+        }
+    }
+    if (!(decoder.light.finite() && decoder.residual.finite())) decoder = t.decoder;
+    m.lightNetwork = decoder.light.parameters();
+    m.decoder = decoder.residual.parameters();
+    if (o.progress) o.progress(1.0);
+    return m;
+}
+
+}  // namespace btflut

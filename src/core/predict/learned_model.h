@@ -1,0 +1,100 @@
+#pragma once
+// The learned predictor's data (docs/predictors.md, "The learned kind"): per texel N codes
+// (bytes; code k's value is (byte_k - bias_k) scale_k, one scale and bias per code as RTI web
+// formats store them) and one small decoder network per bank that takes a texel's code values
+// and the light's (x, y) to its colour (NeuralRTI's form, Dulecha et al. 2020):
+//
+//   pred_c = clamp(sum_k A_ck(L) v_k + a_c(L) + r_c(v_1 .. v_N, h(L)), 0, 1)
+//
+// h(L) the light's order-3 hemispherical harmonics (smooth between the measured lights, as
+// hsh3 is). A and a, a linear basis of the codes, come from a light network of h run once per
+// light; r, a residual network of ELU layers, adds what a linear basis cannot
+// (learned_decoder.h).
+//
+// Trained at bake time (learned_fit.cpp): each texel's code is a learned linear function of
+// its samples under the training lights (started from their principal components), trained
+// jointly with the decoder on sampled texels, then quantised to 8 bits and the decoder tuned
+// to the quantised codes.
+//
+//   Result<LearnedModel> m = fitLearnedModel(images, lights, mask, {.codes = 9}, "capture");
+//   Image predicted = m->render(light);
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/direction/direction.h"
+#include "core/image/image.h"
+#include "core/result.h"
+
+namespace btflut {
+
+/// The light's features h(L) both networks take: its 9 hemispherical harmonics of order 3.
+constexpr int kLearnedLightFeatures = 9;
+std::vector<float> learnedLightFeatures(Direction light);
+
+struct LearnedModel {
+    static constexpr int kMaxCodes = 16;
+    static constexpr int kMaxParameters = 8192;  ///< each network's: small enough for a fragment shader
+
+    int width = 0, height = 0;
+    int codes = 0;                           ///< N, bytes per texel, 1..kMaxCodes
+    int channels = 1;                        ///< the decoder's outputs: 1 (grey) or 3 (RGB)
+    std::vector<float> scale, bias;          ///< per code: v_k = (byte_k - bias_k) scale_k
+    std::vector<std::uint8_t> coefficients;  ///< N bytes per texel, rows top first
+    /// The decoder (learned_decoder.h): the light network's hidden widths and parameters
+    /// (Network::parameters' order), then the residual network's.
+    std::vector<int> lightHidden;
+    std::vector<float> lightNetwork;
+    std::vector<int> hidden;
+    std::vector<float> decoder;
+
+    bool empty() const { return coefficients.empty(); }
+    std::size_t texels() const { return static_cast<std::size_t>(width) * height; }
+    /// The residual network's layer sizes: N + F inputs, the hidden widths, `channels` outputs.
+    std::vector<int> decoderSizes() const;
+    /// The light network's: F inputs, its hidden widths, channels (N + 1) outputs.
+    std::vector<int> lightSizes() const;
+    /// Multiply-adds per texel and light: the linear basis's and the residual network's.
+    std::size_t decoderCost() const;
+    /// The parameters of a decoder of these layer sizes (weights and biases).
+    static std::size_t parameterCount(const std::vector<int>& sizes);
+
+    /// The prediction of `texels` (all of them when empty) at a light: channels floats per
+    /// texel in [0, 1], in the order given. Evaluated in blocks of a fixed size, so the
+    /// result does not depend on `threads`.
+    std::vector<float> predict(Direction light, std::span<const std::uint32_t> texels = {}, int threads = 1) const;
+    /// The prediction as an image (grey or RGB, float).
+    Image render(Direction light) const;
+};
+
+struct LearnedOptions {
+    int codes = 9;
+    std::vector<int> hidden{24, 24};  ///< the residual network's
+    std::vector<int> lightHidden;     ///< the light network's (none: linear in h)
+    bool colour = true;               ///< predict RGB (the images' colour); else grey
+    std::uint64_t seed = 1;
+    /// Texels trained on, drawn from the mask: memory holds their samples (lights x channels
+    /// floats each) and nothing else per image beyond the decoded images themselves.
+    std::size_t sampleTexels = std::size_t{1} << 15;
+    int steps = 6000;  ///< Adam steps of about 2048 texel-light samples
+    int threads = 0;
+    /// Called now and then with the fraction done (0..1); may be empty.
+    std::function<void(double)> progress;
+};
+
+/// Trains a model on images of one view under `lights` (same size; RGB or grey). Refuses
+/// fewer than 3 lights, codes or hidden widths out of range, an empty mask and training that
+/// diverges after two retries (`what` names the dataset).
+Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
+                                     const Mask& mask, const LearnedOptions& options, const std::string& what);
+
+/// The options from a `--predictor` name: neural (9 codes) or neuralN (N codes); nothing when
+/// the name is not one of these, an error for a number out of range.
+std::optional<Result<LearnedOptions>> learnedModelNamed(const std::string& name);
+std::string learnedModelName(const LearnedModel& model);
+
+}  // namespace btflut

@@ -1,0 +1,69 @@
+#include "core/predict/learned_predictor.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/check.h"
+
+namespace btflut {
+
+// Grey: one channel's codes (a grey model), or the sum of three.
+LearnedPredictor::LearnedPredictor(LearnedModel model, bool perChannel)
+    : Predictor(perChannel ? 3 : 1, perChannel || model.channels == 1 ? 255 : 765),
+      m_model(std::move(model)),
+      m_perChannel(perChannel) {
+    BTFLUT_CHECK(!m_model.empty() && (!perChannel || m_model.channels == 3));
+}
+
+std::string LearnedPredictor::description() const {
+    std::ostringstream out;
+    out << name() << " (" << bytesPerTexel() << " bytes per texel; a linear basis of the codes and a ";
+    const std::vector<int> sizes = m_model.decoderSizes();
+    for (std::size_t k = 0; k < sizes.size(); ++k) out << (k ? "-" : "") << sizes[k];
+    out << " residual network, " << m_model.decoderCost() << " multiply-adds per texel), relit per light";
+    return out.str();
+}
+
+PredictorPlanes LearnedPredictor::planes() const {
+    const auto N = static_cast<std::size_t>(m_model.codes);
+    PredictorPlanes out;
+    out.scale = m_model.scale;
+    out.bias = m_model.bias;
+    for (std::size_t first = 0; first < N; first += 4) {
+        Image layer(m_model.width, m_model.height, 4);
+        for (std::size_t i = 0; i < m_model.texels(); ++i)
+            for (std::size_t c = 0; c < 4 && first + c < N; ++c)
+                layer.samples[i * 4 + c] = static_cast<float>(m_model.coefficients[i * N + first + c]) / 255.f;
+        out.layers.push_back(std::move(layer));
+    }
+    return out;
+}
+
+// The GPU's decoder is not written yet: the GL paths refuse a learned bank by name
+// (gl/blend_textures.cpp), so these are never read.
+std::vector<std::string> LearnedPredictor::shaderDefines() const { return {"BLEND_LEARNED"}; }
+std::vector<ShaderValues> LearnedPredictor::shaderValues(const PredictorFrame&) const { return {}; }
+
+PredictorFrame LearnedPredictor::frameAt(Direction light) const {
+    PredictorFrame frame;
+    frame.count = 0;
+    const std::vector<float> values = m_model.predict(light, {}, 0);
+    auto codes = std::make_shared<std::vector<std::uint8_t>>(values.size());
+    for (std::size_t s = 0; s < values.size(); ++s)
+        (*codes)[s] = static_cast<std::uint8_t>(std::lround(values[s] * 255.f));
+    frame.decoded = std::move(codes);
+    return frame;
+}
+
+std::size_t LearnedPredictor::code(const PredictorFrame& frame, std::size_t texel, int channel) const {
+    const std::uint8_t* p = &(*frame.decoded)[texel * static_cast<std::size_t>(m_model.channels)];
+    if (m_perChannel) return p[channel];
+    return m_model.channels == 1 ? p[0] : std::size_t{p[0]} + p[1] + p[2];
+}
+
+void LearnedPredictor::colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const {
+    const std::uint8_t* p = &(*frame.decoded)[texel * static_cast<std::size_t>(m_model.channels)];
+    for (int c = 0; c < 3; ++c) rgb[c] = static_cast<float>(p[m_model.channels == 3 ? c : 0]) / 255.f;
+}
+
+}  // namespace btflut

@@ -1,0 +1,248 @@
+// The learned predictor (core/predict/learned_model.h) and the networks it trains
+// (core/learn/network.h): gradients against finite differences, the fit between the lights,
+// its bank chunk, determinism and degenerate captures.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "core/bake/bake.h"
+#include "core/bank/bank_file.h"
+#include "core/data/dataset.h"
+#include "core/eval/metrics.h"
+#include "core/learn/network.h"
+#include "core/predict/learned_decoder.h"
+#include "core/predict/learned_predictor.h"
+#include "core/relight/relighter.h"
+#include "helpers.h"
+
+using namespace btflut;
+using namespace btflut::test;
+
+namespace {
+
+// Every parameter's gradient (and the inputs') against central differences of `loss`, in
+// double over float networks: relative to the gradient's scale, within 2%.
+template <class Loss, class Parameter>
+void checkGradient(const std::string& what, float analytic, Parameter& p, const Loss& loss, double& worst) {
+    const float saved = p;
+    const float h = 1e-2f * std::max(1.f, std::abs(saved));
+    p = saved + h;
+    const double up = loss();
+    p = saved - h;
+    const double down = loss();
+    p = saved;
+    const double numeric = (up - down) / (2.0 * h);
+    const double error = std::abs(numeric - analytic) / std::max(1e-2, std::abs(numeric) + std::abs(analytic));
+    INFO(what << ": analytic " << analytic << ", numeric " << numeric);
+    CHECK(error < 0.02);
+    worst = std::max(worst, error);
+}
+
+Matrix randomMatrix(Eigen::Index rows, Eigen::Index cols, Random& random) {
+    Matrix m(rows, cols);
+    for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = static_cast<float>(random.uniform() * 2 - 1);
+    return m;
+}
+
+}  // namespace
+
+TEST_CASE("network: the backward pass is the finite differences of the forward one") {
+    Random random(3);
+    const Network start = Network::random({5, 7, 6, 3}, random);
+    Network net = start;
+    Matrix input = randomMatrix(5, 4, random);
+    const Matrix target = randomMatrix(3, 4, random);
+    auto loss = [&] {
+        NetworkPass pass;
+        net.forward(input, pass);
+        return 0.5 * static_cast<double>((pass.output() - target).squaredNorm());
+    };
+    NetworkPass pass;
+    net.forward(input, pass);
+    const NetworkGradient g = net.backward(pass, pass.output() - target, true);
+    double worst = 0;
+    for (std::size_t k = 0; k < net.layers(); ++k) {
+        for (Eigen::Index i = 0; i < net.weights(k).size(); ++i)
+            checkGradient("weight", g.weights[k].data()[i], net.weights(k).data()[i], loss, worst);
+        for (Eigen::Index i = 0; i < net.bias(k).size(); ++i)
+            checkGradient("bias", g.biases[k](i), net.bias(k)(i), loss, worst);
+    }
+    for (Eigen::Index i = 0; i < input.size(); ++i)
+        checkGradient("input", g.input.data()[i], input.data()[i], loss, worst);
+    MESSAGE("network gradients: worst relative error " << worst);
+    // Parameters travel in a fixed order.
+    CHECK(Network::fromParameters(start.sizes(), start.parameters()).parameters() == start.parameters());
+    CHECK(start.parameters().size() == Network::parameterCount({5, 7, 6, 3}));
+}
+
+TEST_CASE("learned decoder: the light network's, the residual's and the codes' gradients") {
+    Random random(5);
+    const int N = 4, C = 3;
+    LearnedDecoder d{Network::random({kLearnedLightFeatures, C * (N + 1)}, random),
+                     Network::random({N + kLearnedLightFeatures, 6, C}, random)};
+    Matrix codes = randomMatrix(N, 3, random);
+    Matrix lights(kLearnedLightFeatures, 2);
+    for (int l = 0; l < 2; ++l) {
+        const std::vector<float> h = learnedLightFeatures(Direction::fromDegrees(20 + 30 * l, 40 + 100 * l));
+        lights.col(l) = Eigen::Map<const Vector>(h.data(), kLearnedLightFeatures);
+    }
+    const Matrix target = randomMatrix(C, 6, random);
+    auto loss = [&] {
+        LearnedDecoder::Pass pass;
+        d.forward(codes, lights, pass);
+        return 0.5 * static_cast<double>((pass.output - target).squaredNorm());
+    };
+    LearnedDecoder::Pass pass;
+    d.forward(codes, lights, pass);
+    const LearnedDecoder::Gradient g = d.backward(pass, pass.output - target);
+    double worst = 0;
+    for (Eigen::Index i = 0; i < d.light.weights(0).size(); ++i)
+        checkGradient("light weight", g.light.weights[0].data()[i], d.light.weights(0).data()[i], loss, worst);
+    for (std::size_t k = 0; k < d.residual.layers(); ++k)
+        for (Eigen::Index i = 0; i < d.residual.weights(k).size(); ++i)
+            checkGradient("residual weight", g.residual.weights[k].data()[i], d.residual.weights(k).data()[i], loss,
+                          worst);
+    for (Eigen::Index i = 0; i < codes.size(); ++i)
+        checkGradient("code", g.codes.data()[i], codes.data()[i], loss, worst);
+    MESSAGE("decoder gradients: worst relative error " << worst);
+}
+
+TEST_CASE("learned model: a relief between the measured lights, its bank and chunk, the same bytes every run") {
+    TempDir dir;
+    const Relief relief{.size = 32};
+    const std::vector<Direction> lights = dome(24, 70);
+    Result<Dataset> dataset = openDataset(writeRelief(dir, relief, lights));
+    REQUIRE(dataset.ok());
+    BakeOptions options{.colour = ColourMode::Rgb, .learned = LearnedOptions{.steps = 300}};
+    options.threads = 1;
+    Result<LutBank> bank = bakeBank(*dataset, options);
+    REQUIRE_MESSAGE(bank.ok(), bank.error());
+    const LearnedPredictor* learned = bank->predictorAs<LearnedPredictor>();
+    REQUIRE(learned);
+    const LearnedModel& m = learned->model();
+    CHECK(bank->predictorName() == "neural9");
+    CHECK(learned->bytesPerTexel() == 9);
+    CHECK(m.channels == 3);
+    CHECK(LearnedModel::parameterCount(m.decoderSizes()) + LearnedModel::parameterCount(m.lightSizes()) <= 4096);
+
+    // Between the lights it predicts the relief better than the nearest measured image.
+    double psnr = 0, nearest = 0;
+    const Mask mask = fullMask(relief.size, relief.size);
+    for (Direction l :
+         {Direction::fromDegrees(25, 10), Direction::fromDegrees(45, 200), Direction::fromDegrees(60, 300)}) {
+        const Image truth = reliefImage(relief, l);
+        psnr += compareImages(m.render(l), truth, mask).psnr / 3;
+        std::size_t n = 0;
+        for (std::size_t i = 1; i < lights.size(); ++i)
+            if (angleBetween(lights[i], l) < angleBetween(lights[n], l)) n = i;
+        nearest += compareImages(reliefImage(relief, lights[n]), truth, mask).psnr / 3;
+    }
+    INFO("neural9 " << psnr << " dB, the nearest image " << nearest << " dB");
+    CHECK(psnr > nearest + 3);
+    CHECK(psnr > 30);
+
+    // Relit and matched: finite, in range.
+    const Image relit = relight(*bank, Direction::fromDegrees(40, 75), {});
+    for (float v : relit.samples) REQUIRE((std::isfinite(v) && v >= 0 && v <= 1));
+
+    // Version 8, byte-exact round trip; the same seed and options give the same bytes, on one
+    // thread or two.
+    CHECK(bankFormatVersion(*bank) == 8);
+    const Bytes bytes = encodeBank(*bank);
+    Result<LutBank> back = decodeBank(bytes, "learned.btflut");
+    REQUIRE_MESSAGE(back.ok(), back.error());
+    CHECK(encodeBank(*back) == bytes);
+    CHECK(back->predictorAs<LearnedPredictor>()->model().decoder == m.decoder);
+    options.threads = 2;
+    Result<LutBank> again = bakeBank(*dataset, options);
+    REQUIRE(again.ok());
+    CHECK(encodeBank(*again) == bytes);
+
+    // The chunk is checked: counts, sizes, finite numbers; an older reader refuses the kind.
+    auto corrupt = [&](const std::function<void(LearnedModel&)>& change, const std::string& needle) {
+        LutBank b = *bank;
+        LearnedModel changed = m;
+        change(changed);
+        b.blend.predictor = std::make_shared<LearnedPredictor>(std::move(changed), true);
+        Result<LutBank> read = decodeBank(encodeBank(b), "bad.btflut");
+        REQUIRE_FALSE(read.ok());
+        CHECK_MESSAGE(read.error().find(needle) != std::string::npos, read.error());
+        CHECK(read.error().find("bad.btflut") == 0);
+    };
+    corrupt([](LearnedModel& c) { c.decoder[7] = NAN; }, "LRND chunk: a network parameter is not finite");
+    corrupt([](LearnedModel& c) { c.lightNetwork[0] = INFINITY; }, "LRND chunk: a network parameter is not finite");
+    corrupt([](LearnedModel& c) { c.decoder.pop_back(); }, "LRND chunk: a network's parameters do not fit its sizes");
+    corrupt([](LearnedModel& c) { c.scale[2] = 0; }, "LRND chunk: invalid scale or bias");
+    corrupt([](LearnedModel& c) { c.hidden.assign(9, 4); }, "LRND chunk: invalid layer count");
+    corrupt([](LearnedModel& c) { c.hidden[0] = 300; }, "LRND chunk: invalid hidden layer width");
+    Bytes older = bytes;
+    older[8] = 7;
+    Result<LutBank> read = decodeBank(older, "old.btflut");
+    REQUIRE_FALSE(read.ok());
+    CHECK_MESSAGE(read.error().find("predictor, match or target out of range") != std::string::npos, read.error());
+    Bytes truncated(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(bytes.size() / 2));
+    CHECK_FALSE(decodeBank(truncated, "cut.btflut").ok());
+}
+
+TEST_CASE("learned model: few lights, constant and black images, 16-bit images and masks bake finite banks") {
+    TempDir dir;
+    auto bake = [&](const std::string& manifest, const std::string& what) {
+        Result<Dataset> dataset = openDataset(manifest);
+        REQUIRE_MESSAGE(dataset.ok(), dataset.error());
+        Result<LutBank> bank = bakeBank(*dataset, {.learned = LearnedOptions{.steps = 120}});
+        INFO(what);
+        REQUIRE_MESSAGE(bank.ok(), bank.error());
+        const LearnedModel& m = bank->predictorAs<LearnedPredictor>()->model();
+        for (const std::vector<float>* v : {&m.decoder, &m.lightNetwork, &m.scale, &m.bias})
+            for (float x : *v) REQUIRE(std::isfinite(x));
+        const Image relit = relight(*bank, Direction::fromDegrees(35, 120), {});
+        for (float v : relit.samples) REQUIRE((std::isfinite(v) && v >= 0 && v <= 1));
+    };
+    for (int count : {3, 5, 12}) {
+        TempDir sub;
+        bake(writeRelief(sub, Relief{.size = 24, .border = 3}, dome(count, 60)), std::to_string(count) + " lights");
+    }
+    {  // clustered within 5 degrees
+        TempDir sub;
+        std::vector<Direction> clustered;
+        for (int i = 0; i < 20; ++i) clustered.push_back(Direction::fromDegrees(30 + 0.2 * i, 40 + 0.2 * (i % 5)));
+        bake(writeRelief(sub, Relief{.size = 24}, clustered), "clustered lights");
+    }
+    // Images of `value(texel, light)` under 18 lights, at a bit depth.
+    auto images = [&](const TempDir& sub, int depth, const std::function<float(int, int)>& value) {
+        nlohmann::json manifest{{"btflut_dataset", 1}, {"images", nlohmann::json::array()}};
+        const std::vector<Direction> lights = dome(18, 65);
+        for (int l = 0; l < 18; ++l) {
+            Image im(20, 20, 1, depth);
+            for (int i = 0; i < 400; ++i) im.samples[static_cast<std::size_t>(i)] = value(i, l);
+            const std::string name = "i" + std::to_string(l) + ".png";
+            REQUIRE(savePng(im, sub / name, depth).ok());
+            manifest["images"].push_back({{"file", name},
+                                          {"light",
+                                           {{"theta", lights[static_cast<std::size_t>(l)].thetaDegrees()},
+                                            {"phi", lights[static_cast<std::size_t>(l)].phiDegrees()}}}});
+        }
+        std::ofstream(sub / "btflut-dataset.json") << manifest.dump(1);
+        return sub / "btflut-dataset.json";
+    };
+    {  // black but for two texels' levels (the reference must not be constant)
+        TempDir sub;
+        bake(images(sub, 8, [](int i, int l) { return i < 2 ? static_cast<float>(10 * i + l) / 255.f : 0.f; }),
+             "black images");
+    }
+    {  // 16-bit, a smooth ramp that grows with the light
+        TempDir sub;
+        bake(images(sub, 16, [](int i, int l) { return std::round((i / 400.f) * (0.3f + 0.03f * l) * 65535) / 65535; }),
+             "16-bit images");
+    }
+    {
+        TempDir sub;
+        Result<Dataset> few = openDataset(writeRelief(sub, Relief{.size = 16}, dome(2, 50)));
+        REQUIRE(few.ok());
+        Result<LutBank> refused = bakeBank(*few, {.learned = LearnedOptions{.steps = 50}});
+        REQUIRE_FALSE(refused.ok());
+        CHECK_MESSAGE(refused.error().find("a learned model needs at least 3 lights") != std::string::npos,
+                      refused.error());
+    }
+}
