@@ -1,5 +1,6 @@
 """Progress on a terminal: `btflut eval` under a pseudo-terminal draws its progress bar with
-the time left; piped, it prints none. Usage: terminal_check.py BTFLUT MATERIAL"""
+the time left, and `btflut bake --predictor neural3` its training's; piped, they print none.
+Usage: terminal_check.py BTFLUT MATERIAL"""
 import os
 import pty
 import subprocess
@@ -42,7 +43,17 @@ def main():
         assert done == total, frames[-1]
         piped = subprocess.run(argv[:-1] + [os.path.join(folder, "piped")], capture_output=True, text=True)
         assert piped.returncode == 0 and "evaluating [" not in piped.stderr, piped.stderr
-    print("terminal_check: progress drawn on a terminal (%d frames), none when piped" % len(frames))
+        # Training a learned model: its own bar, with the time left, to the end.
+        argv = [btflut, "bake", material, "--predictor", "neural3", "-o", os.path.join(folder, "n.btflut")]
+        text, status = under_terminal(argv)
+        assert status == 0, text
+        training = [line for line in text.split("\r") if line.startswith("training neural3 [")]
+        assert training and any("s left" in f for f in training), "no training progress:\n" + text[-2000:]
+        assert "1000/1000" in training[-1], training[-1]
+        piped = subprocess.run(argv, capture_output=True, text=True)
+        assert piped.returncode == 0 and "training" not in piped.stderr, piped.stderr
+    print("terminal_check: progress drawn on a terminal (%d frames; training %d), none when piped"
+          % (len(frames), len(training)))
 
 
 if __name__ == "__main__":

@@ -13,6 +13,7 @@
 #include "core/learn/network.h"
 #include "core/predict/learned_decoder.h"
 #include "core/predict/learned_predictor.h"
+#include "core/predict/neural_rti.h"
 #include "core/relight/relighter.h"
 #include "helpers.h"
 
@@ -245,4 +246,32 @@ TEST_CASE("learned model: few lights, constant and black images, 16-bit images a
         CHECK_MESSAGE(refused.error().find("a learned model needs at least 3 lights") != std::string::npos,
                       refused.error());
     }
+}
+
+TEST_CASE("neuralrti: the published baseline trains on the relief, and the learned kind is ahead of it") {
+    const Relief relief{.size = 32};
+    const std::vector<Direction> lights = dome(24, 70);
+    std::vector<Image> images;
+    std::vector<const Image*> pointers;
+    for (Direction l : lights) images.push_back(reliefImage(relief, l));
+    for (const Image& image : images) pointers.push_back(&image);
+    const Mask mask = fullMask(relief.size, relief.size);
+    Result<NeuralRti> baseline = fitNeuralRti(pointers, lights, mask, {.steps = 600}, "relief");
+    REQUIRE_MESSAGE(baseline.ok(), baseline.error());
+    Result<LearnedModel> learned = fitLearnedModel(pointers, lights, mask, {.steps = 600}, "relief");
+    REQUIRE(learned.ok());
+    CHECK(baseline->coefficients.size() == 9 * images.front().pixelCount());
+    double neuralRti = 0, neural = 0;
+    for (Direction l :
+         {Direction::fromDegrees(25, 10), Direction::fromDegrees(45, 200), Direction::fromDegrees(60, 300)}) {
+        const Image truth = reliefImage(relief, l), predicted = baseline->render(l);
+        for (float v : predicted.samples) REQUIRE((std::isfinite(v) && v >= 0 && v <= 1));
+        neuralRti += compareImages(predicted, truth, mask).psnr / 3;
+        neural += compareImages(learned->render(l), truth, mask).psnr / 3;
+    }
+    MESSAGE("relief between the lights: neural9 " << neural << " dB, NeuralRTI " << neuralRti << " dB");
+    CHECK(neuralRti > 20);
+    CHECK(neural > neuralRti);
+    std::vector<const Image*> two(pointers.begin(), pointers.begin() + 2);
+    CHECK_FALSE(fitNeuralRti(two, {lights[0], lights[1]}, mask, {}, "relief").ok());
 }

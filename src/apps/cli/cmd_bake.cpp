@@ -210,6 +210,11 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
             "what it predicts from; give --references 1 for the paper's bank"};
     if (o.json) o.quiet = true;  // stdout holds the JSON only
     if (!o.quiet) options.progress = terminalProgress(o.predictor == "auto" ? "validating" : "baking");
+    if (!o.quiet && options.learned)  // training takes most of such a bake: its own bar, in thousandths
+        if (auto bar = terminalProgress("training " + o.predictor))
+            options.learned->progress = [bar](double done) mutable {
+                bar(static_cast<std::size_t>(done * 1000), 1000);
+            };
     HistogramsWhileBaking collector{*dataset};
     const bool fitting = o.fill == "model" && o.params.empty();
     const ImageProvider provider = fitting ? ImageProvider(std::ref(collector)) : ImageProvider();
@@ -318,13 +323,16 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
                     "bank keeps them instead of LUTs; 4 bytes each per light and region)")
         ->check(CLI::Range(2, 65536))
         ->capture_default_str();
-    app->add_option("--predictor", o->predictor,
-                    "what places shadows and highlights before each light's LUT matches the histogram "
-                    "(docs/predictors.md): auto (the default without --references: validation on the dataset's own "
-                    "lights picks the predictor and how strongly to match, within --budget), references (the "
-                    "--references blended; --references 1 is the paper's bank), or a light model fitted to every "
-                    "image: ptm, hsh2 or hsh3 (hemispherical harmonics), rbfN or blnN (N principal components of "
-                    "the images, interpolated over the lights by radial basis functions or bilinearly; rbf, bln: 9)")
+    app->add_option(
+           "--predictor", o->predictor,
+           "what places shadows and highlights before each light's LUT matches the histogram "
+           "(docs/predictors.md): auto (the default without --references: validation on the dataset's own "
+           "lights picks the predictor and how strongly to match, within --budget), references (the "
+           "--references blended; --references 1 is the paper's bank), or a light model fitted to every "
+           "image: ptm, hsh2 or hsh3 (hemispherical harmonics), rbfN or blnN (N principal components of "
+           "the images, interpolated over the lights by radial basis functions or bilinearly; rbf, bln: 9), or a "
+           "learned model trained on them: neuralN (N codes per texel and a small decoder network; neural: "
+           "9; relit on the CPU only for now)")
         ->capture_default_str();
     app->add_option("--match", o->match,
                     "how far each light's LUT moves the prediction's distribution to the measured one: 1 fully, 0 not "

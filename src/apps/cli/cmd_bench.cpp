@@ -16,6 +16,7 @@
 #include "core/check.h"
 #include "core/histogram/histogram.h"
 #include "core/io/json_text.h"
+#include "core/learn/network.h"
 #include "core/physics/geometry.h"
 #include "core/physics/simulate.h"
 #include "core/synth/render.h"
@@ -458,6 +459,58 @@ Status runBenchRender(const BenchRenderOptions& o) {
     return success();
 }
 
+struct BenchTrainOptions {
+    int samples = 200000;
+    int epochs = 3;
+    int repeat = 3;
+    bool json = false;
+};
+
+// The trainer the learned kind uses (learn/network.h) on NeuralRTI's decoder, 11-50-50-3 ELU,
+// Adam at 1e-3, batches of 1024 samples of a smooth synthetic function: the setting in which
+// libtorch's and dlib's C++ trainers were measured (bench/RESULTS.md, issue 35).
+Status runBenchTrain(const BenchTrainOptions& o) {
+    Random random(1);
+    const auto n = static_cast<Eigen::Index>(o.samples);
+    Matrix x(11, n), y(3, n);
+    for (Eigen::Index i = 0; i < x.size(); ++i) x.data()[i] = static_cast<float>(random.uniform() * 2 - 1);
+    for (Eigen::Index i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) y(c, i) = std::tanh(x(c, i) * x(9, i) + x(3 + c, i) * x(10, i));
+    std::vector<double> rates;
+    double loss = 0;
+    for (int r = 0; r < o.repeat; ++r) {
+        Random init(2);
+        Network net = Network::random({11, 50, 50, 3}, init);
+        Adam adam(net);
+        NetworkPass pass;
+        const auto start = std::chrono::steady_clock::now();
+        for (int e = 0; e < o.epochs; ++e)
+            for (Eigen::Index at = 0; at + 1024 <= n; at += 1024) {
+                net.forward(x.middleCols(at, 1024), pass);
+                Matrix d = pass.output() - y.middleCols(at, 1024);
+                loss = d.squaredNorm() / static_cast<double>(d.size());
+                d *= 2.f / static_cast<float>(d.size());
+                adam.step(net, net.backward(pass, d, false), 1e-3f);
+            }
+        rates.push_back(static_cast<double>(o.epochs) * static_cast<double>(n) /
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 1e6);
+    }
+    nlohmann::json out{{"network", "11-50-50-3 ELU, Adam, batch 1024"},
+                       {"samples", o.samples},
+                       {"epochs", o.epochs},
+                       {"million_samples_per_second", median(rates)},
+                       {"final_loss", loss}};
+    if (o.json) {
+        std::cout << jsonText(out);
+        return success();
+    }
+    std::printf(
+        "btflut's trainer (learn/network.h), 11-50-50-3 ELU, Adam, batch 1024, %d samples x %d epochs, one "
+        "thread: %.2f M samples/s (median of %d), final loss %.5f\n",
+        o.samples, o.epochs, median(rates), o.repeat, loss);
+    return success();
+}
+
 }  // namespace
 
 void addBenchCommand(CLI::App& root, Commands& commands) {
@@ -489,6 +542,17 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
     synth->add_option("--repeat", yo->repeat, "timed runs")->check(CLI::Range(1, 100))->capture_default_str();
     synth->add_flag("--json", yo->json, "print JSON");
     commands.push_back({synth, [yo] { return runBenchSynth(*yo); }});
+
+    auto to = std::make_shared<BenchTrainOptions>();
+    CLI::App* train = bench->add_subcommand(
+        "train", "Training throughput of the learned kind's trainer on NeuralRTI's decoder (samples per second)");
+    train->add_option("--samples", to->samples, "synthetic samples")
+        ->check(CLI::Range(1024, 10000000))
+        ->capture_default_str();
+    train->add_option("--epochs", to->epochs, "passes over them")->check(CLI::Range(1, 100))->capture_default_str();
+    train->add_option("--repeat", to->repeat, "timed runs")->check(CLI::Range(1, 100))->capture_default_str();
+    train->add_flag("--json", to->json, "print JSON");
+    commands.push_back({train, [to] { return runBenchTrain(*to); }});
 
     auto ro = std::make_shared<BenchRenderOptions>();
     CLI::App* render = bench->add_subcommand(

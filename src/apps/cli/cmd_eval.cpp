@@ -109,7 +109,8 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
     app->add_option(
            "--modes", o->modes,
            "comma-separated: lut, brdf, ptm, nearest, flat, and the RTI bases unmatched: hsh (hsh2, hsh3), rbf "
-           "and bln (9 planes; rbfN, blnN: N planes; rbfNc, blnNc: N bytes of packed 8- and 4-bit planes)")
+           "and bln (9 planes; rbfN, blnN: N planes; rbfNc, blnNc: N bytes of packed 8- and 4-bit planes), the "
+           "learned kind (neural: 9 codes; neuralN) and the published NeuralRTI (neuralrti), its baseline")
         ->capture_default_str();
     app->add_option("--references", o->references, "lut: references per bank, a list (e.g. 1,4,6)")
         ->capture_default_str();
@@ -118,7 +119,7 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
     app->add_option("--predictor", o->predictors,
                     "lut: auto (what bake makes without options, from each fold's training images), references (the "
                     "--references blended), or a light model relit, then matched: ptm, hsh2, hsh3, rbfN, blnN, rbfNc, "
-                    "blnNc; a list")
+                    "blnNc, neuralN (learned); a list")
         ->capture_default_str();
     app->add_option("--match", o->matches,
                     "lut with a predictor (and lut auto): each match strength of a list, 0 (the prediction as it is) "

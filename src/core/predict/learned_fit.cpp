@@ -10,15 +10,13 @@
 #include "core/parallel.h"
 #include "core/predict/learned_decoder.h"
 #include "core/predict/learned_model.h"
+#include "core/predict/learned_training.h"
 
 namespace btflut {
 namespace {
 
-constexpr std::size_t kBatchSamples = 2048;         // texel-light samples per step
-constexpr std::size_t kMaxSampleFloats = 1u << 25;  // 128 MB of training samples at most
-constexpr float kRate = 2e-2f;                      // Adam's peak rate (the residual network's)
-constexpr std::size_t kMinLights = 16;              // fewer: the linear start, not trained
-constexpr std::size_t kEpochs = 50;                 // passes over the samples at most
+constexpr float kRate = 2e-2f;          // Adam's peak rate (the residual network's)
+constexpr std::size_t kMinLights = 16;  // fewer: the linear start, not trained
 // The linear basis (encoder and light network) starts where it should be: it moves slower.
 constexpr float kLinearRate = 0.05f;
 // Decoupled weight decay of the residual network (AdamW's): what keeps it smooth between the
@@ -26,32 +24,8 @@ constexpr float kLinearRate = 0.05f;
 // first few hundred steps).
 constexpr float kWeightDecay = 0.1f;
 
-// The values a texel's code is made from: its samples under every light, lights x channels.
-struct TexelSamples {
-    const std::vector<const Image*>& images;
-    int channels;  // 1: the grey value; 3: RGB
-    std::size_t size() const { return images.size() * static_cast<std::size_t>(channels); }
-    void read(std::size_t texel, float* out) const {
-        for (const Image* image : images) {
-            if (channels == 1) {
-                *out++ = image->grey(texel);
-            } else {
-                const float* p = &image->samples[texel * 3];
-                *out++ = p[0];
-                *out++ = p[1];
-                *out++ = p[2];
-            }
-        }
-    }
-    Matrix block(std::span<const std::uint32_t> texels) const {
-        Matrix m(static_cast<Eigen::Index>(size()), static_cast<Eigen::Index>(texels.size()));
-        for (std::size_t j = 0; j < texels.size(); ++j) read(texels[j], m.col(static_cast<Eigen::Index>(j)).data());
-        return m;
-    }
-};
-
-// The start of training: each texel's samples fitted per channel by the light features
-// (ridge least squares: its hemispherical harmonics, F per channel), and the N principal
+// The start of training: each texel's samples fitted per channel by the first `terms` light
+// features (ridge least squares: hsh2's 4 or hsh3's 9 hemispherical harmonics), and the N principal
 // components of those F C coefficients over the sample texels. The encoder gives a texel
 // those components' coordinates, whitened (unit variance over the sample); the light network
 // gives, per light, the components' (and the mean's) values there. So training starts from
@@ -60,9 +34,9 @@ struct TexelSamples {
 struct LinearStart {
     Network encoder, light;
 };
-LinearStart linearStart(const Matrix& samples, const Matrix& features, int codes, int channels) {
-    const Eigen::Index L = features.cols(), F = features.rows(), C = channels, D = samples.rows(), N = codes;
-    const Eigen::MatrixXd h = features.transpose().cast<double>();  // L x F
+LinearStart linearStart(const Matrix& samples, const Matrix& features, int codes, int channels, int terms) {
+    const Eigen::Index L = features.cols(), F = terms, C = channels, D = samples.rows(), N = codes;
+    const Eigen::MatrixXd h = features.topRows(F).transpose().cast<double>();  // L x F
     Eigen::MatrixXd normal = h.transpose() * h;
     normal.diagonal().array() += 1e-3 * normal.trace() / static_cast<double>(F);
     const Eigen::MatrixXd project = normal.ldlt().solve(h.transpose());  // F x L
@@ -83,12 +57,12 @@ LinearStart linearStart(const Matrix& samples, const Matrix& features, int codes
         components.col(k) = eigen.eigenvectors().col(Z - 1 - k) * std::sqrt(variance);
     }
     LinearStart start;
-    const std::vector<int> encoderSizes{static_cast<int>(D), codes},
-        lightSizes{static_cast<int>(F), static_cast<int>(C * (N + 1))};
+    const std::vector<int> encoderSizes{static_cast<int>(D), codes};
     start.encoder =
         Network::fromParameters(encoderSizes, std::vector<float>(Network::parameterCount(encoderSizes), 0.f));
     start.encoder.weights(0) = (encode * q).cast<float>();
     start.encoder.bias(0) = (-encode * mean).cast<float>();
+    const std::vector<int> lightSizes{static_cast<int>(features.rows()), static_cast<int>(C * (N + 1))};
     start.light = Network::fromParameters(lightSizes, std::vector<float>(Network::parameterCount(lightSizes), 0.f));
     for (Eigen::Index c = 0; c < C; ++c)
         for (Eigen::Index f = 0; f < F; ++f) {
@@ -97,30 +71,6 @@ LinearStart linearStart(const Matrix& samples, const Matrix& features, int codes
             start.light.weights(0)(c * (N + 1) + N, f) = static_cast<float>(mean(c * F + f));
         }
     return start;
-}
-
-// The samples of a batch's texels as the decoder orders them (light-major: l T + t).
-Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels) {
-    const Eigen::Index T = samples.cols(), C = channels;
-    Matrix target(C, lights * T);
-    for (Eigen::Index l = 0; l < lights; ++l) target.block(0, l * T, C, T) = samples.block(l * C, 0, C, T);
-    return target;
-}
-
-// d loss / d output of the mean squared error; returns the loss.
-float squaredError(const Matrix& output, const Matrix& target, Matrix& gradient) {
-    gradient = output - target;
-    const float loss = gradient.squaredNorm() / static_cast<float>(gradient.size());
-    gradient *= 2.f / static_cast<float>(gradient.size());
-    return loss;
-}
-
-// Cosine decay from `peak` after a short warm-up.
-float rateAt(int step, int steps, float peak) {
-    const int warmup = std::max(1, steps / 50);
-    if (step < warmup) return peak * static_cast<float>(step + 1) / static_cast<float>(warmup);
-    const double t = static_cast<double>(step - warmup) / std::max(1, steps - warmup);
-    return static_cast<float>(peak * (0.02 + 0.98 * 0.5 * (1 + std::cos(3.14159265358979 * t))));
 }
 
 struct Trained {
@@ -168,16 +118,23 @@ float validationLoss(const Trained& t, const Validation& v) {
 // Phase 1: encoder and decoder together on the sample texels' samples, `steps` Adam steps.
 // With a validation, the step (a multiple of steps / 16, 0 the linear start) where its loss
 // was least goes to `best`.
-Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedOptions& o, int channels, int steps,
-                     float peak, std::uint64_t seed, const Validation* validation, int* best,
-                     const std::function<void(double)>& progress) {
-    Random random(seed);
+// The linear start (linearStart) with a residual network at zero.
+Trained started(const Matrix& samples, const Matrix& lights, const LearnedOptions& o, int channels, int terms,
+                Random& random) {
     Trained t;
-    LinearStart start = linearStart(samples, lights, o.codes, channels);
+    LinearStart start = linearStart(samples, lights, o.codes, channels, terms);
     t.encoder = std::move(start.encoder);
     t.decoder = randomDecoder(o, channels, random);
     if (t.decoder.light.layers() == 1) t.decoder.light = std::move(start.light);
     t.decoder.residual.weights(t.decoder.residual.layers() - 1).setZero();
+    return t;
+}
+
+Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedOptions& o, int channels, int terms,
+                     int steps, float peak, std::uint64_t seed, const Validation* validation, int* best,
+                     const std::function<void(double)>& progress) {
+    Random random(seed);
+    Trained t = started(samples, lights, o, channels, terms, random);
     Adam encoderAdam(t.encoder);
     DecoderAdam decoderAdam(t.decoder);
     const auto L = static_cast<std::size_t>(lights.cols());
@@ -255,106 +212,77 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
         return Error{what + ": a network of the learned model is larger than " +
                      std::to_string(LearnedModel::kMaxParameters) + " parameters"};
     const TexelSamples texelSamples{images, m.channels};
-
-    // The sample texels: the mask's, at most as many as the options and the memory bound allow.
-    std::vector<std::uint32_t> inside;
-    for (std::size_t i = 0; i < m.texels(); ++i)
-        if (mask.inside.empty() || mask.inside[i]) inside.push_back(static_cast<std::uint32_t>(i));
-    if (inside.empty()) return Error{what + ": the mask has no sample texels to learn from"};
-    const std::size_t keep = std::min({inside.size(), o.sampleTexels, kMaxSampleFloats / texelSamples.size()});
-    Random pick(o.seed ^ 0x5eed);
-    for (std::size_t i = 0; i < keep; ++i)  // a partial Fisher-Yates shuffle: `keep` drawn without repeats
-        std::swap(inside[i], inside[i + pick.next() % (inside.size() - i)]);
-    std::vector<std::uint32_t> sampleTexels(inside.begin(), inside.begin() + static_cast<std::ptrdiff_t>(keep));
-    std::sort(sampleTexels.begin(), sampleTexels.end());
-    const Matrix samples = texelSamples.block(sampleTexels);
+    Result<TrainingSamples> drawn = drawTrainingSamples(texelSamples, mask, m.texels(), o.sampleTexels, o.seed, what);
+    if (!drawn) return Error{drawn.error()};
+    const Matrix& samples = drawn->samples;
+    const std::size_t keep = drawn->texels.size();
     Matrix lightXY(kLearnedLightFeatures, static_cast<Eigen::Index>(lights.size()));
     for (std::size_t l = 0; l < lights.size(); ++l) {
         const std::vector<float> h = learnedLightFeatures(lights[l]);
         lightXY.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Vector>(h.data(), kLearnedLightFeatures);
     }
 
-    // How long to train: validated on every fifth light held out (a residual network learns
-    // the training lights' shadows, which need not generalise: with few lights the linear
-    // start can be best). Fewer than kMinLights lights keep the linear start.
+    // Validated on every fifth light held out: the start's terms (hsh3's 9 need more lights
+    // than hsh2's 4 to interpolate between them), and how long to train (a residual network
+    // learns the training lights' shadows, which need not generalise: the linear start can be
+    // best). Fewer than kMinLights lights keep the linear start; under 6, hsh2's terms.
     const float rate = kRate;
-    // At most kEpochs passes over the samples: a small capture trains in proportion.
-    const std::size_t epochSteps = keep * lights.size() / kBatchSamples + 1;
-    const int budget = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(o.steps), kEpochs * epochSteps));
-    int steps = 0;
-    if (lights.size() >= kMinLights) {
+    const int budget = stepBudget(o.steps, keep, lights.size());
+    int steps = 0, terms = 4;
+    if (lights.size() >= 6) {
         std::vector<std::size_t> train, held;
         for (std::size_t l = 0; l < lights.size(); ++l) (l % 5 == 2 ? held : train).push_back(l);
         std::vector<std::size_t> checked(std::min<std::size_t>(keep, 4096));
         std::iota(checked.begin(), checked.end(), std::size_t{0});
-        const Matrix trainSamples = lightRows(samples, train, m.channels);
-        Validation v{columns(trainSamples, checked), columns(lightXY, held),
-                     decoderTarget(columns(lightRows(samples, held, m.channels), checked),
-                                   static_cast<Eigen::Index>(held.size()), m.channels)};
-        Trained validated;
-        float peak = rate;
-        for (int attempt = 0; attempt < 3 && !validated.finite; ++attempt, peak /= 4)
-            validated = trainJointly(trainSamples, columns(lightXY, train), o, m.channels, budget, peak,
-                                     o.seed + static_cast<std::uint64_t>(attempt), &v, &steps, [&](double f) {
-                                         if (o.progress) o.progress(0.5 * f);
-                                     });
-        if (!validated.finite) return Error{what + ": training the learned model diverged (the loss is not finite)"};
+        const Matrix trainSamples = lightRows(samples, train, m.channels), trainLights = columns(lightXY, train);
+        const Validation v{columns(trainSamples, checked), columns(lightXY, held),
+                           decoderTarget(columns(lightRows(samples, held, m.channels), checked),
+                                         static_cast<Eigen::Index>(held.size()), m.channels)};
+        float least = 0;
+        for (int candidate : {4, kLearnedLightFeatures}) {
+            Random random(o.seed);
+            const float loss = validationLoss(started(trainSamples, trainLights, o, m.channels, candidate, random), v);
+            if (candidate == 4 || loss < least) least = loss, terms = candidate;
+        }
+        if (lights.size() >= kMinLights) {
+            Trained validated;
+            float peak = rate;
+            for (int attempt = 0; attempt < 3 && !validated.finite; ++attempt, peak /= 4)
+                validated = trainJointly(trainSamples, trainLights, o, m.channels, terms, budget, peak,
+                                         o.seed + static_cast<std::uint64_t>(attempt), &v, &steps, [&](double f) {
+                                             if (o.progress) o.progress(0.5 * f);
+                                         });
+            if (!validated.finite)
+                return Error{what + ": training the learned model diverged (the loss is not finite)"};
+        }
     }
 
     // Phase 1 on every light, retried at a quarter of the rate when it diverges.
     Trained t;
     float peak = rate;
     for (int attempt = 0; attempt < 3 && !t.finite; ++attempt, peak /= 4)
-        t = trainJointly(samples, lightXY, o, m.channels, steps, peak, o.seed + static_cast<std::uint64_t>(attempt),
-                         nullptr, nullptr, [&](double f) {
+        t = trainJointly(samples, lightXY, o, m.channels, terms, steps, peak,
+                         o.seed + static_cast<std::uint64_t>(attempt), nullptr, nullptr, [&](double f) {
                              if (o.progress) o.progress(0.5 + 0.4 * f);
                          });
     if (!t.finite) return Error{what + ": training the learned model diverged (the loss is not finite)"};
 
-    // Every texel's code, in blocks of a fixed size (the same sums for any thread count).
     const auto N = static_cast<std::size_t>(m.codes);
-    std::vector<float> codes(m.texels() * N);
-    constexpr std::size_t kBlock = 1024;
-    parallelFor((m.texels() + kBlock - 1) / kBlock, o.threads, [&](std::size_t b) {
-        const std::size_t begin = b * kBlock, end = std::min(m.texels(), begin + kBlock);
-        std::vector<std::uint32_t> block(end - begin);
-        std::iota(block.begin(), block.end(), static_cast<std::uint32_t>(begin));
-        NetworkPass pass;
-        t.encoder.forward(texelSamples.block(block), pass);
-        for (std::size_t j = 0; j < block.size(); ++j)
-            for (std::size_t k = 0; k < N; ++k)
-                codes[(begin + j) * N + k] = pass.output()(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j));
-    });
-
-    // 8 bits per code over the range the sample texels span (others clamped into it).
-    m.scale.assign(N, 1.f);
-    m.bias.assign(N, 0.f);
-    m.coefficients.resize(codes.size());
-    for (std::size_t k = 0; k < N; ++k) {
-        float low = 1e30f, high = -1e30f;
-        for (std::uint32_t i : inside) {
-            low = std::min(low, codes[i * N + k]);
-            high = std::max(high, codes[i * N + k]);
-        }
-        if (high - low > 1e-6f) m.scale[k] = (high - low) / 255.f;
-        m.bias[k] = -low / m.scale[k];
-        for (std::size_t i = 0; i < m.texels(); ++i)
-            m.coefficients[i * N + k] =
-                static_cast<std::uint8_t>(std::lround(std::clamp((codes[i * N + k] - low) / m.scale[k], 0.f, 255.f)));
-    }
+    quantiseCodes(encodeTexels(t.encoder, texelSamples, m.texels(), o.threads), drawn->inside, N, m.scale, m.bias,
+                  m.coefficients);
 
     // Phase 2: the decoder tuned to the quantised codes.
-    Matrix quantised(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(sampleTexels.size()));
-    for (std::size_t j = 0; j < sampleTexels.size(); ++j)
+    Matrix quantised(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(keep));
+    for (std::size_t j = 0; j < keep; ++j)
         for (std::size_t k = 0; k < N; ++k)
             quantised(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) =
-                (static_cast<float>(m.coefficients[sampleTexels[j] * N + k]) - m.bias[k]) * m.scale[k];
+                (static_cast<float>(m.coefficients[drawn->texels[j] * N + k]) - m.bias[k]) * m.scale[k];
     LearnedDecoder decoder = t.decoder;
     {
         DecoderAdam adam(decoder);
         Random random(o.seed + 17);
         const auto L = static_cast<Eigen::Index>(lights.size());
-        const std::size_t perBatch = std::max<std::size_t>(1, kBatchSamples / lights.size()), T = sampleTexels.size();
+        const std::size_t perBatch = std::max<std::size_t>(1, kBatchSamples / lights.size()), T = keep;
         const int tuning = steps / 5;
         Matrix codeBatch(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(perBatch)),
             x(samples.rows(), static_cast<Eigen::Index>(perBatch)), gradient;

@@ -1,5 +1,6 @@
 #include "core/predict/learned_predictor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -47,23 +48,54 @@ std::vector<ShaderValues> LearnedPredictor::shaderValues(const PredictorFrame&) 
 PredictorFrame LearnedPredictor::frameAt(Direction light) const {
     PredictorFrame frame;
     frame.count = 0;
-    const std::vector<float> values = m_model.predict(light, {}, 0);
-    auto codes = std::make_shared<std::vector<std::uint8_t>>(values.size());
-    for (std::size_t s = 0; s < values.size(); ++s)
-        (*codes)[s] = static_cast<std::uint8_t>(std::lround(values[s] * 255.f));
-    frame.decoded = std::move(codes);
+    frame.learned = std::make_shared<LearnedFrame>();
+    frame.learned->light = light;
     return frame;
 }
 
-std::size_t LearnedPredictor::code(const PredictorFrame& frame, std::size_t texel, int channel) const {
-    const std::uint8_t* p = &(*frame.decoded)[texel * static_cast<std::size_t>(m_model.channels)];
+namespace {
+std::uint8_t codeOfValue(float v) { return static_cast<std::uint8_t>(std::lround(v * 255.f)); }
+}  // namespace
+
+const std::uint8_t* LearnedPredictor::decoded(const PredictorFrame& frame, std::size_t texel) const {
+    LearnedFrame& f = *frame.learned;
+    std::call_once(f.once, [&] {
+        const std::vector<float> values = m_model.predict(f.light, {}, 0);
+        f.codes.resize(values.size());
+        std::transform(values.begin(), values.end(), f.codes.begin(), codeOfValue);
+    });
+    return &f.codes[texel * static_cast<std::size_t>(m_model.channels)];
+}
+
+std::size_t LearnedPredictor::codeOf(const std::uint8_t* p, int channel) const {
     if (m_perChannel) return p[channel];
     return m_model.channels == 1 ? p[0] : std::size_t{p[0]} + p[1] + p[2];
 }
 
+std::size_t LearnedPredictor::code(const PredictorFrame& frame, std::size_t texel, int channel) const {
+    return codeOf(decoded(frame, texel), channel);
+}
+
 void LearnedPredictor::colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const {
-    const std::uint8_t* p = &(*frame.decoded)[texel * static_cast<std::size_t>(m_model.channels)];
+    const std::uint8_t* p = decoded(frame, texel);
     for (int c = 0; c < 3; ++c) rgb[c] = static_cast<float>(p[m_model.channels == 3 ? c : 0]) / 255.f;
+}
+
+// A sample of at most half the texels is decoded on its own (the match grid's nodes count
+// their sample and never read a texel); a larger one reads the frame's decoding.
+void LearnedPredictor::countCodes(const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,
+                                  std::vector<std::uint64_t>& counts) const {
+    if (2 * texels.size() > m_model.texels()) {
+        countCodesOf(*this, frame, texels, channel, counts);
+        return;
+    }
+    const std::vector<float> values = m_model.predict(frame.learned->light, texels, 1);
+    const auto C = static_cast<std::size_t>(m_model.channels);
+    std::uint8_t p[3];
+    for (std::size_t j = 0; j < texels.size(); ++j) {
+        for (std::size_t c = 0; c < C; ++c) p[c] = codeOfValue(values[j * C + c]);
+        ++counts[codeOf(p, channel) + 1];
+    }
 }
 
 }  // namespace btflut

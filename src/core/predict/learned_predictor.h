@@ -1,12 +1,22 @@
 #pragma once
 // A learned model (learned_model.h) as a bank's predictor: per texel its codes, decoded by the
-// bank's network at each light. A frame decodes every texel once (the network's cost per
-// texel is LearnedModel::decoderCost multiply-adds), so a texel's code is a lookup.
+// bank's network at each light (LearnedModel::decoderCost multiply-adds a texel). Counting a
+// sample's codes decodes the sample's texels; the first texel's code read decodes every texel
+// of the frame, once, so the next are lookups.
+
+#include <mutex>
 
 #include "core/predict/learned_model.h"
 #include "core/predict/predictor.h"
 
 namespace btflut {
+
+/// A frame's light and, once read, every texel's channel codes (0..255) there.
+struct LearnedFrame {
+    Direction light;
+    std::once_flag once;
+    std::vector<std::uint8_t> codes;
+};
 
 class LearnedPredictor final : public Predictor {
 public:
@@ -24,13 +34,14 @@ public:
     std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;
     void countCodes(const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,
-                    std::vector<std::uint64_t>& counts) const override {
-        countCodesOf(*this, frame, texels, channel, counts);
-    }
+                    std::vector<std::uint64_t>& counts) const override;
 
     const LearnedModel& model() const { return m_model; }
 
 private:
+    const std::uint8_t* decoded(const PredictorFrame& frame, std::size_t texel) const;
+    std::size_t codeOf(const std::uint8_t* channels, int channel) const;
+
     LearnedModel m_model;
     bool m_perChannel;
 };

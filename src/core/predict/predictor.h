@@ -48,6 +48,8 @@ struct ShaderValues {
     bool integer = false;  ///< an int uniform (the values are whole numbers)
 };
 
+struct LearnedFrame;
+
 /// A predictor's integers at one light: the references blended and their weights (a
 /// reference blend), the light model's per-light integers, or a learned model's prediction.
 struct PredictorFrame {
@@ -55,8 +57,9 @@ struct PredictorFrame {
     std::array<int, 3> references{0, 0, 0};
     std::array<std::int32_t, 3> weights{kWeightUnit, 0, 0};  ///< in 1 / kWeightUnit, summing to kWeightUnit
     LightModelFixed model;                                   ///< a light model's per-light integers
-    /// A learned model's decoded prediction at the light: every texel's channel codes (0..255).
-    std::shared_ptr<const std::vector<std::uint8_t>> decoded;
+    /// A learned model's light and its prediction there, decoded when first read
+    /// (learned_predictor.h).
+    std::shared_ptr<LearnedFrame> learned;
 };
 
 class Predictor {

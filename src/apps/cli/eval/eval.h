@@ -87,10 +87,14 @@ struct Variant {
     /// training images.
     std::optional<LightModelOptions> basis;
     std::optional<LearnedOptions> learned;
-    bool unmatched() const { return basis || learned; }
+    bool neuralRti = false;  ///< the published NeuralRTI (predict/neural_rti.h), the learned kind's baseline
+    bool unmatched() const { return basis || learned || neuralRti; }
     /// The mode as the report names it: the render mode, or the model's kind.
     std::string modeName() const {
-        return basis ? lightBasisName(basis->basis) : learned ? "neural" : renderModeName(mode);
+        return basis       ? lightBasisName(basis->basis)
+               : learned   ? "neural"
+               : neuralRti ? "neuralrti"
+                           : renderModeName(mode);
     }
     bool base() const {
         return predictor == "references" && references == 1 && regions == 1 && colour == ColourMode::Grey && !filled &&

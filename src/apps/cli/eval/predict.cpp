@@ -13,6 +13,7 @@
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/model_fill.h"
+#include "core/predict/neural_rti.h"
 #include "core/relight/relighter.h"
 
 namespace btflut::cli::eval {
@@ -131,6 +132,14 @@ Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants
     for (Variant& v : variants) {
         if (!v.unmatched()) continue;
         const auto start = Clock::now();
+        if (v.neuralRti) {
+            Result<NeuralRti> model = fitNeuralRti(images, lights, mask, {}, dataset.source);
+            if (!model) return Error{model.error()};
+            v.bakeSeconds.push_back(seconds(start));
+            v.bytesPerTexel = model->codes;
+            models[v.name] = [m = std::make_shared<NeuralRti>(std::move(*model))](Direction l) { return m->render(l); };
+            continue;
+        }
         if (v.learned) {
             Result<LearnedModel> model = fitLearnedModel(images, lights, mask, *v.learned, dataset.source);
             if (!model) return Error{model.error()};

@@ -68,6 +68,11 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
                 v.basis = **basis;
                 variants.push_back(v);
                 continue;
+            } else if (name == "neuralrti") {
+                Variant v{name, RenderMode::Flat};
+                v.neuralRti = true;
+                variants.push_back(v);
+                continue;
             } else if (std::optional<Result<LearnedOptions>> learned = learnedModelNamed(name)) {
                 if (!*learned) return Error{"--modes: " + learned->error()};
                 Variant v{name, RenderMode::Flat};
@@ -77,10 +82,12 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             }
         }
         if (!mode)
-            return Error{"--modes: '" + name +
-                         "' is not a mode eval measures: lut, brdf, nearest, flat, a light model (ptm, hsh, hsh2, "
-                         "hsh3, rbf, bln, rbfN, blnN, blnNc) or a learned one (neural, neuralN); the default is "
-                         "lut,ptm,hsh,rbf,bln,nearest,brdf"};
+            return Error{
+                "--modes: '" + name +
+                "' is not a mode eval measures: lut, brdf, nearest, flat, a light model (ptm, hsh, hsh2, "
+                "hsh3, rbf, bln, rbfN, blnN, blnNc), a learned one (neural, neuralN) or neuralrti (the published "
+                "NeuralRTI, unmatched); the default is "
+                "lut,ptm,hsh,rbf,bln,nearest,brdf"};
         if (*mode != RenderMode::Lut) {
             variants.push_back({name, *mode});
             continue;

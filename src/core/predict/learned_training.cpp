@@ -1,0 +1,111 @@
+#include "core/predict/learned_training.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "core/parallel.h"
+#include "core/random.h"
+
+namespace btflut {
+
+void TexelSamples::read(std::size_t texel, float* out) const {
+    for (const Image* image : images) {
+        if (channels == 1) {
+            *out++ = image->grey(texel);
+        } else {
+            const float* p = &image->samples[texel * 3];
+            *out++ = p[0];
+            *out++ = p[1];
+            *out++ = p[2];
+        }
+    }
+}
+
+Matrix TexelSamples::block(std::span<const std::uint32_t> texels) const {
+    Matrix m(static_cast<Eigen::Index>(size()), static_cast<Eigen::Index>(texels.size()));
+    for (std::size_t j = 0; j < texels.size(); ++j) read(texels[j], m.col(static_cast<Eigen::Index>(j)).data());
+    return m;
+}
+
+Result<TrainingSamples> drawTrainingSamples(const TexelSamples& from, const Mask& mask, std::size_t texels,
+                                            std::size_t most, std::uint64_t seed, const std::string& what) {
+    TrainingSamples out;
+    for (std::size_t i = 0; i < texels; ++i)
+        if (mask.inside.empty() || mask.inside[i]) out.inside.push_back(static_cast<std::uint32_t>(i));
+    if (out.inside.empty()) return Error{what + ": the mask has no sample texels to learn from"};
+    const std::size_t keep = std::min({out.inside.size(), most, kMaxSampleFloats / from.size()});
+    std::vector<std::uint32_t> order = out.inside;
+    Random pick(seed ^ 0x5eed);
+    for (std::size_t i = 0; i < keep; ++i)  // a partial Fisher-Yates shuffle: `keep` drawn without repeats
+        std::swap(order[i], order[i + pick.next() % (order.size() - i)]);
+    out.texels.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(keep));
+    std::sort(out.texels.begin(), out.texels.end());
+    out.samples = from.block(out.texels);
+    return out;
+}
+
+int stepBudget(int steps, std::size_t texels, std::size_t lights) {
+    const std::size_t epoch = texels * lights / kBatchSamples + 1;
+    return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(steps, 0)), kEpochs * epoch));
+}
+
+Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels) {
+    const Eigen::Index T = samples.cols(), C = channels;
+    Matrix target(C, lights * T);
+    for (Eigen::Index l = 0; l < lights; ++l) target.block(0, l * T, C, T) = samples.block(l * C, 0, C, T);
+    return target;
+}
+
+float squaredError(const Matrix& output, const Matrix& target, Matrix& gradient) {
+    gradient = output - target;
+    const float loss = gradient.squaredNorm() / static_cast<float>(gradient.size());
+    gradient *= 2.f / static_cast<float>(gradient.size());
+    return loss;
+}
+
+float rateAt(int step, int steps, float peak) {
+    const int warmup = std::max(1, steps / 50);
+    if (step < warmup) return peak * static_cast<float>(step + 1) / static_cast<float>(warmup);
+    const double t = static_cast<double>(step - warmup) / std::max(1, steps - warmup);
+    return static_cast<float>(peak * (0.02 + 0.98 * 0.5 * (1 + std::cos(3.14159265358979 * t))));
+}
+
+std::vector<float> encodeTexels(const Network& encoder, const TexelSamples& from, std::size_t texels, int threads) {
+    const auto N = static_cast<std::size_t>(encoder.outputs());
+    std::vector<float> codes(texels * N);
+    constexpr std::size_t kBlock = 1024;
+    parallelFor((texels + kBlock - 1) / kBlock, threads, [&](std::size_t b) {
+        const std::size_t begin = b * kBlock, end = std::min(texels, begin + kBlock);
+        std::vector<std::uint32_t> block(end - begin);
+        std::iota(block.begin(), block.end(), static_cast<std::uint32_t>(begin));
+        NetworkPass pass;
+        encoder.forward(from.block(block), pass);
+        for (std::size_t j = 0; j < block.size(); ++j)
+            for (std::size_t k = 0; k < N; ++k)
+                codes[(begin + j) * N + k] = pass.output()(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j));
+    });
+    return codes;
+}
+
+void quantiseCodes(const std::vector<float>& codes, const std::vector<std::uint32_t>& inside, std::size_t N,
+                   std::vector<float>& scale, std::vector<float>& bias, std::vector<std::uint8_t>& bytes) {
+    scale.assign(N, 1.f);
+    bias.assign(N, 0.f);
+    bytes.resize(codes.size());
+    const std::size_t texels = codes.size() / N;
+    for (std::size_t k = 0; k < N; ++k) {
+        float low = 1e30f, high = -1e30f;
+        for (std::uint32_t i : inside) {
+            low = std::min(low, codes[i * N + k]);
+            high = std::max(high, codes[i * N + k]);
+        }
+        if (high - low > 1e-6f) scale[k] = (high - low) / 255.f;
+        bias[k] = -low / scale[k];
+        for (std::size_t i = 0; i < texels; ++i)
+            bytes[i * N + k] =
+                static_cast<std::uint8_t>(std::lround(std::clamp((codes[i * N + k] - low) / scale[k], 0.f, 255.f)));
+    }
+}
+
+}  // namespace btflut

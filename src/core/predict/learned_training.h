@@ -1,0 +1,59 @@
+#pragma once
+// What training a learned model (learned_fit.cpp) and the published NeuralRTI baseline
+// (neural_rti.h) share: the texels' samples, the batches, the loss, the rate's schedule, the
+// codes of every texel and their 8-bit quantisation.
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/image/image.h"
+#include "core/learn/network.h"
+#include "core/result.h"
+
+namespace btflut {
+
+constexpr std::size_t kBatchSamples = 2048;         ///< texel-light samples per step
+constexpr std::size_t kMaxSampleFloats = 1u << 25;  ///< 128 MB of training samples at most
+constexpr std::size_t kEpochs = 50;                 ///< passes over the samples at most
+
+/// The values a texel's code is made from: its samples under every light, lights x channels
+/// (light-major).
+struct TexelSamples {
+    const std::vector<const Image*>& images;
+    int channels;  ///< 1: the grey value; 3: RGB
+    std::size_t size() const { return images.size() * static_cast<std::size_t>(channels); }
+    void read(std::size_t texel, float* out) const;
+    Matrix block(std::span<const std::uint32_t> texels) const;
+};
+
+/// The texels trained on: drawn with the seed from the mask (all texels when it is empty), at
+/// most `most` and at most kMaxSampleFloats floats of samples; sorted.
+struct TrainingSamples {
+    std::vector<std::uint32_t> inside;  ///< every texel of the mask
+    std::vector<std::uint32_t> texels;  ///< the drawn ones
+    Matrix samples;                     ///< their samples, one column each
+};
+Result<TrainingSamples> drawTrainingSamples(const TexelSamples& from, const Mask& mask, std::size_t texels,
+                                            std::size_t most, std::uint64_t seed, const std::string& what);
+
+/// Steps to train: at most `steps`, and at most kEpochs passes over the samples (a small
+/// capture trains in proportion).
+int stepBudget(int steps, std::size_t texels, std::size_t lights);
+
+/// The samples of a batch's texels as decoders order them (light-major: l T + t), C x L T.
+Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels);
+/// d loss / d output of the mean squared error; returns the loss.
+float squaredError(const Matrix& output, const Matrix& target, Matrix& gradient);
+/// Cosine decay from `peak` after a short warm-up.
+float rateAt(int step, int steps, float peak);
+
+/// Every texel's code (N per texel) from the encoder over its samples, in blocks of a fixed
+/// size (the same sums on any thread count).
+std::vector<float> encodeTexels(const Network& encoder, const TexelSamples& from, std::size_t texels, int threads);
+/// 8 bits per code over the range the `inside` texels span (others clamped into it):
+/// value = (byte - bias) scale.
+void quantiseCodes(const std::vector<float>& codes, const std::vector<std::uint32_t>& inside, std::size_t N,
+                   std::vector<float>& scale, std::vector<float>& bias, std::vector<std::uint8_t>& bytes);
+
+}  // namespace btflut
