@@ -71,33 +71,34 @@ void Network::forward(const Matrix& input, NetworkPass& pass) const {
         Matrix& a = pass.activations[k];
         a.noalias() = m_weights[k] * *x;
         a.colwise() += m_biases[k];
-        if (k + 1 < m_weights.size()) a = (a.array() > 0.f).select(a.array(), a.array().exp() - 1.f).matrix();
+        // ELU: max(a, 0) + e^min(a, 0) - 1, in whole-array operations (Eigen vectorises exp
+        // there, not inside a select).
+        if (k + 1 < m_weights.size()) a.array() = a.array().max(0.f) + (a.array().min(0.f).exp() - 1.f);
         x = &a;
     }
 }
 
-NetworkGradient Network::backward(const NetworkPass& pass, const Matrix& outputGradient, bool inputGradient) const {
+void Network::backward(const NetworkPass& pass, const Matrix& outputGradient, bool inputGradient,
+                       NetworkGradient& g) const {
     const std::size_t L = m_weights.size();
-    NetworkGradient g;
     g.weights.resize(L);
     g.biases.resize(L);
-    Matrix delta = outputGradient;  // d loss / d the layer's pre-activation
+    Matrix& delta = pass.delta;  // d loss / d the layer's pre-activation
+    Matrix& back = pass.back;
+    delta = outputGradient;
     for (std::size_t k = L; k-- > 0;) {
         const Matrix& x = k == 0 ? pass.input : pass.activations[k - 1];
         g.weights[k].noalias() = delta * x.transpose();
         g.biases[k] = delta.rowwise().sum();
         if (k == 0 && !inputGradient) break;
-        Matrix back;
-        back.noalias() = m_weights[k].transpose() * delta;
-        if (k == 0) {
-            g.input = std::move(back);
-            break;
-        }
-        // ELU's derivative from its output a: 1 above 0, e^x = a + 1 below.
+        Matrix& to = k == 0 ? g.input : back;
+        to.noalias() = m_weights[k].transpose() * delta;
+        if (k == 0) break;
+        // ELU's derivative from its output a: 1 above 0, e^x = a + 1 below: min(a, 0) + 1.
         const Matrix& a = pass.activations[k - 1];
-        delta = (a.array() > 0.f).select(back.array(), back.array() * (a.array() + 1.f)).matrix();
+        delta.resize(back.rows(), back.cols());
+        delta.array() = back.array() * (a.array().min(0.f) + 1.f);
     }
-    return g;
 }
 
 Adam::Adam(const Network& network) {

@@ -25,6 +25,9 @@ struct NetworkPass {
     Matrix input;
     std::vector<Matrix> activations;  ///< after each layer (ELU but the last)
     const Matrix& output() const { return activations.back(); }
+    /// The backward pass's working matrices, kept so that a step allocates nothing (a batch's
+    /// matrices are beyond malloc's mmap threshold: each new one costs page faults).
+    mutable Matrix delta, back;
 };
 
 /// d loss / d parameters of each layer, and (when asked) d loss / d inputs.
@@ -57,8 +60,13 @@ public:
     const Vector& bias(std::size_t layer) const { return m_biases[layer]; }
 
     void forward(const Matrix& input, NetworkPass& pass) const;
-    /// Backpropagates d loss / d output through the pass.
-    NetworkGradient backward(const NetworkPass& pass, const Matrix& outputGradient, bool inputGradient) const;
+    /// Backpropagates d loss / d output through the pass into `g` (its matrices reused).
+    void backward(const NetworkPass& pass, const Matrix& outputGradient, bool inputGradient, NetworkGradient& g) const;
+    NetworkGradient backward(const NetworkPass& pass, const Matrix& outputGradient, bool inputGradient) const {
+        NetworkGradient g;
+        backward(pass, outputGradient, inputGradient, g);
+        return g;
+    }
 
 private:
     std::vector<int> m_sizes;

@@ -6,7 +6,8 @@ void LearnedDecoder::forward(const Matrix& codes, const Matrix& lights, Pass& pa
     const Eigen::Index N = codes.rows(), T = codes.cols(), L = lights.cols(), F = residual.inputs() - N, C = channels();
     pass.codes = codes;
     light.forward(lights, pass.light);
-    Matrix input(N + F, L * T);
+    Matrix& input = pass.input;
+    input.resize(N + F, L * T);
     for (Eigen::Index l = 0; l < L; ++l) {
         input.block(0, l * T, N, T) = codes;
         input.block(N, l * T, F, T) = lights.col(l).replicate(1, T);

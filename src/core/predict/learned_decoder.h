@@ -27,6 +27,7 @@ struct LearnedDecoder {
     struct Pass {
         NetworkPass light, residual;
         Matrix codes, output;  ///< output: C x (L T)
+        Matrix input;          ///< the residual network's, kept between steps
     };
     /// codes: N x T; lights: F x L (their features h).
     void forward(const Matrix& codes, const Matrix& lights, Pass& pass) const;

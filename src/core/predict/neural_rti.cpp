@@ -61,7 +61,8 @@ Result<NeuralRti> fitNeuralRti(const std::vector<const Image*>& images, const st
     n.codes = o.codes;
     n.channels = first.channels == 3 ? 3 : 1;
     const TexelSamples from{images, n.channels};
-    Result<TrainingSamples> drawn = drawTrainingSamples(from, mask, first.pixelCount(), std::size_t{1} << 15, o.seed, what);
+    Result<TrainingSamples> drawn =
+        drawTrainingSamples(from, mask, first.pixelCount(), std::size_t{1} << 15, o.seed, what);
     if (!drawn) return Error{drawn.error()};
     const int D = static_cast<int>(from.size());
     Random random(o.seed);
@@ -69,23 +70,25 @@ Result<NeuralRti> fitNeuralRti(const std::vector<const Image*>& images, const st
             decoder = Network::random(n.decoderSizes(), random);
     Adam encoderAdam(encoder), decoderAdam(decoder);
     const Matrix lights2 = lightPositions(lights);
-    const std::size_t L = lights.size(), T = drawn->texels.size(), perBatch = std::max<std::size_t>(1, kBatchSamples / L);
+    const std::size_t L = lights.size(), T = drawn->texels.size(),
+                      perBatch = std::max<std::size_t>(1, kBatchSamples / L);
     const int steps = stepBudget(o.steps, T, L);
-    Matrix x(D, static_cast<Eigen::Index>(perBatch)), gradient, codeGradient(o.codes, static_cast<Eigen::Index>(perBatch));
+    Matrix x(D, static_cast<Eigen::Index>(perBatch)), gradient,
+        codeGradient(o.codes, static_cast<Eigen::Index>(perBatch));
     NetworkPass encoded, decoded;
     for (int step = 0; step < steps; ++step) {
         for (std::size_t j = 0; j < perBatch; ++j)
             x.col(static_cast<Eigen::Index>(j)) = drawn->samples.col(static_cast<Eigen::Index>(random.next() % T));
         encoder.forward(x, encoded);
         decoder.forward(decoderInput(encoded.output(), lights2), decoded);
-        if (!std::isfinite(squaredError(decoded.output(), decoderTarget(x, static_cast<Eigen::Index>(L), n.channels),
-                                        gradient)))
+        if (!std::isfinite(
+                squaredError(decoded.output(), decoderTarget(x, static_cast<Eigen::Index>(L), n.channels), gradient)))
             return Error{what + ": training NeuralRTI diverged (the loss is not finite)"};
         const NetworkGradient g = decoder.backward(decoded, gradient, true);
         for (std::size_t j = 0; j < perBatch; ++j) codeGradient.col(static_cast<Eigen::Index>(j)).setZero();
         for (std::size_t l = 0; l < L; ++l)
-            codeGradient += g.input.block(0, static_cast<Eigen::Index>(l * perBatch), o.codes,
-                                          static_cast<Eigen::Index>(perBatch));
+            codeGradient +=
+                g.input.block(0, static_cast<Eigen::Index>(l * perBatch), o.codes, static_cast<Eigen::Index>(perBatch));
         const NetworkGradient e = encoder.backward(encoded, codeGradient, false);
         const float rate = rateAt(step, steps, kPublishedRate);
         decoderAdam.step(decoder, g, rate);
