@@ -237,6 +237,15 @@ TEST_CASE("learned model: few lights, constant and black images, 16-bit images a
         bake(images(sub, 16, [](int i, int l) { return std::round((i / 400.f) * (0.3f + 0.03f * l) * 65535) / 65535; }),
              "16-bit images");
     }
+    {  // training that diverges (an absurd rate): refused in one line, never a NaN in a bank
+        TempDir sub;
+        Result<Dataset> relief = openDataset(writeRelief(sub, Relief{.size = 16}, dome(20, 60)));
+        REQUIRE(relief.ok());
+        Result<LutBank> diverged = bakeBank(*relief, {.learned = LearnedOptions{.steps = 50, .rate = 1e30f}});
+        REQUIRE_FALSE(diverged.ok());
+        CHECK_MESSAGE(diverged.error().find("training the learned model diverged") != std::string::npos,
+                      diverged.error());
+    }
     {
         TempDir sub;
         Result<Dataset> few = openDataset(writeRelief(sub, Relief{.size = 16}, dome(2, 50)));

@@ -15,7 +15,6 @@
 namespace btflut {
 namespace {
 
-constexpr float kRate = 2e-2f;          // Adam's peak rate (the residual network's)
 constexpr std::size_t kMinLights = 16;  // fewer: the linear start, not trained
 // The linear basis (encoder and light network) starts where it should be: it moves slower.
 constexpr float kLinearRate = 0.05f;
@@ -194,7 +193,8 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
                                      const Mask& mask, const LearnedOptions& o, const std::string& what) {
     if (images.size() != lights.size() || images.empty()) return Error{what + ": no images to learn from"};
     if (images.size() < 3) return Error{what + ": a learned model needs at least 3 lights"};
-    if (o.codes < 1 || o.codes > LearnedModel::kMaxCodes || o.hidden.empty() || o.steps < 1)
+    if (o.codes < 1 || o.codes > LearnedModel::kMaxCodes || o.hidden.empty() || o.steps < 1 ||
+        !(o.rate > 0 && std::isfinite(o.rate)))
         return Error{what + ": invalid learned model options"};
     for (const std::vector<int>* widths : {&o.hidden, &o.lightHidden})
         for (int h : *widths)
@@ -226,7 +226,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     // than hsh2's 4 to interpolate between them), and how long to train (a residual network
     // learns the training lights' shadows, which need not generalise: the linear start can be
     // best). Fewer than kMinLights lights keep the linear start; under 6, hsh2's terms.
-    const float rate = kRate;
+    const float rate = o.rate;
     const int budget = stepBudget(o.steps, keep, lights.size());
     int steps = 0, terms = 4;
     if (lights.size() >= 6) {

@@ -80,7 +80,8 @@ struct LearnedOptions {
     /// Texels trained on, drawn from the mask: memory holds their samples (lights x channels
     /// floats each) and nothing else per image beyond the decoded images themselves.
     std::size_t sampleTexels = std::size_t{1} << 15;
-    int steps = 6000;  ///< Adam steps of about 2048 texel-light samples
+    int steps = 6000;    ///< Adam steps of about 2048 texel-light samples
+    float rate = 0.02f;  ///< Adam's peak rate (the residual network's; the linear parts' 1/20)
     int threads = 0;
     /// Called now and then with the fraction done (0..1); may be empty.
     std::function<void(double)> progress;
