@@ -129,8 +129,9 @@ Trained started(const Matrix& samples, const Matrix& lights, const LearnedOption
     return t;
 }
 
+// `steps` Adam steps of a rate schedule spanning `schedule` steps.
 Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedOptions& o, int channels, int terms,
-                     int steps, float peak, std::uint64_t seed, const Validation* validation, int* best,
+                     int steps, int schedule, float peak, std::uint64_t seed, const Validation* validation, int* best,
                      const std::function<void(double)>& progress) {
     Random random(seed);
     Trained t = started(samples, lights, o, channels, terms, random);
@@ -154,7 +155,7 @@ Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedO
         if (!std::isfinite(loss)) return t;
         const LearnedDecoder::Gradient g = t.decoder.backward(decoded, gradient);
         const NetworkGradient e = t.encoder.backward(encoded, g.codes, false);
-        const float rate = rateAt(step, steps, peak);
+        const float rate = rateAt(step, schedule, peak);
         decoderAdam.step(t.decoder, g, rate);
         encoderAdam.step(t.encoder, e, rate * kLinearRate);
         if (validation && (step + 1) % every == 0) {
@@ -248,7 +249,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
             Trained validated;
             float peak = rate;
             for (int attempt = 0; attempt < 3 && !validated.finite; ++attempt, peak /= 4)
-                validated = trainJointly(trainSamples, trainLights, o, m.channels, terms, budget, peak,
+                validated = trainJointly(trainSamples, trainLights, o, m.channels, terms, budget, budget, peak,
                                          o.seed + static_cast<std::uint64_t>(attempt), &v, &steps, [&](double f) {
                                              if (o.progress) o.progress(0.5 * f);
                                          });
@@ -257,11 +258,12 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
         }
     }
 
-    // Phase 1 on every light, retried at a quarter of the rate when it diverges.
+    // Phase 1 on every light, retried at a quarter of the rate when it diverges: the validated
+    // run's trajectory (its schedule, stopped where it was best), not a shorter schedule.
     Trained t;
     float peak = rate;
     for (int attempt = 0; attempt < 3 && !t.finite; ++attempt, peak /= 4)
-        t = trainJointly(samples, lightXY, o, m.channels, terms, steps, peak,
+        t = trainJointly(samples, lightXY, o, m.channels, terms, steps, budget, peak,
                          o.seed + static_cast<std::uint64_t>(attempt), nullptr, nullptr, [&](double f) {
                              if (o.progress) o.progress(0.5 + 0.4 * f);
                          });
