@@ -1,18 +1,15 @@
 #include "core/predict/learned_decoder.h"
 
+#include "core/predict/learned_training.h"
+
 namespace btflut {
 
 void LearnedDecoder::forward(const Matrix& codes, const Matrix& lights, Pass& pass) const {
-    const Eigen::Index N = codes.rows(), T = codes.cols(), L = lights.cols(), F = residual.inputs() - N, C = channels();
+    const Eigen::Index N = codes.rows(), T = codes.cols(), L = lights.cols(), C = channels();
     pass.codes = codes;
     light.forward(lights, pass.light);
-    Matrix& input = pass.input;
-    input.resize(N + F, L * T);
-    for (Eigen::Index l = 0; l < L; ++l) {
-        input.block(0, l * T, N, T) = codes;
-        input.block(N, l * T, F, T) = lights.col(l).replicate(1, T);
-    }
-    residual.forward(input, pass.residual);
+    codesBesideLights(codes, lights, pass.input);
+    residual.forward(pass.input, pass.residual);
     pass.output = pass.residual.output();
     const Matrix& basis = pass.light.output();
     for (Eigen::Index l = 0; l < L; ++l) {

@@ -217,10 +217,10 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     if (!drawn) return Error{drawn.error()};
     const Matrix& samples = drawn->samples;
     const std::size_t keep = drawn->texels.size();
-    Matrix lightXY(kLearnedLightFeatures, static_cast<Eigen::Index>(lights.size()));
+    Matrix features(kLearnedLightFeatures, static_cast<Eigen::Index>(lights.size()));
     for (std::size_t l = 0; l < lights.size(); ++l) {
         const std::vector<float> h = learnedLightFeatures(lights[l]);
-        lightXY.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Vector>(h.data(), kLearnedLightFeatures);
+        features.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Vector>(h.data(), kLearnedLightFeatures);
     }
 
     // Validated on every fifth light held out: the start's terms (hsh3's 9 need more lights
@@ -235,8 +235,8 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
         for (std::size_t l = 0; l < lights.size(); ++l) (l % 5 == 2 ? held : train).push_back(l);
         std::vector<std::size_t> checked(std::min<std::size_t>(keep, 4096));
         std::iota(checked.begin(), checked.end(), std::size_t{0});
-        const Matrix trainSamples = lightRows(samples, train, m.channels), trainLights = columns(lightXY, train);
-        const Validation v{columns(trainSamples, checked), columns(lightXY, held),
+        const Matrix trainSamples = lightRows(samples, train, m.channels), trainLights = columns(features, train);
+        const Validation v{columns(trainSamples, checked), columns(features, held),
                            decoderTarget(columns(lightRows(samples, held, m.channels), checked),
                                          static_cast<Eigen::Index>(held.size()), m.channels)};
         float least = 0;
@@ -263,7 +263,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     Trained t;
     float peak = rate;
     for (int attempt = 0; attempt < 3 && !t.finite; ++attempt, peak /= 4)
-        t = trainJointly(samples, lightXY, o, m.channels, terms, steps, budget, peak,
+        t = trainJointly(samples, features, o, m.channels, terms, steps, budget, peak,
                          o.seed + static_cast<std::uint64_t>(attempt), nullptr, nullptr, [&](double f) {
                              if (o.progress) o.progress(0.5 + 0.4 * f);
                          });
@@ -274,11 +274,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
                   m.coefficients);
 
     // Phase 2: the decoder tuned to the quantised codes.
-    Matrix quantised(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(keep));
-    for (std::size_t j = 0; j < keep; ++j)
-        for (std::size_t k = 0; k < N; ++k)
-            quantised(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) =
-                (static_cast<float>(m.coefficients[drawn->texels[j] * N + k]) - m.bias[k]) * m.scale[k];
+    const Matrix quantised = codeValues(m.coefficients, m.scale, m.bias, drawn->texels);
     LearnedDecoder decoder = t.decoder;
     {
         DecoderAdam adam(decoder);
@@ -295,7 +291,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
                 codeBatch.col(static_cast<Eigen::Index>(j)) = quantised.col(at);
                 x.col(static_cast<Eigen::Index>(j)) = samples.col(at);
             }
-            decoder.forward(codeBatch, lightXY, pass);
+            decoder.forward(codeBatch, features, pass);
             if (!std::isfinite(squaredError(pass.output, decoderTarget(x, L, m.channels), gradient))) break;
             adam.step(decoder, decoder.backward(pass, gradient), rateAt(step, tuning, peak / 8));
             if (o.progress && step % 64 == 0) o.progress(0.9 + 0.1 * step / tuning);

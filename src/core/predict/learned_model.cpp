@@ -6,6 +6,7 @@
 #include "core/check.h"
 #include "core/parallel.h"
 #include "core/predict/learned_decoder.h"
+#include "core/predict/learned_training.h"
 #include "core/predict/light_model.h"
 
 namespace btflut {
@@ -42,24 +43,18 @@ std::vector<float> LearnedModel::predict(Direction light, std::span<const std::u
     BTFLUT_CHECK(!empty());
     const LearnedDecoder net{Network::fromParameters(lightSizes(), lightNetwork),
                              Network::fromParameters(decoderSizes(), decoder)};
-    const std::size_t count = texels.empty() ? this->texels() : texels.size(), N = static_cast<std::size_t>(codes),
-                      C = static_cast<std::size_t>(channels);
+    const std::size_t count = texels.empty() ? this->texels() : texels.size(), C = static_cast<std::size_t>(channels);
     const std::vector<float> h = learnedLightFeatures(light);
-    const Matrix lightXY = Eigen::Map<const Matrix>(h.data(), kLearnedLightFeatures, 1);
+    const Matrix features = Eigen::Map<const Matrix>(h.data(), kLearnedLightFeatures, 1);
     std::vector<float> out(count * C);
     constexpr std::size_t kBlock = 1024;  // fixed, so the sums do not depend on the threads
     parallelFor((count + kBlock - 1) / kBlock, threads, [&](std::size_t block) {
         const std::size_t first = block * kBlock, n = std::min(kBlock, count - first);
-        Matrix values(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(n));
-        for (std::size_t j = 0; j < n; ++j) {
-            const std::size_t texel = texels.empty() ? first + j : texels[first + j];
-            const std::uint8_t* code = &coefficients[texel * N];
-            for (std::size_t k = 0; k < N; ++k)
-                values(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) =
-                    (static_cast<float>(code[k]) - bias[k]) * scale[k];
-        }
+        std::vector<std::uint32_t> indices(n);
+        for (std::size_t j = 0; j < n; ++j)
+            indices[j] = static_cast<std::uint32_t>(texels.empty() ? first + j : texels[first + j]);
         LearnedDecoder::Pass pass;
-        net.forward(values, lightXY, pass);
+        net.forward(codeValues(coefficients, scale, bias, indices), features, pass);
         for (std::size_t j = 0; j < n; ++j)
             for (std::size_t c = 0; c < C; ++c)
                 out[(first + j) * C + c] =

@@ -40,8 +40,8 @@ PredictorPlanes LearnedPredictor::planes() const {
     return out;
 }
 
-// The GPU's decoder is not written yet: the GL paths refuse a learned bank by name
-// (gl/blend_textures.cpp), so these are never read.
+// The GPU's decoder is not written yet: the GL paths and export refuse a learned bank
+// (drawnOnGpu, relight/engine_material.h), so these are never read.
 std::vector<std::string> LearnedPredictor::shaderDefines() const { return {"BLEND_LEARNED"}; }
 std::vector<ShaderValues> LearnedPredictor::shaderValues(const PredictorFrame&) const { return {}; }
 

@@ -71,6 +71,26 @@ float rateAt(int step, int steps, float peak) {
     return static_cast<float>(peak * (0.02 + 0.98 * 0.5 * (1 + std::cos(3.14159265358979 * t))));
 }
 
+void codesBesideLights(const Matrix& codes, const Matrix& lights, Matrix& input) {
+    const Eigen::Index N = codes.rows(), T = codes.cols(), L = lights.cols(), F = lights.rows();
+    input.resize(N + F, L * T);
+    for (Eigen::Index l = 0; l < L; ++l) {
+        input.block(0, l * T, N, T) = codes;
+        input.block(N, l * T, F, T) = lights.col(l).replicate(1, T);
+    }
+}
+
+Matrix codeValues(const std::vector<std::uint8_t>& bytes, const std::vector<float>& scale,
+                  const std::vector<float>& bias, std::span<const std::uint32_t> texels) {
+    const std::size_t N = scale.size();
+    Matrix values(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(texels.size()));
+    for (std::size_t j = 0; j < texels.size(); ++j)
+        for (std::size_t k = 0; k < N; ++k)
+            values(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) =
+                (static_cast<float>(bytes[texels[j] * N + k]) - bias[k]) * scale[k];
+    return values;
+}
+
 std::vector<float> encodeTexels(const Network& encoder, const TexelSamples& from, std::size_t texels, int threads) {
     const auto N = static_cast<std::size_t>(encoder.outputs());
     std::vector<float> codes(texels * N);

@@ -48,6 +48,13 @@ float squaredError(const Matrix& output, const Matrix& target, Matrix& gradient)
 /// Cosine decay from `peak` after a short warm-up.
 float rateAt(int step, int steps, float peak);
 
+/// Codes beside lights, as decoders take them: column l T + t is texel t's code above light
+/// l's features (light-major), written into `input` (its storage kept between steps).
+void codesBesideLights(const Matrix& codes, const Matrix& lights, Matrix& input);
+/// The values of `texels`' stored codes, one column each: (byte - bias) scale.
+Matrix codeValues(const std::vector<std::uint8_t>& bytes, const std::vector<float>& scale,
+                  const std::vector<float>& bias, std::span<const std::uint32_t> texels);
+
 /// Every texel's code (N per texel) from the encoder over its samples, in blocks of a fixed
 /// size (the same sums on any thread count).
 std::vector<float> encodeTexels(const Network& encoder, const TexelSamples& from, std::size_t texels, int threads);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "core/predict/learned_training.h"
 
@@ -12,12 +13,8 @@ constexpr float kPublishedRate = 1e-3f;  // Adam's, as published
 
 // The decoder's input for texels x lights, light-major: each code beside the light's x, y.
 Matrix decoderInput(const Matrix& codes, const Matrix& lights) {
-    const Eigen::Index N = codes.rows(), T = codes.cols(), L = lights.cols();
-    Matrix input(N + 2, L * T);
-    for (Eigen::Index l = 0; l < L; ++l) {
-        input.block(0, l * T, N, T) = codes;
-        input.block(N, l * T, 2, T) = lights.col(l).replicate(1, T);
-    }
+    Matrix input;
+    codesBesideLights(codes, lights, input);
     return input;
 }
 
@@ -34,13 +31,10 @@ Matrix lightPositions(const std::vector<Direction>& lights) {
 
 Image NeuralRti::render(Direction light) const {
     const Network net = Network::fromParameters(decoderSizes(), decoder);
-    const auto N = static_cast<std::size_t>(codes);
     const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    Matrix values(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(texels));
-    for (std::size_t i = 0; i < texels; ++i)
-        for (std::size_t k = 0; k < N; ++k)
-            values(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)) =
-                (static_cast<float>(coefficients[i * N + k]) - bias[k]) * scale[k];
+    std::vector<std::uint32_t> all(texels);
+    std::iota(all.begin(), all.end(), std::uint32_t{0});
+    const Matrix values = codeValues(coefficients, scale, bias, all);
     NetworkPass pass;
     net.forward(decoderInput(values, lightPositions({light})), pass);
     Image image(width, height, channels);
