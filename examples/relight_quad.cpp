@@ -197,13 +197,13 @@ void setUpPredictor(GLuint program, const std::string& folder, const nlohmann::j
     glUniform1i(glGetUniformLocation(program, "planes"), 2);
     glUniform1i(glGetUniformLocation(program, "weights"), 3);
     glUniform1i(glGetUniformLocation(program, "labels"), 4);
-    glUniform1i(uniform("kind"), model ? 1 : 2);
+    glUniform1i(uniform("kind"), p["kind_index"].get<int>());  // BTFLUT_KIND_MODEL, _REFERENCES, _LEARNED
     glUniform1i(uniform("basis"), model ? p["basis_index"].get<int>() : 0);
     glUniform1i(uniform("order"), p.value("order", 0));
     glUniform1i(uniform("planes"), p["planes"].get<int>());
     glUniform1i(uniform("channels"), p["channels"].get<int>());
     glUniform1i(uniform("albedo"), !p.contains("albedo") ? 0 : p["albedo"]["use"] == "multiplies" ? 1 : 2);
-    if (model)
+    if (p.contains("scale"))  // a model's planes, a learned model's codes
         for (std::size_t k = 0; k < p["scale"].size(); ++k) {
             glUniform1f(uniform("scale[" + std::to_string(k) + "]"), p["scale"][k].get<float>());
             glUniform1f(uniform("bias[" + std::to_string(k) + "]"), p["bias"][k].get<float>());

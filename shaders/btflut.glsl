@@ -16,7 +16,7 @@
 // SRGB) and treat the result as sRGB-encoded. The result already holds the light's falloff
 // and shadows of this material: scale it by the light's colour and intensity, not by N.L.
 
-#define BTFLUT_GLSL_VERSION 2  // 2: banks with a predictor (btflutPredict, the second btflutRelight)
+#define BTFLUT_GLSL_VERSION 3  // 2: banks with a predictor (btflutPredict, the second btflutRelight); 3: learned ones
 
 // btflut: constants (src/core/predict/gpu_constants.h; written here when btflut is built)
 
@@ -190,10 +190,10 @@ vec3 btflutRelitColour(vec3 matched, int match, bool greyOutput, vec3 chroma) {
 
 // What the sidecar's "predictor" says.
 struct BtflutPredictor {
-    int kind;       // BTFLUT_KIND_MODEL (a light model) or BTFLUT_KIND_REFERENCES
+    int kind;       // BTFLUT_KIND_MODEL (a light model), BTFLUT_KIND_REFERENCES or BTFLUT_KIND_LEARNED
     int basis;      // model: BTFLUT_BASIS_PTM, _HSH (closed form), _RBF, _BLN (the weight texture)
     int order;      // hsh: 2 or 3
-    int planes;     // model: its planes P; references: their count K
+    int planes;     // model: its planes P; references: their count K; learned: its codes N
     int channels;   // the prediction's channels before any albedo: 1 or 3
     int albedo;     // 0 none; 1: multiplies the model's value; 2: gives the chroma after the match (lrgb)
     float scale[BTFLUT_MAX_PLANES];  // model: plane p's value = (code - bias[p]) * scale[p], code 0 .. 255
@@ -247,6 +247,162 @@ void btflutBasisTerms(int basis, vec3 light, out float t[9]) {
     t[8] = sqrt(30.0 / pi) * 2.0 * azimuth.x * azimuth.y * (c * c - c);
 }
 
+// ---------------------------------------------------------------------------------------------
+// A learned model (material.json "kind": "learned"; docs/predictors.md): per texel N codes,
+// bytes in `planes` four to a layer, value v_k = (code_k - bias_k) scale_k; and a decoder of
+// two small networks of the light's features h (its 9 hsh terms of order 3) and the values:
+//   pred_c = clamp(sum_k A_ck(L) v_k + a_c(L) + r_c(v, h), 0, 1),  code_c = round(255 pred_c)
+// A, a: the light network's outputs (row c (N + 1) + k is A_ck, row c (N + 1) + N is a_c);
+// r: the residual network of (v, h). Both are fully connected, ELU between layers, the last
+// linear. Their parameters are the `weights` texture: one RGBA32F layer, texel t at
+// (t % S, t / S), S its width (LearnedModel::gpuNetwork):
+//   texel 0: N, C (channels), the residual's and the light network's hidden layer counts
+//   texel 1, 2: the residual's, then the light network's, hidden widths
+//   then the codes' scale (N values, in texels of four), their bias, the residual's layers,
+//   the light network's. A layer of I inputs and O outputs: O rows of ceil(I / 4) texels
+//   (output o's weights, zero-padded), then ceil(O / 4) texels of biases.
+
+#define BTFLUT_LEARNED_VECTORS (BTFLUT_LEARNED_WIDTH / 4)
+
+// A learned model at one light: per code layer and channel ([layer * 3 + c]) A_ck of the
+// layer's four codes, a_c, and the residual's first layer at codes 0 (its bias and h's part).
+struct BtflutLearnedFrame {
+    vec4 basis[BTFLUT_MAX_LAYERS * 3];
+    vec3 offset;
+    vec4 hidden[BTFLUT_LEARNED_VECTORS];
+};
+
+vec4 btflutNetworkTexel(sampler2DArray network, int t) {
+    int s = textureSize(network, 0).x;
+    return texelFetch(network, ivec3(t % s, t / s, 0), 0);
+}
+
+// What the decoder's head says: N, C, hidden layer counts and widths, and the texels where
+// the residual network and the light network start.
+struct BtflutNetworkHead {
+    int codes, channels, hidden, lightHidden;
+    ivec4 widths, lightWidths;
+    int residual, light;
+};
+
+// The texels of a layer of `inputs` and `outputs`.
+int btflutLayerTexels(int inputs, int outputs) { return outputs * ((inputs + 3) / 4) + (outputs + 3) / 4; }
+
+BtflutNetworkHead btflutNetworkHeadOf(sampler2DArray network) {
+    vec4 head = btflutNetworkTexel(network, 0);
+    BtflutNetworkHead d;
+    d.codes = int(head.x);
+    d.channels = int(head.y);
+    d.hidden = int(head.z);
+    d.lightHidden = int(head.w);
+    d.widths = ivec4(btflutNetworkTexel(network, 1));
+    d.lightWidths = ivec4(btflutNetworkTexel(network, 2));
+    d.residual = 3 + 2 * ((d.codes + 3) / 4);
+    d.light = d.residual;
+    int inputs = d.codes + 9;
+    for (int k = 0; k <= BTFLUT_LEARNED_HIDDEN; ++k) {
+        if (k > d.hidden) break;
+        int outputs = k < d.hidden ? d.widths[k] : d.channels;
+        d.light += btflutLayerTexels(inputs, outputs);
+        inputs = outputs;
+    }
+    return d;
+}
+
+// The layer at texel `at` applied to x: W x, plus its biases (`withBias`), through the ELU
+// (`hidden`; max(a, 0) + exp(min(a, 0)) - 1, as the CPU). Returns the texel after it.
+int btflutLearnedLayer(sampler2DArray network, int at, int inputs, int outputs, bool withBias, bool hidden,
+                       vec4 x[BTFLUT_LEARNED_VECTORS], out vec4 y[BTFLUT_LEARNED_VECTORS]) {
+    int n = (inputs + 3) / 4;
+    for (int k = 0; k < BTFLUT_LEARNED_VECTORS; ++k) y[k] = vec4(0.0);
+    for (int o = 0; o < BTFLUT_LEARNED_WIDTH; ++o) {
+        if (o >= outputs) break;
+        float sum = 0.0;
+        for (int t = 0; t < BTFLUT_LEARNED_VECTORS; ++t) {
+            if (t >= n) break;
+            sum += dot(btflutNetworkTexel(network, at + o * n + t), x[t]);
+        }
+        y[o / 4][o % 4] = sum;
+    }
+    at += outputs * n;
+    for (int k = 0; k < BTFLUT_LEARNED_VECTORS; ++k) {
+        if (k >= (outputs + 3) / 4) break;
+        if (withBias) y[k] += btflutNetworkTexel(network, at + k);
+        if (hidden) y[k] = max(y[k], 0.0) + exp(min(y[k], 0.0)) - 1.0;
+    }
+    return at + (outputs + 3) / 4;
+}
+
+// A learned model's frame at a light, from its decoder alone (engines, per fragment; btflut's
+// own renderer gets the same numbers from the CPU: LearnedModel::lightFrame).
+BtflutLearnedFrame btflutLearnedFrameAt(sampler2DArray network, vec3 lightTangent) {
+    BtflutNetworkHead d = btflutNetworkHeadOf(network);
+    float h[9];
+    btflutBasisTerms(BTFLUT_BASIS_HSH, lightTangent, h);
+    vec4 x[BTFLUT_LEARNED_VECTORS], y[BTFLUT_LEARNED_VECTORS];
+    for (int k = 0; k < BTFLUT_LEARNED_VECTORS; ++k) x[k] = vec4(0.0);
+    for (int k = 0; k < 9; ++k) x[k / 4][k % 4] = h[k];
+    int at = d.light, inputs = 9, outputs = 9;
+    for (int k = 0; k <= BTFLUT_LEARNED_HIDDEN; ++k) {
+        if (k > d.lightHidden) break;
+        outputs = k < d.lightHidden ? d.lightWidths[k] : d.channels * (d.codes + 1);
+        at = btflutLearnedLayer(network, at, inputs, outputs, true, k < d.lightHidden, x, y);
+        for (int j = 0; j < BTFLUT_LEARNED_VECTORS; ++j) x[j] = y[j];
+        inputs = outputs;
+    }
+    BtflutLearnedFrame f;
+    for (int k = 0; k < BTFLUT_MAX_LAYERS * 3; ++k) f.basis[k] = vec4(0.0);
+    f.offset = vec3(0.0);
+    for (int c = 0; c < 3; ++c) {
+        if (c >= d.channels) break;
+        for (int k = 0; k <= BTFLUT_MAX_PLANES; ++k) {
+            if (k > d.codes) break;
+            int row = c * (d.codes + 1) + k;
+            if (k == d.codes) f.offset[c] = x[row / 4][row % 4];
+            else f.basis[(k / 4) * 3 + c][k % 4] = x[row / 4][row % 4];
+        }
+    }
+    for (int k = 0; k < BTFLUT_LEARNED_VECTORS; ++k) x[k] = vec4(0.0);
+    for (int k = 0; k < 9; ++k) x[(d.codes + k) / 4][(d.codes + k) % 4] = h[k];
+    btflutLearnedLayer(network, d.residual, d.codes + 9, d.widths[0], true, false, x, f.hidden);
+    return f;
+}
+
+// A learned model's prediction from a texel's code bytes (`codes[l]`: layer l's four) at a
+// frame: each channel's value rounded to its code, as the CPU (LearnedPredictor).
+BtflutPrediction btflutLearnedPrediction(sampler2DArray network, vec4 codes[BTFLUT_MAX_LAYERS], BtflutLearnedFrame f) {
+    BtflutNetworkHead d = btflutNetworkHeadOf(network);
+    int layers = (d.codes + 3) / 4;
+    vec4 x[BTFLUT_LEARNED_VECTORS], y[BTFLUT_LEARNED_VECTORS];
+    for (int k = 0; k < BTFLUT_LEARNED_VECTORS; ++k) x[k] = vec4(0.0);
+    vec3 value = f.offset;
+    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) {
+        if (l >= layers) break;
+        x[l] = (codes[l] - btflutNetworkTexel(network, 3 + layers + l)) * btflutNetworkTexel(network, 3 + l);
+        for (int c = 0; c < 3; ++c) {
+            if (c >= d.channels) break;
+            value[c] += dot(f.basis[l * 3 + c], x[l]);
+        }
+    }
+    int at = btflutLearnedLayer(network, d.residual, d.codes + 9, d.widths[0], false, false, x, y);
+    for (int k = 0; k < BTFLUT_LEARNED_VECTORS; ++k) {
+        vec4 a = y[k] + f.hidden[k];
+        x[k] = max(a, 0.0) + exp(min(a, 0.0)) - 1.0;
+    }
+    for (int k = 1; k <= BTFLUT_LEARNED_HIDDEN; ++k) {
+        if (k > d.hidden) break;
+        bool last = k == d.hidden;
+        at = btflutLearnedLayer(network, at, d.widths[k - 1], last ? d.channels : d.widths[k], true, !last, x, y);
+        for (int j = 0; j < BTFLUT_LEARNED_VECTORS; ++j) x[j] = y[j];
+    }
+    vec3 code = floor(clamp(value + x[0].xyz, 0.0, 1.0) * 255.0 + 0.5);
+    if (d.channels == 1) code = vec3(code.x);
+    BtflutPrediction p;
+    p.channels = code * float(BTFLUT_WEIGHT_UNIT);
+    p.colour = code / 255.0;
+    return p;
+}
+
 // The layer of `planes` that holds the albedo.
 int btflutAlbedoLayer(BtflutPredictor p) { return p.kind == BTFLUT_KIND_MODEL ? (p.planes + 3) / 4 : p.planes; }
 
@@ -297,6 +453,7 @@ BtflutPrediction btflutPrediction(sampler2DArray planes, sampler2DArray weights,
     vec4 codes[BTFLUT_MAX_LAYERS];
     int layers = (p.planes + 3) / 4;
     for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < layers ? texture(planes, vec3(uv, float(l))) * 255.0 : vec4(0.0);
+    if (p.kind == BTFLUT_KIND_LEARNED) return btflutLearnedPrediction(weights, codes, btflutLearnedFrameAt(weights, lightTangent));
     vec3 albedo = p.albedo == 1 ? btflutBytes(texture(planes, vec3(uv, float(layers)))).rgb : vec3(255.0);
     return btflutModelPrediction(codes, layers, p.channels, btflutModelFrame(weights, p, lightTangent), albedo);
 }

@@ -41,7 +41,10 @@ float btflutUniformLut(int lut, int count, float v) {
 // grey one in R, G and B); then the albedo at BLEND_ALBEDO_LAYER (BLEND_MODEL_ALBEDO: it
 // multiplies the model's value; BLEND_ALBEDO_CHROMA: lrgb's chroma after the match).
 uniform sampler2DArray blendPlanes;
-#if defined(BLEND_MODEL)
+#if defined(BLEND_LEARNED)
+uniform BtflutLearnedFrame blendLearned;  // LearnedModel::lightFrame: the decoder's part at the light
+uniform sampler2DArray blendNetwork;      // the decoder (LearnedModel::gpuNetwork)
+#elif defined(BLEND_MODEL)
 uniform BtflutModelFrame blendModel;  // LightModelFixed: the weights of the codes n of 4-bit planes
 #else
 uniform int blendLayer[BLEND_FETCHES];   // the references around the light (BLEND_FETCHES: min(K, 3))
@@ -58,7 +61,7 @@ uniform usampler2D blendLabels;
 // How the prediction's codes are matched.
 #if defined(RGB_MODE)
 const int btflutBlendMatch = BTFLUT_MATCH_RGB;
-#elif defined(BLEND_GREY_REFERENCES) || (defined(BLEND_MODEL) && BLEND_MODEL_CHANNELS == 1 && !defined(BLEND_MODEL_ALBEDO))
+#elif defined(BLEND_GREY_REFERENCES) || (defined(BLEND_MODEL) && BLEND_MODEL_CHANNELS == 1 && !defined(BLEND_MODEL_ALBEDO)) || (defined(BLEND_LEARNED) && BLEND_LEARNED_CHANNELS == 1)
 const int btflutBlendMatch = BTFLUT_MATCH_ONE;
 #else
 const int btflutBlendMatch = BTFLUT_MATCH_SUM;
@@ -95,7 +98,11 @@ vec4 btflutPlaneCodes(int layer) {
 
 // The texel's prediction.
 BtflutPrediction btflutBlend() {
-#if defined(BLEND_MODEL)
+#if defined(BLEND_LEARNED)
+    vec4 codes[BTFLUT_MAX_LAYERS];
+    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < BLEND_LEARNED_LAYERS ? btflutBytes(btflutBlendTexel(l)) : vec4(0.0);
+    return btflutLearnedPrediction(blendNetwork, codes, blendLearned);
+#elif defined(BLEND_MODEL)
     vec4 codes[BTFLUT_MAX_LAYERS];
     for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < BLEND_MODEL_LAYERS ? btflutPlaneCodes(l) : vec4(0.0);
 #if defined(BLEND_MODEL_ALBEDO)

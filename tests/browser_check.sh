@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # btflut in a real browser (headless Chromium, WebGL2 on SwiftShader), against
-# `btflut relight --grid` at the same light, for one reference, a light model and blended
-# references (and, with the shared capture, RGB banks):
+# `btflut relight --grid` at the same light, for one reference, a light model, blended
+# references and a learned model (and, with the shared capture, RGB banks):
 #  - the page `export --web` writes, opened at #light=30,40&zoom=1&ui=0 and cropped to the
 #    material; it is at most 1.4 times the engine export's files; its 2D view with the panel and
 #    its sphere draw with no console message; without WebGL2 it says so;
@@ -19,7 +19,7 @@ trap 'rm -rf "$work"' EXIT
 light=30,40
 # name | bake options | tolerance (as the engine example's: docs/engines.md, "Accuracy")
 banks=("one|$default --references 1|max=2" "hsh2|$default --predictor hsh2|p99=2,mean=0.2"
-       "references|$default --references 3|max=2")
+       "references|$default --references 3|max=2" "neural5|$default --predictor neural5|p99=2,mean=0.2")
 if [ ! -d "$data/psm-rock" ] && [ "${BTFLUT_REQUIRE_DATA:-0}" = 1 ]; then
   echo "browser_check: $data/psm-rock is missing (set BTFLUT_DATA)" >&2
   exit 1

@@ -114,6 +114,8 @@ inline Image randomGreyImage(int w, int h, unsigned seed) {
 
 namespace btflut::test {
 
+inline nlohmann::json readJson(const std::string& path) { return nlohmann::json::parse(readText(path)); }
+
 /// One image of a synthetic dataset: direction and the integer code map from the
 /// reference's codes (0..99) to this image's codes, k -> offset + slope * k (injective, so
 /// the exact matching LUT is known).

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/bank/bank_file.h"
+#include "core/predict/gpu_constants.h"
 #include "core/predict/ptm_file.h"
 #include "helpers.h"
 
@@ -16,8 +17,6 @@ using namespace btflut::test;
 namespace fs = std::filesystem;
 
 namespace {
-
-nlohmann::json readJson(const std::string& path) { return nlohmann::json::parse(readText(path)); }
 
 // The example's output against `relight --grid` (the same grid, on the CPU) and against the
 // exact relight, at one light; `tolerance` as `compare` takes it.
@@ -110,11 +109,13 @@ TEST_SUITE("gl") {
             {"hsh2", {"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "hsh2"}},
             {"rbf9", {"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "rbf9"}},
             {"bln5c", {"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "bln5c"}},
+            {"neural5", {"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "neural5"}},
             {"references", {"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "3"}}};
         if (haveSharedData("psm-rock")) {
             const std::string rock = sharedDataDir() + "/psm-rock";
             banks.push_back({"rock-ptm-albedo", {"bake", rock, "--predictor", "ptm"}});
             banks.push_back({"rock-rbf-rgb", {"bake", rock, "--predictor", "rbf9", "--colour", "rgb"}});
+            banks.push_back({"rock-neural4-rgb", {"bake", rock, "--predictor", "neural4", "--colour", "rgb"}});
             banks.push_back({"rock-references-rgb-regions",
                              {"bake", rock, "--references", "3", "--colour", "rgb", "--regions", "2"}});
             banks.push_back({"rock-references-lrgb", {"bake", rock, "--references", "4", "--colour", "lrgb"}});
@@ -127,7 +128,8 @@ TEST_SUITE("gl") {
             REQUIRE_MESSAGE(run.status == 0, run.err);
             const nlohmann::json material = readJson(folder + "/material.json");
             CHECK(material["version"] == 2);
-            CHECK(material["shader_version"] == 2);
+            CHECK(material["shader_version"] ==
+                  (name.find("neural") != std::string::npos ? 3 : 2));  // learned models: include version 3
             // psm-rock's mask gives the sample's rectangle (what a sphere wraps); the default
             // material has none: the whole image is the sample.
             CHECK(material.contains("sample") == (name.rfind("rock", 0) == 0));
@@ -139,8 +141,11 @@ TEST_SUITE("gl") {
                 REQUIRE(planes.ok());
                 CHECK(planes->bitDepth == 8);
             }
-            if (predictor["kind"] == "model")
+            if (predictor["kind"] == "model" || predictor["kind"] == "learned")
                 CHECK(predictor["scale"].size() == predictor["planes"].get<std::size_t>());
+            CHECK(predictor["kind_index"] == (predictor["kind"] == "model"     ? BTFLUT_KIND_MODEL
+                                              : predictor["kind"] == "learned" ? BTFLUT_KIND_LEARNED
+                                                                               : BTFLUT_KIND_REFERENCES));
             // The weights in closed form for ptm and hsh, a grid over the light disk otherwise.
             const bool closed = predictor.value("basis", "") == "ptm" || predictor.value("basis", "") == "hsh";
             CHECK(predictor["weights"].is_null() == closed);
@@ -149,7 +154,7 @@ TEST_SUITE("gl") {
                       predictor["weights"]["grid_size"].get<std::size_t>() *
                           predictor["weights"]["grid_size"].get<std::size_t>() *
                           predictor["weights"]["layers"].get<std::size_t>() * 16);
-            // References blend in btflut's own 1/4096 steps: exact. Models: see above.
+            // References blend in btflut's own 1/4096 steps: exact. Models and learned models: see above.
             const std::string tolerance = predictor["kind"] == "references" ? "max=2" : "p99=2,mean=0.2";
             for (const std::string light : {"40,250", "63,17", "80,300"})
                 checkExample(dir, bank, folder, light, tolerance);
@@ -158,7 +163,7 @@ TEST_SUITE("gl") {
         // newer than it reads: one line naming the file and the versions.
         const std::string folder = dir / "references", include = folder + "/btflut.glsl";
         std::string text = readText(include);
-        text.replace(text.find("#define BTFLUT_GLSL_VERSION 2"), 29, "#define BTFLUT_GLSL_VERSION 1");
+        text.replace(text.find("#define BTFLUT_GLSL_VERSION 3"), 29, "#define BTFLUT_GLSL_VERSION 1");
         std::ofstream(include, std::ios::binary) << text;
         auto example = [&](const std::string& errors) {
             const std::string command = "ASAN_OPTIONS=detect_leaks=0 " + std::string(BTFLUT_EXAMPLE_QUAD) + " " +

@@ -93,6 +93,22 @@ std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
         REQUIRE_MESSAGE(bank.ok(), name << ": " << bank.error());
         banks.emplace_back(name, std::move(*bank));
     }
+    // Learned models: trained (a residual network) on 25 lights, and under 16 lights only
+    // their linear start (the residual zero).
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "rti-25", "--size", "40", "--correlation-length",
+                    "5", "-q", "-o", dir / "grey25"})
+                .status == 0);
+    auto grey25 = openDataset(dir / "grey25");
+    REQUIRE(grey25.ok());
+    const LearnedOptions learned{.codes = 5, .steps = 300};
+    for (const auto& [name, options, set] :
+         {std::tuple{"neural5 trained", BakeOptions{.learned = learned}, &*grey25},
+          {"neural5 rgb R2", BakeOptions{.colour = ColourMode::Rgb, .learned = learned, .regions = 2}, &*dataset},
+          {"neural5 grey of rgb", BakeOptions{.learned = learned}, &*dataset}}) {
+        auto bank = bakeBank(*set, options);
+        REQUIRE_MESSAGE(bank.ok(), name << ": " << bank.error());
+        banks.emplace_back(name, std::move(*bank));
+    }
     return banks;
 }
 

@@ -14,6 +14,7 @@
 #include "core/predict/learned_decoder.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/neural_rti.h"
+#include "core/relight/engine_material.h"
 #include "core/relight/relighter.h"
 #include "helpers.h"
 
@@ -177,6 +178,36 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     corrupt([](LearnedModel& c) { c.scale[2] = 0; }, "LRND chunk: invalid scale or bias");
     corrupt([](LearnedModel& c) { c.hidden.assign(9, 4); }, "LRND chunk: invalid layer count");
     corrupt([](LearnedModel& c) { c.hidden[0] = 300; }, "LRND chunk: invalid hidden layer width");
+
+    // The GPU's decoder (btflut.glsl): its texture's head, and a network wider than the
+    // shader's arrays refused by every GPU path in one line (relit on the CPU).
+    CHECK(m.fitsGpu());
+    const LearnedModel::GpuNetwork gpu = m.gpuNetwork();
+    CHECK(gpu.texels.size() == static_cast<std::size_t>(gpu.size * gpu.size * 4));
+    CHECK(std::vector<float>(gpu.texels.begin(), gpu.texels.begin() + 12) ==
+          std::vector<float>{9, 3, 2, 0, 24, 24, 0, 0, 0, 0, 0, 0});
+    CHECK(gpu.texels[12] == m.scale[0]);
+    CHECK(drawnOnGpu(*bank).ok());
+    LutBank wide = *bank;
+    LearnedModel wider = m;
+    wider.hidden = {80, 24};
+    wider.decoder.assign(LearnedModel::parameterCount(wider.decoderSizes()), 0.f);
+    wide.blend.predictor = std::make_shared<LearnedPredictor>(std::move(wider), true);
+    Result<EngineMaterial> refused = engineMaterial(wide, "wide.btflut");
+    REQUIRE_FALSE(refused.ok());
+    CHECK_MESSAGE(
+        refused.error().find("wide.btflut: its learned model (neural9) has networks larger than the GPU") == 0,
+        refused.error());
+    CHECK(refused.error().find('\n') == std::string::npos);
+    // The atlas export: the codes as images, the networks in its sidecar.
+    REQUIRE(saveBank(*bank, dir / "n.btflut").ok());
+    REQUIRE(runCli({"export", dir / "n.btflut", "-o", dir / "atlas.png", "-q"}).status == 0);
+    const nlohmann::json atlas = readJson(dir / "atlas.json");
+    CHECK(atlas["blend"]["predictor"] == "neural9");
+    CHECK(atlas["blend"]["learned"]["images"].size() == 3);
+    CHECK(atlas["blend"]["learned"]["residual"].size() == m.decoder.size());
+    CHECK(fs::exists(dir / "atlas-codes-2.png"));
+
     Bytes older = bytes;
     older[8] = 7;
     Result<LutBank> read = decodeBank(older, "old.btflut");

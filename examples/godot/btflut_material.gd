@@ -180,7 +180,7 @@ func _load(folder: String) -> String:
 	for k in p.get("scale", []).size():
 		scale[k] = p["scale"][k]
 		bias[k] = p["bias"][k]
-	_material.set_shader_parameter("kind", 1 if p["kind"] == "model" else 2)
+	_material.set_shader_parameter("kind", int(p["kind_index"]))  # BTFLUT_KIND_MODEL, _REFERENCES, _LEARNED
 	_material.set_shader_parameter("basis", int(p.get("basis_index", 0)) if p["kind"] == "model" else 0)
 	_material.set_shader_parameter("order", int(p.get("order", 0)))
 	_material.set_shader_parameter("plane_count", int(p["planes"]))

@@ -36,6 +36,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
             for (std::size_t c = 0; c < 3; ++c)
                 data[((layers - 1) * texels + i) * 4 + c] = byteOf(planes.albedo.samples[i * 3 + c]);
     t.m_planes = uploadTextureArray(first.width, first.height, static_cast<int>(layers), 4, data.data(), bytes);
+    if (!planes.network.empty()) t.m_network = uploadFloatArray(planes.networkSize, 1, planes.network.data(), bytes);
     if (!bank.blend.labels.empty())
         t.m_labels = uploadLabels(first.width, first.height, bank.blend.labels.data(), bytes);
     return t;
@@ -84,6 +85,7 @@ void BlendTextures::bind(const ShaderProgram& p, const RelightFrame& frame, cons
     };
     unit(0, GL_TEXTURE_2D_ARRAY, m_planes.id(), "blendPlanes");
     if (m_labels.id()) unit(1, GL_TEXTURE_2D, m_labels.id(), "blendLabels");
+    if (m_network.id()) unit(5, GL_TEXTURE_2D_ARRAY, m_network.id(), "blendNetwork");
     for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
         gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + 2 + c));
         gl.BindTexture(GL_TEXTURE_2D,

@@ -25,10 +25,10 @@ bool lutsAsUniforms(const LutBank& bank);
 
 class BlendTextures {
 public:
-    static constexpr int kUnits = 5;  ///< texture units bind uses from its first: planes, labels, 3 LUTs
+    static constexpr int kUnits = 6;  ///< texture units bind uses from its first: planes, labels, 3 LUTs, network
 
-    /// Uploads the predictor's planes (Predictor::planes: RGBA8 layers, then the albedo's) and
-    /// the labels; adds their bytes to `bytes`.
+    /// Uploads the predictor's planes (Predictor::planes: RGBA8 layers, then the albedo's; a
+    /// learned model's decoder) and the labels; adds their bytes to `bytes`.
     static BlendTextures upload(const LutBank& bank, std::size_t& bytes);
 
     /// BLEND, the predictor's own (Predictor::shaderDefines), REGIONS, RGB_MODE, LUT_UNIFORMS:
@@ -50,7 +50,7 @@ private:
     const Predictor* m_predictor = nullptr;  ///< the bank's
     bool m_lutsAsUniforms = false;           ///< lutsAsUniforms(bank), asked of GL once
     std::vector<std::string> m_defines;
-    GlTexture m_planes, m_labels;
+    GlTexture m_planes, m_labels, m_network;
 };
 
 }  // namespace btflut

@@ -44,17 +44,6 @@ GlTexture uploadPlanes(const EngineMaterial& m, std::size_t& bytes) {
     return uploadTextureArray(width, height, static_cast<int>(layers.size()), 4, data.data(), bytes);
 }
 
-GlTexture uploadWeights(const EngineMaterial& m, std::size_t& bytes) {
-    GlTexture texture = makeTexture();
-    gl.BindTexture(GL_TEXTURE_2D_ARRAY, texture.id());
-    gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, m.weightGridSize, m.weightGridSize, m.weightLayers(), 0, GL_RGBA,
-                  GL_FLOAT, m.weightGrid.data());
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);  // btflutWeightLayer filters exactly
-    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    bytes += m.weightGrid.size() * 4;
-    return texture;
-}
-
 // Each texel's region as R8 (region / 255), read with texelFetch; one texel of region 0 for
 // a bank of one region (its sampler still needs a texture of its own type).
 GlTexture uploadRegions(const Image& labels, std::size_t& bytes) {
@@ -80,7 +69,9 @@ EngineTextures EngineTextures::upload(const EngineMaterial& m, std::size_t& byte
     t.luts = uploadLutGrid(m, bytes);
     if (m.kind == EngineMaterial::Kind::Luts) return t;
     t.planes = uploadPlanes(m, bytes);
-    if (m.weights > 0) t.weights = uploadWeights(m, bytes);
+    if (m.weights > 0)
+        t.weights = uploadFloatArray(m.weightGridSize, m.weightLayers(), m.weightGrid.data(),
+                                     bytes);  // btflutWeightLayer filters exactly
     t.labels = uploadRegions(m.labels, bytes);
     return t;
 }
@@ -97,8 +88,7 @@ void EngineTextures::bind(const ShaderProgram& program, const EngineMaterial& m,
     unit(1, GL_TEXTURE_2D_ARRAY, planes, "planes");
     unit(2, GL_TEXTURE_2D_ARRAY, weights, "weights");  // none for ptm, hsh: never read
     unit(3, GL_TEXTURE_2D, labels, "labels");
-    gl.Uniform1i(location("predictor.kind"),
-                 m.kind == EngineMaterial::Kind::Model ? BTFLUT_KIND_MODEL : BTFLUT_KIND_REFERENCES);
+    gl.Uniform1i(location("predictor.kind"), m.predictorKind());
     gl.Uniform1i(location("predictor.basis"), static_cast<int>(m.basis));
     gl.Uniform1i(location("predictor.order"), m.order);
     gl.Uniform1i(location("predictor.planes"), m.planes);

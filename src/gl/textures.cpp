@@ -82,6 +82,16 @@ GlTexture uploadTextureArray(int width, int height, int layers, int channels, co
     return texture;
 }
 
+GlTexture uploadFloatArray(int size, int layers, const float* data, std::size_t& bytes) {
+    GlTexture texture = makeTexture();
+    gl.BindTexture(GL_TEXTURE_2D_ARRAY, texture.id());
+    gl.TexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA32F, size, size, layers, 0, GL_RGBA, GL_FLOAT, data);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    bytes += static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * static_cast<std::size_t>(layers) * 16;
+    return texture;
+}
+
 GlTexture uploadLabels(int width, int height, const std::uint8_t* data, std::size_t& bytes) {
     GlTexture texture = makeTexture();
     gl.BindTexture(GL_TEXTURE_2D, texture.id());

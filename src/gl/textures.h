@@ -35,6 +35,10 @@ GlTexture uploadLutTable(const float* values, int entries, int rows);
 GlTexture uploadTextureArray(int width, int height, int layers, int channels, const std::uint8_t* data,
                              std::size_t& bytes);
 
+/// Layers of RGBA32F texels (a predictor's weights or decoder), unfiltered (the shaders read
+/// them with texelFetch), size x size x layers x 4 floats; adds its bytes.
+GlTexture uploadFloatArray(int size, int layers, const float* data, std::size_t& bytes);
+
 /// Per texel bytes (region labels) as an unfiltered GL_R8UI texture, read with texelFetch.
 GlTexture uploadLabels(int width, int height, const std::uint8_t* data, std::size_t& bytes);
 

@@ -5,8 +5,8 @@
 //   const m = await btflutMaterial.prepare(json, async (file) => bytesOf(file));
 //   m.luts: {width, height, depth, channels, halves}   a 3D texture, half floats (R16F or RGBA16F)
 //   m.reference: {width, height, rgba}                 kind luts: RGBA8 (or half floats from 16 bits)
-//   m.planes: {width, height, layers, rgba}            model, references: an RGBA8 array texture
-//   m.weights: {size, layers, data} | null             RGBA32F layers, nearest
+//   m.planes: {width, height, layers, rgba}            model, references, learned: an RGBA8 array texture
+//   m.weights: {size, layers, data} | null             RGBA32F layers, nearest (learned: the decoder)
 //   m.labels: {width, height, rgba} | null             RGBA8, nearest
 //   m.material, m.predictor                            the fields of BtflutMaterial, BtflutPredictor
 //   btflutMaterial.fragmentHead                        GLSL: those as uniforms, and relight()
@@ -99,7 +99,7 @@
   function constants(include) {
     const out = {};
     for (const [, name, value] of include.matchAll(/^#define (BTFLUT_\w+) (-?\d+)\s*$/gm)) out[name] = Number(value);
-    for (const name of ['BTFLUT_MAX_PLANES', 'BTFLUT_KIND_MODEL', 'BTFLUT_KIND_REFERENCES'])
+    for (const name of ['BTFLUT_MAX_PLANES', 'BTFLUT_KIND_MODEL', 'BTFLUT_KIND_REFERENCES', 'BTFLUT_KIND_LEARNED'])
       if (!(name in out)) throw new Error('btflut_es.glsl: no ' + name + ' (an include older than this reader)');
     return out;
   }
@@ -136,6 +136,8 @@
       return out;
     }
     const p = json.predictor;
+    if (![c.BTFLUT_KIND_MODEL, c.BTFLUT_KIND_REFERENCES, c.BTFLUT_KIND_LEARNED].includes(p.kind_index))
+      throw new Error('material.json: predictor kind ' + p.kind + ' is not one this page draws');
     const files = p.images.slice();  // the planes (or references), then the albedo: one array
     if (p.albedo) files.push(p.albedo.file);
     const images = [];
@@ -158,7 +160,7 @@
       out.labels = {width: labels.width, height: labels.height, rgba: rgbaRows(labels)};
     }
     Object.assign(out.predictor, {
-      kind: p.kind === 'model' ? c.BTFLUT_KIND_MODEL : c.BTFLUT_KIND_REFERENCES, basis: p.kind === 'model' ? p.basis_index : 0, order: p.order || 0, planes: p.planes,
+      kind: p.kind_index, basis: p.kind === 'model' ? p.basis_index : 0, order: p.order || 0, planes: p.planes,
       channels: p.channels, albedo: !p.albedo ? 0 : p.albedo.use === 'multiplies' ? 1 : 2, regions: p.regions, codes: p.codes,
       greyOutput: p.output_channels === 1});
     (p.scale || []).forEach((v, k) => { out.predictor.scale[k] = v; out.predictor.bias[k] = p.bias[k]; });

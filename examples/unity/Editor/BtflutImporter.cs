@@ -17,7 +17,7 @@ namespace Btflut
     [Serializable] public class PredictorJson
     {
         public string kind;
-        public int basis_index, order, planes, channels, regions, output_channels;
+        public int kind_index, basis_index, order, planes, channels, regions, output_channels;
         public float codes;
         public float[] scale, bias;
         public string[] images;
@@ -120,7 +120,7 @@ namespace Btflut
                 labels.filterMode = FilterMode.Point;
                 material.SetTexture("_Labels", Save(labels, assetFolder, "labels.asset"));
             }
-            material.SetInt("_Kind", p.kind == "model" ? 1 : 2);
+            material.SetInt("_Kind", p.kind_index);  // BTFLUT_KIND_MODEL, _REFERENCES, _LEARNED
             material.SetInt("_Basis", p.kind == "model" ? p.basis_index : 0);
             material.SetInt("_Order", p.order);
             material.SetInt("_PlaneCount", p.planes);

@@ -17,6 +17,7 @@
 #include "cli/web_page.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
+#include "core/predict/learned_predictor.h"
 #include "core/predict/light_model.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/ptm_file.h"
@@ -139,6 +140,29 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
                 for (std::size_t i = 0; i < bytes.size(); ++i) plane.samples[i] = bytes[i] / 255.f;
                 blend["ptm_planes"].push_back(texture("ptm-" + std::to_string(p), plane));
             }
+        } else if (const LearnedPredictor* learned = b.predictorAs<LearnedPredictor>()) {
+            // The learned model (docs/predictors.md; its LRND chunk in docs/btflut-format.md).
+            const LearnedModel& m = learned->model();
+            nlohmann::json sidecar{{"codes", m.codes},
+                                   {"channels", m.channels},
+                                   {"scale", m.scale},
+                                   {"bias", m.bias},
+                                   {"light_network_sizes", m.lightSizes()},
+                                   {"light_network", m.lightNetwork},
+                                   {"residual_sizes", m.decoderSizes()},
+                                   {"residual", m.decoder},
+                                   {"images", nlohmann::json::array()}};
+            const PredictorPlanes planes = learned->planes();
+            for (std::size_t k = 0; k < planes.layers.size(); ++k)
+                sidecar["images"].push_back(texture("codes-" + std::to_string(k), planes.layers[k]));
+            sidecar["layout"] =
+                "images: the codes four to an image (R, G, B, A); value = (code - bias) * scale; each network: per "
+                "layer its weights (an output's inputs together), then its biases, ELU between layers, the last "
+                "linear; the light network of the light's 9 hsh terms of order 3 gives channel c's weight on code k "
+                "(output c (codes + 1) + k) and its offset (output c (codes + 1) + codes); the residual network of the "
+                "codes' values and the same terms adds to each channel";
+            blend["predictor"] = b.predictorName();
+            blend["learned"] = sidecar;
         } else {
             blend["predictor"] = b.predictorName();
             for (std::size_t k = 0; k < references->references().size(); ++k)

@@ -12,8 +12,13 @@
 // A bank's predictor kind in material.json and btflut.glsl's BtflutPredictor.kind.
 #define BTFLUT_KIND_MODEL 1
 #define BTFLUT_KIND_REFERENCES 2
+#define BTFLUT_KIND_LEARNED 3
 // A light model's basis (LightBasis; BtflutPredictor.basis).
 #define BTFLUT_BASIS_PTM 0
 #define BTFLUT_BASIS_HSH 1
 #define BTFLUT_BASIS_RBF 2
 #define BTFLUT_BASIS_BLN 3
+// A learned model's decoder on the GPU (learned_model.h, LearnedModel::gpuNetwork): its widest
+// layer and its most hidden layers per network, the shader's arrays.
+#define BTFLUT_LEARNED_WIDTH 64
+#define BTFLUT_LEARNED_HIDDEN 4

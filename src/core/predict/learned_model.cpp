@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 
 #include "core/check.h"
 #include "core/parallel.h"
+#include "core/predict/gpu_constants.h"
 #include "core/predict/learned_decoder.h"
 #include "core/predict/learned_training.h"
 #include "core/predict/light_model.h"
@@ -67,6 +69,72 @@ Image LearnedModel::render(Direction light) const {
     Image image(width, height, channels);
     image.samples = predict(light, {}, 0);
     return image;
+}
+
+bool LearnedModel::fitsGpu() const {
+    for (const std::vector<int>* widths : {&hidden, &lightHidden}) {
+        if (widths->size() > BTFLUT_LEARNED_HIDDEN) return false;
+        for (int w : *widths)
+            if (w > BTFLUT_LEARNED_WIDTH) return false;
+    }
+    return channels * (codes + 1) <= BTFLUT_LEARNED_WIDTH && codes + kLearnedLightFeatures <= BTFLUT_LEARNED_WIDTH;
+}
+
+namespace {
+
+// Values as texels of four, the last one zero-padded.
+void appendTexels(std::vector<float>& out, const float* values, std::size_t count) {
+    for (std::size_t k = 0; k < (count + 3) / 4 * 4; ++k) out.push_back(k < count ? values[k] : 0.f);
+}
+
+// A network's layers as btflut.glsl's btflutLearnedLayer reads them: per layer its outputs'
+// rows of weights (each zero-padded to texels of four), then its biases.
+void appendNetwork(std::vector<float>& out, const Network& net) {
+    for (std::size_t l = 0; l < net.layers(); ++l) {
+        const Matrix& w = net.weights(l);
+        std::vector<float> row(static_cast<std::size_t>(w.cols()));
+        for (Eigen::Index o = 0; o < w.rows(); ++o) {
+            for (Eigen::Index i = 0; i < w.cols(); ++i) row[static_cast<std::size_t>(i)] = w(o, i);
+            appendTexels(out, row.data(), row.size());
+        }
+        appendTexels(out, net.bias(l).data(), static_cast<std::size_t>(net.bias(l).size()));
+    }
+}
+
+}  // namespace
+
+LearnedModel::GpuNetwork LearnedModel::gpuNetwork() const {
+    BTFLUT_CHECK(!empty() && fitsGpu());
+    std::vector<float> texels{static_cast<float>(codes), static_cast<float>(channels),
+                              static_cast<float>(hidden.size()), static_cast<float>(lightHidden.size())};
+    for (const std::vector<int>* widths : {&hidden, &lightHidden})
+        for (std::size_t k = 0; k < 4; ++k)
+            texels.push_back(k < widths->size() ? static_cast<float>((*widths)[k]) : 0.f);
+    appendTexels(texels, scale.data(), scale.size());
+    appendTexels(texels, bias.data(), bias.size());
+    appendNetwork(texels, Network::fromParameters(decoderSizes(), decoder));
+    appendNetwork(texels, Network::fromParameters(lightSizes(), lightNetwork));
+    GpuNetwork out;
+    const std::size_t count = texels.size() / 4;
+    out.size = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
+    texels.resize(static_cast<std::size_t>(out.size) * static_cast<std::size_t>(out.size) * 4, 0.f);
+    out.texels = std::move(texels);
+    return out;
+}
+
+LearnedModel::LightFrame LearnedModel::lightFrame(Direction light) const {
+    const Network lightNet = Network::fromParameters(lightSizes(), lightNetwork),
+                  residual = Network::fromParameters(decoderSizes(), decoder);
+    const std::vector<float> h = learnedLightFeatures(light);
+    NetworkPass pass;
+    lightNet.forward(Eigen::Map<const Matrix>(h.data(), kLearnedLightFeatures, 1), pass);
+    LightFrame out;
+    out.basis.assign(pass.output().data(), pass.output().data() + pass.output().size());
+    const Vector first = residual.weights(0).rightCols(kLearnedLightFeatures) *
+                             Eigen::Map<const Vector>(h.data(), kLearnedLightFeatures) +
+                         residual.bias(0);
+    out.hidden.assign(first.data(), first.data() + first.size());
+    return out;
 }
 
 std::optional<Result<LearnedOptions>> learnedModelNamed(const std::string& name) {

@@ -69,6 +69,26 @@ struct LearnedModel {
     std::vector<float> predict(Direction light, std::span<const std::uint32_t> texels = {}, int threads = 1) const;
     /// The prediction as an image (grey or RGB, float).
     Image render(Direction light) const;
+
+    /// Whether a GPU's decoder evaluates it (shaders/btflut.glsl's arrays): at most
+    /// BTFLUT_LEARNED_HIDDEN hidden layers per network, none wider than BTFLUT_LEARNED_WIDTH.
+    /// The networks `bake` trains fit.
+    bool fitsGpu() const;
+    /// The decoder as a GPU reads it (btflut.glsl, "A learned model"): RGBA32F texels, a square
+    /// of `size` a side, row by row: a head (N, C, the hidden layer counts and widths), the
+    /// codes' scale and bias, the residual network's layers, the light network's.
+    struct GpuNetwork {
+        int size = 0;
+        std::vector<float> texels;  ///< size x size x 4
+    };
+    GpuNetwork gpuNetwork() const;
+    /// Its per-light part, what the GPU reads as uniforms: the light network's outputs (the
+    /// linear basis: C (N + 1), row c (N + 1) + k is A_ck, row c (N + 1) + N is a_c) and the
+    /// residual network's first layer at codes 0 and the light's features (its bias included).
+    struct LightFrame {
+        std::vector<float> basis, hidden;
+    };
+    LightFrame lightFrame(Direction light) const;
 };
 
 struct LearnedOptions {

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/predict/gpu_constants.h"
 
 namespace btflut {
 
@@ -25,6 +26,7 @@ std::string LearnedPredictor::description() const {
     return out.str();
 }
 
+// The codes four to a layer (as a light model's planes), and the decoder's texels.
 PredictorPlanes LearnedPredictor::planes() const {
     const auto N = static_cast<std::size_t>(m_model.codes);
     PredictorPlanes out;
@@ -37,13 +39,34 @@ PredictorPlanes LearnedPredictor::planes() const {
                 layer.samples[i * 4 + c] = static_cast<float>(m_model.coefficients[i * N + first + c]) / 255.f;
         out.layers.push_back(std::move(layer));
     }
+    if (m_model.fitsGpu()) {
+        LearnedModel::GpuNetwork network = m_model.gpuNetwork();
+        out.network = std::move(network.texels);
+        out.networkSize = network.size;
+    }
     return out;
 }
 
-// The GPU's decoder is not written yet: the GL paths and export refuse a learned bank
-// (drawnOnGpu, relight/engine_material.h), so these are never read.
-std::vector<std::string> LearnedPredictor::shaderDefines() const { return {"BLEND_LEARNED"}; }
-std::vector<ShaderValues> LearnedPredictor::shaderValues(const PredictorFrame&) const { return {}; }
+std::vector<std::string> LearnedPredictor::shaderDefines() const {
+    return {"BLEND_LEARNED", "BLEND_LEARNED_LAYERS " + std::to_string((m_model.codes + 3) / 4),
+            "BLEND_LEARNED_CHANNELS " + std::to_string(m_model.channels)};
+}
+
+// btflut.glsl's BtflutLearnedFrame: per layer of four codes and per channel ([layer * 3 +
+// channel]) A_ck, the offsets a_c, the residual's first layer at the light.
+std::vector<ShaderValues> LearnedPredictor::shaderValues(const PredictorFrame& frame) const {
+    const LearnedModel::LightFrame f = m_model.lightFrame(frame.learned->light);
+    const auto N = static_cast<std::size_t>(m_model.codes), C = static_cast<std::size_t>(m_model.channels);
+    std::vector<float> basis((N + 3) / 4 * 3 * 4, 0.f), offset(3, 0.f), hidden(BTFLUT_LEARNED_WIDTH, 0.f);
+    for (std::size_t c = 0; c < C; ++c) {
+        for (std::size_t k = 0; k < N; ++k) basis[((k / 4) * 3 + c) * 4 + k % 4] = f.basis[c * (N + 1) + k];
+        offset[c] = f.basis[c * (N + 1) + N];
+    }
+    std::copy(f.hidden.begin(), f.hidden.end(), hidden.begin());
+    return {{"blendLearned.basis", 4, std::move(basis)},
+            {"blendLearned.offset", 3, std::move(offset)},
+            {"blendLearned.hidden", 4, std::move(hidden)}};
+}
 
 PredictorFrame LearnedPredictor::frameAt(Direction light) const {
     PredictorFrame frame;

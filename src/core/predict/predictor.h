@@ -37,6 +37,10 @@ struct PredictorPlanes {
     std::vector<Image> layers;
     Image albedo;                    ///< RGB8, empty when none
     std::vector<float> scale, bias;  ///< a light model's, per plane, on the stored codes: (code - bias) scale
+    /// A learned model's decoder: RGBA32F texels, a square `networkSize` a side
+    /// (LearnedModel::gpuNetwork); empty for the other kinds.
+    std::vector<float> network;
+    int networkSize = 0;
 };
 
 /// A uniform a predictor's shader code reads per light (shaders/lut_common.glsl): vectors of

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/check.h"
+#include "core/predict/gpu_constants.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/light_model.h"
 #include "core/predict/model_predictor.h"
@@ -81,10 +82,29 @@ void setModel(EngineMaterial& out, const LightModel& m) {
 
 }  // namespace
 
+int EngineMaterial::predictorKind() const {
+    switch (kind) {
+        case Kind::Luts:
+            return 0;
+        case Kind::Model:
+            return BTFLUT_KIND_MODEL;
+        case Kind::References:
+            return BTFLUT_KIND_REFERENCES;
+        case Kind::Learned:
+            return BTFLUT_KIND_LEARNED;
+    }
+    return 0;
+}
+
 Status drawnOnGpu(const LutBank& bank) {
-    if (bank.makesLuts() && bank.predictorAs<LearnedPredictor>())
-        return Error{"a bank predicted by a learned model (" + bank.predictorName() +
-                     ") is relit on the CPU only (btflut relight, eval); no GPU path draws it yet"};
+    if (!bank.makesLuts()) return success();
+    if (const LearnedPredictor* learned = bank.predictorAs<LearnedPredictor>(); learned && !learned->model().fitsGpu())
+        return Error{"its learned model (" + bank.predictorName() +
+                     ") has networks larger than the GPU's decoder "
+                     "evaluates (at most " +
+                     std::to_string(BTFLUT_LEARNED_HIDDEN) + " hidden layers of " +
+                     std::to_string(BTFLUT_LEARNED_WIDTH) +
+                     " units); it is relit on the CPU only (btflut relight, eval)"};
     return success();
 }
 
@@ -127,6 +147,16 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     out.bias = std::move(planes.bias);
     if (const ModelPredictor* model = bank.predictorAs<ModelPredictor>()) {
         setModel(out, model->model());
+        return out;
+    }
+    if (const LearnedPredictor* learned = bank.predictorAs<LearnedPredictor>()) {
+        // The decoder in the weight texture: one layer, a square of texels (btflut.glsl).
+        out.kind = EngineMaterial::Kind::Learned;
+        out.planes = learned->model().codes;
+        out.channels = learned->model().channels;
+        out.weights = 4;
+        out.weightGridSize = planes.networkSize;
+        out.weightGrid = std::move(planes.network);
         return out;
     }
     const ReferenceBlend& references = *bank.predictorAs<ReferenceBlend>();

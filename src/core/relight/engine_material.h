@@ -9,9 +9,11 @@
 //   planes   the predictor's (Predictor::planes, the packing btflut's own renderer uploads
 //            too): a light model's (ptm, hsh, rbf, bln) as 8-bit codes four to an RGBA image
 //            (4-bit planes as codes 17 n, their scale and bias adjusted: the same values),
-//            per plane value = (code - bias) scale; or the references, one to an image (grey
-//            ones in every channel); then the albedo. The weights: ptm and hsh in closed form
-//            (btflut.glsl), rbf, bln and references from the weight grid.
+//            per plane value = (code - bias) scale; a learned model's codes likewise; or the
+//            references, one to an image (grey ones in every channel); then the albedo. The
+//            weights: ptm and hsh in closed form (btflut.glsl), rbf, bln and references from
+//            the weight grid; a learned model's decoder is the weight texture (one layer, a
+//            square of texels: LearnedModel::gpuNetwork).
 // The weight grid: S x S nodes over the equal-area light disk (node (i, j) at x = -1 + 2 i /
 // (S - 1), y likewise), per node `weights` floats, four to a layer: [layer][j][i][4].
 // Model rows hold the offsets, then each plane's channel weights ((1 + P) x channels, as
@@ -29,7 +31,7 @@
 namespace btflut {
 
 struct EngineMaterial {
-    enum class Kind { Luts, Model, References } kind = Kind::Luts;
+    enum class Kind { Luts, Model, References, Learned } kind = Kind::Luts;
     ColourMode colour = ColourMode::Grey;
 
     // The LUT grid (every kind).
@@ -45,7 +47,7 @@ struct EngineMaterial {
     // Model and References.
     LightBasis basis = LightBasis::Ptm;  ///< Model
     int order = 0;                       ///< hsh
-    int planes = 0;                      ///< Model: P; References: K
+    int planes = 0;                      ///< Model: P; References: K; Learned: N codes
     int channels = 1;                    ///< the prediction's channels before any albedo: 1 or 3
     std::vector<float> scale, bias;      ///< Model, per plane, on the exported codes
     std::vector<Image> images;           ///< RGBA8: the planes four to an image, or one reference each
@@ -53,12 +55,14 @@ struct EngineMaterial {
     bool albedoMultiplies =
         false;        ///< Model: the albedo times the value; References (lrgb): the chroma after the match
     int codes = 255;  ///< codes of a prediction: 255, or 765 (the grey of RGB8)
-    int weightGridSize = 0, weights = 0;  ///< 0: the weights in closed form (ptm, hsh)
+    int weightGridSize = 0, weights = 0;  ///< 0: the weights in closed form (ptm, hsh); Learned: 4, the network
     std::vector<float> weightGrid;        ///< [layer][j][i][4], ceil(weights / 4) layers
     Image labels;                         ///< 8-bit region per texel, empty with one region
     int regions = 1;
 
     int weightLayers() const { return (weights + 3) / 4; }
+    /// btflut.glsl's BtflutPredictor.kind (BTFLUT_KIND_...); 0 for Luts.
+    int predictorKind() const;
 };
 
 /// The weight grid's nodes a side for rbf and references (bln: its own grid, read exactly).
@@ -69,8 +73,8 @@ constexpr int kEngineWeightGrid = 129;
 /// bank in the error.
 Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& name);
 
-/// Whether a GPU can draw the bank: a learned predictor's decoder (learned_model.h) is
-/// evaluated on the CPU only (relight, eval), for now. The error names no file.
+/// Whether a GPU can draw the bank: a learned model whose networks exceed the shader's arrays
+/// (LearnedModel::fitsGpu; `bake` trains none) is relit on the CPU only. The error names no file.
 Status drawnOnGpu(const LutBank& bank);
 
 }  // namespace btflut

@@ -8,23 +8,37 @@ std::string planeImageName(std::size_t k) { return "planes-" + std::to_string(k)
 
 namespace {
 
+const char* predictorKindName(EngineMaterial::Kind kind) {
+    return kind == EngineMaterial::Kind::Model     ? "model"
+           : kind == EngineMaterial::Kind::Learned ? "learned"
+                                                   : "references";
+}
+
 // The sidecar's "predictor" (version 2): what btflut.glsl's BtflutPredictor takes, and the
 // files of its textures.
 nlohmann::json predictorJson(const EngineMaterial& m) {
     std::vector<std::string> images;
     for (std::size_t k = 0; k < m.images.size(); ++k) images.push_back(planeImageName(k));
     const bool albedo = !m.albedo.samples.empty(), labels = !m.labels.samples.empty();
-    const bool model = m.kind == EngineMaterial::Kind::Model;
-    nlohmann::json p{{"kind", model ? "model" : "references"},
-                     {"images", images},
-                     {"images_layout", model ? "RGBA8, planes four to an image (plane p: image p / 4, channel p % 4); "
-                                               "value_p = (code_p - bias[p]) * scale[p], code 0 .. 255"
-                                             : "one reference per image (RGB; a grey one in R, G and B)"},
-                     {"planes", m.planes},
-                     {"channels", m.channels},
-                     {"codes", m.codes},
-                     {"output_channels", m.outputChannels},
-                     {"regions", m.regions}};
+    const bool model = m.kind == EngineMaterial::Kind::Model, learned = m.kind == EngineMaterial::Kind::Learned;
+    nlohmann::json p{
+        {"kind", predictorKindName(m.kind)},
+        {"kind_index", m.predictorKind()},
+        {"images", images},
+        {"images_layout", model     ? "RGBA8, planes four to an image (plane p: image p / 4, channel p % 4); "
+                                      "value_p = (code_p - bias[p]) * scale[p], code 0 .. 255"
+                          : learned ? "RGBA8, codes four to an image (code k: image k / 4, channel k % 4); "
+                                      "value_k = (code_k - bias[k]) * scale[k], code 0 .. 255"
+                                    : "one reference per image (RGB; a grey one in R, G and B)"},
+        {"planes", m.planes},
+        {"channels", m.channels},
+        {"codes", m.codes},
+        {"output_channels", m.outputChannels},
+        {"regions", m.regions}};
+    if (learned) {
+        p["scale"] = m.scale;
+        p["bias"] = m.bias;
+    }
     if (model) {
         p["basis"] = lightBasisName(m.basis);
         p["basis_index"] = static_cast<int>(m.basis);
@@ -42,11 +56,13 @@ nlohmann::json predictorJson(const EngineMaterial& m) {
             {"grid_size", m.weightGridSize},
             {"count", m.weights},
             {"layers", m.weightLayers()},
-            {"row", model ? "the channels' offsets, then each plane's channel weights ((1 + planes) x channels)"
-                          : "one weight per reference"},
-            {"grid_mapping",
-             "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise; read "
-             "bilinearly between nodes (btflutWeightLayer)"}};
+            {"row", model     ? "the channels' offsets, then each plane's channel weights ((1 + planes) x channels)"
+                    : learned ? "the decoder network's parameters, texel t at (t % grid_size, t / grid_size) of "
+                                "the one layer (btflut.glsl: A learned model)"
+                              : "one weight per reference"},
+            {"grid_mapping", learned ? "none: read exactly with texelFetch"
+                                     : "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise; read "
+                                       "bilinearly between nodes (btflutWeightLayer)"}};
     else
         p["weights"] = nullptr;  // ptm, hsh: closed form in btflut.glsl
     return p;
@@ -60,9 +76,11 @@ nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
     nlohmann::json side{// Banks of LUTs keep version 1, so that loaders written for it still read them.
                         {"format", "btflut-material"},
                         {"version", predictor ? 2 : 1},
-                        {"kind", predictor ? (m.kind == EngineMaterial::Kind::Model ? "model" : "references") : "luts"},
+                        {"kind", predictor ? predictorKindName(m.kind) : "luts"},
                         {"shader", "btflut.glsl"},
-                        {"shader_version", predictor ? 2 : 1},
+                        {"shader_version", m.kind == EngineMaterial::Kind::Learned ? 3
+                                           : predictor                             ? 2
+                                                                                   : 1},
                         {"reference",
                          {{"file", "reference.png"},
                           {"width", b.reference.width},

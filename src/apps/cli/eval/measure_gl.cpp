@@ -21,8 +21,8 @@ Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std
     context = (*gl)->description();
     std::vector<std::unique_ptr<SceneRenderer>> renderers;
     for (Variant& v : variants) {
-        // No render mode draws a model on its own; no GPU path draws a learned bank yet.
-        if (v.unmatched() || learnedModelNamed(v.predictor)) {
+        // No render mode draws a model on its own.
+        if (v.unmatched()) {
             renderers.emplace_back();
             continue;
         }
