@@ -67,6 +67,14 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int 
     model("rbf" + std::to_string(planes) + "c", {.basis = LightBasis::Rbf, .planes = planes, .packed = true}, planes);
     model("bln" + std::to_string(planes) + "c", {.basis = LightBasis::Bilinear, .planes = planes, .packed = true},
           planes);
+    // A learned model of as many codes (predicting colour itself: no albedo), trained on each
+    // fold's lights (under 16, its linear start alone).
+    const int codes = std::min(budget - region, LearnedModel::kMaxCodes);
+    if (codes >= 1) {
+        BakeOptions learned = classic;
+        learned.learned = LearnedOptions{.codes = codes};
+        add("neural" + std::to_string(codes), learned, codes);
+    }
     return out;
 }
 
