@@ -6,6 +6,7 @@
 
 #include "core/bank/bank_file.h"
 #include "core/check.h"
+#include "core/predict/learned_predictor.h"
 #include "gl/scene_renderer.h"
 #include "gl/textures.h"
 
@@ -149,8 +150,14 @@ namespace {
 // mipmaps and the pass's render targets included, and a pixel shaded per fragment beyond its
 // flat cost: one reference (a filtered fetch, the LUT from uniforms, the dither), or a
 // predictor (its planes sampled bilinearly, the LUT from uniforms, the dither).
-double relitTexelCost(const LutBank& bank) { return bank.makesLuts() ? 4.8 : 4.6; }
-double perFragmentExtraCost(const LutBank& bank) { return bank.makesLuts() ? 0.55 : 0.33; }
+// A learned model's decoder adds its own, the same on both paths: ~310 flat pixels for
+// neural9 on RGB (1107 multiply-adds; bench render, issue 35), in proportion to its size.
+double decoderCost(const LutBank& bank) {
+    const LearnedPredictor* learned = bank.makesLuts() ? bank.predictorAs<LearnedPredictor>() : nullptr;
+    return learned ? 310.0 * static_cast<double>(learned->model().decoderCost()) / 1107.0 : 0.0;
+}
+double relitTexelCost(const LutBank& bank) { return (bank.makesLuts() ? 4.8 : 4.6) + decoderCost(bank); }
+double perFragmentExtraCost(const LutBank& bank) { return (bank.makesLuts() ? 0.55 : 0.33) + decoderCost(bank); }
 
 }  // namespace
 
