@@ -58,6 +58,9 @@ TEST_CASE("eval across views: lut, nearest and brdf per domain, inside and outsi
         const std::size_t in = modes[name]["inside_hull"]["count"], out = modes[name]["outside_hull"]["count"];
         CHECK(in + out == json["held_out"].get<std::size_t>());
     }
+    // Rectified: a learned model of the light and the view is listed beside them.
+    REQUIRE(modes.count("neural9"));
+    CHECK(modes["neural9"]["psnr"].get<double>() > modes["nearest layers"]["psnr"].get<double>());
     CHECK(modes["lut K1 R1 grey isotropic"]["domain"] == "isotropic");
     CHECK(modes["lut K1 R1 grey layers"]["domain"] == "layers");
     const nlohmann::json& row = json["rows"][0];
@@ -75,6 +78,9 @@ TEST_CASE("eval across views: lut, nearest and brdf per domain, inside and outsi
     CHECK(plain["modes"][0]["psnr"].is_null());
     CHECK(plain["rows"][0]["ssim"].is_null());
     CHECK(plain["modes"][0]["l1"].is_number());
+    for (const auto& m : plain["modes"]) CHECK(m["name"] != "neural9");  // the per-view banks only
+    requireOneLineError(runCli({"eval", dir / "btf", "--modes", "lut,neural9"}),
+                        "--modes neural9: a learned model across views needs rectified views");
 
     // Bad input: modes that predict one camera's images, a held-out pair not in the dataset.
     requireOneLineError(runCli({"eval", dir / "btf", "--modes", "lut,ptm"}),
@@ -98,6 +104,19 @@ TEST_CASE("eval across views: lut, nearest and brdf per domain, inside and outsi
     std::ofstream(dir / "pairs.txt") << "10,0,95,0\n";
     requireOneLineError(runCli({"eval", dir / "btf", "--holdout", dir / "pairs.txt"}),
                         "pairs.txt:1: the view of '10,0,95,0'");
+}
+
+TEST_CASE("eval across views: a learned model of the light and the view above lut and nearest (btf-9)") {
+    TempDir dir;
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "btf-9", "--size", "32", "--correlation-length", "4",
+                    "--samples", "1", "-q", "-o", dir / "btf"})
+                .status == 0);
+    const nlohmann::json json = evalJson({"eval", dir / "btf", "--json", "--no-gl"});
+    std::map<std::string, double> psnr;
+    for (const auto& m : json["modes"]) psnr[m["name"].get<std::string>()] = m["psnr"].get<double>();
+    INFO("neural9 " << psnr["neural9"] << " dB, lut " << psnr["lut K1 R1 grey"] << ", nearest " << psnr["nearest"]);
+    CHECK(psnr["neural9"] > psnr["lut K1 R1 grey"] + 3);
+    CHECK(psnr["neural9"] > psnr["nearest"] + 3);
 }
 
 TEST_CASE("eval: a dataset whose views all coincide is a fixed camera") {

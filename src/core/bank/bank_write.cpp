@@ -97,6 +97,7 @@ Bytes encodeLightModel(const LightModel& m) {
 // LRND payload (docs/btflut-format.md): the model's sizes, each code's scale and bias, the
 // light network's and the residual network's parameters, then the codes three to an RGB PNG.
 Bytes encodeLearnedModel(const LearnedModel& m) {
+    BTFLUT_CHECK(m.viewFeatures == 0);  // a model of views is eval's, never a bank's
     Writer w;
     w.put(static_cast<std::uint32_t>(m.codes));
     w.put(static_cast<std::uint32_t>(m.channels));

@@ -34,8 +34,11 @@ struct LinearStart {
     Network encoder, light;
 };
 LinearStart linearStart(const Matrix& samples, const Matrix& features, int codes, int channels, int terms) {
-    const Eigen::Index L = features.cols(), F = terms, C = channels, D = samples.rows(), N = codes;
-    const Eigen::MatrixXd h = features.topRows(F).transpose().cast<double>();  // L x F
+    // The light's first `terms` features, and the view's (a model that takes one) after them.
+    const Eigen::Index views = features.rows() - kLearnedLightFeatures, F = terms + views;
+    const Eigen::Index L = features.cols(), C = channels, D = samples.rows(), N = codes;
+    Eigen::MatrixXd h(L, F);  // L x F
+    h << features.topRows(terms).transpose().cast<double>(), features.bottomRows(views).transpose().cast<double>();
     Eigen::MatrixXd normal = h.transpose() * h;
     normal.diagonal().array() += 1e-3 * normal.trace() / static_cast<double>(F);
     const Eigen::MatrixXd project = normal.ldlt().solve(h.transpose());  // F x L
@@ -65,9 +68,10 @@ LinearStart linearStart(const Matrix& samples, const Matrix& features, int codes
     start.light = Network::fromParameters(lightSizes, std::vector<float>(Network::parameterCount(lightSizes), 0.f));
     for (Eigen::Index c = 0; c < C; ++c)
         for (Eigen::Index f = 0; f < F; ++f) {
+            const Eigen::Index row = f < terms ? f : kLearnedLightFeatures + f - terms;  // its feature
             for (Eigen::Index k = 0; k < N; ++k)
-                start.light.weights(0)(c * (N + 1) + k, f) = static_cast<float>(components(c * F + f, k));
-            start.light.weights(0)(c * (N + 1) + N, f) = static_cast<float>(mean(c * F + f));
+                start.light.weights(0)(c * (N + 1) + k, row) = static_cast<float>(components(c * F + f, k));
+            start.light.weights(0)(c * (N + 1) + N, row) = static_cast<float>(mean(c * F + f));
         }
     return start;
 }
@@ -89,8 +93,8 @@ struct DecoderAdam {
     }
 };
 
-LearnedDecoder randomDecoder(const LearnedOptions& o, int channels, Random& random) {
-    std::vector<int> light{kLearnedLightFeatures}, residual{o.codes + kLearnedLightFeatures};
+LearnedDecoder randomDecoder(const LearnedOptions& o, int channels, int features, Random& random) {
+    std::vector<int> light{features}, residual{o.codes + features};
     light.insert(light.end(), o.lightHidden.begin(), o.lightHidden.end());
     light.push_back(channels * (o.codes + 1));
     residual.insert(residual.end(), o.hidden.begin(), o.hidden.end());
@@ -123,7 +127,7 @@ Trained started(const Matrix& samples, const Matrix& lights, const LearnedOption
     Trained t;
     LinearStart start = linearStart(samples, lights, o.codes, channels, terms);
     t.encoder = std::move(start.encoder);
-    t.decoder = randomDecoder(o, channels, random);
+    t.decoder = randomDecoder(o, channels, static_cast<int>(lights.rows()), random);
     if (t.decoder.light.layers() == 1) t.decoder.light = std::move(start.light);
     t.decoder.residual.weights(t.decoder.residual.layers() - 1).setZero();
     return t;
@@ -191,8 +195,10 @@ Matrix columns(const Matrix& m, const std::vector<std::size_t>& keep) {
 }  // namespace
 
 Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
-                                     const Mask& mask, const LearnedOptions& o, const std::string& what) {
+                                     const Mask& mask, const LearnedOptions& o, const std::string& what,
+                                     const std::vector<Direction>& views) {
     if (images.size() != lights.size() || images.empty()) return Error{what + ": no images to learn from"};
+    if (!views.empty() && views.size() != images.size()) return Error{what + ": a view per image, or none"};
     if (images.size() < 3) return Error{what + ": a learned model needs at least 3 lights"};
     if (o.codes < 1 || o.codes > LearnedModel::kMaxCodes || o.hidden.empty() || o.steps < 1 ||
         !(o.rate > 0 && std::isfinite(o.rate)))
@@ -208,6 +214,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     m.channels = o.colour && first.channels == 3 ? 3 : 1;
     m.hidden = o.hidden;
     m.lightHidden = o.lightHidden;
+    m.viewFeatures = views.empty() ? 0 : kLearnedViewFeatures;
     if (Network::parameterCount(m.decoderSizes()) > static_cast<std::size_t>(LearnedModel::kMaxParameters) ||
         Network::parameterCount(m.lightSizes()) > static_cast<std::size_t>(LearnedModel::kMaxParameters))
         return Error{what + ": a network of the learned model is larger than " +
@@ -217,10 +224,11 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     if (!drawn) return Error{drawn.error()};
     const Matrix& samples = drawn->samples;
     const std::size_t keep = drawn->texels.size();
-    Matrix features(kLearnedLightFeatures, static_cast<Eigen::Index>(lights.size()));
+    // Each image's features: its light's, and its view's (rectified views).
+    Matrix features(m.features(), static_cast<Eigen::Index>(lights.size()));
     for (std::size_t l = 0; l < lights.size(); ++l) {
-        const std::vector<float> h = learnedLightFeatures(lights[l]);
-        features.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Vector>(h.data(), kLearnedLightFeatures);
+        const std::vector<float> h = m.featuresAt(lights[l], views.empty() ? Direction{} : views[l]);
+        features.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Vector>(h.data(), m.features());
     }
 
     // Validated on every fifth light held out: the start's terms (hsh3's 9 need more lights

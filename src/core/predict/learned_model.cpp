@@ -18,15 +18,24 @@ std::vector<float> learnedLightFeatures(Direction light) {
     return {h.begin(), h.end()};
 }
 
+std::vector<float> LearnedModel::featuresAt(Direction light, Direction view) const {
+    std::vector<float> f = learnedLightFeatures(light);
+    if (viewFeatures > 0) {
+        const std::vector<double> g = basisTerms(LightBasis::Hsh, 2, view);
+        f.insert(f.end(), g.begin() + 1, g.begin() + 1 + kLearnedViewFeatures);
+    }
+    return f;
+}
+
 std::vector<int> LearnedModel::decoderSizes() const {
-    std::vector<int> sizes{codes + kLearnedLightFeatures};
+    std::vector<int> sizes{codes + features()};
     sizes.insert(sizes.end(), hidden.begin(), hidden.end());
     sizes.push_back(channels);
     return sizes;
 }
 
 std::vector<int> LearnedModel::lightSizes() const {
-    std::vector<int> sizes{kLearnedLightFeatures};
+    std::vector<int> sizes{features()};
     sizes.insert(sizes.end(), lightHidden.begin(), lightHidden.end());
     sizes.push_back(channels * (codes + 1));
     return sizes;
@@ -41,13 +50,14 @@ std::size_t LearnedModel::decoderCost() const {
 
 std::size_t LearnedModel::parameterCount(const std::vector<int>& sizes) { return Network::parameterCount(sizes); }
 
-std::vector<float> LearnedModel::predict(Direction light, std::span<const std::uint32_t> texels, int threads) const {
+std::vector<float> LearnedModel::predict(Direction light, std::span<const std::uint32_t> texels, int threads,
+                                         Direction view) const {
     BTFLUT_CHECK(!empty());
     const LearnedDecoder net{Network::fromParameters(lightSizes(), lightNetwork),
                              Network::fromParameters(decoderSizes(), decoder)};
     const std::size_t count = texels.empty() ? this->texels() : texels.size(), C = static_cast<std::size_t>(channels);
-    const std::vector<float> h = learnedLightFeatures(light);
-    const Matrix features = Eigen::Map<const Matrix>(h.data(), kLearnedLightFeatures, 1);
+    const std::vector<float> h = featuresAt(light, view);
+    const Matrix features = Eigen::Map<const Matrix>(h.data(), this->features(), 1);
     std::vector<float> out(count * C);
     constexpr std::size_t kBlock = 1024;  // fixed, so the sums do not depend on the threads
     parallelFor((count + kBlock - 1) / kBlock, threads, [&](std::size_t block) {
@@ -65,9 +75,9 @@ std::vector<float> LearnedModel::predict(Direction light, std::span<const std::u
     return out;
 }
 
-Image LearnedModel::render(Direction light) const {
+Image LearnedModel::render(Direction light, Direction view) const {
     Image image(width, height, channels);
-    image.samples = predict(light, {}, 0);
+    image.samples = predict(light, {}, 0, view);
     return image;
 }
 
@@ -77,7 +87,8 @@ bool LearnedModel::fitsGpu() const {
         for (int w : *widths)
             if (w > BTFLUT_LEARNED_WIDTH) return false;
     }
-    return channels * (codes + 1) <= BTFLUT_LEARNED_WIDTH && codes + kLearnedLightFeatures <= BTFLUT_LEARNED_WIDTH;
+    return viewFeatures == 0 && channels * (codes + 1) <= BTFLUT_LEARNED_WIDTH &&
+           codes + kLearnedLightFeatures <= BTFLUT_LEARNED_WIDTH;
 }
 
 namespace {
@@ -123,6 +134,7 @@ LearnedModel::GpuNetwork LearnedModel::gpuNetwork() const {
 }
 
 LearnedModel::LightFrame LearnedModel::lightFrame(Direction light) const {
+    BTFLUT_CHECK(viewFeatures == 0);
     const Network lightNet = Network::fromParameters(lightSizes(), lightNetwork),
                   residual = Network::fromParameters(decoderSizes(), decoder);
     const std::vector<float> h = learnedLightFeatures(light);

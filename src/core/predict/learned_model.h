@@ -35,14 +35,20 @@ namespace btflut {
 /// The light's features h(L) both networks take: its 9 hemispherical harmonics of order 3.
 constexpr int kLearnedLightFeatures = 9;
 std::vector<float> learnedLightFeatures(Direction light);
+/// A model of rectified views (eval across views) also takes the view's: its hemispherical
+/// harmonics of order 2 but the constant (the light's has it).
+constexpr int kLearnedViewFeatures = 3;
 
 struct LearnedModel {
     static constexpr int kMaxCodes = 16;
     static constexpr int kMaxParameters = 8192;  ///< each network's: small enough for a fragment shader
 
     int width = 0, height = 0;
-    int codes = 0;                           ///< N, bytes per texel, 1..kMaxCodes
-    int channels = 1;                        ///< the decoder's outputs: 1 (grey) or 3 (RGB)
+    int codes = 0;     ///< N, bytes per texel, 1..kMaxCodes
+    int channels = 1;  ///< the decoder's outputs: 1 (grey) or 3 (RGB)
+    /// 0, or kLearnedViewFeatures for a model of rectified views, whose networks also take
+    /// the view (trained and evaluated by eval across views; banks hold one view's models).
+    int viewFeatures = 0;
     std::vector<float> scale, bias;          ///< per code: v_k = (byte_k - bias_k) scale_k
     std::vector<std::uint8_t> coefficients;  ///< N bytes per texel, rows top first
     /// The decoder (learned_decoder.h): the light network's hidden widths and parameters
@@ -53,6 +59,9 @@ struct LearnedModel {
     std::vector<float> decoder;
 
     bool empty() const { return coefficients.empty(); }
+    /// F, the features both networks take, and their values for a light (and a view).
+    int features() const { return kLearnedLightFeatures + viewFeatures; }
+    std::vector<float> featuresAt(Direction light, Direction view = {}) const;
     std::size_t texels() const { return static_cast<std::size_t>(width) * height; }
     /// The residual network's layer sizes: N + F inputs, the hidden widths, `channels` outputs.
     std::vector<int> decoderSizes() const;
@@ -66,9 +75,10 @@ struct LearnedModel {
     /// The prediction of `texels` (all of them when empty) at a light: channels floats per
     /// texel in [0, 1], in the order given. Evaluated in blocks of a fixed size, so the
     /// result does not depend on `threads`.
-    std::vector<float> predict(Direction light, std::span<const std::uint32_t> texels = {}, int threads = 1) const;
-    /// The prediction as an image (grey or RGB, float).
-    Image render(Direction light) const;
+    std::vector<float> predict(Direction light, std::span<const std::uint32_t> texels = {}, int threads = 1,
+                               Direction view = {}) const;
+    /// The prediction as an image (grey or RGB, float); `view` for a model of views.
+    Image render(Direction light, Direction view = {}) const;
 
     /// Whether a GPU's decoder evaluates it (shaders/btflut.glsl's arrays): at most
     /// BTFLUT_LEARNED_HIDDEN hidden layers per network, none wider than BTFLUT_LEARNED_WIDTH.
@@ -107,11 +117,13 @@ struct LearnedOptions {
     std::function<void(double)> progress;
 };
 
-/// Trains a model on images of one view under `lights` (same size; RGB or grey). Refuses
-/// fewer than 3 lights, codes or hidden widths out of range, an empty mask and training that
-/// diverges after two retries (`what` names the dataset).
+/// Trains a model on images of one view under `lights` (same size; RGB or grey), or with
+/// `views` (one per image) on rectified images of several views, the networks taking the view
+/// too. Refuses fewer than 3 lights, codes or hidden widths out of range, an empty mask and
+/// training that diverges after two retries (`what` names the dataset).
 Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
-                                     const Mask& mask, const LearnedOptions& options, const std::string& what);
+                                     const Mask& mask, const LearnedOptions& options, const std::string& what,
+                                     const std::vector<Direction>& views = {});
 
 /// The options from a `--predictor` name: neural (9 codes) or neuralN (N codes); nothing when
 /// the name is not one of these, an error for a number out of range.

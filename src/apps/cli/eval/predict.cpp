@@ -114,19 +114,20 @@ Result<Image> loadSameSize(const Dataset& dataset, std::size_t i, const Image& f
 
 // The RTI bases and learned models on their own (unmatched variants), fitted to the fold's
 // training images (decoded once): by variant name, what each predicts at a light.
-using Rendering = std::function<Image(Direction)>;
+using Rendering = std::function<Image(Direction light, Direction view)>;
 Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants, const Dataset& dataset,
                                                   const Fold& fold, const Image& first, const Mask& mask) {
     std::map<std::string, Rendering> models;
     if (std::none_of(variants.begin(), variants.end(), [](const Variant& v) { return v.unmatched(); })) return models;
     std::vector<Image> decoded;
     std::vector<const Image*> images;
-    std::vector<Direction> lights;
+    std::vector<Direction> lights, views;  // views: only a learned model of rectified views reads them
     for (std::size_t i : fold.train) {
         Result<Image> image = loadSameSize(dataset, i, first);
         if (!image) return Error{image.error()};
         decoded.push_back(std::move(*image));
         lights.push_back(dataset.images[i].light);
+        if (!dataset.fixedView()) views.push_back(dataset.images[i].view);
     }
     for (const Image& image : decoded) images.push_back(&image);
     for (Variant& v : variants) {
@@ -137,16 +138,18 @@ Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants
             if (!model) return Error{model.error()};
             v.bakeSeconds.push_back(seconds(start));
             v.bytesPerTexel = model->codes;
-            models[v.name] = [m = std::make_shared<NeuralRti>(std::move(*model))](Direction l) { return m->render(l); };
+            models[v.name] = [m = std::make_shared<NeuralRti>(std::move(*model))](Direction l, Direction) {
+                return m->render(l);
+            };
             continue;
         }
         if (v.learned) {
-            Result<LearnedModel> model = fitLearnedModel(images, lights, mask, *v.learned, dataset.source);
+            Result<LearnedModel> model = fitLearnedModel(images, lights, mask, *v.learned, dataset.source, views);
             if (!model) return Error{model.error()};
             v.bakeSeconds.push_back(seconds(start));
             v.bytesPerTexel = model->codes;
-            models[v.name] = [m = std::make_shared<LearnedModel>(std::move(*model))](Direction l) {
-                return m->render(l);
+            models[v.name] = [m = std::make_shared<LearnedModel>(std::move(*model))](Direction l, Direction view) {
+                return m->render(l, view);
             };
             continue;
         }
@@ -154,7 +157,9 @@ Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants
         if (!model) return Error{model.error()};
         v.bakeSeconds.push_back(seconds(start));
         v.bytesPerTexel = model->bytesPerTexel();
-        models[v.name] = [m = std::make_shared<LightModel>(std::move(*model))](Direction l) { return m->render(l); };
+        models[v.name] = [m = std::make_shared<LightModel>(std::move(*model))](Direction l, Direction) {
+            return m->render(l);
+        };
     }
     return models;
 }
@@ -290,7 +295,7 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 v.bankDomain = bank.domain;
                 Image predicted;
                 if (v.unmatched()) {
-                    predicted = models->at(v.name)(info.light);
+                    predicted = models->at(v.name)(info.light, info.view);
                 } else if (v.mode == RenderMode::Lut) {
                     predicted = relitPrediction(v, bank, banks.relighter(v), info);
                 } else if (v.mode == RenderMode::Ptm) {

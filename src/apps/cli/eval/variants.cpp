@@ -276,12 +276,20 @@ Status adaptToViews(EvalOptions& o, const Dataset& dataset) {
     }
     const std::string where = dataset.source + " has " + std::to_string(views) + " views";
     const EvalOptions defaults;
-    if (o.modes == defaults.modes) o.modes = "lut,nearest,brdf";
+    // Rectified views (one frame for every view): a learned model of the view too.
+    if (o.modes == defaults.modes) o.modes = dataset.rectified ? "lut,nearest,brdf,neural9" : "lut,nearest,brdf";
     if (o.predictors == defaults.predictors) o.predictors = "references";
-    for (const std::string& mode : split(o.modes))
+    for (const std::string& mode : split(o.modes)) {
+        if (learnedModelNamed(mode) && dataset.rectified) continue;
+        if (learnedModelNamed(mode))
+            return Error{"--modes " + mode +
+                         ": a learned model across views needs rectified views (one frame for "
+                         "every view: the manifest's \"rectified\": true); " +
+                         where};
         if (mode != "lut" && mode != "nearest" && mode != "brdf" && mode != "flat")
             return Error{"--modes " + mode + ": predicts a fixed camera's images only; " + where +
-                         " (eval's modes there: lut, nearest, brdf, flat)"};
+                         " (eval's modes there: lut, nearest, brdf, flat, and neuralN on rectified views)"};
+    }
     if (o.predictors != "references" || o.references != "1" || o.regions != "1" || o.colours == "lrgb" ||
         o.blendedLuts || o.targets.find("corrections") != std::string::npos)
         return Error{"lut across views is the paper's bank of one reference (--references 1, no predictor); " + where};
