@@ -13,6 +13,7 @@
 #include "core/learn/network.h"
 #include "core/predict/learned_decoder.h"
 #include "core/predict/learned_predictor.h"
+#include "core/predict/learned_training.h"
 #include "core/predict/neural_rti.h"
 #include "core/relight/engine_material.h"
 #include "core/relight/relighter.h"
@@ -215,6 +216,25 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     CHECK_MESSAGE(read.error().find("predictor, match or target out of range") != std::string::npos, read.error());
     Bytes truncated(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(bytes.size() / 2));
     CHECK_FALSE(decodeBank(truncated, "cut.btflut").ok());
+}
+
+TEST_CASE("learned model: a time budget bounds the steps, the same on every machine") {
+    // 1 second: 1e6 samples / (2048 a step x 2.2 runs) = 221 steps; a step bound or the epochs
+    // may be smaller.
+    CHECK(stepBudget(6000, 32768, 49, 1.0) == 221);
+    CHECK(stepBudget(6000, 32768, 49, 0.0) == 6000);
+    CHECK(stepBudget(100, 32768, 49, 1.0) == 100);
+    CHECK(stepBudget(6000, 100, 20, 60.0) == 50);  // 50 passes over 2000 samples
+    TempDir dir;
+    const std::string manifest = writeRelief(dir, Relief{.size = 24}, dome(20, 70));
+    std::string bytes;
+    for (int run = 0; run < 2; ++run) {
+        const std::string bank = dir / ("t" + std::to_string(run) + ".btflut");
+        REQUIRE(runCli({"bake", manifest, "--predictor", "neural4", "--budget", "0.2s", "-o", bank, "-q"}).status == 0);
+        if (run == 1) CHECK(readText(bank) == bytes);
+        bytes = readText(bank);
+    }
+    REQUIRE(runCli({"bake", manifest, "--budget", "4,0.3s", "-o", dir / "auto.btflut", "-q"}).status == 0);
 }
 
 TEST_CASE("learned model: few lights, constant and black images, 16-bit images and masks bake finite banks") {

@@ -202,7 +202,12 @@ TEST_CASE("auto: degenerate captures bake; a budget below every predictor is ref
         requireOneLineError(runCli({"bake", manifest, "--budget", "2", "-o", dir / "x.btflut"}),
                             "the smallest budget that works is 3 bytes per texel");
         requireOneLineError(runCli({"bake", manifest, "--budget", "4", "--predictor", "rbf", "-o", dir / "x.btflut"}),
-                            "--budget goes with --predictor auto");
+                            "--budget in bytes goes with --predictor auto");
+        requireOneLineError(runCli({"bake", manifest, "--budget", "90s", "--predictor", "rbf", "-o", dir / "x.btflut"}),
+                            "--budget in time bounds a learned model's training");
+        for (const char* bad : {"0", "9,abc", "9,9", "65", "2.5", "-3s", "30s,2m", "nans"})
+            requireOneLineError(runCli({"bake", manifest, "--budget", bad, "-o", dir / "x.btflut"}),
+                                "expected bytes per texel (1 to 64), a training time (90s, 2m), or both (9,90s)");
         requireOneLineError(runCli({"bake", manifest, "--predictor", "rbf99", "-o", dir / "x.btflut"}), "rbf99");
         CHECK_FALSE(fs::exists(dir / "x.btflut"));
         // The smallest budget bakes within it: the paper's bank or a PCA basis of 3 planes.

@@ -1,6 +1,8 @@
 // btflut bake: a LUT bank from a dataset.
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -8,6 +10,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <sstream>
 
 #include "cli/command.h"
 #include "core/bake/auto_bake.h"
@@ -39,8 +42,8 @@ struct BakeCommandOptions {
     int quantiles = 1024;
     std::string labels;
     std::string predictor = "auto";
-    float match = -1;  ///< unset: 1, or validated with auto
-    int budget = 9;
+    float match = -1;    ///< unset: 1, or validated with auto
+    std::string budget;  // bytes 9 unless given
     std::string fill = "clamp";
     std::string params;
     std::string fitBrdf = "lambert";
@@ -160,12 +163,41 @@ std::string predictorSummary(const LutBank& bank) {
                 : std::string());
 }
 
+// --budget: bytes per texel and/or a training time ("9", "90s", "2m", "9,90s").
+struct Budget {
+    std::optional<int> bytes;
+    double seconds = 0;
+};
+Result<Budget> parseBudget(const std::string& text) {
+    Budget b;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, ',');) {
+        const bool time = !part.empty() && (part.back() == 's' || part.back() == 'm');
+        const std::string number = time ? part.substr(0, part.size() - 1) : part;
+        char* end = nullptr;
+        const double value = std::strtod(number.c_str(), &end);
+        if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) || value <= 0 ||
+            (time ? b.seconds > 0 : b.bytes.has_value()) || (!time && (value != std::floor(value) || value > 64)))
+            return Error{"--budget '" + text +
+                         "': expected bytes per texel (1 to 64), a training time (90s, 2m), or both (9,90s)"};
+        if (time)
+            b.seconds = part.back() == 'm' ? 60 * value : value;
+        else
+            b.bytes = static_cast<int>(value);
+    }
+    return b;
+}
+
 Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     BakeCommandOptions o = given;
     // The references' options without --predictor mean the references, as before auto.
     const bool referencesAsked = app.count("--references") > 0 || o.colour != "grey" || !o.labels.empty();
     if (app.count("--predictor") == 0 && referencesAsked) o.predictor = "references";
-    if (app.count("--budget") > 0 && o.predictor != "auto") return Error{"--budget goes with --predictor auto"};
+    Result<Budget> budget = parseBudget(o.budget);
+    if (!budget) return Error{budget.error()};
+    if (budget->bytes && o.predictor != "auto") return Error{"--budget in bytes goes with --predictor auto"};
+    if (budget->seconds > 0 && o.predictor != "auto" && !learnedModelNamed(o.predictor))
+        return Error{"--budget in time bounds a learned model's training: --predictor auto or neuralN"};
     if (Status s = requireExtension(o.output, {"btflut"}, "output"); !s) return s;
     // A view layer's grid alone must fit a chunk of the file (4 GiB): refused before any work.
     const std::uint64_t gridBytes =
@@ -198,6 +230,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
             return Error{"--predictor '" + o.predictor +
                          "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN, blnN or neuralN"};
         if (!*model) return Error{"--predictor " + model->error()};
+        if (options.learned) options.learned->seconds = budget->seconds;
     }
     if (o.match >= 0) options.match = o.match;
     options.regions = o.regions;
@@ -220,7 +253,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     const ImageProvider provider = fitting ? ImageProvider(std::ref(collector)) : ImageProvider();
     Result<LutBank> bank = Error{""};
     if (o.predictor == "auto") {
-        AutoBakeOptions automatic{.base = options, .budget = o.budget};
+        AutoBakeOptions automatic{.base = options, .budget = budget->bytes.value_or(9), .seconds = budget->seconds};
         if (o.match >= 0) automatic.match = o.match;
         if (!o.quiet && ::isatty(STDERR_FILENO))  // progress for people; errors stay one line
             automatic.log = [](const std::string& line) { std::cerr << "\rauto: " << line << "\x1b[K\n"; };
@@ -338,9 +371,11 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
                     "how far each light's LUT moves the prediction's distribution to the measured one: 1 fully, 0 not "
                     "at all (the prediction as it is), between: the two blended (default: 1, or validated with auto)")
         ->check(CLI::Range(0.0, 1.0));
-    app->add_option("--budget", o->budget, "with --predictor auto: bytes per texel the predictor may store")
-        ->check(CLI::Range(1, 64))
-        ->capture_default_str();
+    app->add_option("--budget", o->budget,
+                    "BYTES, TIME or BYTES,TIME: bytes per texel the predictor may store (with --predictor auto; "
+                    "default 9), and how long a learned model may train (auto: its candidate, a third for each "
+                    "fold and the bank; neuralN: the bank), as 90s or 2m: the steps this machine's trainer runs "
+                    "in that time (1 million samples a second), so the bank is the same wherever it is baked");
     app->add_option("--domain", o->domain,
                     "what lookups interpolate over: layers (each view's lights, then between views; any "
                     "material), isotropic (theta_i, theta_r, phi_i - phi_r; for isotropic materials measured "

@@ -31,7 +31,8 @@ struct Candidate {
     std::size_t images = 0;
 };
 
-std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int budget, std::size_t lights) {
+std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int budget, double seconds,
+                                     std::size_t lights) {
     const int region = base.regions > 1 || !base.labelsPath.empty() ? 1 : 0;
     const int albedo = channels == 3 ? 3 : 0;
     std::vector<Candidate> out;
@@ -72,7 +73,7 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int 
     const int codes = std::min(budget - region, LearnedModel::kMaxCodes);
     if (codes >= 1) {
         BakeOptions learned = classic;
-        learned.learned = LearnedOptions{.codes = codes};
+        learned.learned = LearnedOptions{.codes = codes, .seconds = seconds / 3};
         add("neural" + std::to_string(codes), learned, codes);
     }
     return out;
@@ -253,7 +254,9 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
         return Error{"--budget " + std::to_string(options.budget) +
                      ": no predictor fits; the smallest budget that works is " +
                      std::to_string(smallestBudget(first.channels)) + " bytes per texel (the one-reference bank)"};
-    std::vector<Candidate> candidates = candidatesFor(options.base, first.channels, options.budget, n);
+    if (!(options.seconds >= 0 && std::isfinite(options.seconds)))
+        return Error{"--budget: a time bound is a number of seconds (or minutes) above 0"};
+    std::vector<Candidate> candidates = candidatesFor(options.base, first.channels, options.budget, options.seconds, n);
     nlohmann::json selection{
         {"budget", options.budget},
         {"rule",

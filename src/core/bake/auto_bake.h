@@ -26,8 +26,11 @@
 namespace btflut {
 
 struct AutoBakeOptions {
-    BakeOptions base;            ///< grid, entries, threads, reference, quantiles, regions, ptm, progress
-    int budget = 9;              ///< bytes per texel the predictor may store
+    BakeOptions base;  ///< grid, entries, threads, reference, quantiles, regions, ptm, progress
+    int budget = 9;    ///< bytes per texel the predictor may store
+    /// Seconds the learned candidate may train, 0 no bound: a third for each of its two folds
+    /// and the final bake (LearnedOptions::seconds: steps, not the clock, so the bank is the same).
+    double seconds = 0;
     std::optional<float> match;  ///< a fixed match strength instead of the validated one
     /// Called with a line per stage (candidates, folds); may be empty.
     std::function<void(const std::string&)> log;

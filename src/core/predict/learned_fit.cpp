@@ -201,7 +201,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     if (!views.empty() && views.size() != images.size()) return Error{what + ": a view per image, or none"};
     if (images.size() < 3) return Error{what + ": a learned model needs at least 3 lights"};
     if (o.codes < 1 || o.codes > LearnedModel::kMaxCodes || o.hidden.empty() || o.steps < 1 ||
-        !(o.rate > 0 && std::isfinite(o.rate)))
+        !(o.rate > 0 && std::isfinite(o.rate)) || !(o.seconds >= 0 && std::isfinite(o.seconds)))
         return Error{what + ": invalid learned model options"};
     for (const std::vector<int>* widths : {&o.hidden, &o.lightHidden})
         for (int h : *widths)
@@ -236,7 +236,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     // learns the training lights' shadows, which need not generalise: the linear start can be
     // best). Fewer than kMinLights lights keep the linear start; under 6, hsh2's terms.
     const float rate = o.rate;
-    const int budget = stepBudget(o.steps, keep, lights.size());
+    const int budget = stepBudget(o.steps, keep, lights.size(), o.seconds);
     int steps = 0, terms = 4;
     if (lights.size() >= 6) {
         std::vector<std::size_t> train, held;

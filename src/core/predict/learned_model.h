@@ -110,7 +110,10 @@ struct LearnedOptions {
     /// Texels trained on, drawn from the mask: memory holds their samples (lights x channels
     /// floats each) and nothing else per image beyond the decoded images themselves.
     std::size_t sampleTexels = std::size_t{1} << 15;
-    int steps = 6000;    ///< Adam steps of about 2048 texel-light samples
+    int steps = 6000;  ///< Adam steps of about 2048 texel-light samples
+    /// Training's time bound, 0 none: the steps the trainer runs in about that long on this
+    /// machine (learned_training.h, kTrainedSamplesPerSecond), so the bank is the same anywhere.
+    double seconds = 0;
     float rate = 0.02f;  ///< Adam's peak rate (the residual network's; the linear parts' 1/20)
     int threads = 0;
     /// Called now and then with the fraction done (0..1); may be empty.

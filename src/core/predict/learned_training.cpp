@@ -45,9 +45,13 @@ Result<TrainingSamples> drawTrainingSamples(const TexelSamples& from, const Mask
     return out;
 }
 
-int stepBudget(int steps, std::size_t texels, std::size_t lights) {
+int stepBudget(int steps, std::size_t texels, std::size_t lights, double seconds) {
     const std::size_t epoch = texels * lights / kBatchSamples + 1;
-    return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(steps, 0)), kEpochs * epoch));
+    std::size_t most = std::min<std::size_t>(static_cast<std::size_t>(std::max(steps, 0)), kEpochs * epoch);
+    if (seconds > 0)
+        most = std::min(most, static_cast<std::size_t>(seconds * kTrainedSamplesPerSecond /
+                                                       (static_cast<double>(kBatchSamples) * kTrainingRuns)));
+    return static_cast<int>(most);
 }
 
 Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels) {

@@ -37,9 +37,17 @@ struct TrainingSamples {
 Result<TrainingSamples> drawTrainingSamples(const TexelSamples& from, const Mask& mask, std::size_t texels,
                                             std::size_t most, std::uint64_t seed, const std::string& what);
 
-/// Steps to train: at most `steps`, and at most kEpochs passes over the samples (a small
-/// capture trains in proportion).
-int stepBudget(int steps, std::size_t texels, std::size_t lights);
+/// Samples a second the trainer is taken to run when a time bounds it: this machine's one thread
+/// (2 cores; bench train measured 1.23 million), rounded down, so a bound gives the same steps,
+/// and the same bank, wherever it is baked.
+constexpr double kTrainedSamplesPerSecond = 1.0e6;
+/// A fit's training runs, in units of one run's steps: the validated run, the run on every
+/// light (as long at most) and the tuning to quantised codes (a fifth).
+constexpr double kTrainingRuns = 2.2;
+
+/// Steps to train: at most `steps`, at most kEpochs passes over the samples (a small capture
+/// trains in proportion) and, when `seconds` > 0, what trains in about that long.
+int stepBudget(int steps, std::size_t texels, std::size_t lights, double seconds = 0);
 
 /// The samples of a batch's texels as decoders order them (light-major: l T + t), C x L T.
 Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels);
