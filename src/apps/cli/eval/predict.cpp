@@ -294,8 +294,10 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
                 const LutBank& bank = **found;
                 v.bankDomain = bank.domain;
                 Image predicted;
-                if (v.unmatched()) {
+                if (v.unmatched()) {  // the model decoded at the light: its relight time
+                    const auto start = Clock::now();
                     predicted = models->at(v.name)(info.light, info.view);
+                    v.relightSeconds.push_back(seconds(start));
                 } else if (v.mode == RenderMode::Lut) {
                     predicted = relitPrediction(v, bank, banks.relighter(v), info);
                 } else if (v.mode == RenderMode::Ptm) {
