@@ -284,7 +284,8 @@ TEST_CASE(
 TEST_CASE("export --ptm: a PTM 1.2 LRGB file, rows bottom first, that reads back to the same relighting") {
     TempDir dir;
     const std::string bank = dir / "m.btflut", file = dir / "m.ptm";
-    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--ptm", "-o", bank, "-q"}).status == 0);
+    // The bank's PTM beside any predictor (hsh2: auto's validation is not what this tests).
+    REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--predictor", "hsh2", "--ptm", "-o", bank, "-q"}).status == 0);
     CliRun run = runCli({"export", bank, "--ptm", file});
     REQUIRE_MESSAGE(run.status == 0, run.err);
     Result<Bytes> bytes = readFile(file);

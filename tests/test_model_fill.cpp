@@ -156,9 +156,9 @@ TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured 
 
     // A parameters file instead of fitting; bad combinations refused with one line.
     std::ofstream(dir / "p.json") << R"({"brdf": "lambert", "roughness": 0.4, "gain": 1})";
-    CHECK(
-        runCli({"bake", folder, "--fill", "model", "--params", dir / "p.json", "-o", dir / "p.btflut", "-q"}).status ==
-        0);
+    CHECK(runCli({"bake", folder, "--references", "1", "--fill", "model", "--params", dir / "p.json", "-o",
+                  dir / "p.btflut", "-q"})
+              .status == 0);
     const std::string out = dir / "x.btflut";
     requireOneLineError(runCli({"bake", folder, "--params", dir / "p.json", "-o", out}),
                         "--params and --fit-brdf go with --fill model");

@@ -208,6 +208,13 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
                      " bytes per view, over the .btflut format's 4 GiB chunk limit"};
     if (o.fill != "model" && (!o.params.empty() || o.fitBrdf != "lambert"))
         return Error{"--params and --fit-brdf go with --fill model"};
+    // --fill model's inputs checked before any work (fillFromFittedModel reads them after the bake).
+    if (o.fill == "model") {
+        if (Result<FitBrdf> brdf = parseFitBrdf(o.fitBrdf); !brdf) return Error{"--fit-" + brdf.error()};
+        if (!o.params.empty())
+            if (Result<ModelBankParams> parsed = loadModelParams(o.params); !parsed) return Error{parsed.error()};
+        if (o.regions > 1) return Error{"--fill model: the model describes the whole sample, not each of --regions"};
+    }
     if (!o.model.empty()) {
         if (o.fill == "model") return Error{"--fill model fills a measured bank; a --model bake is all model already"};
         return runModelBake(o);
