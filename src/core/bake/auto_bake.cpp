@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <memory>
+#include <optional>
 
 #include "core/eval/holdout.h"
 #include "core/eval/metrics.h"
@@ -141,47 +141,57 @@ struct Validation {
     std::vector<float> strengths;
 };
 
-// Each candidate baked on each fold's training lights and scored on its held-out images
-// (sums per match strength); a candidate whose bake fails on a fold is skipped on all.
+// A candidate's bank on one fold, scored on the fold's held-out images at each match strength
+// (sums, and each image's L1 in the folds' order).
+void score(Candidate& c, LutBank& bank, const Fold& fold, const Validation& v, int threads) {
+    const Relighter relighter(bank);
+    for (float strength : c.classic || !bank.makesLuts() ? std::vector<float>{1.f} : v.strengths) {
+        bank.blend.match = strength;  // read by the frames below (one strength at a time)
+        std::vector<ImageErrors> figures(fold.test.size());
+        parallelFor(fold.test.size(), threads, [&](std::size_t k) {
+            const DatasetImage& info = v.dataset.images[fold.test[k]];
+            figures[k] = compareImages(relighter.apply(relighter.frame(info.light, info.view), true),
+                                       v.decoded[fold.test[k]], v.mask);
+        });
+        auto& [psnr, l1] = c.sums[strength];
+        for (const ImageErrors& e : figures) psnr += e.psnr, l1 += e.l1, c.l1s[strength].push_back(e.l1);
+    }
+    c.images += fold.test.size();
+}
+
+// Each candidate baked on each fold's training lights and scored on its held-out images; a
+// candidate whose bake fails on a fold is skipped on all. A candidate's folds are baked side
+// by side: a learned one trains on one core, and a bake is the same on any thread count.
 void validate(std::vector<Candidate>& candidates, const Validation& v, const AutoBakeOptions& options) {
     std::size_t steps = 0, done = 0;
     for (const Candidate& c : candidates) steps += c.skipped.empty() ? v.folds.size() : 0;
-    for (const Fold& fold : v.folds) {
-        const Dataset train = subset(v.dataset, fold.train);
-        const ImageProvider trainImages = [&](std::size_t i, Image&) -> Result<const Image*> {
-            return &v.decoded[fold.train[i]];
-        };
-        for (Candidate& c : candidates) {
-            if (!c.skipped.empty()) continue;
-            BakeOptions o = c.options;
-            o.progress = {};
-            o.ptm = false;
-            o.matchGrid = false;  // validated with exact LUTs; only the chosen bank gets its grid
-            auto bank = std::make_unique<LutBank>();
-            if (Result<LutBank> baked = bakeBank(train, o, trainImages); baked) {
-                *bank = std::move(*baked);
-            } else {
-                c.skipped = baked.error();
+    std::vector<Dataset> train;
+    for (const Fold& fold : v.folds) train.push_back(subset(v.dataset, fold.train));
+    for (Candidate& c : candidates) {
+        if (!c.skipped.empty()) continue;
+        BakeOptions o = c.options;
+        o.progress = {};
+        o.ptm = false;
+        o.matchGrid = false;  // validated with exact LUTs; only the chosen bank gets its grid
+        std::vector<std::optional<Result<LutBank>>> banks(v.folds.size());
+        parallelFor(v.folds.size(), options.base.threads, [&](std::size_t f) {
+            const ImageProvider images = [&](std::size_t i, Image&) -> Result<const Image*> {
+                return &v.decoded[v.folds[f].train[i]];
+            };
+            banks[f] = bakeBank(train[f], o, images);
+        });
+        for (std::size_t f = 0; f < v.folds.size(); ++f) {
+            if (!*banks[f]) {
+                c.skipped = banks[f]->error();
                 c.sums.clear();  // a candidate is compared on every fold or on none
                 c.l1s.clear();
                 c.images = 0;
-                continue;
+                break;
             }
-            const Relighter relighter(*bank);
-            for (float strength : c.classic || !bank->makesLuts() ? std::vector<float>{1.f} : v.strengths) {
-                bank->blend.match = strength;  // read by the frames below (one strength at a time)
-                std::vector<ImageErrors> figures(fold.test.size());
-                parallelFor(fold.test.size(), options.base.threads, [&](std::size_t k) {
-                    const DatasetImage& info = v.dataset.images[fold.test[k]];
-                    figures[k] = compareImages(relighter.apply(relighter.frame(info.light, info.view), true),
-                                               v.decoded[fold.test[k]], v.mask);
-                });
-                auto& [psnr, l1] = c.sums[strength];
-                for (const ImageErrors& e : figures) psnr += e.psnr, l1 += e.l1, c.l1s[strength].push_back(e.l1);
-            }
-            c.images += fold.test.size();
-            if (options.base.progress) options.base.progress(++done, steps);
+            score(c, **banks[f], v.folds[f], v, options.base.threads);
         }
+        done += v.folds.size();
+        if (options.base.progress) options.base.progress(done, steps);
     }
 }
 
