@@ -55,17 +55,21 @@ std::vector<std::string> LearnedPredictor::shaderDefines() const {
 // btflut.glsl's BtflutLearnedFrame: per layer of four codes and per channel ([layer * 3 +
 // channel]) A_ck, the offsets a_c, the residual's first layer at the light.
 std::vector<ShaderValues> LearnedPredictor::shaderValues(const PredictorFrame& frame) const {
-    const LearnedModel::LightFrame f = m_model.lightFrame(frame.learned->light);
-    const auto N = static_cast<std::size_t>(m_model.codes), C = static_cast<std::size_t>(m_model.channels);
-    std::vector<float> basis((N + 3) / 4 * 3 * 4, 0.f), offset(3, 0.f), hidden(BTFLUT_LEARNED_WIDTH, 0.f);
-    for (std::size_t c = 0; c < C; ++c) {
-        for (std::size_t k = 0; k < N; ++k) basis[((k / 4) * 3 + c) * 4 + k % 4] = f.basis[c * (N + 1) + k];
-        offset[c] = f.basis[c * (N + 1) + N];
-    }
-    std::copy(f.hidden.begin(), f.hidden.end(), hidden.begin());
-    return {{"blendLearned.basis", 4, std::move(basis)},
-            {"blendLearned.offset", 3, std::move(offset)},
-            {"blendLearned.hidden", 4, std::move(hidden)}};
+    LearnedFrame& at = *frame.learned;
+    std::call_once(at.uniformsOnce, [&] {
+        const LearnedModel::LightFrame f = m_model.lightFrame(at.light);
+        const auto N = static_cast<std::size_t>(m_model.codes), C = static_cast<std::size_t>(m_model.channels);
+        std::vector<float> basis((N + 3) / 4 * 3 * 4, 0.f), offset(3, 0.f), hidden(BTFLUT_LEARNED_WIDTH, 0.f);
+        for (std::size_t c = 0; c < C; ++c) {
+            for (std::size_t k = 0; k < N; ++k) basis[((k / 4) * 3 + c) * 4 + k % 4] = f.basis[c * (N + 1) + k];
+            offset[c] = f.basis[c * (N + 1) + N];
+        }
+        std::copy(f.hidden.begin(), f.hidden.end(), hidden.begin());
+        at.uniforms = {{"blendLearned.basis", 4, std::move(basis)},
+                       {"blendLearned.offset", 3, std::move(offset)},
+                       {"blendLearned.hidden", 4, std::move(hidden)}};
+    });
+    return at.uniforms;
 }
 
 PredictorFrame LearnedPredictor::frameAt(Direction light) const {

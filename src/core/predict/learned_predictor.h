@@ -11,11 +11,14 @@
 
 namespace btflut {
 
-/// A frame's light and, once read, every texel's channel codes (0..255) there.
+/// A frame's light and, once read, every texel's channel codes (0..255) there, and once asked
+/// for, the uniforms a GPU reads there (a renderer asks at every draw; the light changes less).
 struct LearnedFrame {
     Direction light;
     std::once_flag once;
     std::vector<std::uint8_t> codes;
+    std::once_flag uniformsOnce;
+    std::vector<ShaderValues> uniforms;
 };
 
 class LearnedPredictor final : public Predictor {
