@@ -15,6 +15,7 @@
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -111,13 +112,22 @@ uniform sampler2DArray weights;
 uniform sampler2D labels;
 uniform BtflutPredictor predictor;
 uniform vec3 light;
+uniform vec3 view;  // a learned model of views reads it, and the LUTs of its nearest view layer
+uniform int layer;
 out vec4 colour;
 void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
     vec2 uv = (vec2(texel) + 0.5) / vec2(textureSize(planes, 0).xy);
-    colour = vec4(btflutRelight(luts, planes, weights, labels, predictor, uv, light, uvec2(texel)), 1.0);
+    colour = vec4(btflutRelight(luts, planes, weights, labels, predictor, uv, light, view, layer, uvec2(texel)), 1.0);
 }
 )";
+
+// A direction (degrees) as a unit vector of the tangent frame.
+std::array<float, 3> unitVector(double thetaDegrees, double phiDegrees) {
+    const double t = thetaDegrees * M_PI / 180, p = phiDegrees * M_PI / 180;
+    return {static_cast<float>(std::sin(t) * std::cos(p)), static_cast<float>(std::sin(t) * std::sin(p)),
+            static_cast<float>(std::cos(t))};
+}
 
 // The version the shader include declares (#define BTFLUT_GLSL_VERSION N); 0 if none.
 int includeVersion(const std::string& text) {
@@ -216,13 +226,16 @@ void setUpPredictor(GLuint program, const std::string& folder, const nlohmann::j
 }  // namespace
 
 int main(int argc, char** argv) {
-    const std::string usage = "usage: btflut_example_quad DIR --light THETA,PHI -o out.png [--no-dither]";
-    std::string folder, output, lightText;
+    const std::string usage =
+        "usage: btflut_example_quad DIR --light THETA,PHI [--view THETA,PHI] -o out.png [--no-dither]";
+    std::string folder, output, lightText, viewText;
     bool dither = true;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--light" && i + 1 < argc)
             lightText = argv[++i];
+        else if (a == "--view" && i + 1 < argc)
+            viewText = argv[++i];
         else if (a == "-o" && i + 1 < argc)
             output = argv[++i];
         else if (a == "--no-dither")
@@ -249,7 +262,8 @@ int main(int argc, char** argv) {
     const std::string kind = material.value("kind", "luts");
     const bool predictor = kind != "luts";
     const int entries = material["luts"]["entries"], grid = material["luts"]["grid_size"];
-    const int blocks = predictor ? material["luts"]["regions"].get<int>() : material["luts"]["layers"].get<int>();
+    // A block per view layer, and with a predictor per region of each.
+    const int blocks = material["luts"]["layers"].get<int>() * (predictor ? material["luts"]["regions"].get<int>() : 1);
     int lw = 0, lh = 0, lc = 0;
     stbi_us* luts = stbi_load_16((folder + "/luts.png").c_str(), &lw, &lh, &lc, 0);
     if (!luts || lw != entries || lh != grid * grid * blocks)
@@ -277,9 +291,21 @@ int main(int argc, char** argv) {
     glLinkProgram(program);
     glUseProgram(program);
     glUniform1i(glGetUniformLocation(program, "luts"), 1);
-    const double t = theta * M_PI / 180, p = phi * M_PI / 180;
-    glUniform3f(glGetUniformLocation(program, "light"), static_cast<float>(std::sin(t) * std::cos(p)),
-                static_cast<float>(std::sin(t) * std::sin(p)), static_cast<float>(std::cos(t)));
+    glUniform3fv(glGetUniformLocation(program, "light"), 1, unitVector(theta, phi).data());
+    // The view (default: the reference's) and the view layer nearest it, whose LUTs are read.
+    double viewTheta = material["reference"]["view"]["theta"], viewPhi = material["reference"]["view"]["phi"];
+    if (!viewText.empty() && std::sscanf(viewText.c_str(), "%lf,%lf", &viewTheta, &viewPhi) != 2) fail(usage);
+    const std::array<float, 3> view = unitVector(viewTheta, viewPhi);
+    int layer = 0;
+    float nearest = -2;
+    for (std::size_t k = 0; k < material["views"].size(); ++k) {
+        const nlohmann::json& v = material["views"][k]["view"];
+        const std::array<float, 3> d = unitVector(v["theta"], v["phi"]);
+        if (const float c = d[0] * view[0] + d[1] * view[1] + d[2] * view[2]; c > nearest)
+            nearest = c, layer = static_cast<int>(k);
+    }
+    glUniform3fv(glGetUniformLocation(program, "view"), 1, view.data());
+    glUniform1i(glGetUniformLocation(program, "layer"), layer);
     const bool rgbLuts = material["colour"] == "rgb";
     int w = 0, h = 0, channels = 0;
     if (predictor) {
@@ -304,7 +330,7 @@ int main(int argc, char** argv) {
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         stbi_image_free(reference);
         glUniform1i(glGetUniformLocation(program, "reference"), 0);
-        glUniform1i(glGetUniformLocation(program, "material.layer"), 0);
+        glUniform1i(glGetUniformLocation(program, "material.layer"), layer);
         glUniform1i(glGetUniformLocation(program, "material.rgbLuts"), rgbLuts);
         glUniform1i(glGetUniformLocation(program, "material.greyReference"), channels == 1);
         glUniform1f(glGetUniformLocation(program, "material.inputCode"), material["lut_input_code"].get<float>());

@@ -16,7 +16,8 @@
 // SRGB) and treat the result as sRGB-encoded. The result already holds the light's falloff
 // and shadows of this material: scale it by the light's colour and intensity, not by N.L.
 
-#define BTFLUT_GLSL_VERSION 3  // 2: banks with a predictor (btflutPredict, the second btflutRelight); 3: learned ones
+#define BTFLUT_GLSL_VERSION 4  // 2: banks with a predictor (btflutPredict, the second btflutRelight); 3: learned ones;
+                               // 4: learned ones of views (the network's head of four texels)
 
 // btflut: constants (src/core/predict/gpu_constants.h; written here when btflut is built)
 
@@ -250,7 +251,8 @@ void btflutBasisTerms(int basis, vec3 light, out float t[9]) {
 // ---------------------------------------------------------------------------------------------
 // A learned model (material.json "kind": "learned"; docs/predictors.md): per texel N codes,
 // bytes in `planes` four to a layer, value v_k = (code_k - bias_k) scale_k; and a decoder of
-// two small networks of the light's features h (its 9 hsh terms of order 3) and the values:
+// two small networks of the features h (F of them: the light's 9 hsh terms of order 3, and
+// for a model of views the view's 3 hsh terms of order 2 but the constant) and the values:
 //   pred_c = clamp(sum_k A_ck(L) v_k + a_c(L) + r_c(v, h), 0, 1),  code_c = round(255 pred_c)
 // A, a: the light network's outputs (row c (N + 1) + k is A_ck, row c (N + 1) + N is a_c);
 // r: the residual network of (v, h). Both are fully connected, ELU between layers, the last
@@ -258,6 +260,7 @@ void btflutBasisTerms(int basis, vec3 light, out float t[9]) {
 // (t % S, t / S), S its width (LearnedModel::gpuNetwork):
 //   texel 0: N, C (channels), the residual's and the light network's hidden layer counts
 //   texel 1, 2: the residual's, then the light network's, hidden widths
+//   texel 3: F, the features (9, or 12 with the view)
 //   then the codes' scale (N values, in texels of four), their bias, the residual's layers,
 //   the light network's. A layer of I inputs and O outputs: O rows of ceil(I / 4) texels
 //   (output o's weights, zero-padded), then ceil(O / 4) texels of biases.
@@ -280,7 +283,7 @@ vec4 btflutNetworkTexel(sampler2DArray network, int t) {
 // What the decoder's head says: N, C, hidden layer counts and widths, and the texels where
 // the residual network and the light network start.
 struct BtflutNetworkHead {
-    int codes, channels, hidden, lightHidden;
+    int codes, channels, hidden, lightHidden, features;
     ivec4 widths, lightWidths;
     int residual, light;
 };
@@ -297,9 +300,10 @@ BtflutNetworkHead btflutNetworkHeadOf(sampler2DArray network) {
     d.lightHidden = int(head.w);
     d.widths = ivec4(btflutNetworkTexel(network, 1));
     d.lightWidths = ivec4(btflutNetworkTexel(network, 2));
-    d.residual = 3 + 2 * ((d.codes + 3) / 4);
+    d.features = int(btflutNetworkTexel(network, 3).x);
+    d.residual = 4 + 2 * ((d.codes + 3) / 4);
     d.light = d.residual;
-    int inputs = d.codes + 9;
+    int inputs = d.codes + d.features;
     for (int k = 0; k <= BTFLUT_LEARNED_HIDDEN; ++k) {
         if (k > d.hidden) break;
         int outputs = k < d.hidden ? d.widths[k] : d.channels;
@@ -333,16 +337,21 @@ int btflutLearnedLayer(sampler2DArray network, int at, int inputs, int outputs, 
     return at + (outputs + 3) / 4;
 }
 
-// A learned model's frame at a light, from its decoder alone (engines, per fragment; btflut's
-// own renderer gets the same numbers from the CPU: LearnedModel::lightFrame).
-BtflutLearnedFrame btflutLearnedFrameAt(sampler2DArray network, vec3 lightTangent) {
+// A learned model's frame at a light seen from a view (both in the tangent frame; a model of
+// one view ignores the view), from its decoder alone (engines, per fragment; btflut's own
+// renderer gets the same numbers from the CPU: LearnedModel::lightFrame).
+BtflutLearnedFrame btflutLearnedFrameAt(sampler2DArray network, vec3 lightTangent, vec3 viewTangent) {
     BtflutNetworkHead d = btflutNetworkHeadOf(network);
-    float h[9];
-    btflutBasisTerms(BTFLUT_BASIS_HSH, lightTangent, h);
+    float h[12], t[9];
+    btflutBasisTerms(BTFLUT_BASIS_HSH, lightTangent, t);
+    for (int k = 0; k < 9; ++k) h[k] = t[k];
+    btflutBasisTerms(BTFLUT_BASIS_HSH, viewTangent, t);  // its order-2 terms 1..3, as LearnedModel::featuresAt
+    for (int k = 0; k < 3; ++k) h[9 + k] = t[1 + k];
     vec4 x[BTFLUT_LEARNED_VECTORS], y[BTFLUT_LEARNED_VECTORS];
     for (int k = 0; k < BTFLUT_LEARNED_VECTORS; ++k) x[k] = vec4(0.0);
-    for (int k = 0; k < 9; ++k) x[k / 4][k % 4] = h[k];
-    int at = d.light, inputs = 9, outputs = 9;
+    for (int k = 0; k < 12; ++k)
+        if (k < d.features) x[k / 4][k % 4] = h[k];
+    int at = d.light, inputs = d.features, outputs = d.features;
     for (int k = 0; k <= BTFLUT_LEARNED_HIDDEN; ++k) {
         if (k > d.lightHidden) break;
         outputs = k < d.lightHidden ? d.lightWidths[k] : d.channels * (d.codes + 1);
@@ -363,9 +372,13 @@ BtflutLearnedFrame btflutLearnedFrameAt(sampler2DArray network, vec3 lightTangen
         }
     }
     for (int k = 0; k < BTFLUT_LEARNED_VECTORS; ++k) x[k] = vec4(0.0);
-    for (int k = 0; k < 9; ++k) x[(d.codes + k) / 4][(d.codes + k) % 4] = h[k];
-    btflutLearnedLayer(network, d.residual, d.codes + 9, d.widths[0], true, false, x, f.hidden);
+    for (int k = 0; k < 12; ++k)
+        if (k < d.features) x[(d.codes + k) / 4][(d.codes + k) % 4] = h[k];
+    btflutLearnedLayer(network, d.residual, d.codes + d.features, d.widths[0], true, false, x, f.hidden);
     return f;
+}
+BtflutLearnedFrame btflutLearnedFrameAt(sampler2DArray network, vec3 lightTangent) {
+    return btflutLearnedFrameAt(network, lightTangent, vec3(0.0, 0.0, 1.0));
 }
 
 // A learned model's prediction from a texel's code bytes (`codes[l]`: layer l's four) at a
@@ -378,13 +391,13 @@ BtflutPrediction btflutLearnedPrediction(sampler2DArray network, vec4 codes[BTFL
     vec3 value = f.offset;
     for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) {
         if (l >= layers) break;
-        x[l] = (codes[l] - btflutNetworkTexel(network, 3 + layers + l)) * btflutNetworkTexel(network, 3 + l);
+        x[l] = (codes[l] - btflutNetworkTexel(network, 4 + layers + l)) * btflutNetworkTexel(network, 4 + l);
         for (int c = 0; c < 3; ++c) {
             if (c >= d.channels) break;
             value[c] += dot(f.basis[l * 3 + c], x[l]);
         }
     }
-    int at = btflutLearnedLayer(network, d.residual, d.codes + 9, d.widths[0], false, false, x, y);
+    int at = btflutLearnedLayer(network, d.residual, d.codes + d.features, d.widths[0], false, false, x, y);
     for (int k = 0; k < BTFLUT_LEARNED_VECTORS; ++k) {
         vec4 a = y[k] + f.hidden[k];
         x[k] = max(a, 0.0) + exp(min(a, 0.0)) - 1.0;
@@ -436,9 +449,10 @@ BtflutModelFrame btflutModelFrame(sampler2DArray weights, BtflutPredictor p, vec
     return f;
 }
 
-// The prediction at texture coordinate `uv` for a light in the tangent frame.
+// The prediction at texture coordinate `uv` for a light in the tangent frame, seen from a view
+// there (read by a learned model of views alone).
 BtflutPrediction btflutPrediction(sampler2DArray planes, sampler2DArray weights, BtflutPredictor p, vec2 uv,
-                                  vec3 lightTangent) {
+                                  vec3 lightTangent, vec3 viewTangent) {
     BtflutPrediction prediction = btflutNoPrediction();
     if (p.kind == BTFLUT_KIND_REFERENCES) {  // references: one weight each, to 1 / BTFLUT_WEIGHT_UNIT as btflut's CPU
         vec2 disk = btflutDiskPoint(lightTangent);
@@ -453,9 +467,14 @@ BtflutPrediction btflutPrediction(sampler2DArray planes, sampler2DArray weights,
     vec4 codes[BTFLUT_MAX_LAYERS];
     int layers = (p.planes + 3) / 4;
     for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < layers ? texture(planes, vec3(uv, float(l))) * 255.0 : vec4(0.0);
-    if (p.kind == BTFLUT_KIND_LEARNED) return btflutLearnedPrediction(weights, codes, btflutLearnedFrameAt(weights, lightTangent));
+    if (p.kind == BTFLUT_KIND_LEARNED)
+        return btflutLearnedPrediction(weights, codes, btflutLearnedFrameAt(weights, lightTangent, viewTangent));
     vec3 albedo = p.albedo == 1 ? btflutBytes(texture(planes, vec3(uv, float(layers)))).rgb : vec3(255.0);
     return btflutModelPrediction(codes, layers, p.channels, btflutModelFrame(weights, p, lightTangent), albedo);
+}
+BtflutPrediction btflutPrediction(sampler2DArray planes, sampler2DArray weights, BtflutPredictor p, vec2 uv,
+                                  vec3 lightTangent) {
+    return btflutPrediction(planes, weights, p, uv, lightTangent, vec3(0.0, 0.0, 1.0));
 }
 
 // The same in codes (0 .. 255 a channel, not yet rounded): what btflut's CPU relighting rounds
@@ -471,9 +490,11 @@ float btflutMatch(sampler3D luts, BtflutPredictor p, vec2 disk, int region, floa
 }
 
 // A bank with a predictor relit at `uv` for a light in the tangent frame; `pixel` for the dither.
-// A light at or below the horizon: black.
+// A learned model of views: seen from `viewTangent`, matched by the LUTs of view layer `layer`
+// (material.json "views"; the LUT texture's blocks are layer * regions + region). A light at
+// or below the horizon: black.
 vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights, sampler2D labels, BtflutPredictor p,
-                   vec2 uv, vec3 lightTangent, uvec2 pixel) {
+                   vec2 uv, vec3 lightTangent, vec3 viewTangent, int layer, uvec2 pixel) {
     if (lightTangent.z <= 0.0) return vec3(0.0);
     vec2 disk = btflutDiskPoint(lightTangent);
     int region = 0;
@@ -481,7 +502,8 @@ vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights
         ivec2 size = textureSize(labels, 0);
         region = int(texelFetch(labels, ivec2(mod(floor(uv * vec2(size)), vec2(size))), 0).r * 255.0 + 0.5);
     }
-    BtflutPrediction predicted = btflutPrediction(planes, weights, p, uv, lightTangent);
+    region += layer * p.regions;
+    BtflutPrediction predicted = btflutPrediction(planes, weights, p, uv, lightTangent, viewTangent);
     int match = btflutMatchOf(p);
     vec3 q = btflutCodes(predicted, match);
     vec3 matched = vec3(btflutMatch(luts, p, disk, region, q.x, pixel, 0));
@@ -489,4 +511,8 @@ vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights
         matched = vec3(matched.x, btflutMatch(luts, p, disk, region, q.y, pixel, 1), btflutMatch(luts, p, disk, region, q.z, pixel, 2));
     if (p.albedo == 2) return btflutRelitColour(matched, match, false, texture(planes, vec3(uv, float(btflutAlbedoLayer(p)))).rgb);
     return btflutRelitColour(matched, match, p.greyOutput, predicted.colour);
+}
+vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights, sampler2D labels, BtflutPredictor p,
+                   vec2 uv, vec3 lightTangent, uvec2 pixel) {
+    return btflutRelight(luts, planes, weights, labels, p, uv, lightTangent, vec3(0.0, 0.0, 1.0), 0, pixel);
 }

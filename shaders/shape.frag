@@ -53,7 +53,10 @@ void main() {
         }
     }
 #if defined(PREDICTOR)
-    colour = vec4(btflutRelight(luts, planes, weights, labels, predictor, uv, lightTangent, uvec2(gl_FragCoord.xy)), 1.0);
+    // A learned model of views: predicted for this fragment's view, matched by its layer's LUTs.
+    colour = vec4(btflutRelight(luts, planes, weights, labels, predictor, uv, lightTangent, viewTangent, layer,
+                                uvec2(gl_FragCoord.xy)),
+                  1.0);
     return;
 #endif
     BtflutMaterial m = BtflutMaterial(layer, rgbLuts, greyReference, inputCode, outputCode, true);

@@ -72,8 +72,8 @@ TEST_CASE("the reader names what is wrong") {
     sig[1] = 'X';
     CHECK(decodeBank(sig, "a.btflut").error() == "a.btflut: not a .btflut file (bad signature)");
     Bytes version = bytes;
-    version[8] = 9;
-    CHECK(decodeBank(version, "a.btflut").error().find("unsupported .btflut version 9") != std::string::npos);
+    version[8] = 10;
+    CHECK(decodeBank(version, "a.btflut").error().find("unsupported .btflut version 10") != std::string::npos);
     Bytes payload = bytes;
     payload[40] ^= 0xFF;
     CHECK(decodeBank(payload, "a.btflut").error().find("checksum mismatch in chunk HEAD") != std::string::npos);

@@ -129,7 +129,7 @@ TEST_SUITE("gl") {
             const nlohmann::json material = readJson(folder + "/material.json");
             CHECK(material["version"] == 2);
             CHECK(material["shader_version"] ==
-                  (name.find("neural") != std::string::npos ? 3 : 2));  // learned models: include version 3
+                  (name.find("neural") != std::string::npos ? 4 : 2));  // learned models: include version 4
             // psm-rock's mask gives the sample's rectangle (what a sphere wraps); the default
             // material has none: the whole image is the sample.
             CHECK(material.contains("sample") == (name.rfind("rock", 0) == 0));
@@ -163,7 +163,7 @@ TEST_SUITE("gl") {
         // newer than it reads: one line naming the file and the versions.
         const std::string folder = dir / "references", include = folder + "/btflut.glsl";
         std::string text = readText(include);
-        text.replace(text.find("#define BTFLUT_GLSL_VERSION 3"), 29, "#define BTFLUT_GLSL_VERSION 1");
+        text.replace(text.find("#define BTFLUT_GLSL_VERSION 4"), 29, "#define BTFLUT_GLSL_VERSION 1");
         std::ofstream(include, std::ios::binary) << text;
         auto example = [&](const std::string& errors) {
             const std::string command = "ASAN_OPTIONS=detect_leaks=0 " + std::string(BTFLUT_EXAMPLE_QUAD) + " " +

@@ -185,9 +185,9 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     CHECK(m.fitsGpu());
     const LearnedModel::GpuNetwork gpu = m.gpuNetwork();
     CHECK(gpu.texels.size() == static_cast<std::size_t>(gpu.size * gpu.size * 4));
-    CHECK(std::vector<float>(gpu.texels.begin(), gpu.texels.begin() + 12) ==
-          std::vector<float>{9, 3, 2, 0, 24, 24, 0, 0, 0, 0, 0, 0});
-    CHECK(gpu.texels[12] == m.scale[0]);
+    CHECK(std::vector<float>(gpu.texels.begin(), gpu.texels.begin() + 16) ==
+          std::vector<float>{9, 3, 2, 0, 24, 24, 0, 0, 0, 0, 0, 0, 9, 0, 0, 0});
+    CHECK(gpu.texels[16] == m.scale[0]);
     CHECK(drawnOnGpu(*bank).ok());
     LutBank wide = *bank;
     LearnedModel wider = m;

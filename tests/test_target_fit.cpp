@@ -20,6 +20,7 @@
 #include "helpers.h"
 
 using namespace btflut;
+using namespace btflut::test;
 
 namespace {
 

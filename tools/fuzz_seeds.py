@@ -110,6 +110,12 @@ try:
     run('bake', colour, '-o', os.path.join(work, 'neural.btflut'), '--predictor', 'neural4', '--colour', 'rgb', '--grid',
         '3', '--entries', '16', '--quantiles', '8', '-q')
     seed('bank', 'learned.btflut', open(os.path.join(work, 'neural.btflut'), 'rb').read())
+    # version 9: a learned predictor of views (LRND with its view features), a layer per view
+    run('synth', '--preset', 'concrete', '--geometry', 'btf-3', '--size', '16', '--correlation-length', '4', '-q', '-o',
+        os.path.join(work, 'btf3'))
+    run('bake', os.path.join(work, 'btf3'), '-o', os.path.join(work, 'views.btflut'), '--predictor', 'neural2', '--grid',
+        '2', '--entries', '8', '--quantiles', '8', '-q')
+    seed('bank', 'learned-views.btflut', open(os.path.join(work, 'views.btflut'), 'rb').read())
 
     # Text files of real datasets.
     seed('manifest', 'synth.json', open(os.path.join(tiny, 'btflut-dataset.json')).read())

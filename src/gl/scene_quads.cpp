@@ -65,8 +65,8 @@ RelightFrame SceneRenderer::centreFrame(std::size_t quad, const Vec3& light) con
 
 RelightFrame SceneRenderer::frameFor(const Material& material, Direction light, Direction view) const {
     const LutBank& bank = material.bank;
-    if (bank.makesLuts() && bank.layers.size() == 1 && m_interpolate && !m_exactMatch)
-        return material.relighter->gridFrame(light);  // no counting of the prediction per light change
+    if (bank.makesLuts() && m_interpolate && !m_exactMatch)
+        return material.relighter->gridFrame(light, view);  // no counting of the prediction per light change
     return material.relighter->frame(light, view, m_interpolate);
 }
 
@@ -87,8 +87,9 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
     q.eyeUploaded = m_scene.eye;
     q.light = toQuadFrame(quad, light);
     q.unlit = q.light.z <= 1e-9;
+    q.view = bank.makesLuts() && bank.predictor().viewDependent() ? viewAt(quad, 0, 0) : toVector(bank.layers[0].view);
     if (q.unlit || mode == RenderMode::Flat) return;
-    if (oneLayerLut(q, mode)) return;  // the rest is relight()'s, or choosePaths()'s
+    if (relitLut(q, mode)) return;  // the rest is relight()'s, or choosePaths()'s
     const Direction lightDirection = fromVector(q.light);
     const Direction centreView = fromVector(viewAt(quad, 0, 0));
     if (mode == RenderMode::Ptm) {
@@ -135,12 +136,13 @@ void SceneRenderer::update(QuadState& q, const Vec3& light, RenderMode mode) {
     q.brightness = brdfScale(bank, material.referenceGrey, bank.lookup(lightDirection, centreView, m_interpolate));
 }
 
-bool SceneRenderer::oneLayerLut(const QuadState& q, RenderMode mode) const {
-    return mode == RenderMode::Lut && m_materials.at(m_scene.quads[q.index].material).bank.layers.size() == 1;
+bool SceneRenderer::relitLut(const QuadState& q, RenderMode mode) const {
+    const LutBank& bank = m_materials.at(m_scene.quads[q.index].material).bank;
+    return mode == RenderMode::Lut && (bank.layers.size() == 1 || bank.makesLuts());
 }
 
 bool SceneRenderer::relitInTextureSpace(const QuadState& q, RenderMode mode) const {
-    return oneLayerLut(q, mode) && !q.perFragment;
+    return relitLut(q, mode) && !q.perFragment;
 }
 
 namespace {
@@ -169,24 +171,26 @@ double perFragmentExtraCost(const LutBank& bank) { return (bank.makesLuts() ? 0.
 // (a far quad shows the mean of LUT values), and later frames draw it flat.
 void SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
     m_stats.quadsTextureSpace = m_stats.quadsPerFragment = 0;
-    std::map<std::pair<std::string, std::array<double, 3>>, std::vector<QuadState*>> groups;
+    std::map<std::pair<std::string, std::array<double, 6>>, std::vector<QuadState*>> groups;
     for (std::size_t i = 0; i < m_quads.size(); ++i) {
         QuadState& q = m_quads[i];
         q.perFragment = false;
-        if (!oneLayerLut(q, modes[i]) || q.unlit) continue;
-        groups[{m_scene.quads[q.index].material, {q.light.x, q.light.y, q.light.z}}].push_back(&q);
+        if (!relitLut(q, modes[i]) || q.unlit) continue;
+        groups[{m_scene.quads[q.index].material, {q.light.x, q.light.y, q.light.z, q.view.x, q.view.y, q.view.z}}]
+            .push_back(&q);
     }
     for (auto& [key, quads] : groups) {
         Material& material = m_materials.at(key.first);
         const LutBank& bank = material.bank;
-        const Vec3 light = quads.front()->light;
+        const Vec3 light = quads.front()->light, view = quads.front()->view;
         bool perFragment = m_lutPath == LutPath::PerFragment;
         if (m_lutPath == LutPath::Auto) {
             const bool moved = std::all_of(quads.begin(), quads.end(), [&](const QuadState* q) {
                 return q->lastFrameLight.z > 0 && !sameVector(q->lastFrameLight, light);
             });
-            const bool relit = std::any_of(material.relit.begin(), material.relit.end(),
-                                           [&](const Relit& r) { return sameVector(r.light, light); });
+            const bool relit = std::any_of(material.relit.begin(), material.relit.end(), [&](const Relit& r) {
+                return sameVector(r.light, light) && sameVector(r.view, view);
+            });
             if (moved && !relit) {
                 double pixels = 0;
                 for (const QuadState* q : quads) pixels += coveredPixels(m_scene.quads[q->index]);
@@ -201,10 +205,11 @@ void SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
                 q->luts = material.pass->makeLuts();
                 m_stats.textureBytes.luts += material.pass->lutBytes();
             }
-            if (!sameVector(q->frameLight, light)) {
-                q->frame = frameFor(material, fromVector(light), bank.layers.front().view);
+            if (!sameVector(q->frameLight, light) || !sameVector(q->frameView, view)) {
+                q->frame = frameFor(material, fromVector(light), fromVector(view));
                 material.pass->uploadLuts(q->frame, q->luts);
                 q->frameLight = light;
+                q->frameView = view;
             }
         }
         (perFragment ? m_stats.quadsPerFragment : m_stats.quadsTextureSpace) += quads.size();
@@ -264,9 +269,9 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
     if (blends && !material.blend) material.blend = BlendTextures::upload(material.bank, bytes.blend);
     if (!blends && mode != RenderMode::Ptm && mode != RenderMode::Nearest && !material.reference.id())
         material.reference = uploadMipmapped(material.bank.reference, bytes.reference);
-    if (oneLayerLut(q, mode) && !material.pass)
+    if (relitLut(q, mode) && !material.pass)
         material.pass.emplace(material.bank, material.reference.id(), material.blend ? &*material.blend : nullptr);
-    if (mode == RenderMode::Lut && !oneLayerLut(q, mode) && q.luts.empty()) {
+    if (mode == RenderMode::Lut && !relitLut(q, mode) && q.luts.empty()) {
         if (!material.mipLuts)
             material.mipLuts.emplace(material.bank.reference, material.bank.colour, material.bank.entries);
         const int levels = material.mipLuts->levels();
@@ -327,14 +332,16 @@ Status SceneRenderer::relight(const std::vector<RenderMode>& modes) {
     m_stats.textureBytes.relit = 0;
     for (auto& [name, material] : m_materials) {
         std::vector<Relit>& relit = material.relit;
-        auto find = [&](const Vec3& light) {
-            return std::find_if(relit.begin(), relit.end(), [&](const Relit& r) { return sameVector(r.light, light); });
+        auto find = [&](const QuadState& q) {
+            return std::find_if(relit.begin(), relit.end(), [&](const Relit& r) {
+                return sameVector(r.light, q.light) && sameVector(r.view, q.view);
+            });
         };
         std::vector<QuadState*> due;  // quads whose direction has no relit texture yet
         for (std::size_t i = 0; i < m_quads.size(); ++i) {
             QuadState& q = m_quads[i];
             if (m_scene.quads[q.index].material != name || q.unlit || !relitInTextureSpace(q, modes[i])) continue;
-            if (auto found = find(q.light); found != relit.end()) {
+            if (auto found = find(q); found != relit.end()) {
                 found->lastUsed = m_frame;
                 q.relit = static_cast<std::size_t>(found - relit.begin());
             } else {
@@ -342,16 +349,18 @@ Status SceneRenderer::relight(const std::vector<RenderMode>& modes) {
             }
         }
         for (QuadState* q : due) {
-            auto found = find(q->light);  // a quad before it may have made it
+            auto found = find(*q);  // a quad before it may have made it
             if (found == relit.end()) {
                 found = std::min_element(relit.begin(), relit.end(),
                                          [](const Relit& a, const Relit& b) { return a.lastUsed < b.lastUsed; });
                 if (found == relit.end() || found->lastUsed == m_frame) {  // every texture is in use: one more
-                    relit.push_back({{}, allocateRelitTexture(material.bank.reference), material.pass->makeLuts(), 0});
+                    relit.push_back(
+                        {{}, {}, allocateRelitTexture(material.bank.reference), material.pass->makeLuts(), 0});
                     found = relit.end() - 1;
                 }
                 found->light = q->light;
-                const Direction light = fromVector(q->light), view = material.bank.layers.front().view;
+                found->view = q->view;
+                const Direction light = fromVector(q->light), view = fromVector(q->view);
                 if (Status s =
                         material.pass->run(frameFor(material, light, view), found->luts, found->texture.id(), m_dither);
                     !s)

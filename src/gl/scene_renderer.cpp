@@ -111,8 +111,9 @@ Result<const ShaderProgram*> SceneRenderer::program(RenderMode mode, const Mater
                                                     bool perFragment) {
     const LutBank& bank = material.bank;
     std::vector<std::string> defines{unlit ? "UNLIT" : modeDefine(mode)};
-    if (!unlit && mode == RenderMode::Lut && bank.layers.size() == 1) {
-        // A bank of one view layer: its relit texture, drawn flat; or relit per fragment.
+    if (!unlit && mode == RenderMode::Lut && (bank.layers.size() == 1 || bank.makesLuts())) {
+        // A bank of one view layer (or a predictor of views): its relit texture, drawn flat; or
+        // relit per fragment.
         defines = {perFragment ? "LUT_FRAGMENT" : "FLAT_MODE"};
         if (perFragment) {
             // The pass's defines, made once per material: the predictor is not made per frame.
@@ -192,12 +193,12 @@ Status SceneRenderer::draw(const Vec3& light, std::optional<RenderMode> modeOver
             bind(0, GL_TEXTURE_2D, material.imageTextures.at(q.nearestImage).id(), "reference");
         } else if (relitInTextureSpace(q, mode)) {
             bind(0, GL_TEXTURE_2D, material.relit[q.relit].texture.id(), "reference");
-        } else if (oneLayerLut(q, mode)) {
+        } else if (relitLut(q, mode)) {
             bindPerFragment(p, q, material);
         } else {
             bind(0, GL_TEXTURE_2D, material.reference.id(), "reference");
         }
-        if (mode == RenderMode::Lut && !unlit && !oneLayerLut(q, mode)) {
+        if (mode == RenderMode::Lut && !unlit && !relitLut(q, mode)) {
             for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
                 gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + 1 + c));
                 gl.BindTexture(GL_TEXTURE_3D,

@@ -135,7 +135,7 @@ public:
 private:
     /// A material's reference relit for one light direction (in the quads' own frame).
     struct Relit {
-        Vec3 light;
+        Vec3 light, view;  ///< in the quad's frame (view: what a predictor of views is relit for)
         GlTexture texture;
         std::vector<GlTexture> luts;  ///< the pass's, of this texture alone
         std::uint64_t lastUsed = 0;   ///< the frame that last drew it
@@ -164,12 +164,15 @@ private:
         /// banks with view layers: per channel, 3D over the view grid and mip levels; of one view
         /// layer drawn per fragment: the frame's LUTs (RelightPass::makeLuts)
         std::vector<GlTexture> luts;
-        Vec3 light;                      ///< in the quad's frame
-        std::size_t relit = 0;           ///< mode lut of a bank of one view layer: its material's relit texture
-        bool perFragment = false;        ///< ... or relit per fragment this frame (choosePaths)
-        Vec3 lastFrameLight = kNoLight;  ///< the light in its frame at the previous frame
-        RelightFrame frame;              ///< per fragment: the frame in `luts`
-        Vec3 frameLight = kNoLight;      ///< ... and the light (in the quad's frame) it is for
+        Vec3 light;  ///< in the quad's frame
+        /// The view it is relit for (relitLut): a predictor of views, its centre's in its frame;
+        /// else the bank's one layer's.
+        Vec3 view{0, 0, 1};
+        std::size_t relit = 0;                       ///< mode lut relit (relitLut): its material's relit texture
+        bool perFragment = false;                    ///< ... or relit per fragment this frame (choosePaths)
+        Vec3 lastFrameLight = kNoLight;              ///< the light in its frame at the previous frame
+        RelightFrame frame;                          ///< per fragment: the frame in `luts`
+        Vec3 frameLight = kNoLight, frameView;       ///< ... and the light and view (in the quad's frame) it is for
         Vec3 lightUploaded = kNoLight, eyeUploaded;  ///< what its state was computed for
         RenderMode modeUploaded = RenderMode::Flat;
         float brightness = 1;  ///< brdf mode
@@ -186,7 +189,9 @@ private:
     Status prepare(QuadState& q, RenderMode mode, const Vec3& light);
     /// Mode lut on banks of one view layer: the relit textures this frame's lights need.
     Status relight(const std::vector<RenderMode>& modes);
-    bool oneLayerLut(const QuadState& q, RenderMode mode) const;
+    /// Mode lut drawn relit (in texture space or per fragment): a bank of one view layer, or
+    /// a predictor of views, relit for the quad's centre view (the others blend view layers).
+    bool relitLut(const QuadState& q, RenderMode mode) const;
     bool relitInTextureSpace(const QuadState& q, RenderMode mode) const;
     /// Mode lut on banks of one view layer: per fragment or in texture space, per quad.
     void choosePaths(const std::vector<RenderMode>& modes);

@@ -11,6 +11,7 @@
 #include "core/bank/bank_file.h"
 #include "core/image/image.h"
 #include "core/io/file_io.h"
+#include "core/relight/engine_material.h"
 
 namespace btflut::cli {
 
@@ -179,7 +180,8 @@ int run(const std::vector<std::string>& args) {
         "is THETA,PHI in the sample frame (z = surface normal, x = image right)."};
     root.name("btflut");
     root.set_version_flag("--version", std::string("btflut ") + BTFLUT_VERSION + " (.btflut format up to version " +
-                                           std::to_string(kBankFormatVersion) + ", btflut.glsl version 2)");
+                                           std::to_string(kBankFormatVersion) + ", btflut.glsl version " +
+                                           std::to_string(kShaderIncludeVersion) + ")");
     root.require_subcommand(1);
     root.fallthrough();  // root options may also follow the subcommand
     std::uint64_t maxPixels = kDefaultMaxImagePixels;

@@ -90,7 +90,9 @@ Status runRelight(const RelightOptions& o) {
         return Error{o.bank + ": the bank has no reference image inside; give --reference-image"};
     if (o.grid && bank.makesLuts()) {  // the prediction, then the LUT read from the bank's match grid
         const Relighter relighter(bank);
-        const RelightFrame frame = relighter.gridFrame(query->light);
+        // A predictor of views: predicted at the view, matched by the nearest layer's grid.
+        const RelightFrame frame =
+            relighter.gridFrame(query->light, query->view, bank.nearestNode(query->light, query->view).layer);
         const Image out = relighter.apply(frame, !o.noDither);
         if (Status s = savePng(out, o.output, o.depth); !s) return s;
         report(o, out, "from the match grid", query->light, &frame, relighter.matchAt(query->light));

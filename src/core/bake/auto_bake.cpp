@@ -302,7 +302,9 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
         // its reference is constant over the sample (a grey card, a black set), a model that
         // carries the brightness.
         selection["chosen"] = {{"name", "K1"}, {"match", 1}, {"bytes", classic.bytes}};
-        log(!dataset.fixedView() ? "several views: the one-reference bank (the predictors need one view)"
+        log(!dataset.fixedView() ? std::string("several views: the one-reference bank (auto validates one view's "
+                                               "predictors") +
+                                       (dataset.rectified ? "; --predictor neuralN learns these views)" : ")")
                                  : "too few images to leave one out: the one-reference bank");
     }
     final.progress = options.base.progress;

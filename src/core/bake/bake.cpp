@@ -108,10 +108,23 @@ struct BlendSetup {
 Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex,
                               const Image& ref, const Mask& mask, const ImageProvider& images) {
     BlendSetup setup;
-    if (!dataset.fixedView())
-        return Error{dataset.source +
-                     ": --references, --regions and --colour lrgb need one view (a fixed camera); "
-                     "this dataset has several"};
+    if (!dataset.fixedView()) {
+        // Several views: a learned model of the views on rectified images (one frame for every
+        // view), its bank a layer per view; every other predictor predicts one camera's images.
+        if (!options.learned)
+            return Error{dataset.source +
+                         ": --references, --regions, --colour lrgb and the light models need one view (a fixed "
+                         "camera); this dataset has several (a learned model, --predictor neural, takes rectified "
+                         "views)"};
+        if (!dataset.rectified)
+            return Error{dataset.source +
+                         ": a learned model of several views needs them rectified (one frame for every view: the "
+                         "manifest's \"rectified\": true); without, bake the one-reference bank per view"};
+        if (options.regions > 1 || !options.labelsPath.empty())
+            return Error{dataset.source + ": --regions and --labels need one view (a fixed camera)"};
+        if (options.domain == BankDomain::Isotropic)
+            return Error{dataset.source + ": a learned model of views is baked in the layers domain, not isotropic"};
+    }
     std::vector<Direction> lights;
     for (const DatasetImage& im : dataset.images) lights.push_back(im.light);
     std::vector<DiskPoint> points;
@@ -172,7 +185,7 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
 }
 
 // Decodes every image into `decoded` (the reference copied) and fits the model (a light
-// model or a learned one) to those of the reference's view, as the bank's predictor.
+// model or a learned one) to them, as the bank's predictor.
 Result<std::shared_ptr<const Predictor>> fitModel(const Dataset& dataset, const BakeOptions& options,
                                                   std::size_t refIndex, const Image& ref, const Mask& mask,
                                                   const ImageProvider& images, std::vector<Image>& decoded,
@@ -202,15 +215,18 @@ Result<std::shared_ptr<const Predictor>> fitModel(const Dataset& dataset, const 
     for (const std::string& e : errors)
         if (!e.empty()) return Error{e};
     std::vector<const Image*> view;
-    std::vector<Direction> lights;
+    std::vector<Direction> lights, views;
     for (std::size_t i = 0; i < dataset.images.size(); ++i) {
         view.push_back(&decoded[i]);
         lights.push_back(dataset.images[i].light);
+        views.push_back(dataset.images[i].view);
     }
     if (options.learned) {
         LearnedOptions o = *options.learned;
         o.threads = options.threads;
-        Result<LearnedModel> model = fitLearnedModel(view, lights, mask, o, dataset.source);
+        // Rectified views (setUpBlend refuses others): the networks take the view too.
+        if (dataset.fixedView()) views.clear();
+        Result<LearnedModel> model = fitLearnedModel(view, lights, mask, o, dataset.source, views);
         if (!model) return Error{model.error()};
         return std::shared_ptr<const Predictor>(std::make_shared<LearnedPredictor>(std::move(*model), perChannel));
     }
@@ -395,6 +411,10 @@ public:
             m_bank.reference = *m_ref;
         if (Status s = setPredictor(); !s) return Error{s.error()};
         if (Status s = setNodes(m_bank, luts, m_options.domain, m_dataset.source); !s) return Error{s.error()};
+        if (m_bank.makesLuts() && m_bank.predictor().viewDependent() && m_bank.domain != BankDomain::Layers)
+            return Error{m_dataset.source +
+                         ": its views hold too few lights each for a layer per view (the isotropic domain); a "
+                         "learned model of views needs layers"};
         if (m_options.fitTargets) {
             chooseTargetFits(m_bank, m_options.threads,
                              m_bank.makesLuts() ? std::vector<std::vector<double>>{} : entryWeights());

@@ -17,7 +17,7 @@ namespace btflut {
 
 /// The newest version this btflut reads (it reads every older one) and writes when a bank
 /// needs it; bankFormatVersion says which a bank is written as.
-constexpr std::uint32_t kBankFormatVersion = 8;
+constexpr std::uint32_t kBankFormatVersion = 9;
 
 /// Most measured directions (nodes, over all layers) a bank may hold.
 constexpr std::size_t kMaxBankNodes = 65536;

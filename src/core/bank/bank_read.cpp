@@ -59,6 +59,7 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
     Reader in(chunk.payload, chunk.length);
     Head head;
+    head.version = version;
     bank.entries = static_cast<int>(in.get<std::uint32_t>());
     const auto colour = in.get<std::uint32_t>();
     bank.gridSize = static_cast<int>(in.get<std::uint32_t>());
@@ -441,9 +442,12 @@ private:
             return fail("a bank predicted by a learned model without its model (LRND chunk), or of another colour");
         if (!m_head.embedded || m_parts.references.size() != m_head.references || blend.mask.inside.empty() ||
             (blend.regions > 1) != !blend.labels.empty() ||
-            (m_bank.colour == ColourMode::Lrgb) != !m_parts.albedo.samples.empty() || m_bank.layers.size() != 1)
+            (m_bank.colour == ColourMode::Lrgb) != !m_parts.albedo.samples.empty() ||
+            (m_bank.layers.size() != 1 &&
+             !(m_parts.learned && m_parts.learned->viewFeatures > 0 && m_bank.domain == BankDomain::Layers)))
             return fail(
-                "the references, mask, labels or albedo of a bank that blends references are missing or do not fit");
+                "the references, mask, labels or albedo of a bank that blends references are missing or do not fit, "
+                "or it has several view layers and no predictor of views");
         for (std::uint8_t label : blend.labels)
             if (label >= blend.regions) return fail("a region label is beyond the bank's regions");
         const bool perChannel = m_bank.colour == ColourMode::Rgb;

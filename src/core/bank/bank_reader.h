@@ -69,6 +69,7 @@ struct Chunk {
 
 // HEAD, read and checked before any other chunk, so every size below is known to be sane.
 struct Head {
+    std::uint32_t version = 0;
     std::uint32_t layerCount = 0, refWidth = 0, refHeight = 0, refChannels = 0, refDepth = 0;
     std::uint32_t references = 0;  // version 3, banks that make their LUTs at run time
     FilePredictor predictor = FilePredictor::References;

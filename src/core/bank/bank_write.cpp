@@ -94,13 +94,15 @@ Bytes encodeLightModel(const LightModel& m) {
     return std::move(w.bytes());
 }
 
-// LRND payload (docs/btflut-format.md): the model's sizes, each code's scale and bias, the
-// light network's and the residual network's parameters, then the codes three to an RGB PNG.
-Bytes encodeLearnedModel(const LearnedModel& m) {
-    BTFLUT_CHECK(m.viewFeatures == 0);  // a model of views is eval's, never a bank's
+// LRND payload (docs/btflut-format.md): the model's sizes (version 9: with its view features),
+// each code's scale and bias, the light network's and the residual network's parameters, then
+// the codes three to an RGB PNG.
+Bytes encodeLearnedModel(const LearnedModel& m, std::uint32_t version) {
+    BTFLUT_CHECK(version >= 9 || m.viewFeatures == 0);
     Writer w;
     w.put(static_cast<std::uint32_t>(m.codes));
     w.put(static_cast<std::uint32_t>(m.channels));
+    if (version >= 9) w.put(static_cast<std::uint32_t>(m.viewFeatures));
     for (const std::vector<int>* widths : {&m.lightHidden, &m.hidden}) {
         w.put(static_cast<std::uint32_t>(widths->size()));
         for (int h : *widths) w.put(static_cast<std::uint32_t>(h));
@@ -139,8 +141,9 @@ std::uint32_t bankFormatVersion(const LutBank& bank) {
     // they always could.
     // A fit between the lights; a choice of the blend everywhere changes no lookup, and such
     // banks stay readable where they were (the choice's figures are then not kept).
-    if (bank.makesLuts() && filePredictor(bank) == FilePredictor::Learned) return 8;
-    if (!bank.pairFit.empty()) return 7;  // the isotropic domain's fit
+    if (bank.makesLuts() && filePredictor(bank) == FilePredictor::Learned)
+        return bank.predictor().viewDependent() ? 9 : 8;  // 9: a model of views
+    if (!bank.pairFit.empty()) return 7;                  // the isotropic domain's fit
     if (std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) { return !l.fit.empty(); }))
         return 6;
     if ((bank.makesLuts() && (filePredictor(bank) == FilePredictor::Model || bank.blend.match != 1 ||
@@ -254,7 +257,7 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         if (filePredictor(bank) == FilePredictor::Model)
             putChunk(file, kLightModel, encodeLightModel(bank.predictorAs<ModelPredictor>()->model()));
         if (filePredictor(bank) == FilePredictor::Learned)
-            putChunk(file, kLearnedModel, encodeLearnedModel(bank.predictorAs<LearnedPredictor>()->model()));
+            putChunk(file, kLearnedModel, encodeLearnedModel(bank.predictorAs<LearnedPredictor>()->model(), version));
     }
     for (const ViewLayer& layer : bank.layers)  // version 5: every layer's or none
         if (!layer.matchGridLuts.empty())

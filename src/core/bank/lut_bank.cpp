@@ -255,6 +255,19 @@ std::vector<float> LutBank::matchGridLookup(Direction light, std::size_t layer) 
     return bilinearOnGrid(l.matchGridLuts, gridSize, matchLength(), light);
 }
 
+std::vector<float> LutBank::matchGridLookup(Direction light, Direction view) const {
+    if (layers.size() == 1) return matchGridLookup(light, std::size_t{0});
+    BTFLUT_CHECK(domain == BankDomain::Layers);
+    std::vector<float> out(matchLength(), 0.f);
+    const Weights vw = views.weightsAt(toDisk(view));  // as lookup blends the layers' nodes
+    for (int v = 0; v < vw.count; ++v) {
+        if (vw.weight[v] == 0) continue;
+        const std::vector<float> grid = matchGridLookup(light, static_cast<std::size_t>(vw.index[v]));
+        for (std::size_t k = 0; k < out.size(); ++k) out[k] += static_cast<float>(vw.weight[v]) * grid[k];
+    }
+    return out;
+}
+
 std::optional<std::size_t> LutBank::nearestLayerMeasuring(DiskPoint light, std::size_t except) const {
     std::optional<std::size_t> best;
     double bestAngle = 0;

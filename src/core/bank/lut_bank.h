@@ -224,6 +224,9 @@ struct LutBank {
     /// The same over a layer's matchGridLuts: per region and channel, the LUT on the
     /// prediction's codes (Relighter::gridFrame).
     std::vector<float> matchGridLookup(Direction light, std::size_t layer = 0) const;
+    /// At a view: the layers' grids blended with the view's weights, as lookup() blends the
+    /// layers' nodes (a bank of views; one layer: that layer's).
+    std::vector<float> matchGridLookup(Direction light, Direction view) const;
     /// Values per node of matchGridLuts: regions x channels x entries.
     std::size_t matchLength() const {
         return static_cast<std::size_t>(blend.regions) * static_cast<std::size_t>(channels()) *

@@ -126,6 +126,12 @@ Result<LearnedModel> decodeLearnedModel(Reader& in, const std::string& name, con
         return fail("invalid description");
     m.codes = static_cast<int>(codes);
     m.channels = static_cast<int>(channels);
+    if (head.version >= 9) {  // a model of views takes the view's features too
+        const auto views = in.get<std::uint32_t>();
+        if (!in.ok() || (views != 0 && views != static_cast<std::uint32_t>(kLearnedViewFeatures)))
+            return fail("invalid view feature count");
+        m.viewFeatures = static_cast<int>(views);
+    }
     m.width = static_cast<int>(head.refWidth);
     m.height = static_cast<int>(head.refHeight);
     for (std::vector<int>* widths : {&m.lightHidden, &m.hidden}) {

@@ -87,8 +87,7 @@ bool LearnedModel::fitsGpu() const {
         for (int w : *widths)
             if (w > BTFLUT_LEARNED_WIDTH) return false;
     }
-    return viewFeatures == 0 && channels * (codes + 1) <= BTFLUT_LEARNED_WIDTH &&
-           codes + kLearnedLightFeatures <= BTFLUT_LEARNED_WIDTH;
+    return channels * (codes + 1) <= BTFLUT_LEARNED_WIDTH && codes + features() <= BTFLUT_LEARNED_WIDTH;
 }
 
 namespace {
@@ -121,6 +120,7 @@ LearnedModel::GpuNetwork LearnedModel::gpuNetwork() const {
     for (const std::vector<int>* widths : {&hidden, &lightHidden})
         for (std::size_t k = 0; k < 4; ++k)
             texels.push_back(k < widths->size() ? static_cast<float>((*widths)[k]) : 0.f);
+    texels.insert(texels.end(), {static_cast<float>(features()), 0.f, 0.f, 0.f});
     appendTexels(texels, scale.data(), scale.size());
     appendTexels(texels, bias.data(), bias.size());
     appendNetwork(texels, Network::fromParameters(decoderSizes(), decoder));
@@ -133,18 +133,16 @@ LearnedModel::GpuNetwork LearnedModel::gpuNetwork() const {
     return out;
 }
 
-LearnedModel::LightFrame LearnedModel::lightFrame(Direction light) const {
-    BTFLUT_CHECK(viewFeatures == 0);
+LearnedModel::LightFrame LearnedModel::lightFrame(Direction light, Direction view) const {
     const Network lightNet = Network::fromParameters(lightSizes(), lightNetwork),
                   residual = Network::fromParameters(decoderSizes(), decoder);
-    const std::vector<float> h = learnedLightFeatures(light);
+    const std::vector<float> h = featuresAt(light, view);
+    const int F = features();
     NetworkPass pass;
-    lightNet.forward(Eigen::Map<const Matrix>(h.data(), kLearnedLightFeatures, 1), pass);
+    lightNet.forward(Eigen::Map<const Matrix>(h.data(), F, 1), pass);
     LightFrame out;
     out.basis.assign(pass.output().data(), pass.output().data() + pass.output().size());
-    const Vector first = residual.weights(0).rightCols(kLearnedLightFeatures) *
-                             Eigen::Map<const Vector>(h.data(), kLearnedLightFeatures) +
-                         residual.bias(0);
+    const Vector first = residual.weights(0).rightCols(F) * Eigen::Map<const Vector>(h.data(), F) + residual.bias(0);
     out.hidden.assign(first.data(), first.data() + first.size());
     return out;
 }

@@ -47,7 +47,7 @@ struct LearnedModel {
     int codes = 0;     ///< N, bytes per texel, 1..kMaxCodes
     int channels = 1;  ///< the decoder's outputs: 1 (grey) or 3 (RGB)
     /// 0, or kLearnedViewFeatures for a model of rectified views, whose networks also take
-    /// the view (trained and evaluated by eval across views; banks hold one view's models).
+    /// the view (a bank of such a model has a view layer per measured view).
     int viewFeatures = 0;
     std::vector<float> scale, bias;          ///< per code: v_k = (byte_k - bias_k) scale_k
     std::vector<std::uint8_t> coefficients;  ///< N bytes per texel, rows top first
@@ -86,19 +86,20 @@ struct LearnedModel {
     bool fitsGpu() const;
     /// The decoder as a GPU reads it (btflut.glsl, "A learned model"): RGBA32F texels, a square
     /// of `size` a side, row by row: a head (N, C, the hidden layer counts and widths), the
-    /// codes' scale and bias, the residual network's layers, the light network's.
+    /// F (the features) in a fourth, the codes' scale and bias, the residual network's layers,
+    /// the light network's.
     struct GpuNetwork {
         int size = 0;
         std::vector<float> texels;  ///< size x size x 4
     };
     GpuNetwork gpuNetwork() const;
-    /// Its per-light part, what the GPU reads as uniforms: the light network's outputs (the
+    /// Its per-light (and per-view) part, what the GPU reads as uniforms: the light network's outputs (the
     /// linear basis: C (N + 1), row c (N + 1) + k is A_ck, row c (N + 1) + N is a_c) and the
     /// residual network's first layer at codes 0 and the light's features (its bias included).
     struct LightFrame {
         std::vector<float> basis, hidden;
     };
-    LightFrame lightFrame(Direction light) const;
+    LightFrame lightFrame(Direction light, Direction view = {}) const;
 };
 
 struct LearnedOptions {

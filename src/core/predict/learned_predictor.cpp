@@ -22,7 +22,8 @@ std::string LearnedPredictor::description() const {
     out << name() << " (" << bytesPerTexel() << " bytes per texel; a linear basis of the codes and a ";
     const std::vector<int> sizes = m_model.decoderSizes();
     for (std::size_t k = 0; k < sizes.size(); ++k) out << (k ? "-" : "") << sizes[k];
-    out << " residual network, " << m_model.decoderCost() << " multiply-adds per texel), relit per light";
+    out << " residual network, " << m_model.decoderCost() << " multiply-adds per texel), relit per light"
+        << (viewDependent() ? " and view" : "");
     return out.str();
 }
 
@@ -57,7 +58,7 @@ std::vector<std::string> LearnedPredictor::shaderDefines() const {
 std::vector<ShaderValues> LearnedPredictor::shaderValues(const PredictorFrame& frame) const {
     LearnedFrame& at = *frame.learned;
     std::call_once(at.uniformsOnce, [&] {
-        const LearnedModel::LightFrame f = m_model.lightFrame(at.light);
+        const LearnedModel::LightFrame f = m_model.lightFrame(at.light, at.view);
         const auto N = static_cast<std::size_t>(m_model.codes), C = static_cast<std::size_t>(m_model.channels);
         std::vector<float> basis((N + 3) / 4 * 3 * 4, 0.f), offset(3, 0.f), hidden(BTFLUT_LEARNED_WIDTH, 0.f);
         for (std::size_t c = 0; c < C; ++c) {
@@ -72,11 +73,12 @@ std::vector<ShaderValues> LearnedPredictor::shaderValues(const PredictorFrame& f
     return at.uniforms;
 }
 
-PredictorFrame LearnedPredictor::frameAt(Direction light) const {
+PredictorFrame LearnedPredictor::frameAt(Direction light, Direction view) const {
     PredictorFrame frame;
     frame.count = 0;
     frame.learned = std::make_shared<LearnedFrame>();
     frame.learned->light = light;
+    frame.learned->view = view;
     return frame;
 }
 
@@ -87,7 +89,7 @@ std::uint8_t codeOfValue(float v) { return static_cast<std::uint8_t>(std::lround
 const std::uint8_t* LearnedPredictor::decoded(const PredictorFrame& frame, std::size_t texel) const {
     LearnedFrame& f = *frame.learned;
     std::call_once(f.once, [&] {
-        const std::vector<float> values = m_model.predict(f.light, {}, 0);
+        const std::vector<float> values = m_model.predict(f.light, {}, 0, f.view);
         f.codes.resize(values.size());
         std::transform(values.begin(), values.end(), f.codes.begin(), codeOfValue);
     });
@@ -116,7 +118,7 @@ void LearnedPredictor::countCodes(const PredictorFrame& frame, std::span<const s
         countCodesOf(*this, frame, texels, channel, counts);
         return;
     }
-    const std::vector<float> values = m_model.predict(frame.learned->light, texels, 1);
+    const std::vector<float> values = m_model.predict(frame.learned->light, texels, 1, frame.learned->view);
     const auto C = static_cast<std::size_t>(m_model.channels);
     std::uint8_t p[3];
     for (std::size_t j = 0; j < texels.size(); ++j) {

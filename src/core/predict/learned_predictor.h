@@ -11,10 +11,10 @@
 
 namespace btflut {
 
-/// A frame's light and, once read, every texel's channel codes (0..255) there, and once asked
+/// A frame's light (and view) and, once read, every texel's channel codes (0..255) there, and once asked
 /// for, the uniforms a GPU reads there (a renderer asks at every draw; the light changes less).
 struct LearnedFrame {
-    Direction light;
+    Direction light, view;
     std::once_flag once;
     std::vector<std::uint8_t> codes;
     std::once_flag uniformsOnce;
@@ -33,7 +33,8 @@ public:
     PredictorPlanes planes() const override;
     std::vector<std::string> shaderDefines() const override;
     std::vector<ShaderValues> shaderValues(const PredictorFrame& frame) const override;
-    PredictorFrame frameAt(Direction light) const override;
+    PredictorFrame frameAt(Direction light, Direction view) const override;
+    bool viewDependent() const override { return m_model.viewFeatures > 0; }
     std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;
     void countCodes(const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,

@@ -73,7 +73,7 @@ std::vector<ShaderValues> ModelPredictor::shaderValues(const PredictorFrame& fra
             {"blendModel.scale", 1, {f.scale}}};
 }
 
-PredictorFrame ModelPredictor::frameAt(Direction light) const {
+PredictorFrame ModelPredictor::frameAt(Direction light, Direction /*view: one camera*/) const {
     PredictorFrame frame;
     frame.count = 0;
     frame.model = lightModelFixed(m_model, light);

@@ -20,7 +20,7 @@ public:
     PredictorPlanes planes() const override;
     std::vector<std::string> shaderDefines() const override;
     std::vector<ShaderValues> shaderValues(const PredictorFrame& frame) const override;
-    PredictorFrame frameAt(Direction light) const override;
+    PredictorFrame frameAt(Direction light, Direction view) const override;
     std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const override;
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;
     void countCodes(const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,

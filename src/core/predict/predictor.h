@@ -9,7 +9,7 @@
 //   learned_predictor.h a learned model: per-texel codes and a small decoder network
 //
 //   const Predictor& p = bank.predictor();           // lut_bank.h: the bank holds one
-//   PredictorFrame f = p.frameAt(light);             // per light change: integers
+//   PredictorFrame f = p.frameAt(light, view);       // per light change: integers
 //   std::size_t q = p.code(f, texel, channel);       // 0 .. p.codes(), what the GPU computes
 //
 // Predictions are exact integer arithmetic (kWeightUnit, light_model.h), so the CPU and the
@@ -90,8 +90,11 @@ public:
     /// What that code reads at a light: its frame's integers as uniforms.
     virtual std::vector<ShaderValues> shaderValues(const PredictorFrame& frame) const = 0;
 
-    /// Its integers at a light.
-    virtual PredictorFrame frameAt(Direction light) const = 0;
+    /// Its integers at a light, seen from `view` (read only by a predictor of views).
+    virtual PredictorFrame frameAt(Direction light, Direction view) const = 0;
+    /// Whether its predictions change with the view: a learned model of rectified views,
+    /// whose bank has a layer per view (the others predict one camera's images).
+    virtual bool viewDependent() const { return false; }
     /// A texel's predicted code, 0 .. codes(), of `channel` (< channels()).
     virtual std::size_t code(const PredictorFrame& frame, std::size_t texel, int channel) const = 0;
     /// A texel's colour before a grey LUT (RGB in [0, 1]): its chroma is what a grey bank of

@@ -83,7 +83,7 @@ std::vector<ShaderValues> ReferenceBlend::shaderValues(const PredictorFrame& fra
     return {{"blendLayer", 1, std::move(layers), true}, {"blendWeight", 1, std::move(weights)}};
 }
 
-PredictorFrame ReferenceBlend::frameAt(Direction light) const {
+PredictorFrame ReferenceBlend::frameAt(Direction light, Direction /*view: one camera*/) const {
     PredictorFrame frame;
     frame.count = 0;
     // Barycentric weights in 1 / kWeightUnit; the largest takes the rounding so they sum to it.

@@ -127,14 +127,19 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
         return out;
     }
     const LutBank::Blend& blend = bank.blend;
-    std::vector<std::uint16_t> grid = bank.layers[0].matchGridLuts;
-    if (grid.empty()) {  // a file older than the match grid
-        LutBank copy = bank;
+    // A block per view layer (a predictor of views has several) and region.
+    const LutBank* gridded = &bank;
+    LutBank copy;
+    if (bank.layers[0].matchGridLuts.empty()) {  // a file older than the match grid
+        copy = bank;
         bakeMatchGrid(copy);
-        grid = copy.layers[0].matchGridLuts;
+        gridded = &copy;
     }
-    out.blocks = blend.regions;
-    out.lutTexels = matchGridTexels(bank, grid);
+    for (const ViewLayer& layer : gridded->layers) {
+        const std::vector<std::uint16_t> texels = matchGridTexels(bank, layer.matchGridLuts);
+        out.lutTexels.insert(out.lutTexels.end(), texels.begin(), texels.end());
+    }
+    out.blocks = blend.regions * static_cast<int>(bank.layers.size());
     out.codes = predictionCodes(bank);
     out.inputCode = 1.f / static_cast<float>(out.codes + 1);  // Relighter::inputCode
     out.regions = blend.regions;

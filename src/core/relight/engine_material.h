@@ -5,7 +5,8 @@
 //
 //   luts     every bank: a LUT per grid node of the light disk as one 3D texture of 16-bit
 //            texels, entries x G x (G x blocks); a block is a view layer (banks of LUTs) or a
-//            region (banks with a predictor: their match LUTs, LutBank::matchGridLuts).
+//            view layer's region, layer * regions + region (banks with a predictor: their
+//            match LUTs, LutBank::matchGridLuts; several layers for a predictor of views).
 //   planes   the predictor's (Predictor::planes, the packing btflut's own renderer uploads
 //            too): a light model's (ptm, hsh, rbf, bln) as 8-bit codes four to an RGBA image
 //            (4-bit planes as codes 17 n, their scale and bias adjusted: the same values),
@@ -29,6 +30,10 @@
 #include "core/result.h"
 
 namespace btflut {
+
+/// The shader include's version (shaders/btflut.glsl's BTFLUT_GLSL_VERSION, checked equal by
+/// tests/shader_forms_check.sh): what a learned material's sidecar asks for.
+constexpr int kShaderIncludeVersion = 4;
 
 struct EngineMaterial {
     enum class Kind { Luts, Model, References, Learned } kind = Kind::Luts;

@@ -78,7 +78,7 @@ nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
                         {"version", predictor ? 2 : 1},
                         {"kind", predictor ? predictorKindName(m.kind) : "luts"},
                         {"shader", "btflut.glsl"},
-                        {"shader_version", m.kind == EngineMaterial::Kind::Learned ? 3
+                        {"shader_version", m.kind == EngineMaterial::Kind::Learned ? kShaderIncludeVersion
                                            : predictor                             ? 2
                                                                                    : 1},
                         {"reference",
@@ -93,12 +93,12 @@ nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
                         {"luts",
                          {{"file", "luts.png"},
                           {"texture", "3D, width entries, height grid_size, depth grid_size x " +
-                                          std::string(predictor ? "regions" : "layers") + "; 16-bit unorm, " +
+                                          std::string(predictor ? "layers x regions" : "layers") + "; 16-bit unorm, " +
                                           (m.lutChannels == 3 ? "RGB (one LUT per colour channel)" : "one channel")},
                           {"entries", m.entries},
                           {"grid_size", g},
-                          {"layers", predictor ? 1 : m.blocks},
-                          {"row_of_node", predictor ? "(region * grid_size + j) * grid_size + i"
+                          {"layers", b.layers.size()},
+                          {"row_of_node", predictor ? "((layer * regions + region) * grid_size + j) * grid_size + i"
                                                     : "(layer * grid_size + j) * grid_size + i"}}},
                         {"colour", colourName(b.colour)},
                         {"lut_input_code", m.inputCode},

@@ -80,7 +80,7 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
             copy.measuredNodes = layer.measuredNodes;
             copy.measuredReach = layer.measuredReach;
             for (std::size_t n = 0; n < layer.nodes.size(); ++n) {
-                const RelightFrame f = predictionFrame(layer.nodes[n].light);
+                const RelightFrame f = predictionFrame(layer.nodes[n].light, layer.view);
                 const float* targets = &layer.nodeLuts[n * bank.nodeLength()];
                 for (std::size_t r = 0; r < m_regionTexels.size(); ++r)
                     for (int c = 0; c < m_counted; ++c) {
@@ -97,7 +97,7 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
 }
 
 RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate) const {
-    RelightFrame frame = m_bank.makesLuts() ? predictionFrame(light) : RelightFrame{};
+    RelightFrame frame = m_bank.makesLuts() ? predictionFrame(light, view) : RelightFrame{};
     frame.light = light;
     frame.target = m_bank.lookup(light, view, interpolate);
     const BankLookup& target = frame.target;
@@ -123,15 +123,16 @@ RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate)
     return frame;
 }
 
-RelightFrame Relighter::gridFrame(Direction light) const {
-    BTFLUT_CHECK(m_bank.makesLuts() && m_bank.layers.size() == 1);
-    RelightFrame frame = predictionFrame(light);
-    frame.target = m_bank.lookup(light);  // what the frame says of the target (a viewer plots it): no per-texel work
+RelightFrame Relighter::gridFrame(Direction light, Direction view, std::optional<std::size_t> layer) const {
+    BTFLUT_CHECK(m_bank.makesLuts() && (m_bank.layers.size() == 1 || !m_bank.layers[0].matchGridLuts.empty()));
+    RelightFrame frame = predictionFrame(light, view);
+    frame.target =
+        m_bank.lookup(light, view);  // what the frame says of the target (a viewer plots it): no per-texel work
     frame.provenance = frame.target.provenance;
     frame.lightProvenance = frame.target.lightProvenance;
     frame.viewProvenance = frame.target.viewProvenance;
     if (!m_bank.layers[0].matchGridLuts.empty()) {
-        frame.luts = m_bank.matchGridLookup(light);
+        frame.luts = layer ? m_bank.matchGridLookup(light, *layer) : m_bank.matchGridLookup(light, view);
         return frame;
     }
     static std::mutex making;
@@ -199,9 +200,9 @@ std::vector<float> referenceWeightGrid(const LutBank& bank, int size) {
     return grid;
 }
 
-RelightFrame Relighter::predictionFrame(Direction light) const {
+RelightFrame Relighter::predictionFrame(Direction light, Direction view) const {
     RelightFrame frame;
-    static_cast<PredictorFrame&>(frame) = m_predictor->frameAt(light);
+    static_cast<PredictorFrame&>(frame) = m_predictor->frameAt(light, view);
     frame.light = light;
     return frame;
 }

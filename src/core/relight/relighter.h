@@ -22,6 +22,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/bank/lut_bank.h"
@@ -48,9 +49,11 @@ public:
     RelightFrame frame(Direction light, Direction view = {}, bool interpolate = true) const;
 
     /// A bank with a predictor: the frame with its LUTs read bilinearly from the bank's match
-    /// grid (LutBank::matchGridLuts; made here when the bank has none), as an engine reads the
-    /// exported grid: no counting of the prediction when the light moves.
-    RelightFrame gridFrame(Direction light) const;
+    /// grid (LutBank::matchGridLuts; made here when the bank of one view has none), as an
+    /// engine reads the exported grid: no counting of the prediction when the light moves. A
+    /// bank of views (a view-dependent predictor) blends its layers' grids as lookup blends
+    /// their nodes, or with `layer` reads that layer's alone (as an engine reads the nearest).
+    RelightFrame gridFrame(Direction light, Direction view = {}, std::optional<std::size_t> layer = {}) const;
 
     /// The relit image at the reference's size; dithered (lut.h) unless `dither` is false.
     Image apply(const RelightFrame& frame, bool dither) const;
@@ -76,7 +79,7 @@ public:
 
 private:
     /// The prediction's part of a frame (blend weights or the model's integers), no LUTs.
-    RelightFrame predictionFrame(Direction light) const;
+    RelightFrame predictionFrame(Direction light, Direction view) const;
     std::vector<float> lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const;
     /// The identity's LUT on the predicted codes' scale (code q read at (q + 1) / (codes + 1)
     /// gives q / codes): what a match of 0 leaves.

@@ -225,7 +225,7 @@ Image relitPrediction(Variant& v, const LutBank& bank, const Relighter& relighte
     const auto start = Clock::now();
     Image predicted;
     if (v.fromGrid && bank.makesLuts())  // the prediction, the LUT from the match grid
-        predicted = relighter.apply(relighter.gridFrame(info.light), true);
+        predicted = relighter.apply(relighter.gridFrame(info.light, info.view), true);
     else if (v.fromGrid)  // the classic grid, as an engine reads it
         predicted =
             applyLuts(bank.reference, bank.colour, bank.gridLookup(info.light), bank.entries, bank.targetCode());
