@@ -9,6 +9,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "core/bake/auto_bake.h"
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/data/dataset.h"
@@ -98,6 +99,18 @@ TEST_CASE("learned model of views: a layer per view, one decoder, version 9, rel
     const Relighter relighter(bank);
     CHECK(relighter.gridFrame(light, bank.layers[2].view).luts == bank.matchGridLookup(light, std::size_t{2}));
 
+    // Matched below 1, a measured (light, view) pair is still matched fully, and the same light
+    // seen from between the measured views is not: the ramp is over pairs, not lights alone.
+    LutBank half = bank;
+    half.blend.match = 0.5f;
+    const Relighter halfway(half);
+    const Direction measured = bank.layers[0].nodes[0].light;
+    CHECK(halfway.matchAt(measured, bank.layers[0].view) == 1.f);
+    const Vec3 a = toVector(bank.layers[0].view), b = toVector(bank.layers[1].view);
+    const Direction between = fromVector({a.x + b.x, a.y + b.y, a.z + b.z});
+    CHECK(halfway.matchAt(measured, between) < 0.9f);
+    CHECK(halfway.matchAt(measured, between) >= 0.5f);
+
     // The chunk's view-feature count is checked.
     LutBank bad = bank;
     LearnedModel changed = learned->model();
@@ -122,12 +135,43 @@ TEST_CASE("learned model of views: bake takes rectified views only, the others s
     requireOneLineError(
         runCli({"bake", dir / "btf", "--predictor", "neural4", "--domain", "isotropic", "-o", dir / "x.btflut"}),
         "a learned model of views is baked in the layers domain");
+    // The paper's geometry (curet-c2: one light per view) has no layer per view to follow the
+    // light; auto keeps the paper's bank there without validating.
+    REQUIRE(
+        runCli({"synth", "--preset", "plastic", "--size", "16", "--correlation-length", "4", "-q", "-o", dir / "c2"})
+            .status == 0);
+    requireOneLineError(runCli({"bake", dir / "c2", "--predictor", "neural4", "-o", dir / "x.btflut"}),
+                        "light(s); a learned model of views needs a layer per view with 3 or more");
     nlohmann::json manifest = readJson(dir / "btf/btflut-dataset.json");
     manifest["rectified"] = false;
     std::ofstream(dir / "btf/btflut-dataset.json") << manifest.dump();
     requireOneLineError(runCli({"bake", dir / "btf", "--predictor", "neural4", "-o", dir / "x.btflut"}),
                         "a learned model of several views needs them rectified");
     CHECK_FALSE(fs::exists(dir / "x.btflut"));
+}
+
+TEST_CASE("auto on views: rectified ones validate a learned model of them against the paper's bank") {
+    ViewBank v(5);
+    AutoBakeOptions options;
+    options.base.threads = 1;
+    options.seconds = 3;
+    Result<LutBank> bank = bakeAuto(v.dataset, options);
+    REQUIRE_MESSAGE(bank.ok(), bank.error());
+    const nlohmann::json selection = nlohmann::json::parse(bank->selection);
+    CHECK(selection["folds"] == 2);
+    REQUIRE(selection["candidates"].size() == 2);  // the one-reference bank and neural9: nothing else takes views
+    for (const auto& c : selection["candidates"]) {
+        INFO(c.dump());
+        CHECK_FALSE(c.contains("skipped"));
+    }
+    CHECK(selection["candidates"][1]["name"] == "neural9");
+    if (bank->makesLuts()) CHECK(bank->predictor().viewDependent());
+    // Not rectified: the paper's bank, unvalidated.
+    Dataset plain = v.dataset;
+    plain.rectified = false;
+    Result<LutBank> classic = bakeAuto(plain, options);
+    REQUIRE(classic.ok());
+    CHECK_FALSE(classic->makesLuts());
 }
 
 TEST_CASE("eval across views: the learned bank matched beside lut, nearest and the model unmatched") {
@@ -148,7 +192,7 @@ TEST_CASE("eval across views: the learned bank matched beside lut, nearest and t
     CHECK(psnr["lut neural4 R1 grey match 0.5"] > psnr["lut K1 R1 grey"] + 3);
     CHECK(psnr["lut neural4 R1 grey match 0.5"] > psnr["nearest"] + 3);
     requireOneLineError(runCli({"eval", dir / "btf", "--predictor", "hsh2"}),
-                        "on rectified views a learned model's (--predictors neuralN)");
+                        "on rectified views a learned model's (--predictor neuralN, or auto)");
 }
 
 TEST_SUITE("gl") {
@@ -156,13 +200,14 @@ TEST_SUITE("gl") {
         ViewBank v(3, "plastic");
         const std::string light = "40,30";
         for (const ViewLayer& layer : v.bank.layers)
-            for (const std::string view :
+            for (const std::string& view :
                  {std::to_string(layer.view.thetaDegrees()) + "," + std::to_string(layer.view.phiDegrees()),
                   std::string("25,200")}) {
                 INFO("view " << view);
                 const std::string gpu = v.dir / "gpu.png", cpu = v.dir / "cpu.png";
-                REQUIRE(runCli({"render", v.path, "--native", "--light", light, "--view", view, "-o", gpu, "-q"})
-                            .status == 0);
+                REQUIRE(
+                    runCli({"render", v.path, "--native", "--light", light, "--view", view, "-o", gpu, "-q"}).status ==
+                    0);
                 REQUIRE(runCli({"relight", v.path, "--light", light, "--view", view, "-o", cpu, "-q"}).status == 0);
                 CHECK(runCli({"compare", gpu, cpu, "--tolerance", "max=1"}).status == 0);
             }

@@ -99,7 +99,8 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
         "Predict held-out photographs of a dataset in every mode and compare: histograms, pixels, memory, time");
     app->add_option("DATASET", o->dataset,
                     "a dataset (see btflut hist --help); with several views (a BTF, CUReT): held-out (light, view) "
-                    "pairs, modes lut, nearest, brdf and flat")
+                    "pairs, modes lut, nearest, brdf and flat (rectified views: and neuralN, and lut with --predictor "
+                    "neuralN or auto)")
         ->required();
     app->add_option(
            "--holdout", o->holdout,

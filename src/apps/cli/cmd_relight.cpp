@@ -95,7 +95,7 @@ Status runRelight(const RelightOptions& o) {
             relighter.gridFrame(query->light, query->view, bank.nearestNode(query->light, query->view).layer);
         const Image out = relighter.apply(frame, !o.noDither);
         if (Status s = savePng(out, o.output, o.depth); !s) return s;
-        report(o, out, "from the match grid", query->light, &frame, relighter.matchAt(query->light));
+        report(o, out, "from the match grid", query->light, &frame, relighter.matchAt(query->light, query->view));
         return success();
     }
     if (o.grid) {  // what an engine reads from `export -o DIR/`
@@ -112,7 +112,7 @@ Status runRelight(const RelightOptions& o) {
     Image out = relighter.apply(frame, !o.noDither);
     if (Status s = savePng(out, o.output, o.depth); !s) return s;
     report(o, out, provenanceName(frame.provenance), query->light, &frame,
-           bank.makesLuts() ? relighter.matchAt(query->light) : -1);
+           bank.makesLuts() ? relighter.matchAt(query->light, query->view) : -1);
     return success();
 }
 

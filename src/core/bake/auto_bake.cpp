@@ -31,8 +31,10 @@ struct Candidate {
     std::size_t images = 0;
 };
 
+// `views`: a rectified set of several views, where only the one-reference bank and a learned
+// model of the views bake.
 std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int budget, double seconds,
-                                     std::size_t lights) {
+                                     std::size_t lights, bool views) {
     const int region = base.regions > 1 || !base.labelsPath.empty() ? 1 : 0;
     const int albedo = channels == 3 ? 3 : 0;
     std::vector<Candidate> out;
@@ -45,6 +47,17 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int 
     classic.references = 1;
     classic.colour = ColourMode::Grey;
     add("K1", classic, channels, true);
+    const int codes = std::min(budget - region, LearnedModel::kMaxCodes);
+    auto addLearned = [&] {  // predicting colour itself: no albedo
+        if (codes < 1) return;
+        BakeOptions learned = classic;
+        learned.learned = LearnedOptions{.codes = codes, .seconds = seconds / 3};
+        add("neural" + std::to_string(codes), learned, codes);
+    };
+    if (views) {
+        addLearned();
+        return out;
+    }
     // K references: grey ones with an albedo (colour), or grey ones (grey images).
     const int k = std::min<int>({budget - region - albedo, 16, static_cast<int>(lights) - 1});
     if (k >= 2) {
@@ -68,14 +81,9 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int 
     model("rbf" + std::to_string(planes) + "c", {.basis = LightBasis::Rbf, .planes = planes, .packed = true}, planes);
     model("bln" + std::to_string(planes) + "c", {.basis = LightBasis::Bilinear, .planes = planes, .packed = true},
           planes);
-    // A learned model of as many codes (predicting colour itself: no albedo), trained on each
-    // fold's lights (under 16, its linear start alone).
-    const int codes = std::min(budget - region, LearnedModel::kMaxCodes);
-    if (codes >= 1) {
-        BakeOptions learned = classic;
-        learned.learned = LearnedOptions{.codes = codes, .seconds = seconds / 3};
-        add("neural" + std::to_string(codes), learned, codes);
-    }
+    // A learned model of as many codes, trained on each fold's lights (under 16, its linear
+    // start alone).
+    addLearned();
     return out;
 }
 
@@ -266,7 +274,12 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
                      std::to_string(smallestBudget(first.channels)) + " bytes per texel (the one-reference bank)"};
     if (!(options.seconds >= 0 && std::isfinite(options.seconds)))
         return Error{"--budget: a time bound is a number of seconds (or minutes) above 0"};
-    std::vector<Candidate> candidates = candidatesFor(options.base, first.channels, options.budget, options.seconds, n);
+    // Several views: validated where they are rectified and each holds 3 lights (a learned
+    // model of them against the one-reference bank), else the one-reference bank.
+    const bool views = !dataset.fixedView();
+    const bool validates = !views || (dataset.rectified && dataset.fewestLightsPerView().second >= 3);
+    std::vector<Candidate> candidates =
+        candidatesFor(options.base, first.channels, options.budget, options.seconds, n, views);
     nlohmann::json selection{
         {"budget", options.budget},
         {"rule",
@@ -275,14 +288,15 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
     Result<Mask> mask = loadDatasetMask(dataset, first.width, first.height);
     if (!mask) return Error{mask.error()};
     const Validation validation{
-        dataset, *decoded, dataset.fixedView() ? validationFolds(n) : std::vector<Fold>{}, std::move(*mask),
+        dataset, *decoded, validates ? validationFolds(n) : std::vector<Fold>{}, std::move(*mask),
         options.match ? std::vector<float>{*options.match} : std::vector<float>{0.f, 0.25f, 0.5f, 0.75f, 1.f}};
     const std::vector<Fold>& folds = validation.folds;
     if (!folds.empty()) {
         std::size_t validated = 0;
         for (const Candidate& c : candidates) validated += c.skipped.empty() ? 1 : 0;
         log("validating " + std::to_string(validated) + " predictors within " + std::to_string(options.budget) +
-            " bytes per texel on " + std::to_string(folds.size()) + " folds of the " + std::to_string(n) + " lights");
+            " bytes per texel on " + std::to_string(folds.size()) + " folds of the " + std::to_string(n) +
+            (views ? " light-view pairs" : " lights"));
     }
     validate(candidates, validation, options);
 
@@ -302,10 +316,10 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
         // its reference is constant over the sample (a grey card, a black set), a model that
         // carries the brightness.
         selection["chosen"] = {{"name", "K1"}, {"match", 1}, {"bytes", classic.bytes}};
-        log(!dataset.fixedView() ? std::string("several views: the one-reference bank (auto validates one view's "
-                                               "predictors") +
-                                       (dataset.rectified ? "; --predictor neuralN learns these views)" : ")")
-                                 : "too few images to leave one out: the one-reference bank");
+        log(!views ? "too few images to leave one out: the one-reference bank"
+            : !dataset.rectified
+                ? "several views, not rectified: the one-reference bank (a predictor needs one frame for every view)"
+                : "several views, some with fewer than 3 lights: the one-reference bank");
     }
     final.progress = options.base.progress;
     Result<LutBank> bank = bakeBank(dataset, final, cached);

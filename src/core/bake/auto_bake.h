@@ -41,9 +41,10 @@ struct AutoBakeOptions {
 int smallestBudget(int channels);
 
 /// Bakes the validated choice; refuses a budget below every candidate with a line naming the
-/// smallest that works. Datasets with several views, or too few images to leave one out,
-/// get the one-reference bank (or, where its reference is constant, the rbf model) and say
-/// so in the selection.
+/// smallest that works. Rectified sets of several views validate a learned model of the views
+/// against the one-reference bank (the only predictor that takes views); other sets of several
+/// views, and too few images to leave one out, get the one-reference bank (or, where its
+/// reference is constant, the rbf model) and say so in the selection.
 Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options, const ImageProvider& provider = {});
 
 }  // namespace btflut

@@ -124,6 +124,12 @@ Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options
             return Error{dataset.source + ": --regions and --labels need one view (a fixed camera)"};
         if (options.domain == BankDomain::Isotropic)
             return Error{dataset.source + ": a learned model of views is baked in the layers domain, not isotropic"};
+        // A layer per view follows the light only with 3 lights in each (checked before the
+        // training, which the layers would otherwise waste).
+        if (const auto [view, lights] = dataset.fewestLightsPerView(); lights < 3)
+            return Error{dataset.source + ": view (" + std::to_string(view.thetaDegrees()) + ", " +
+                         std::to_string(view.phiDegrees()) + ") has " + std::to_string(lights) +
+                         " light(s); a learned model of views needs a layer per view with 3 or more"};
     }
     std::vector<Direction> lights;
     for (const DatasetImage& im : dataset.images) lights.push_back(im.light);

@@ -229,6 +229,21 @@ bool Dataset::fixedView() const {
                        [&](const DatasetImage& im) { return angleBetween(im.view, images.front().view) < 1e-9; });
 }
 
+std::pair<Direction, std::size_t> Dataset::fewestLightsPerView() const {
+    constexpr double kSame = 1e-6;  // as the bank's kSameDirection
+    std::pair<Direction, std::size_t> fewest{{}, images.size()};
+    for (const DatasetImage& im : images) {
+        std::vector<Direction> lights;
+        for (const DatasetImage& other : images)
+            if (angleBetween(other.view, im.view) < kSame &&
+                std::none_of(lights.begin(), lights.end(),
+                             [&](Direction l) { return angleBetween(l, other.light) < kSame; }))
+                lights.push_back(other.light);
+        if (lights.size() < fewest.second) fewest = {im.view, lights.size()};
+    }
+    return fewest;
+}
+
 Result<std::vector<Direction>> parseLightsTxt(const std::string& text, const std::string& file,
                                               std::size_t* normalised) {
     std::size_t rounded = 0;

@@ -48,6 +48,10 @@ struct Dataset {
 
     /// True when every image shares one view direction (a fixed camera).
     bool fixedView() const;
+    /// The view holding the fewest distinct light directions, and how many it holds
+    /// (directions within 1e-6 rad are one): a bank of a layer per view follows the light
+    /// with 3 or more in each.
+    std::pair<Direction, std::size_t> fewestLightsPerView() const;
 };
 
 /// True for the extensions (lower case, no dot) of the image files btflut reads.

@@ -56,6 +56,14 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     if (blend.match < 1) {                // matchAt's ramp; a bank matched fully needs none
         m_measured = measuredDiskPoints(bank);
         m_rampRadius = rampRadius(m_measured);
+        if (m_predictor->viewDependent()) {  // every layer's measured (light, view) pairs
+            m_measured.clear();
+            for (const ViewLayer& layer : bank.layers)
+                for (std::size_t n = 0; n < layer.measuredNodes; ++n) {
+                    m_measured.push_back(toDisk(layer.nodes[n].light));
+                    m_measuredViews.push_back(toDisk(layer.view));
+                }
+        }
     }
     if (blend.target == LutBank::Blend::Target::Corrections) {
         // Each node's LUT from the prediction at its light to its target, in a bank of the
@@ -99,6 +107,7 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
 RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate) const {
     RelightFrame frame = m_bank.makesLuts() ? predictionFrame(light, view) : RelightFrame{};
     frame.light = light;
+    frame.view = view;
     frame.target = m_bank.lookup(light, view, interpolate);
     const BankLookup& target = frame.target;
     frame.provenance = target.provenance;
@@ -110,7 +119,7 @@ RelightFrame Relighter::frame(Direction light, Direction view, bool interpolate)
     }
     if (m_corrections) {
         frame.luts = m_corrections->lookup(light, view, interpolate).values;
-        if (const float match = matchAt(light); match < 1) {
+        if (const float match = matchAt(light, view); match < 1) {
             const auto entries = static_cast<std::size_t>(m_bank.entries);
             for (std::size_t k = 0; k < frame.luts.size(); ++k) {
                 const float v = static_cast<float>(k % entries) / static_cast<float>(entries - 1);
@@ -204,6 +213,7 @@ RelightFrame Relighter::predictionFrame(Direction light, Direction view) const {
     RelightFrame frame;
     static_cast<PredictorFrame&>(frame) = m_predictor->frameAt(light, view);
     frame.light = light;
+    frame.view = view;
     return frame;
 }
 
@@ -214,12 +224,17 @@ LevelCounts Relighter::predictedCounts(const RelightFrame& frame, std::size_t re
     return counts;
 }
 
-float Relighter::matchAt(Direction light) const {
+float Relighter::matchAt(Direction light, Direction view) const {
     const float match = m_bank.blend.match;
     if (match >= 1 || m_measured.empty()) return match;
-    const DiskPoint p = toDisk(light);
+    const DiskPoint p = toDisk(light), v = toDisk(view);
     double nearest = 1e30;
-    for (const DiskPoint& q : m_measured) nearest = std::min(nearest, std::hypot(p.x - q.x, p.y - q.y));
+    for (std::size_t k = 0; k < m_measured.size(); ++k) {
+        const DiskPoint& q = m_measured[k];
+        const double viewDistance =
+            m_measuredViews.empty() ? 0 : std::hypot(v.x - m_measuredViews[k].x, v.y - m_measuredViews[k].y);
+        nearest = std::min(nearest, std::hypot(p.x - q.x, p.y - q.y, viewDistance));
+    }
     const double t = std::clamp(nearest / m_rampRadius, 0.0, 1.0), away = t * t * (3 - 2 * t);
     return static_cast<float>(1 - (1 - match) * away);
 }
@@ -234,7 +249,7 @@ float Relighter::identity(float v) const {
 std::vector<float> Relighter::lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const {
     const auto entries = static_cast<std::size_t>(m_bank.entries),
                samples = static_cast<std::size_t>(m_bank.blend.quantiles);
-    const float match = matchAt(frame.light);
+    const float match = matchAt(frame.light, frame.view);
     std::vector<float> luts;
     for (std::size_t r = 0; r < m_regionTexels.size(); ++r)
         for (int c = 0; c < m_counted; ++c) {

@@ -32,7 +32,7 @@ namespace btflut {
 
 /// A light's frame: the predictor's integers there (PredictorFrame: its weights) and the LUTs.
 struct RelightFrame : PredictorFrame {
-    Direction light;          ///< what the frame is for
+    Direction light, view;    ///< what the frame is for
     std::vector<float> luts;  ///< regions x channels x entries
     /// Of the target (LutBank::lookup): the worse of the light's and the view's.
     Provenance provenance = Provenance::Measured, lightProvenance = Provenance::Measured,
@@ -72,8 +72,10 @@ public:
     /// How far a light's LUT moves the prediction towards the target: 1 at a measured light
     /// (its photograph's histogram, exactly), the bank's Blend::match from half the median
     /// spacing of the measured lights on (matchRampRadius), smoothly between (smoothstep of
-    /// the equal-area disk distance to the nearest measured light), so nothing jumps.
-    float matchAt(Direction light) const;
+    /// the equal-area disk distance to the nearest measured light), so nothing jumps. A bank of
+    /// views measures (light, view) pairs: the distance is to the nearest pair, its light's and
+    /// its view's disk distances combined.
+    float matchAt(Direction light, Direction view = {}) const;
     /// That half spacing, on the equal-area disk (0 for a bank matched fully: no ramp).
     float matchRampRadius() const { return m_rampRadius; }
 
@@ -98,6 +100,7 @@ private:
     int m_counted = 1;                                       // channels counted: 3 for rgb, else 1 (grey)
     std::vector<std::vector<std::uint32_t>> m_regionTexels;  // sample texels of each region
     std::vector<DiskPoint> m_measured;                       // the measured lights (matchAt)
+    std::vector<DiskPoint> m_measuredViews;                  // ... and their views (a bank of views)
     float m_rampRadius = 0;
     /// Corrections (LutBank::Blend::Target::Corrections): the bank's nodes with, instead of
     /// their targets, the LUTs from the prediction at their lights to their targets.

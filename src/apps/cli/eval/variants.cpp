@@ -294,12 +294,13 @@ Status adaptToViews(EvalOptions& o, const Dataset& dataset) {
     // model's bank (a layer per view, matched).
     bool predictorsAcross = true;
     for (const std::string& p : split(o.predictors))
-        predictorsAcross = predictorsAcross && (p == "references" || (learnedModelNamed(p) && dataset.rectified));
+        predictorsAcross =
+            predictorsAcross && (p == "references" || ((p == "auto" || learnedModelNamed(p)) && dataset.rectified));
     if (!predictorsAcross || o.references != "1" || o.regions != "1" || o.colours == "lrgb" || o.blendedLuts ||
         o.targets.find("corrections") != std::string::npos)
         return Error{
             "lut across views is the paper's bank of one reference (--references 1, no predictor), or on "
-            "rectified views a learned model's (--predictors neuralN); " +
+            "rectified views a learned model's (--predictor neuralN, or auto); " +
             where};
     if (o.lutSources != defaults.lutSources) return Error{"--luts grid reads a fixed camera's grid; " + where};
     return success();
