@@ -17,9 +17,12 @@ repo="$(cd "$(dirname "$0")/.." && pwd)"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 light=30,40
-# name | bake options | tolerance (as the engine example's: docs/engines.md, "Accuracy")
+# name | bake options | tolerance (as the engine example's: docs/engines.md, "Accuracy") | relight's
+# view (the pages draw the quad seen from the front)
+"$btflut" synth --preset concrete --geometry btf-3 --size 32 --correlation-length 4 --samples 1 -q -o "$work/btf"
 banks=("one|$default --references 1|max=2" "hsh2|$default --predictor hsh2|p99=2,mean=0.2"
-       "references|$default --references 3|max=2" "neural5|$default --predictor neural5|p99=2,mean=0.2")
+       "references|$default --references 3|max=2" "neural5|$default --predictor neural5|p99=2,mean=0.2"
+       "views|$work/btf --predictor neural4|p99=2,mean=0.2|--view 0,0")
 if [ ! -d "$data/psm-rock" ] && [ "${BTFLUT_REQUIRE_DATA:-0}" = 1 ]; then
   echo "browser_check: $data/psm-rock is missing (set BTFLUT_DATA)" >&2
   exit 1
@@ -67,11 +70,12 @@ check() {  # what, image, expected, tolerance
 }
 
 for entry in "${banks[@]}"; do
-  IFS='|' read -r name bake tolerance <<<"$entry"
+  IFS='|' read -r name bake tolerance view <<<"$entry"
   # shellcheck disable=SC2086
   "$btflut" bake $bake -o "$work/$name.btflut" -q
   "$btflut" export "$work/$name.btflut" -o "$work/$name" --web "$work/$name.html" -q
-  "$btflut" relight "$work/$name.btflut" --grid --light "$light" -o "$work/$name-grid.png" -q
+  # shellcheck disable=SC2086
+  "$btflut" relight "$work/$name.btflut" --grid --light "$light" $view -o "$work/$name-grid.png" -q
   read -r width height channels < <(/usr/bin/python3 -c "import json,sys; r=json.load(open(sys.argv[1]))['reference']; print(r['width'], r['height'], r['channels'])" "$work/$name/material.json")
 
   page=$(stat -c %s "$work/$name.html")
@@ -97,8 +101,9 @@ done
 
 # The page with its panel, and the sphere under the point light: drawn, no console message.
 bash "$repo/tools/browser-shot.sh" "file://$work/hsh2.html#light=50,120&zoom=fit" 900 600 "$work/panel.png"
-bash "$repo/tools/browser-shot.sh" "file://$work/references.html#light=50,120&view=sphere" 900 600 "$work/sphere.png"
-/usr/bin/python3 - "$work/sphere.png" <<'PY'
+for name in references views; do  # views: each fragment's view picks its layer and feeds the decoder
+  bash "$repo/tools/browser-shot.sh" "file://$work/$name.html#light=50,120&view=sphere" 900 600 "$work/sphere.png"
+  /usr/bin/python3 - "$work/sphere.png" <<'PY'
 import sys
 from PIL import Image
 image = Image.open(sys.argv[1]).convert("L")
@@ -106,6 +111,7 @@ centre = image.crop((400, 250, 500, 350))  # the sphere's middle, lit from the u
 corner = image.crop((850, 550, 900, 600))  # off the sphere: black
 assert max(centre.getdata()) > 40 and max(corner.getdata()) == 0, "the sphere view is not drawn"
 PY
+done
 echo "export --web: the panel and the sphere view draw"
 # The sphere wraps the sample, not its background: a bank baked with a round mask exports the
 # largest rectangle inside it (material.json's "sample"), and the page's sphere wraps that.

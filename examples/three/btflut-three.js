@@ -1,12 +1,15 @@
 // btflut-three.js: a material exported by `btflut export M.btflut -o M/` (docs/engines.md) as a
 // three.js material, drawn by the export's own GLSL ES include (btflut_es.glsl). Every kind:
-// `luts` (one reference), `model` and `references` (banks with a predictor). Needs
+// `luts` (one reference), `model`, `references` and `learned` (banks with a predictor). Needs
 // src/web/btflut_material.js (the reader `export --web`'s page uses too) loaded first.
 //
 //   const relit = await btflutThree.load(THREE, 'M/');   // a THREE.RawShaderMaterial
 //   mesh.material = relit.material;
 //   relit.setLight(new THREE.Vector3(x, y, z));          // in the material's tangent frame
+//   relit.setView(new THREE.Vector3(x, y, z));           // towards the camera, likewise (default: frontal)
 //
+// The view picks a bank of views' nearest view layer; a learned model of views also predicts
+// at it.
 // A classic script (no modules), so it runs from file://. `THREE` is whichever three.js the page
 // loaded: Debian's (r111, a classic script) or current ones (0.187, an ES module: pass the
 // module's namespace); tested with both (tests/browser_check.sh). WebGL2 only: the include needs
@@ -43,13 +46,14 @@ void main() {
   // by the TBN, as docs/engines.md says).
   const fragmentMain = btflutMaterial.fragmentHead + `
 uniform vec3 lightTangent;
+uniform vec3 viewTangent;  // the view (towards the camera) in the tangent frame: which view layer, and a learned model of views
 uniform float exposure;
 in vec2 textureUv;
 out vec4 colour;
 void main() {
     vec2 texel = floor(textureUv * size);
     uvec2 pixel = uvec2(mod(vec2(texel.x, size.y - 1.0 - texel.y), size));  // image rows, top first: btflut's dither
-    colour = vec4(min(relight(textureUv, lightTangent, pixel) * exposure, 1.0), 1.0);  // sRGB-encoded, as the reference
+    colour = vec4(min(relight(textureUv, lightTangent, viewTangent, pixel) * exposure, 1.0), 1.0);  // sRGB-encoded, as the reference
 }
 `;
 
@@ -115,12 +119,16 @@ void main() {
                                                 THREE.FloatType, THREE.NearestFilter) : unusedArray},
       labels: {value: m.labels ? texture2D(THREE, m.labels, THREE.NearestFilter) : unused2D},
       hasPredictor: {value: m.kind !== 'luts'}, lightTangent: {value: new THREE.Vector3(0, 0, 1)}, exposure: {value: 1},
+      viewTangent: {value: new THREE.Vector3(0, 0, 1)}, layers: {value: m.layerViews.length / 3},
+      layerViews: {value: Array.from({length: 16}, (_, k) =>
+        k < m.layerViews.length / 3 ? new THREE.Vector3(...m.layerViews.slice(3 * k, 3 * k + 3)) : new THREE.Vector3(0, 0, 1))},
       size: {value: new THREE.Vector2(m.size[0], m.size[1])}, material: {value: m.material}, predictor: {value: m.predictor}};
     const material = new THREE.RawShaderMaterial(
       {uniforms, ...glsl3(THREE, vertexShader, '#version 300 es\n' + include + fragmentMain)});
     return {
       material, json,
       setLight(direction) { uniforms.lightTangent.value.copy(direction).normalize(); },
+      setView(direction) { uniforms.viewTangent.value.copy(direction).normalize(); },
       setExposure(value) { uniforms.exposure.value = value; }};
   }
 

@@ -9,6 +9,7 @@
 //   m.weights: {size, layers, data} | null             RGBA32F layers, nearest (learned: the decoder)
 //   m.labels: {width, height, rgba} | null             RGBA8, nearest
 //   m.material, m.predictor                            the fields of BtflutMaterial, BtflutPredictor
+//   m.layerViews                                       each view layer's direction, tangent frame (flat x, y, z)
 //   btflutMaterial.fragmentHead                        GLSL: those as uniforms, and relight()
 //
 // Images are decoded here, not by the browser: luts.png is 16-bit, and a browser's decoder gives
@@ -130,6 +131,12 @@
       predictor: {kind: 0, basis: 0, order: 0, planes: 0, channels: 1, albedo: 0, scale: new Array(c.BTFLUT_MAX_PLANES).fill(0),
                   bias: new Array(c.BTFLUT_MAX_PLANES).fill(0), regions: 1, codes: 255, rgbLuts, greyOutput: false,
                   outputCode: json.lut_output_code, dither: true}};
+    // The view layers' directions (at most 16, as the shader's array), unit vectors of the tangent frame.
+    const views = (json.views || []).slice(0, 16);
+    out.layerViews = views.flatMap((v) => {
+      const t = v.view.theta * Math.PI / 180, p = v.view.phi * Math.PI / 180;
+      return [Math.sin(t) * Math.cos(p), Math.sin(t) * Math.sin(p), Math.cos(t)];
+    });
     if (json.kind === 'luts') {
       const reference = await png(json.reference.file);
       out.reference = {width: reference.width, height: reference.height, rgba: rgbaRows(reference)};
@@ -168,7 +175,9 @@
   }
 
   // GLSL ES to put after the include: the material's textures and structs as uniforms, and
-  // relight(uv, lightTangent, pixel) for every kind.
+  // relight(uv, lightTangent, viewTangent, pixel) for every kind: the view layer nearest the
+  // view (a learned model of views also predicts at the view); relight(uv, lightTangent, pixel)
+  // for a frontal view.
   const fragmentHead = `
 uniform sampler3D luts;
 uniform highp sampler2D reference;
@@ -178,11 +187,26 @@ uniform BtflutMaterial material;
 uniform BtflutPredictor predictor;
 uniform bool hasPredictor;
 uniform vec2 size;  // the material's texels
+uniform int layers;
+uniform vec3 layerViews[16];  // each view layer's direction in the tangent frame
 
-vec3 relight(vec2 uv, vec3 lightTangent, uvec2 pixel) {
-    return hasPredictor ? btflutRelight(luts, planes, weights, labels, predictor, uv, lightTangent, pixel)
-                        : btflutRelight(luts, material, texture(reference, uv).rgb, lightTangent, pixel);
+vec3 relight(vec2 uv, vec3 lightTangent, vec3 viewTangent, uvec2 pixel) {
+    int layer = 0;
+    float best = -2.0;
+    for (int k = 0; k < 16; ++k) {
+        if (k >= layers) break;
+        float c = dot(normalize(viewTangent), layerViews[k]);
+        if (c > best) {
+            best = c;
+            layer = k;
+        }
+    }
+    BtflutMaterial m = material;
+    m.layer = layer;
+    return hasPredictor ? btflutRelight(luts, planes, weights, labels, predictor, uv, lightTangent, viewTangent, layer, pixel)
+                        : btflutRelight(luts, m, texture(reference, uv).rgb, lightTangent, pixel);
 }
+vec3 relight(vec2 uv, vec3 lightTangent, uvec2 pixel) { return relight(uv, lightTangent, vec3(0.0, 0.0, 1.0), pixel); }
 `;
 
   global.btflutMaterial = {decodePng, constants, prepare, toHalf, fragmentHead};

@@ -46,11 +46,13 @@ void main() {
   vec2 f = fract(t), local = mix(f, 1.0 - f, mod(floor(t), 2.0));
   vec2 uv = window.xy + local * window.zw;
   vec3 u = vec3(cos(longitude), 0.0, -sin(longitude)), v = cross(n, u);  // the tangent frame: +u, +v, the normal
+  vec3 eye = vec3(0.0, 0.0, 1.0);  // the orthographic camera's direction
   vec3 towards = light * lightDistance - n;
   float d = length(towards);
   vec3 l = towards / d;
   float falloff = pow((lightDistance - 1.0) / d, 2.0);  // 1 at the surface point nearest the light
-  colour.rgb = min(relight(uv, vec3(dot(l, u), dot(l, v), dot(l, n)), uvec2(gl_FragCoord.xy)) * falloff * exposure, 1.0);
+  colour.rgb = min(relight(uv, vec3(dot(l, u), dot(l, v), dot(l, n)), vec3(dot(eye, u), dot(eye, v), dot(eye, n)),
+                           uvec2(gl_FragCoord.xy)) * falloff * exposure, 1.0);
 }`;
 
 function compile(type, source) {
@@ -134,6 +136,8 @@ async function load() {
     }
   gl.uniform1i(at('hasPredictor'), m.kind !== 'luts');
   gl.uniform2f(at('size'), m.size[0], m.size[1]);
+  gl.uniform1i(at('layers'), m.layerViews.length / 3);
+  if (m.layerViews.length) gl.uniform3fv(at('layerViews[0]'), m.layerViews);
   for (const name of ['mode', 'origin', 'zoom', 'sphere', 'tiles', 'window', 'light', 'lightDistance', 'exposure']) uniforms[name] = at(name);
   state.size = m.size;
   state.sample = m.json.sample || null;  // the sample's rectangle, for the sphere
