@@ -372,7 +372,8 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
            "image: ptm, hsh2 or hsh3 (hemispherical harmonics), rbfN or blnN (N principal components of "
            "the images, interpolated over the lights by radial basis functions or bilinearly; rbf, bln: 9), or a "
            "learned model trained on them: neuralN (N codes per texel and a small decoder network; neural: "
-           "9)")
+           "9). Several views: a learned model of the light and the view on rectified sets (auto validates it "
+           "against the paper's bank), else the paper's bank")
         ->capture_default_str();
     app->add_option("--match", o->match,
                     "how far each light's LUT moves the prediction's distribution to the measured one: 1 fully, 0 not "
