@@ -231,16 +231,20 @@ bool Dataset::fixedView() const {
 
 std::pair<Direction, std::size_t> Dataset::fewestLightsPerView() const {
     constexpr double kSame = 1e-6;  // as the bank's kSameDirection
-    std::pair<Direction, std::size_t> fewest{{}, images.size()};
+    // Each distinct view with its distinct lights, in one pass: images x (views + lights)
+    // comparisons, not images squared (a BTF has thousands of images and ~81 views).
+    std::vector<std::pair<Direction, std::vector<Direction>>> views;
     for (const DatasetImage& im : images) {
-        std::vector<Direction> lights;
-        for (const DatasetImage& other : images)
-            if (angleBetween(other.view, im.view) < kSame &&
-                std::none_of(lights.begin(), lights.end(),
-                             [&](Direction l) { return angleBetween(l, other.light) < kSame; }))
-                lights.push_back(other.light);
-        if (lights.size() < fewest.second) fewest = {im.view, lights.size()};
+        auto view = std::find_if(views.begin(), views.end(),
+                                 [&](const auto& v) { return angleBetween(v.first, im.view) < kSame; });
+        if (view == views.end()) view = views.insert(views.end(), {im.view, {}});
+        std::vector<Direction>& lights = view->second;
+        if (std::none_of(lights.begin(), lights.end(), [&](Direction l) { return angleBetween(l, im.light) < kSame; }))
+            lights.push_back(im.light);
     }
+    std::pair<Direction, std::size_t> fewest{{}, images.size()};
+    for (const auto& [view, lights] : views)
+        if (lights.size() < fewest.second) fewest = {view, lights.size()};
     return fewest;
 }
 
