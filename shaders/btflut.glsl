@@ -381,6 +381,16 @@ BtflutLearnedFrame btflutLearnedFrameAt(sampler2DArray network, vec3 lightTangen
     return btflutLearnedFrameAt(network, lightTangent, vec3(0.0, 0.0, 1.0));
 }
 
+// A learned model's prediction from its value per channel in [0, 1] (a grey model's in all three):
+// each channel rounded to its code, as the CPU (LearnedPredictor).
+BtflutPrediction btflutLearnedPredictionOf(vec3 value) {
+    vec3 code = floor(value * 255.0 + 0.5);
+    BtflutPrediction p;
+    p.channels = code * float(BTFLUT_WEIGHT_UNIT);
+    p.colour = code / 255.0;
+    return p;
+}
+
 // A learned model's prediction from a texel's code bytes (`codes[l]`: layer l's four) at a
 // frame: each channel's value rounded to its code, as the CPU (LearnedPredictor).
 BtflutPrediction btflutLearnedPrediction(sampler2DArray network, vec4 codes[BTFLUT_MAX_LAYERS], BtflutLearnedFrame f) {
@@ -408,12 +418,8 @@ BtflutPrediction btflutLearnedPrediction(sampler2DArray network, vec4 codes[BTFL
         at = btflutLearnedLayer(network, at, d.widths[k - 1], last ? d.channels : d.widths[k], true, !last, x, y);
         for (int j = 0; j < BTFLUT_LEARNED_VECTORS; ++j) x[j] = y[j];
     }
-    vec3 code = floor(clamp(value + x[0].xyz, 0.0, 1.0) * 255.0 + 0.5);
-    if (d.channels == 1) code = vec3(code.x);
-    BtflutPrediction p;
-    p.channels = code * float(BTFLUT_WEIGHT_UNIT);
-    p.colour = code / 255.0;
-    return p;
+    value = clamp(value + x[0].xyz, 0.0, 1.0);
+    return btflutLearnedPredictionOf(d.channels == 1 ? vec3(value.x) : value);
 }
 
 // The layer of `planes` that holds the albedo.
@@ -489,12 +495,14 @@ float btflutMatch(sampler3D luts, BtflutPredictor p, vec2 disk, int region, floa
     return btflutMap(luts, m, disk, btflutCodeValue(code, p.codes), pixel, channel);
 }
 
-// A bank with a predictor relit at `uv` for a light in the tangent frame; `pixel` for the dither.
-// A learned model of views: seen from `viewTangent`, matched by the LUTs of view layer `layer`
-// (material.json "views"; the LUT texture's blocks are layer * regions + region). A light at
-// or below the horizon: black.
-vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights, sampler2D labels, BtflutPredictor p,
-                   vec2 uv, vec3 lightTangent, vec3 viewTangent, int layer, uvec2 pixel) {
+// A bank with a predictor relit from a texel's prediction, made by the caller (btflutPrediction,
+// or a learned material's decoder specialised to it: btflut_network.glsl, which `export` writes,
+// btflutNetworkPrediction at a frame computed once per light change or per fragment); `pixel`
+// for the dither. A learned model of views: matched by the LUTs of view layer `layer`
+// (material.json "views"; the LUT texture's blocks are layer * regions + region). A light at or
+// below the horizon: black.
+vec3 btflutRelightPrediction(sampler3D luts, sampler2DArray planes, sampler2D labels, BtflutPredictor p, vec2 uv,
+                             vec3 lightTangent, int layer, uvec2 pixel, BtflutPrediction predicted) {
     if (lightTangent.z <= 0.0) return vec3(0.0);
     vec2 disk = btflutDiskPoint(lightTangent);
     int region = 0;
@@ -503,7 +511,6 @@ vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights
         region = int(texelFetch(labels, ivec2(mod(floor(uv * vec2(size)), vec2(size))), 0).r * 255.0 + 0.5);
     }
     region += layer * p.regions;
-    BtflutPrediction predicted = btflutPrediction(planes, weights, p, uv, lightTangent, viewTangent);
     int match = btflutMatchOf(p);
     vec3 q = btflutCodes(predicted, match);
     vec3 matched = vec3(btflutMatch(luts, p, disk, region, q.x, pixel, 0));
@@ -512,6 +519,16 @@ vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights
     if (p.albedo == 2) return btflutRelitColour(matched, match, false, texture(planes, vec3(uv, float(btflutAlbedoLayer(p)))).rgb);
     return btflutRelitColour(matched, match, p.greyOutput, predicted.colour);
 }
+
+// The same predicted here at `uv` for a light in the tangent frame (a learned model of views:
+// seen from `viewTangent`).
+vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights, sampler2D labels, BtflutPredictor p,
+                   vec2 uv, vec3 lightTangent, vec3 viewTangent, int layer, uvec2 pixel) {
+    if (lightTangent.z <= 0.0) return vec3(0.0);
+    return btflutRelightPrediction(luts, planes, labels, p, uv, lightTangent, layer, pixel,
+                                   btflutPrediction(planes, weights, p, uv, lightTangent, viewTangent));
+}
+
 vec3 btflutRelight(sampler3D luts, sampler2DArray planes, sampler2DArray weights, sampler2D labels, BtflutPredictor p,
                    vec2 uv, vec3 lightTangent, uvec2 pixel) {
     return btflutRelight(luts, planes, weights, labels, p, uv, lightTangent, vec3(0.0, 0.0, 1.0), 0, pixel);

@@ -43,7 +43,9 @@ float btflutUniformLut(int lut, int count, float v) {
 uniform sampler2DArray blendPlanes;
 #if defined(BLEND_LEARNED)
 uniform BtflutLearnedFrame blendLearned;  // LearnedModel::lightFrame: the decoder's part at the light
-uniform sampler2DArray blendNetwork;      // the decoder (LearnedModel::gpuNetwork)
+#if !defined(BTFLUT_NETWORK)
+uniform sampler2DArray blendNetwork;  // the decoder's texture, for a network past a shader's constants
+#endif
 #elif defined(BLEND_MODEL)
 uniform BtflutModelFrame blendModel;  // LightModelFixed: the weights of the codes n of 4-bit planes
 #else
@@ -101,7 +103,11 @@ BtflutPrediction btflutBlend() {
 #if defined(BLEND_LEARNED)
     vec4 codes[BTFLUT_MAX_LAYERS];
     for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < BLEND_LEARNED_LAYERS ? btflutBytes(btflutBlendTexel(l)) : vec4(0.0);
+#if defined(BTFLUT_NETWORK)  // the decoder specialised to the model (Predictor::shaderSource)
+    return btflutLearnedPredictionOf(btflutNetworkValue(codes, blendLearned));
+#else
     return btflutLearnedPrediction(blendNetwork, codes, blendLearned);
+#endif
 #elif defined(BLEND_MODEL)
     vec4 codes[BTFLUT_MAX_LAYERS];
     for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < BLEND_MODEL_LAYERS ? btflutPlaneCodes(l) : vec4(0.0);

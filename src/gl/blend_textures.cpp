@@ -36,7 +36,11 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
             for (std::size_t c = 0; c < 3; ++c)
                 data[((layers - 1) * texels + i) * 4 + c] = byteOf(planes.albedo.samples[i * 3 + c]);
     t.m_planes = uploadTextureArray(first.width, first.height, static_cast<int>(layers), 4, data.data(), bytes);
-    if (!planes.network.empty()) t.m_network = uploadFloatArray(planes.networkSize, 1, planes.network.data(), bytes);
+    t.m_source = std::make_shared<const std::string>(predictor->shaderSource());
+    if (!t.m_source->empty()) t.m_sources.push_back({predictor->name() + " decoder (generated)", *t.m_source});
+    // The decoder's texture, where it is not shader source (a network past a shader's constants).
+    if (!planes.network.empty() && t.m_source->empty())
+        t.m_network = uploadFloatArray(planes.networkSize, 1, planes.network.data(), bytes);
     if (!bank.blend.labels.empty())
         t.m_labels = uploadLabels(first.width, first.height, bank.blend.labels.data(), bytes);
     return t;

@@ -8,6 +8,7 @@
 //   t.updateLuts(luts, frame);                                // per light change
 //   t.bind(program, frame, luts, 1);                          // per draw: units 1.. and uniforms
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ public:
     /// BLEND, the predictor's own (Predictor::shaderDefines), REGIONS, RGB_MODE, LUT_UNIFORMS:
     /// made once by upload.
     const std::vector<std::string>& defines() const { return m_defines; }
+    /// The predictor's own shader source (Predictor::shaderSource), made once: buildProgram's
+    /// `generated`.
+    const std::vector<ShaderFile>& sources() const { return m_sources; }
 
     /// LUT tables for one user of the bank (one per channel, a row per region), and their bytes.
     std::vector<GlTexture> makeLutTables() const;
@@ -50,6 +54,8 @@ private:
     const Predictor* m_predictor = nullptr;  ///< the bank's
     bool m_lutsAsUniforms = false;           ///< lutsAsUniforms(bank), asked of GL once
     std::vector<std::string> m_defines;
+    std::shared_ptr<const std::string> m_source;  // m_sources' text, at one address when moved
+    std::vector<ShaderFile> m_sources;
     GlTexture m_planes, m_labels, m_network;
 };
 

@@ -42,11 +42,16 @@ Result<const ShaderProgram*> RelightPass::program(bool dither) {
         std::vector<std::string> defines = m_defines;
         if (dither) defines.push_back("DITHER");
         Result<ShaderProgram> p =
-            buildProgram({"quad.vert"}, {"btflut.glsl", "lut_common.glsl", "native.frag"}, defines);
+            buildProgram({"quad.vert"}, {"btflut.glsl", "lut_common.glsl", "native.frag"}, defines, sources());
         if (!p) return Error{p.error()};
         found = m_programs.emplace(dither, std::move(*p)).first;
     }
     return &found->second;
+}
+
+const std::vector<ShaderFile>& RelightPass::sources() const {
+    static const std::vector<ShaderFile> none;
+    return m_blend ? m_blend->sources() : none;
 }
 
 void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlTexture>& luts) const {

@@ -53,6 +53,8 @@ public:
                   int first) const;
     /// lut_common.glsl's defines for this bank (the blend's, or mapsReferenceDefines), made once.
     const std::vector<std::string>& defines() const { return m_defines; }
+    /// The predictor's own shader source, if any (BlendTextures::sources): buildProgram's `generated`.
+    const std::vector<ShaderFile>& sources() const;
 
 private:
     Result<const ShaderProgram*> program(bool dither);

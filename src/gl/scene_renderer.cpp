@@ -129,12 +129,19 @@ Result<const ShaderProgram*> SceneRenderer::program(RenderMode mode, const Mater
         if (bank.colour == ColourMode::Rgb) defines.push_back("RGB_MODE");
         if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
     }
-    auto found = m_programs.find(defines);
+    // A predictor's own source (a learned decoder) goes with its pass's defines, which name it.
+    static const std::vector<ShaderFile> none;
+    const std::vector<ShaderFile>& sources =
+        defines.front() == "LUT_FRAGMENT" && material.pass ? material.pass->sources() : none;
+    // Programs by defines and, for sources made per material, by the material's source.
+    std::vector<std::string> key = defines;
+    for (const ShaderFile& f : sources) key.push_back(std::to_string(reinterpret_cast<std::uintptr_t>(f.text.data())));
+    auto found = m_programs.find(key);
     if (found == m_programs.end()) {
         Result<ShaderProgram> p =
-            buildProgram({"scene.vert"}, {"btflut.glsl", "lut_common.glsl", "scene.frag"}, defines);
+            buildProgram({"scene.vert"}, {"btflut.glsl", "lut_common.glsl", "scene.frag"}, defines, sources);
         if (!p) return Error{p.error()};
-        found = m_programs.emplace(defines, std::move(*p)).first;
+        found = m_programs.emplace(std::move(key), std::move(*p)).first;
     }
     return &found->second;
 }

@@ -211,7 +211,7 @@ private:
     std::uint64_t m_frame = 0;
     std::map<std::string, Material> m_materials;
     std::vector<QuadState> m_quads;
-    std::map<std::vector<std::string>, ShaderProgram> m_programs;  ///< by defines
+    std::map<std::vector<std::string>, ShaderProgram> m_programs;  ///< by defines (and generated source)
     GlTexture m_target, m_depth;
     ColourDepthTarget m_samples;  ///< sampleFrame's, at its last size
     int m_samplesWidth = 0, m_samplesHeight = 0;

@@ -55,13 +55,14 @@ Result<GLuint> compile(GLenum stage, const std::vector<ShaderFile>& files, const
 
 Result<ShaderProgram> buildProgram(const std::vector<std::string>& vertexFiles,
                                    const std::vector<std::string>& fragmentFiles,
-                                   const std::vector<std::string>& defines) {
+                                   const std::vector<std::string>& defines, const std::vector<ShaderFile>& generated) {
     std::vector<ShaderFile> stages[2];
     for (int s = 0; s < 2; ++s)
         for (const std::string& name : s == 0 ? vertexFiles : fragmentFiles) {
             std::string_view text = embeddedShader(name);
             if (text.empty()) return Error{"shaders/" + name + ": no such shader"};
             stages[s].push_back({name, text});
+            if (s == 1 && name == "btflut.glsl") stages[s].insert(stages[s].end(), generated.begin(), generated.end());
         }
     return buildProgramFromSources(stages[0], stages[1], defines);
 }

@@ -45,15 +45,18 @@ private:
 /// The embedded text of shaders/NAME; empty view if there is no such file.
 std::string_view embeddedShader(std::string_view name);
 
-Result<ShaderProgram> buildProgram(const std::vector<std::string>& vertexFiles,
-                                   const std::vector<std::string>& fragmentFiles,
-                                   const std::vector<std::string>& defines);
-
 /// A shader file's name and text.
 struct ShaderFile {
     std::string name;
     std::string_view text;
 };
+
+/// `generated`: sources made at run time (a learned model's decoder, Predictor::shaderSource),
+/// in the fragment stage right after btflut.glsl, whose structs they use.
+Result<ShaderProgram> buildProgram(const std::vector<std::string>& vertexFiles,
+                                   const std::vector<std::string>& fragmentFiles,
+                                   const std::vector<std::string>& defines,
+                                   const std::vector<ShaderFile>& generated = {});
 
 /// The same from given texts (buildProgram looks its files up in the embedded shaders).
 Result<ShaderProgram> buildProgramFromSources(const std::vector<ShaderFile>& vertex,

@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "core/predict/gpu_constants.h"
+#include "core/predict/learned_shader.h"
 
 namespace btflut {
 
@@ -51,6 +52,10 @@ PredictorPlanes LearnedPredictor::planes() const {
 std::vector<std::string> LearnedPredictor::shaderDefines() const {
     return {"BLEND_LEARNED", "BLEND_LEARNED_LAYERS " + std::to_string((m_model.codes + 3) / 4),
             "BLEND_LEARNED_CHANNELS " + std::to_string(m_model.channels)};
+}
+
+std::string LearnedPredictor::shaderSource() const {
+    return hasLearnedShader(m_model) ? learnedShaderSource(m_model, ShaderLanguage::Glsl) : std::string();
 }
 
 // btflut.glsl's BtflutLearnedFrame: per layer of four codes and per channel ([layer * 3 +

@@ -32,6 +32,9 @@ public:
     std::string description() const override;
     PredictorPlanes planes() const override;
     std::vector<std::string> shaderDefines() const override;
+    /// The decoder specialised to the model (learned_shader.h); empty for a network past a
+    /// shader's constants, which the include's texture path draws.
+    std::string shaderSource() const override;
     std::vector<ShaderValues> shaderValues(const PredictorFrame& frame) const override;
     PredictorFrame frameAt(Direction light, Direction view) const override;
     bool viewDependent() const override { return m_model.viewFeatures > 0; }

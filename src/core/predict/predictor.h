@@ -87,6 +87,9 @@ public:
     virtual PredictorPlanes planes() const = 0;
     /// The #defines that choose and size its prediction in shaders/lut_common.glsl (BLEND_...).
     virtual std::vector<std::string> shaderDefines() const = 0;
+    /// GLSL its shader code needs after the include, made for this predictor (a learned model's
+    /// decoder specialised to it: learned_shader.h); empty for most kinds.
+    virtual std::string shaderSource() const { return {}; }
     /// What that code reads at a light: its frame's integers as uniforms.
     virtual std::vector<ShaderValues> shaderValues(const PredictorFrame& frame) const = 0;
 
