@@ -285,3 +285,33 @@ TEST_CASE("bench render reports static and moving frames, GPU time and overdraw"
     CHECK(predictor["sizes"][0]["lut_moving_quads_per_fragment"].get<int>() == 4);  // 64 x 48 pixels: per fragment
     requireOneLineError(runCli({"bench", "render", dir / "p.btflut", "--lut-path", "screen"}), "--lut-path");
 }
+
+TEST_CASE(
+    "bench decoder: the plain shader of the network draws btflut's frame; ratios per fragment and in texture space") {
+    TempDir dir;
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "rti-25", "--size", "40", "--correlation-length",
+                    "5", "-q", "-o", dir / "set"})
+                .status == 0);
+    auto dataset = openDataset(dir / "set");
+    REQUIRE(dataset.ok());
+    auto bank = bakeBank(*dataset, {.learned = LearnedOptions{.codes = 5, .steps = 200}});  // grey
+    REQUIRE_MESSAGE(bank.ok(), bank.error());
+    REQUIRE(saveBank(*bank, dir / "n.btflut").ok());
+    CliRun run =
+        runCli({"bench", "decoder", dir / "n.btflut", "--size", "96x64", "--frames", "1", "--repeat", "1", "--json"});
+    REQUIRE_MESSAGE(run.status == 0, run.err);
+    const nlohmann::json out = nlohmann::json::parse(run.out);
+    CHECK(out["decoder"] == "neural5");
+    CHECK(out["multiply_adds_per_texel"] == 5 * 1 + 5 * 24 + 24 * 24 + 24 * 1);
+    // The reference computes what btflut's decoder computes: their frames within a code.
+    CHECK(out["plain_against_btflut_max_codes"].get<double>() <= 1);
+    CHECK(out["btflut_over_plain_throughput_per_fragment"].get<double>() > 0);
+    CHECK(out["btflut_over_plain_throughput_texture_space"].get<double>() > 0);
+    for (const char* row : {"plain, per fragment", "btflut, per fragment", "btflut matched, scene per fragment",
+                            "plain, texture space", "btflut, texture space", "btflut matched, texture space"})
+        CHECK(out["ms_per_mpx"][row].get<double>() > 0);
+    // Banks without a learned decoder, and bad sizes, in one line.
+    REQUIRE(runCli({"bake", dir / "set", "--references", "1", "-o", dir / "r.btflut", "-q"}).status == 0);
+    requireOneLineError(runCli({"bench", "decoder", dir / "r.btflut"}), "not a learned bank");
+    requireOneLineError(runCli({"bench", "decoder", dir / "n.btflut", "--size", "0x5"}), "--size '0x5'");
+}

@@ -85,7 +85,14 @@ typedef void(APIENTRYP PFNGLTEXSUBIMAGE2DPROC)(GLenum target, GLint level, GLint
     X(PFNGLENDQUERYPROC, EndQuery)                             \
     X(PFNGLGETQUERYOBJECTUI64VPROC, GetQueryObjectui64v)       \
     X(PFNGLGETQUERYIVPROC, GetQueryiv)                         \
-    X(PFNGLFLUSHPROC, Flush)
+    X(PFNGLFLUSHPROC, Flush)                                   \
+    X(PFNGLGENBUFFERSPROC, GenBuffers)                         \
+    X(PFNGLDELETEBUFFERSPROC, DeleteBuffers)                   \
+    X(PFNGLBINDBUFFERPROC, BindBuffer)                         \
+    X(PFNGLBUFFERDATAPROC, BufferData)                         \
+    X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                 \
+    X(PFNGLGETUNIFORMBLOCKINDEXPROC, GetUniformBlockIndex)     \
+    X(PFNGLUNIFORMBLOCKBINDINGPROC, UniformBlockBinding)
 
 struct GlFunctions {
 #define BTFLUT_GL_MEMBER(type, name) type name = nullptr;

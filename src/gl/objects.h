@@ -41,6 +41,7 @@ inline void deleteFramebuffer(GLuint id) { gl.DeleteFramebuffers(1, &id); }
 inline void deleteVertexArray(GLuint id) { gl.DeleteVertexArrays(1, &id); }
 inline void deleteProgram(GLuint id) { gl.DeleteProgram(id); }
 inline void deleteQuery(GLuint id) { gl.DeleteQueries(1, &id); }
+inline void deleteBuffer(GLuint id) { gl.DeleteBuffers(1, &id); }
 }  // namespace detail
 
 using GlTexture = GlObject<detail::deleteTexture>;
@@ -48,6 +49,7 @@ using GlFramebuffer = GlObject<detail::deleteFramebuffer>;
 using GlVertexArray = GlObject<detail::deleteVertexArray>;
 using GlProgram = GlObject<detail::deleteProgram>;
 using GlQuery = GlObject<detail::deleteQuery>;
+using GlBuffer = GlObject<detail::deleteBuffer>;
 
 static_assert(!std::is_copy_constructible_v<GlTexture> && std::is_nothrow_move_constructible_v<GlTexture>);
 
@@ -65,6 +67,11 @@ inline GlVertexArray makeVertexArray() {
     GLuint id = 0;
     gl.GenVertexArrays(1, &id);
     return GlVertexArray(id);
+}
+inline GlBuffer makeBuffer() {
+    GLuint id = 0;
+    gl.GenBuffers(1, &id);
+    return GlBuffer(id);
 }
 inline GlQuery makeQuery() {
     GLuint id = 0;

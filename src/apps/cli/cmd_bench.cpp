@@ -578,6 +578,7 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
         ->capture_default_str();
     render->add_flag("--json", ro->json, "print JSON");
     commands.push_back({render, [ro] { return runBenchRender(*ro); }});
+    addBenchDecoderCommand(*bench, commands);
 }
 
 }  // namespace btflut::cli

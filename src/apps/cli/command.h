@@ -32,6 +32,8 @@ void addPlotCommand(CLI::App& root, Commands& commands);
 void addSynthCommand(CLI::App& root, Commands& commands);
 void addRenderCommand(CLI::App& root, Commands& commands);
 void addBenchCommand(CLI::App& root, Commands& commands);
+/// `bench decoder` (bench_decoder.cpp), under `bench`.
+void addBenchDecoderCommand(CLI::App& bench, Commands& commands);
 void addViewCommand(CLI::App& root, Commands& commands);
 void addEvalCommand(CLI::App& root, Commands& commands);
 void addOrientCommand(CLI::App& root, Commands& commands);

@@ -123,7 +123,8 @@ void emitValue(std::string& out, const Syntax& s, const LearnedModel& m, std::si
         const bool last = layer + 1 == residual.layers();
         std::vector<std::string> start;
         if (layer == 0)
-            for (int j = 0; j < groups(residual.sizes()[1]); ++j) start.push_back("f.hidden[" + std::to_string(j) + "]");
+            for (int j = 0; j < groups(residual.sizes()[1]); ++j)
+                start.push_back("f.hidden[" + std::to_string(j) + "]");
         else
             start = biasLiterals(s, residual.bias(layer), constants);
         x = emitLayer(out, s, "h" + std::to_string(layer + 1), x, residual.weights(layer), 0, start, !last, constants);
@@ -177,9 +178,8 @@ void emitFrame(std::string& out, const Syntax& s, const LearnedModel& m, std::si
                 out += "    f.basis[" + std::to_string((k / 4) * 3 + c) + "]." + std::string(component(k % 4), 1) +
                        " = " + row + ";\n";
         }
-    const std::vector<std::string> first =
-        emitLayer(out, s, "a", h, residual.weights(0), m.codes, biasLiterals(s, residual.bias(0), constants), false,
-                  constants);
+    const std::vector<std::string> first = emitLayer(out, s, "a", h, residual.weights(0), m.codes,
+                                                     biasLiterals(s, residual.bias(0), constants), false, constants);
     for (int j = 0; j < groups(static_cast<int>(first.size())); ++j)
         out += "    f.hidden[" + std::to_string(j) + "] = a_" + std::to_string(j) + ";\n";
     out += "    return f;\n}\n\n";
@@ -239,9 +239,8 @@ std::string learnedShaderSource(const LearnedModel& m, ShaderLanguage language, 
            " specialised to it (btflut's src/core/predict/learned_shader.h), generated: its weights as constants, "
            "its layers unrolled.\n";
     out += "// After the include (" + std::string(s.hlsl() ? "btflut.hlsl" : "btflut.glsl") + "). " +
-           std::to_string(cost.texelMultiplyAdds) +
-           " multiply-adds a texel; the frame " + std::to_string(cost.frameMultiplyAdds) + " more where it is " +
-           "computed per fragment.\n";
+           std::to_string(cost.texelMultiplyAdds) + " multiply-adds a texel; the frame " +
+           std::to_string(cost.frameMultiplyAdds) + " more where it is " + "computed per fragment.\n";
     out += "#define BTFLUT_NETWORK 1\n";
     out += "#define BTFLUT_NETWORK_CODES " + std::to_string(m.codes) + "\n";
     out += "#define BTFLUT_NETWORK_CHANNELS " + std::to_string(m.channels) + "\n\n";

@@ -1,0 +1,361 @@
+// btflut bench decoder: a learned bank's decoder against a plain shader of the same network
+// (shaders/bench_decoder.frag), per fragment and in texture space, side by side in one context
+// (issue 46): what btflut's specialised decoder costs next to what the hardware gives a
+// shader written plainly by hand. Ratios, never pass/fail.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "cli/command.h"
+#include "core/bank/bank_file.h"
+#include "core/io/json_text.h"
+#include "core/learn/network.h"
+#include "core/predict/learned_predictor.h"
+#include "core/predict/learned_shader.h"
+#include "gl/blend_textures.h"
+#include "gl/context.h"
+#include "gl/relight_pass.h"
+#include "gl/scene_renderer.h"
+#include "gl/shader.h"
+#include "gl/textures.h"
+
+namespace btflut::cli {
+
+namespace {
+
+struct BenchDecoderOptions {
+    std::string bank;
+    std::string size = "1920x1080";
+    int frames = 5;
+    int repeat = 3;
+    std::string backend = "auto";
+    bool json = false;
+};
+
+constexpr double kMagnification = 1.5;  // screen pixels per texel across, per fragment (a near quad)
+
+// The plain shader's #defines and its uniform block (std140: an array of vec4 is packed).
+std::vector<std::string> plainDefines(const LearnedModel& m) {
+    const std::vector<int> sizes = m.decoderSizes();
+    return {"PLAIN",
+            "CODES " + std::to_string(m.codes),
+            "LAYERS " + std::to_string((m.codes + 3) / 4),
+            "CHANNELS " + std::to_string(m.channels),
+            "WIDTH1 " + std::to_string(sizes[1]),
+            "WIDTH2 " + std::to_string(sizes[2])};
+}
+
+std::vector<float> plainBlock(const LearnedModel& m) {
+    const Network net = Network::fromParameters(m.decoderSizes(), m.decoder);
+    const auto groups = [](Eigen::Index n) { return (n + 3) / 4; };
+    std::vector<float> out;
+    auto codes = [&](const std::vector<float>& values) {
+        for (int k = 0; k < (m.codes + 3) / 4 * 4; ++k)
+            out.push_back(k < m.codes ? values[static_cast<std::size_t>(k)] : 0.f);
+    };
+    codes(m.scale);
+    codes(m.bias);
+    // Layer l's weights as vec4 columns: input i's to outputs 4 o .. 4 o + 3 at [i * groups + o]
+    // (the first layer's code inputs alone: its light inputs are folded into the frame).
+    auto columns = [&](const Matrix& w, Eigen::Index inputs) {
+        for (Eigen::Index i = 0; i < inputs; ++i)
+            for (Eigen::Index o = 0; o < groups(w.rows()) * 4; ++o) out.push_back(o < w.rows() ? w(o, i) : 0.f);
+    };
+    auto bias = [&](const Vector& b) {
+        for (Eigen::Index o = 0; o < groups(b.size()) * 4; ++o) out.push_back(o < b.size() ? b(o) : 0.f);
+    };
+    columns(net.weights(0), m.codes);
+    columns(net.weights(1), net.weights(1).cols());
+    bias(net.bias(1));
+    columns(net.weights(2), net.weights(2).cols());
+    bias(net.bias(2));
+    return out;
+}
+
+// One quad filling the frame under a frontal camera, its texture repeating `uvScale` times:
+// the scene renderer's per-fragment path over every pixel.
+Scene fullFrameScene(const std::string& bank, int w, int h, double uvScale) {
+    constexpr double kFov = 45;
+    Scene s;
+    s.file = "bench";
+    s.width = w;
+    s.height = h;
+    s.fovDegrees = kFov;
+    s.eye = {0, 0, 1 / std::tan(kFov / 2 * M_PI / 180)};
+    s.target = {0, 0, 0};
+    s.up = {0, 1, 0};
+    s.materials["m"] = {bank, {}};
+    s.quads = {{"m", {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 2.0 * w / h, 2, uvScale, RenderMode::Lut}};
+    return s;
+}
+
+// An RGBA8 render target without depth, as a relight pass draws into.
+struct ColourTarget {
+    GlTexture colour;
+    GlFramebuffer framebuffer;
+};
+ColourTarget colourTarget(int w, int h) {
+    ColourTarget t{allocateTexture2D(w, h, GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE), makeFramebuffer()};
+    gl.BindFramebuffer(GL_FRAMEBUFFER, t.framebuffer.id());
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.colour.id(), 0);
+    return t;
+}
+
+// A row: a draw of `pixels` shaded pixels, timed over many.
+struct Row {
+    std::string name;
+    double pixels = 0;
+    std::function<Status()> draw;
+    std::vector<double> msPerMpx;
+};
+
+// Seconds per draw: GPU time (GL_TIME_ELAPSED around each) where the driver has a timer, else
+// the wall time of `count` draws and one glFinish.
+Result<double> timeDraws(Row& row, int count, bool timer) {
+    std::vector<GlQuery> queries;
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; k < count; ++k) {
+        if (timer) {
+            queries.push_back(makeQuery());
+            gl.BeginQuery(GL_TIME_ELAPSED, queries.back().id());
+        }
+        if (Status s = row.draw(); !s) return Error{s.error()};
+        if (timer) gl.EndQuery(GL_TIME_ELAPSED);
+    }
+    gl.Finish();
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / count;
+    if (!timer) return wall;
+    GLuint64 total = 0;
+    for (const GlQuery& q : queries) {
+        GLuint64 ns = 0;
+        gl.GetQueryObjectui64v(q.id(), GL_QUERY_RESULT, &ns);
+        total += ns;
+    }
+    return static_cast<double>(total) * 1e-9 / count;
+}
+
+void setFrame(const ShaderProgram& p, const std::vector<ShaderValues>& values) {
+    for (const ShaderValues& v : values) {  // blendLearned.basis: frame.basis, ...
+        const std::string name = "frame" + v.name.substr(v.name.find('.'));
+        const auto count = static_cast<GLsizei>(v.values.size() / static_cast<std::size_t>(v.size));
+        if (v.size == 4)
+            gl.Uniform4fv(p[name], count, v.values.data());
+        else
+            gl.Uniform3fv(p[name], count, v.values.data());
+    }
+}
+
+Status runBenchDecoder(const BenchDecoderOptions& o) {
+    int w = 0, h = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 ||
+        w > 16384 || h > 16384)
+        return Error{"--size '" + o.size + "': expected WxH with both within 1..16384"};
+    Result<GlBackend> backend = parseGlBackend(o.backend);
+    if (!backend) return Error{backend.error()};
+    Result<std::unique_ptr<HeadlessContext>> context = createHeadlessContext(*backend);
+    if (!context) return Error{context.error()};
+    Result<LutBank> loaded = loadBank(o.bank, {.ptm = false});
+    if (!loaded) return Error{loaded.error()};
+    const LutBank& bank = *loaded;
+    const LearnedPredictor* learned = bank.makesLuts() ? bank.predictorAs<LearnedPredictor>() : nullptr;
+    if (!learned) return Error{o.bank + ": not a learned bank (bake --predictor neuralN)"};
+    const LearnedModel& m = learned->model();
+    if (!hasLearnedShader(m))
+        return Error{o.bank + ": its decoder is past a shader's " + std::to_string(kMaxShaderConstants) +
+                     " constants (drawn by the include's texture path)"};
+    if (m.hidden.size() != 2 || m.viewFeatures > 0)
+        return Error{o.bank + ": the plain reference shader is of one view and two hidden layers, as bake trains them"};
+    // GPU time where the GPU keeps it; llvmpipe's timer ends a query when the draw is queued,
+    // not when its tiles are shaded (it reads ~0 for one draw), so there the wall time.
+    GLint timerBits = 0;
+    gl.GetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timerBits);
+    const std::string renderer = reinterpret_cast<const char*>(gl.GetString(GL_RENDERER));
+    const bool timer = timerBits > 0 && renderer.find("llvmpipe") == std::string::npos;
+
+    // What every row reads: the codes, and the frame at one light.
+    const Direction light = Direction::fromDegrees(45, 250);
+    const PredictorPlanes planes = learned->planes();
+    const int texelsX = m.width, texelsY = m.height, layers = static_cast<int>(planes.layers.size());
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(layers) * m.texels() * 4);
+    for (std::size_t i = 0; i < bytes.size(); ++i)
+        bytes[i] = static_cast<std::uint8_t>(std::lround(planes.layers[i / (m.texels() * 4)].samples[i % (m.texels() * 4)] * 255));
+    std::size_t uploaded = 0;
+    const GlTexture codes = uploadTextureArray(texelsX, texelsY, layers, 4, bytes.data(), uploaded);
+    const std::vector<ShaderValues> frame = learned->shaderValues(learned->frameAt(light, {}));
+    const std::vector<float> block = plainBlock(m);
+    GlBuffer buffer = makeBuffer();
+    gl.BindBuffer(GL_UNIFORM_BUFFER, buffer.id());
+    gl.BufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(block.size() * sizeof(float)), block.data(),
+                  GL_STATIC_DRAW);
+    gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, buffer.id());
+    const std::string source = learned->shaderSource();
+    const std::vector<ShaderFile> generated{{learned->name() + " decoder (generated)", source}};
+
+    // Per fragment: the frame's size, the texture magnified; texture space: the codes' size,
+    // passes enough for about the same pixels.
+    const double uvScale = w / (kMagnification * texelsX);
+    const int passes = std::max(1, static_cast<int>(std::lround(static_cast<double>(w) * h / m.texels())));
+    const ColourTarget screen = colourTarget(w, h), relit = colourTarget(texelsX, texelsY);
+    GlVertexArray vertexArray = makeVertexArray();
+    std::map<std::string, ShaderProgram> programs;
+    auto program = [&](const std::string& key, std::vector<std::string> defines) -> Status {
+        Result<ShaderProgram> p = buildProgram({"quad.vert"}, {"btflut.glsl", "bench_decoder.frag"}, defines,
+                                               defines.front() == "PLAIN" || defines.front() == "FLAT"
+                                                   ? std::vector<ShaderFile>{}
+                                                   : generated);
+        if (!p) return Error{p.error()};
+        const ShaderProgram& made = programs[key] = std::move(*p);
+        gl.UseProgram(made.id());
+        gl.Uniform1i(made["planes"], 0);
+        setFrame(made, frame);
+        if (defines.front() == "PLAIN") gl.UniformBlockBinding(made.id(), gl.GetUniformBlockIndex(made.id(), "PlainNetwork"), 0);
+        return success();
+    };
+    for (const bool textureSpace : {false, true}) {
+        const std::string at = textureSpace ? " texture" : " fragment";
+        std::vector<std::string> space;
+        if (textureSpace) space.push_back("TEXTURE_SPACE");
+        std::vector<std::string> plain = plainDefines(m), ours{"BTFLUT"}, flat{"FLAT"};
+        plain.insert(plain.end(), space.begin(), space.end());
+        ours.insert(ours.end(), space.begin(), space.end());
+        if (Status s = program("plain" + at, plain); !s) return s;
+        if (Status s = program("btflut" + at, ours); !s) return s;
+        if (!textureSpace)
+            if (Status s = program("flat" + at, flat); !s) return s;
+    }
+    // A full-screen draw of one program into a target.
+    auto fullScreen = [&](const std::string& key, const ColourTarget& target, int tw, int th, int count) {
+        return [&, key, tw, th, count]() -> Status {
+            const ShaderProgram& p = programs.at(key);
+            gl.BindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
+            gl.Viewport(0, 0, tw, th);
+            gl.Disable(GL_DEPTH_TEST);
+            gl.UseProgram(p.id());
+            gl.ActiveTexture(GL_TEXTURE0);
+            gl.BindTexture(GL_TEXTURE_2D_ARRAY, codes.id());
+            gl.Uniform2f(p["frameSize"], static_cast<float>(tw), static_cast<float>(th));
+            gl.Uniform1f(p["uvScale"], static_cast<float>(uvScale));
+            gl.BindVertexArray(vertexArray.id());
+            for (int k = 0; k < count; ++k) gl.DrawArrays(GL_TRIANGLES, 0, 3);
+            return success();
+        };
+    };
+    // btflut's own paths with their match LUTs: the relight pass (a moving light in texture
+    // space) and the scene renderer's quad per fragment.
+    std::size_t blendBytes = 0;
+    const BlendTextures blend = BlendTextures::upload(bank, blendBytes);
+    RelightPass pass(bank, 0, &blend);
+    const std::vector<GlTexture> passLuts = pass.makeLuts();
+    const RelightFrame relightFrame = Relighter(bank).gridFrame(light);
+    GlTexture passTarget = allocateRelitTexture(bank.reference);
+    Result<std::unique_ptr<SceneRenderer>> scene =
+        SceneRenderer::create(fullFrameScene(o.bank, w, h, uvScale), {.lutPath = LutPath::PerFragment});
+    if (!scene) return Error{scene.error()};
+    const double screenPixels = static_cast<double>(w) * h, passPixels = static_cast<double>(m.texels()) * passes;
+    std::vector<Row> rows{
+        {"flat, per fragment", screenPixels, fullScreen("flat fragment", screen, w, h, 1)},
+        {"plain, per fragment", screenPixels, fullScreen("plain fragment", screen, w, h, 1)},
+        {"btflut, per fragment", screenPixels, fullScreen("btflut fragment", screen, w, h, 1)},
+        {"flat, scene", screenPixels, [&]() { return (*scene)->draw(toVector(light), RenderMode::Flat); }},
+        {"btflut matched, scene per fragment", screenPixels, [&]() { return (*scene)->draw(toVector(light)); }},
+        {"plain, texture space", passPixels, fullScreen("plain texture", relit, texelsX, texelsY, passes)},
+        {"btflut, texture space", passPixels, fullScreen("btflut texture", relit, texelsX, texelsY, passes)},
+        {"btflut matched, texture space", passPixels, [&]() -> Status {
+             for (int k = 0; k < passes; ++k)
+                 if (Status s = pass.run(relightFrame, passLuts, passTarget.id(), true); !s) return s;
+             return success();
+         }}};
+    for (Row& row : rows)  // compiled, uploaded and warm before the clock starts
+        if (Status s = row.draw(); !s) return s;
+    gl.Finish();
+    // The plain shader computes what btflut's decoder does: the largest difference of their
+    // frames per fragment, in codes.
+    auto frameOf = [&](const std::string& name) {
+        for (Row& row : rows)
+            if (row.name == name) (void)row.draw();
+        return readFramebufferRgb(screen.framebuffer.id(), w, h);
+    };
+    const Image plainFrame = frameOf("plain, per fragment"), btflutFrame = frameOf("btflut, per fragment");
+    double differs = 0;
+    for (std::size_t i = 0; i < plainFrame.samples.size(); ++i)
+        differs = std::max(differs, std::abs(static_cast<double>(plainFrame.samples[i] - btflutFrame.samples[i])) * 255);
+    for (int r = 0; r < o.repeat; ++r)  // interleaved, so drift hits every row alike
+        for (Row& row : rows) {
+            Result<double> seconds = timeDraws(row, o.frames, timer);
+            if (!seconds) return Error{seconds.error()};
+            row.msPerMpx.push_back(*seconds * 1e3 / (row.pixels * 1e-6));
+        }
+    if (GLenum error = gl.GetError(); error != GL_NO_ERROR)
+        return Error{"OpenGL error " + std::to_string(error) + " in bench decoder"};
+
+    const LearnedShaderCost cost = learnedShaderCost(m);
+    auto ms = [&](const std::string& name) {
+        for (const Row& row : rows)
+            if (row.name == name) return median(row.msPerMpx);
+        BTFLUT_CHECK(false);
+        return 0.0;
+    };
+    const double fragmentRatio = ms("plain, per fragment") / ms("btflut, per fragment"),
+                 textureRatio = ms("plain, texture space") / ms("btflut, texture space");
+    nlohmann::json out{{"context", (*context)->description()},
+                       {"bank", o.bank},
+                       {"decoder", learnedModelName(m)},
+                       {"multiply_adds_per_texel", cost.texelMultiplyAdds},
+                       {"frame_multiply_adds", cost.frameMultiplyAdds},
+                       {"shader_constants", cost.constants},
+                       {"width", w},
+                       {"height", h},
+                       {"texture_space_passes", passes},
+                       {"timer", timer ? "GL_TIME_ELAPSED" : "wall"},
+                       {"plain_against_btflut_max_codes", differs},
+                       {"btflut_over_plain_throughput_per_fragment", fragmentRatio},
+                       {"btflut_over_plain_throughput_texture_space", textureRatio},
+                       {"ms_per_mpx", nlohmann::json::object()}};
+    for (const Row& row : rows) out["ms_per_mpx"][row.name] = median(row.msPerMpx);
+    if (o.json) {
+        std::cout << jsonText(out);
+        return success();
+    }
+    std::printf("decoder of %s (%s: %zu multiply-adds a texel, the frame %zu), %s; ms per million pixels (%s), "
+                "median of %d rounds of %d draws\n",
+                o.bank.c_str(), learnedModelName(m).c_str(), cost.texelMultiplyAdds, cost.frameMultiplyAdds,
+                (*context)->description().c_str(), timer ? "GPU timer" : "wall", o.repeat, o.frames);
+    std::printf("  per fragment at %dx%d (the codes bilinear, magnified %.1fx); texture space at %dx%d, %d passes\n",
+                w, h, kMagnification, texelsX, texelsY, passes);
+    for (const Row& row : rows) std::printf("    %-32s %10.3f\n", row.name.c_str(), median(row.msPerMpx));
+    std::printf("  btflut's decoder / the plain shader, throughput: per fragment %.3f, texture space %.3f (their "
+                "frames differ by at most %.0f/255)\n",
+                fragmentRatio, textureRatio, differs);
+    std::printf("  per fragment, x flat: plain %.1f, btflut %.1f; in a scene (depth tested), btflut matched %.1f x "
+                "the scene drawn flat\n",
+                ms("plain, per fragment") / ms("flat, per fragment"),
+                ms("btflut, per fragment") / ms("flat, per fragment"),
+                ms("btflut matched, scene per fragment") / ms("flat, scene"));
+    return success();
+}
+
+}  // namespace
+
+void addBenchDecoderCommand(CLI::App& bench, Commands& commands) {
+    auto o = std::make_shared<BenchDecoderOptions>();
+    CLI::App* decoder = bench.add_subcommand(
+        "decoder",
+        "A learned bank's decoder against a plain shader of the same network (weights in a uniform block, "
+        "loops of constant bounds), per fragment and in texture space, side by side: ms per million pixels "
+        "and their ratio");
+    decoder->add_option("BANK", o->bank, "M.btflut with a learned predictor (bake --predictor neuralN)")->required();
+    decoder->add_option("--size", o->size, "the per-fragment target, WxH")->capture_default_str();
+    decoder->add_option("--frames", o->frames, "draws per row and round")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    decoder->add_option("--repeat", o->repeat, "rounds")->check(CLI::Range(1, 100))->capture_default_str();
+    decoder->add_option("--backend", o->backend, "auto, osmesa or egl")->capture_default_str();
+    decoder->add_flag("--json", o->json, "print JSON");
+    commands.push_back({decoder, [o] { return runBenchDecoder(*o); }});
+}
+
+}  // namespace btflut::cli
