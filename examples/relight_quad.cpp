@@ -1,7 +1,8 @@
 // What an engine does with a material from `btflut export M.btflut -o DIR/`: load the
 // sidecar and the textures it names, include shaders/btflut.glsl, and draw a lit quad. Every
 // kind: "luts" (the reference and its LUTs), "model" (a light model's planes: ptm, hsh, rbf,
-// bln) and "references" (references blended), the last two with their match LUTs.
+// bln), "references" (references blended) and "learned" (codes and a decoder, specialised to the
+// material in btflut_network.glsl), the last three with their match LUTs.
 // It depends on nothing of btflut: EGL (headless), OpenGL 3.3 core, stb_image, nlohmann-json.
 //
 //   btflut_example_quad DIR --light THETA,PHI -o out.png [--no-dither]
@@ -119,6 +120,27 @@ void main() {
     ivec2 texel = ivec2(gl_FragCoord.xy);
     vec2 uv = (vec2(texel) + 0.5) / vec2(textureSize(planes, 0).xy);
     colour = vec4(btflutRelight(luts, planes, weights, labels, predictor, uv, light, view, layer, uvec2(texel)), 1.0);
+}
+)";
+
+// ... and for a learned material with its decoder specialised to it (material.json's
+// "network": btflut_network.glsl, after the include): its frame at the light computed per
+// fragment, as a point light or a curved mesh needs (under a directional light a flat quad's
+// frame is one per light change: an engine may compute it once, on the CPU, as a uniform).
+const char* const kNetworkFragment = R"(
+uniform sampler3D luts;
+uniform sampler2DArray planes;
+uniform sampler2D labels;
+uniform BtflutPredictor predictor;
+uniform vec3 light;
+uniform vec3 view;
+uniform int layer;
+out vec4 colour;
+void main() {
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    vec2 uv = (vec2(texel) + 0.5) / vec2(textureSize(planes, 0).xy);
+    BtflutPrediction predicted = btflutNetworkPrediction(planes, uv, btflutNetworkFrame(light, view));
+    colour = vec4(btflutRelightPrediction(luts, planes, labels, predictor, uv, light, layer, uvec2(texel), predicted), 1.0);
 }
 )";
 
@@ -284,10 +306,15 @@ int main(int argc, char** argv) {
         glTexParameteri(GL_TEXTURE_3D, p, GL_CLAMP_TO_EDGE);
     stbi_image_free(luts);
 
+    // A learned material's specialised decoder, where export wrote one.
+    const nlohmann::json* network =
+        predictor && material["predictor"].contains("network") ? &material["predictor"]["network"] : nullptr;
+    const std::string main = network ? readText(folder + "/" + (*network)["glsl"].get<std::string>()) + kNetworkFragment
+                             : predictor ? kPredictorFragment
+                                         : kFragment;
     const GLuint program = glCreateProgram();
     glAttachShader(program, compile(GL_VERTEX_SHADER, kVertex));
-    glAttachShader(program, compile(GL_FRAGMENT_SHADER,
-                                    "#version 330 core\n" + include + (predictor ? kPredictorFragment : kFragment)));
+    glAttachShader(program, compile(GL_FRAGMENT_SHADER, "#version 330 core\n" + include + main));
     glLinkProgram(program);
     glUseProgram(program);
     glUniform1i(glGetUniformLocation(program, "luts"), 1);

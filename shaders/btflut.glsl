@@ -16,8 +16,10 @@
 // SRGB) and treat the result as sRGB-encoded. The result already holds the light's falloff
 // and shadows of this material: scale it by the light's colour and intensity, not by N.L.
 
-#define BTFLUT_GLSL_VERSION 4  // 2: banks with a predictor (btflutPredict, the second btflutRelight); 3: learned ones;
-                               // 4: learned ones of views (the network's head of four texels)
+#define BTFLUT_GLSL_VERSION 5  // 2: banks with a predictor (btflutPredict, the second btflutRelight); 3: learned ones;
+                               // 4: learned ones of views (the network's head of four texels); 5: a learned
+                               // material's decoder specialised to it (btflut_network.glsl: btflutRelightPrediction,
+                               // btflutLearnedPredictionOf)
 
 // btflut: constants (src/core/predict/gpu_constants.h; written here when btflut is built)
 

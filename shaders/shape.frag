@@ -52,7 +52,15 @@ void main() {
             layer = k;
         }
     }
-#if defined(PREDICTOR)
+#if defined(BTFLUT_NETWORK)
+    // A learned model, its decoder specialised to it (learned_shader.h): its frame at this
+    // fragment's light (and view: a model of views), as an engine draws a curved mesh.
+    BtflutPrediction predicted = btflutNetworkPrediction(planes, uv, btflutNetworkFrame(lightTangent, viewTangent));
+    colour = vec4(btflutRelightPrediction(luts, planes, labels, predictor, uv, lightTangent, layer,
+                                          uvec2(gl_FragCoord.xy), predicted),
+                  1.0);
+    return;
+#elif defined(PREDICTOR)
     // A learned model of views: predicted for this fragment's view, matched by its layer's LUTs.
     colour = vec4(btflutRelight(luts, planes, weights, labels, predictor, uv, lightTangent, viewTangent, layer,
                                 uvec2(gl_FragCoord.xy)),

@@ -49,22 +49,35 @@ PY
 } >"$work/relit.hlsl"
 glslangValidator -D -V -S frag -e frag -I"$shaders" "$work/relit.hlsl" -o "$work/relit.spv" \
   >"$work/log" || { cat "$work/log"; exit 1; }
-echo "unity_check: the C# parses, BtflutTexels runs, BtflutRelit.shader's program compiles"
+# A learned material's own shader, as BtflutImporter writes it: its decoder at the marker line.
+"$btflut" bake "$material" --predictor neural4 --budget 1s -o "$work/n.btflut" -q
+"$btflut" export "$work/n.btflut" -o "$work/learned/" -q
+grep -q '^ *// btflut: network$' "$unity/BtflutRelit.shader"
+sed 's|^ *// btflut: network$|#include "btflut_network.hlsl"|' "$work/relit.hlsl" >"$work/learned.hlsl"
+grep -q 'btflut_network.hlsl' "$work/learned.hlsl"
+glslangValidator -D -V -S frag -e frag -I"$shaders" -I"$work/learned" "$work/learned.hlsl" -o "$work/learned.spv" \
+  >"$work/log" || { cat "$work/log"; exit 1; }
+echo "unity_check: the C# parses, BtflutTexels runs, BtflutRelit.shader's program compiles, with a learned decoder too"
 
 # Godot: shader_type and render_mode dropped, the include inlined, uniform hints stripped,
 # fragment() as main() with UV, FRAGCOORD and ALBEDO declared.
+# The same with a learned material's decoder where btflut_material.gd puts it.
 godot=$here/../examples/godot
-{
-  printf '#version 450\nlayout(location = 0) in vec2 UV;\nvec3 ALBEDO;\n#define FRAGCOORD gl_FragCoord\n'
-  while IFS= read -r line; do
-    case "$line" in
-      shader_type*|render_mode*) ;;
-      '#include "res://btflut.gdshaderinc"') cat "$shaders"/btflut.gdshaderinc ;;
-      *) printf '%s\n' "$line" ;;
-    esac
-  done <"$godot/btflut_relit.gdshader"
-} | sed -e 's/^\(uniform [^:=;]*\) : [^;=]*/\1/' -e 's/^void fragment()/void main()/' >"$work/relit.frag"
-glslangValidator -S frag "$work/relit.frag" >"$work/log" || { cat "$work/log"; exit 1; }
+for network in "" "$work/learned/btflut_network.gdshaderinc"; do
+  {
+    printf '#version 450\nlayout(location = 0) in vec2 UV;\nvec3 ALBEDO;\n#define FRAGCOORD gl_FragCoord\n'
+    while IFS= read -r line; do
+      case "$line" in
+        shader_type*|render_mode*) ;;
+        '#include "res://btflut.gdshaderinc"') cat "$shaders"/btflut.gdshaderinc ;;
+        '// btflut: network') [ -z "$network" ] || cat "$network" ;;
+        *) printf '%s\n' "$line" ;;
+      esac
+    done <"$godot/btflut_relit.gdshader"
+  } | sed -e 's/^\(uniform [^:=;]*\) : [^;=]*/\1/' -e 's/^void fragment()/void main()/' >"$work/relit.frag"
+  [ -z "$network" ] || grep -q 'btflutNetworkValue' "$work/relit.frag"
+  glslangValidator -S frag "$work/relit.frag" >"$work/log" || { cat "$work/log"; exit 1; }
+done
 grep -q 'res://btflut_relit.gdshader' "$godot/btflut_material.gd"
 grep -q 'path="res://btflut_material.gd"' "$godot/relit.tscn"
-echo "godot_check: btflut_relit.gdshader compiles with the include"
+echo "godot_check: btflut_relit.gdshader compiles with the include, and with a learned decoder"

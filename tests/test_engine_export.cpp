@@ -129,7 +129,7 @@ TEST_SUITE("gl") {
             const nlohmann::json material = readJson(folder + "/material.json");
             CHECK(material["version"] == 2);
             CHECK(material["shader_version"] ==
-                  (name.find("neural") != std::string::npos ? 4 : 2));  // learned models: include version 4
+                  (name.find("neural") != std::string::npos ? 5 : 2));  // learned models: include version 5
             // psm-rock's mask gives the sample's rectangle (what a sphere wraps); the default
             // material has none: the whole image is the sample.
             CHECK(material.contains("sample") == (name.rfind("rock", 0) == 0));
@@ -143,6 +143,12 @@ TEST_SUITE("gl") {
             }
             if (predictor["kind"] == "model" || predictor["kind"] == "learned")
                 CHECK(predictor["scale"].size() == predictor["planes"].get<std::size_t>());
+            // A learned material's decoder specialised to it, in each language (what the example draws by).
+            CHECK(predictor.contains("network") == (predictor["kind"] == "learned"));
+            if (predictor.contains("network"))
+                for (const char* language : {"glsl", "hlsl", "godot"})
+                    CHECK(readText(folder + "/" + predictor["network"][language].get<std::string>())
+                              .find("btflutNetworkValue(") != std::string::npos);
             CHECK(predictor["kind_index"] == (predictor["kind"] == "model"     ? BTFLUT_KIND_MODEL
                                               : predictor["kind"] == "learned" ? BTFLUT_KIND_LEARNED
                                                                                : BTFLUT_KIND_REFERENCES));
@@ -163,7 +169,7 @@ TEST_SUITE("gl") {
         // newer than it reads: one line naming the file and the versions.
         const std::string folder = dir / "references", include = folder + "/btflut.glsl";
         std::string text = readText(include);
-        text.replace(text.find("#define BTFLUT_GLSL_VERSION 4"), 29, "#define BTFLUT_GLSL_VERSION 1");
+        text.replace(text.find("#define BTFLUT_GLSL_VERSION 5"), 29, "#define BTFLUT_GLSL_VERSION 1");
         std::ofstream(include, std::ios::binary) << text;
         auto example = [&](const std::string& errors) {
             const std::string command = "ASAN_OPTIONS=detect_leaks=0 " + std::string(BTFLUT_EXAMPLE_QUAD) + " " +

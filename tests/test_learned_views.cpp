@@ -215,7 +215,7 @@ TEST_SUITE("gl") {
         const std::string folder = v.dir / "engine";
         REQUIRE(runCli({"export", v.path, "-o", folder, "-q"}).status == 0);
         const nlohmann::json material = readJson(folder + "/material.json");
-        CHECK(material["shader_version"] == 4);
+        CHECK(material["shader_version"] == 5);
         CHECK(material["luts"]["layers"] == 3);
         for (const std::string view : {"25,200", "60,100"}) {
             const std::string example = v.dir / "example.png", grid = v.dir / "grid.png";

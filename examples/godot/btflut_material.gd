@@ -146,6 +146,12 @@ func _load(folder: String) -> String:
 		_material.set_shader_parameter("reference", ImageTexture.create_from_image(reference))
 		return ""
 	var p: Dictionary = json["predictor"]
+	if p.get("network") != null:
+		# A learned material's decoder specialised to it: a shader of its own that includes it.
+		var shader := Shader.new()
+		shader.code = _material.shader.code.replace("// btflut: network",
+			'#include "%s"' % folder.path_join(p["network"]["godot"]))
+		_material.shader = shader
 	var files: Array = p["images"].duplicate()
 	if p.get("albedo") != null:
 		files.append(p["albedo"]["file"])

@@ -9,7 +9,10 @@
 //   relit.setView(new THREE.Vector3(x, y, z));           // towards the camera, likewise (default: frontal)
 //
 // The view picks a bank of views' nearest view layer; a learned model of views also predicts
-// at it.
+// at it. A learned material draws by its decoder specialised to it (btflut_network.glsl), its
+// frame at the light computed in JavaScript when the light or view is set; with
+// `{framePerFragment: true}` the shader computes it per fragment instead (a curved mesh whose
+// light varies per fragment; the frame's multiply-adds, material.json's, each pixel).
 // A classic script (no modules), so it runs from file://. `THREE` is whichever three.js the page
 // loaded: Debian's (r111, a classic script) or current ones (0.187, an ES module: pass the
 // module's namespace); tested with both (tests/browser_check.sh). WebGL2 only: the include needs
@@ -91,7 +94,8 @@ void main() {
     return t;
   }
 
-  // Loads the export in `folder` (a URL ending in '/'); `options.dither` (default true).
+  // Loads the export in `folder` (a URL ending in '/'); `options.dither` (default true),
+  // `options.framePerFragment` (default false).
   async function load(THREE, folder, options) {
     const text = new TextDecoder();
     const json = JSON.parse(text.decode(await readFile(folder + 'material.json')));
@@ -122,13 +126,24 @@ void main() {
       viewTangent: {value: new THREE.Vector3(0, 0, 1)}, layers: {value: m.layerViews.length / 3},
       layerViews: {value: Array.from({length: 16}, (_, k) =>
         k < m.layerViews.length / 3 ? new THREE.Vector3(...m.layerViews.slice(3 * k, 3 * k + 3)) : new THREE.Vector3(0, 0, 1))},
-      size: {value: new THREE.Vector2(m.size[0], m.size[1])}, material: {value: m.material}, predictor: {value: m.predictor}};
+      size: {value: new THREE.Vector2(m.size[0], m.size[1])}, material: {value: m.material}, predictor: {value: m.predictor},
+      // A learned material's decoder: its frame at the light, computed here once per light change
+      // (or per fragment with options.framePerFragment, for a curved mesh's varying light).
+      framePerFragment: {value: !!(options && options.framePerFragment)}, learnedFrame: {value: null}};
+    const vectors = (array, n) => Array.from({length: array.length / n}, (_, k) => new THREE.Vector4(...array.slice(n * k, n * k + n)));
+    const updateFrame = () => {
+      if (!m.network) return;
+      const l = uniforms.lightTangent.value, v = uniforms.viewTangent.value;
+      const f = btflutMaterial.learnedFrame(m, [l.x, l.y, l.z], [v.x, v.y, v.z]);
+      uniforms.learnedFrame.value = {basis: vectors(f.basis, 4), offset: new THREE.Vector3(...f.offset), hidden: vectors(f.hidden, 4)};
+    };
+    updateFrame();
     const material = new THREE.RawShaderMaterial(
-      {uniforms, ...glsl3(THREE, vertexShader, '#version 300 es\n' + include + fragmentMain)});
+      {uniforms, ...glsl3(THREE, vertexShader, '#version 300 es\n' + btflutMaterial.shaderStart(m, include) + fragmentMain)});
     return {
       material, json,
-      setLight(direction) { uniforms.lightTangent.value.copy(direction).normalize(); },
-      setView(direction) { uniforms.viewTangent.value.copy(direction).normalize(); },
+      setLight(direction) { uniforms.lightTangent.value.copy(direction).normalize(); updateFrame(); },
+      setView(direction) { uniforms.viewTangent.value.copy(direction).normalize(); updateFrame(); },
       setExposure(value) { uniforms.exposure.value = value; }};
   }
 

@@ -26,6 +26,9 @@ Shader "btflut/Relit"
             #pragma target 4.5
             #include "UnityCG.cginc"
             #include "btflut.hlsl"
+            // BtflutImporter puts a learned material's decoder here (its btflut_network.hlsl, which
+            // defines BTFLUT_NETWORK) in a shader of the material's own.
+            // btflut: network
 
             Texture3D<float4> _Luts; SamplerState sampler_Luts;
             Texture2D<float4> _Reference; SamplerState sampler_Reference;
@@ -71,8 +74,16 @@ Shader "btflut/Relit"
                     for (int k = 0; k < 32; ++k) { p.scale[k] = _Scale[k]; p.bias[k] = _Bias[k]; }
                     p.rgbLuts = _RgbLuts > 0.5; p.greyOutput = _GreyOutput > 0.5;
                     p.outputCode = _OutputCode; p.dither = true;
+            #ifdef BTFLUT_NETWORK
+                    // The decoder specialised to the material, its frame at the light per fragment.
+                    BtflutPrediction predicted = btflutNetworkPrediction(_Planes, sampler_Planes, i.uv,
+                                                                         btflutNetworkFrame(light, float3(0, 0, 1)));
+                    relit = btflutRelightPrediction(_Luts, sampler_Luts, _Planes, sampler_Planes, _Labels, sampler_Labels,
+                                                    p, i.uv, light, 0, pixel, predicted);
+            #else
                     relit = btflutRelight(_Luts, sampler_Luts, _Planes, sampler_Planes, _Weights, sampler_Weights,
                                           _Labels, sampler_Labels, p, i.uv, light, pixel);
+            #endif
                 }
                 float3 colour = relit * _Exposure;
             #ifndef UNITY_COLORSPACE_GAMMA

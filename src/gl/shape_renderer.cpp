@@ -51,7 +51,11 @@ Result<std::unique_ptr<ShapeRenderer>> ShapeRenderer::create(const std::string& 
     if (!material) return Error{material.error()};
     std::vector<std::string> defines;
     if (bank.makesLuts()) defines.push_back("PREDICTOR");
-    Result<ShaderProgram> program = buildProgram({"shape.vert"}, {"btflut.glsl", "shape.frag"}, defines);
+    // A learned model's decoder specialised to it (it defines BTFLUT_NETWORK), as an export's.
+    const std::string decoder = material->networkGlsl;
+    std::vector<ShaderFile> generated;
+    if (!decoder.empty()) generated.push_back({"btflut_network.glsl (generated)", decoder});
+    Result<ShaderProgram> program = buildProgram({"shape.vert"}, {"btflut.glsl", "shape.frag"}, defines, generated);
     if (!program) return Error{program.error()};
     std::unique_ptr<ShapeRenderer> r(new ShapeRenderer);
     r->m_program = std::move(*program);

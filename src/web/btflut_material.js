@@ -8,6 +8,9 @@
 //   m.planes: {width, height, layers, rgba}            model, references, learned: an RGBA8 array texture
 //   m.weights: {size, layers, data} | null             RGBA32F layers, nearest (learned: the decoder)
 //   m.labels: {width, height, rgba} | null             RGBA8, nearest
+//   m.network: {source} | undefined                    learned: its decoder specialised to it (GLSL ES, after the include)
+//   btflutMaterial.learnedFrame(m, light, view)        learned: the decoder's frame at a light, BtflutLearnedFrame's fields
+//   btflutMaterial.shaderStart(m, include)             the include and a learned material's decoder: the shader's start
 //   m.material, m.predictor                            the fields of BtflutMaterial, BtflutPredictor
 //   m.layerViews                                       each view layer's direction, tangent frame (flat x, y, z)
 //   btflutMaterial.fragmentHead                        GLSL: those as uniforms, and relight()
@@ -171,7 +174,68 @@
       channels: p.channels, albedo: !p.albedo ? 0 : p.albedo.use === 'multiplies' ? 1 : 2, regions: p.regions, codes: p.codes,
       greyOutput: p.output_channels === 1});
     (p.scale || []).forEach((v, k) => { out.predictor.scale[k] = v; out.predictor.bias[k] = p.bias[k]; });
+    // A learned material's decoder specialised to it (GLSL ES after the include; it defines
+    // BTFLUT_NETWORK, which fragmentHead's relight() then draws by).
+    if (p.network) out.network = {source: new TextDecoder().decode(await read(p.network.glsl))};
     return out;
+  }
+
+  // The light's (or view's) hemispherical harmonics of order 3: btflut.glsl's btflutBasisTerms.
+  function hshTerms([x, y, z]) {
+    let n = Math.hypot(x, y, z);
+    if (z < 0) { z = 0; n = Math.hypot(x, y); }  // below the horizon: the horizon's
+    const c = z / n, s = Math.sqrt(Math.max(0, c - c * c)), r = Math.hypot(x, y) / n;
+    const ax = r > 0 ? x / n / r : 1, ay = r > 0 ? y / n / r : 0, pi = Math.PI;
+    return [1 / Math.sqrt(2 * pi), Math.sqrt(6 / pi) * ax * s, Math.sqrt(3 / (2 * pi)) * (2 * c - 1),
+            Math.sqrt(6 / pi) * ay * s, Math.sqrt(30 / pi) * (ax * ax - ay * ay) * (c * c - c),
+            Math.sqrt(30 / pi) * ax * (2 * c - 1) * s, Math.sqrt(5 / (2 * pi)) * (1 - 6 * c + 6 * c * c),
+            Math.sqrt(30 / pi) * ay * (2 * c - 1) * s, Math.sqrt(30 / pi) * 2 * ax * ay * (c * c - c)];
+  }
+
+  // A learned material's frame at a light and view (unit vectors of the tangent frame): the
+  // fields of btflut.glsl's BtflutLearnedFrame, what btflutNetworkFrame computes per fragment,
+  // here once per light change (LearnedModel::lightFrame). From the decoder's texels
+  // (weights.bin; btflut.glsl, "A learned model": a head, the codes' scale and bias, the
+  // residual network's layers, the light network's).
+  function learnedFrame(m, light, view) {
+    const t = m.weights.data, texel = (k) => t.subarray(4 * k, 4 * k + 4);
+    const [N, C, hidden, lightHidden] = texel(0), widths = texel(1), lightWidths = texel(2), F = texel(3)[0];
+    const h = hshTerms(light);
+    if (F > 9) h.push(...hshTerms(view).slice(1, 1 + F - 9));
+    // The layer at texel `at`: its outputs' rows of ceil(inputs / 4) texels, then its biases.
+    const layer = (at, inputs, outputs, x, first, elu) => {
+      const n = Math.ceil(inputs / 4), y = [];
+      for (let o = 0; o < outputs; ++o) {
+        let sum = t[4 * (at + outputs * n) + o];
+        for (let i = 0; i < x.length; ++i) sum += t[4 * (at + o * n) + first + i] * x[i];
+        y.push(elu ? (sum > 0 ? sum : Math.exp(sum) - 1) : sum);
+      }
+      return y;
+    };
+    const residual = 4 + 2 * Math.ceil(N / 4);
+    let at = residual, inputs = N + F;
+    for (let k = 0; k <= hidden; ++k) {  // past the residual network: the light network
+      const outputs = k < hidden ? widths[k] : C;
+      at += outputs * Math.ceil(inputs / 4) + Math.ceil(outputs / 4);
+      inputs = outputs;
+    }
+    let x = h;
+    inputs = F;
+    for (let k = 0; k <= lightHidden; ++k) {
+      const outputs = k < lightHidden ? lightWidths[k] : C * (N + 1);
+      x = layer(at, inputs, outputs, x, 0, k < lightHidden);
+      at += outputs * Math.ceil(inputs / 4) + Math.ceil(outputs / 4);
+      inputs = outputs;
+    }
+    const frame = {basis: new Float32Array(4 * 3 * 8), offset: new Float32Array(3), hidden: new Float32Array(4 * 16)};
+    for (let c = 0; c < C; ++c)
+      for (let k = 0; k <= N; ++k) {
+        const value = x[c * (N + 1) + k];
+        if (k === N) frame.offset[c] = value;
+        else frame.basis[4 * (Math.floor(k / 4) * 3 + c) + k % 4] = value;
+      }
+    frame.hidden.set(layer(residual, N + F, widths[0], h, N, false));  // the first layer at codes 0
+    return frame;
   }
 
   // GLSL ES to put after the include: the material's textures and structs as uniforms, and
@@ -190,6 +254,14 @@ uniform vec2 size;  // the material's texels
 uniform int layers;
 uniform vec3 layerViews[16];  // each view layer's direction in the tangent frame
 
+#ifdef BTFLUT_NETWORK
+// A learned material's decoder specialised to it: its frame at the light from the CPU
+// (btflutMaterial.learnedFrame, once per light change), or per fragment where the light varies
+// over the surface (a sphere).
+uniform BtflutLearnedFrame learnedFrame;
+uniform bool framePerFragment;
+#endif
+
 vec3 relight(vec2 uv, vec3 lightTangent, vec3 viewTangent, uvec2 pixel) {
     int layer = 0;
     float best = -2.0;
@@ -203,11 +275,20 @@ vec3 relight(vec2 uv, vec3 lightTangent, vec3 viewTangent, uvec2 pixel) {
     }
     BtflutMaterial m = material;
     m.layer = layer;
+#ifdef BTFLUT_NETWORK
+    BtflutLearnedFrame frame = learnedFrame;
+    if (framePerFragment) frame = btflutNetworkFrame(lightTangent, viewTangent);
+    return btflutRelightPrediction(luts, planes, labels, predictor, uv, lightTangent, layer, pixel,
+                                   btflutNetworkPrediction(planes, uv, frame));
+#endif
     return hasPredictor ? btflutRelight(luts, planes, weights, labels, predictor, uv, lightTangent, viewTangent, layer, pixel)
                         : btflutRelight(luts, m, texture(reference, uv).rgb, lightTangent, pixel);
 }
 vec3 relight(vec2 uv, vec3 lightTangent, uvec2 pixel) { return relight(uv, lightTangent, vec3(0.0, 0.0, 1.0), pixel); }
 `;
 
-  global.btflutMaterial = {decodePng, constants, prepare, toHalf, fragmentHead};
+  // The source the fragment shader starts with: the include, then a learned material's decoder.
+  const shaderStart = (m, include) => include + (m.network ? m.network.source : '');
+
+  global.btflutMaterial = {decodePng, constants, prepare, toHalf, fragmentHead, learnedFrame, shaderStart};
 })(typeof window !== 'undefined' ? window : globalThis);

@@ -62,7 +62,7 @@ function compile(type, source) {
   if (!gl.getShaderParameter(shader, gl.COMPILE_STATUS)) throw new Error('shader: ' + gl.getShaderInfoLog(shader));
   return shader;
 }
-let program = null, uniforms = {};
+let program = null, uniforms = {}, material = null;
 const textures = [];
 
 function texture(target, unit, setup) {
@@ -105,7 +105,8 @@ async function load() {
   const m = await btflutMaterial.prepare(json, read, data.include);
   program = gl.createProgram();
   gl.attachShader(program, compile(gl.VERTEX_SHADER, vertexSource));
-  gl.attachShader(program, compile(gl.FRAGMENT_SHADER, '#version 300 es\n' + data.include + fragmentMain));
+  gl.attachShader(program, compile(gl.FRAGMENT_SHADER,
+                                   '#version 300 es\n' + btflutMaterial.shaderStart(m, data.include) + fragmentMain));
   gl.linkProgram(program);
   if (!gl.getProgramParameter(program, gl.LINK_STATUS)) throw new Error('program: ' + gl.getProgramInfoLog(program));
   gl.useProgram(program);
@@ -138,7 +139,10 @@ async function load() {
   gl.uniform2f(at('size'), m.size[0], m.size[1]);
   gl.uniform1i(at('layers'), m.layerViews.length / 3);
   if (m.layerViews.length) gl.uniform3fv(at('layerViews[0]'), m.layerViews);
-  for (const name of ['mode', 'origin', 'zoom', 'sphere', 'tiles', 'window', 'light', 'lightDistance', 'exposure']) uniforms[name] = at(name);
+  for (const name of ['mode', 'origin', 'zoom', 'sphere', 'tiles', 'window', 'light', 'lightDistance', 'exposure',
+                      'framePerFragment', 'learnedFrame.basis[0]', 'learnedFrame.offset', 'learnedFrame.hidden[0]'])
+    uniforms[name] = at(name);
+  material = m;
   state.size = m.size;
   state.sample = m.json.sample || null;  // the sample's rectangle, for the sphere
   const error = gl.getError();
@@ -203,6 +207,13 @@ function draw() {
   gl.uniform2f(uniforms.tiles, 2 * Math.max(1, Math.round(Math.PI * radius / sample.width)),
                Math.max(1, Math.round(Math.PI * radius / sample.height)));
   gl.uniform3f(uniforms.light, ...lightVector());
+  if (material.network) {  // a learned decoder: its frame here once for the 2D view, per fragment on the sphere
+    gl.uniform1i(uniforms.framePerFragment, state.view === 'sphere' ? 1 : 0);
+    const frame = btflutMaterial.learnedFrame(material, lightVector(), [0, 0, 1]);
+    gl.uniform4fv(uniforms['learnedFrame.basis[0]'], frame.basis);
+    gl.uniform3fv(uniforms['learnedFrame.offset'], frame.offset);
+    gl.uniform4fv(uniforms['learnedFrame.hidden[0]'], frame.hidden);
+  }
   gl.uniform1f(uniforms.lightDistance, 4);
   gl.uniform1f(uniforms.exposure, state.exposure);
   gl.drawArrays(gl.TRIANGLES, 0, 3);

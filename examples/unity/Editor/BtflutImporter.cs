@@ -14,6 +14,7 @@ namespace Btflut
     [Serializable] public class LutsJson { public string file; public int entries, grid_size, layers, regions; }
     [Serializable] public class ReferenceJson { public string file; public int width, height, channels, bit_depth; }
     [Serializable] public class FileJson { public string file, use; public int grid_size, layers; }
+    [Serializable] public class NetworkJson { public string glsl, hlsl, godot; }
     [Serializable] public class PredictorJson
     {
         public string kind;
@@ -22,6 +23,7 @@ namespace Btflut
         public float[] scale, bias;
         public string[] images;
         public FileJson albedo, weights, labels;  // absent or null: file is empty
+        public NetworkJson network;               // a learned material's decoder specialised to it; absent: hlsl is empty
     }
     [Serializable] public class MaterialJson
     {
@@ -56,6 +58,8 @@ namespace Btflut
             if (shader == null) throw new InvalidOperationException("btflut/Relit: put BtflutRelit.shader in the project");
             CopyInclude(folder, shader);
             Directory.CreateDirectory(assetFolder);
+            if (json.predictor != null && json.predictor.network != null && !string.IsNullOrEmpty(json.predictor.network.hlsl))
+                shader = LearnedShader(folder, shader, json.predictor.network.hlsl, assetFolder);
             Func<string, PngImage> png = file => BtflutTexels.DecodePng(File.ReadAllBytes(Path.Combine(folder, file)), file);
 
             var material = new Material(shader);
@@ -160,6 +164,25 @@ namespace Btflut
             if (File.Exists(target) && File.ReadAllText(target) == File.ReadAllText(Path.Combine(folder, "btflut.hlsl"))) return;
             File.Copy(Path.Combine(folder, "btflut.hlsl"), target, true);
             AssetDatabase.ImportAsset(target);
+        }
+
+        // A learned material's own shader: btflut/Relit with the material's decoder specialised to it
+        // (btflut_network.hlsl beside it, in the asset folder) included at its "btflut: network" line.
+        static Shader LearnedShader(string folder, Shader template, string network, string assetFolder)
+        {
+            string templatePath = AssetDatabase.GetAssetPath(template);
+            string include = Path.GetDirectoryName(templatePath).Replace('\\', '/') + "/btflut.hlsl";
+            File.Copy(Path.Combine(folder, network), Path.Combine(assetFolder, "btflut_network.hlsl"), true);
+            string name = Path.GetFileName(assetFolder);
+            string text = File.ReadAllText(templatePath)
+                .Replace("Shader \"btflut/Relit\"", "Shader \"btflut/Relit " + name + "\"")
+                .Replace("#include \"btflut.hlsl\"", "#include \"" + include + "\"")
+                .Replace("// btflut: network", "#include \"btflut_network.hlsl\"");
+            string path = assetFolder + "/relit.shader";
+            File.WriteAllText(path, text);
+            AssetDatabase.ImportAsset(assetFolder + "/btflut_network.hlsl");
+            AssetDatabase.ImportAsset(path);
+            return AssetDatabase.LoadAssetAtPath<Shader>(path);
         }
 
         static T Save<T>(T asset, string folder, string name) where T : UnityEngine.Object

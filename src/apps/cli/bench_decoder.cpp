@@ -151,8 +151,8 @@ void setFrame(const ShaderProgram& p, const std::vector<ShaderValues>& values) {
 Status runBenchDecoder(const BenchDecoderOptions& o) {
     int w = 0, h = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 ||
-        w > 16384 || h > 16384)
+    if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 || w > 16384 ||
+        h > 16384)
         return Error{"--size '" + o.size + "': expected WxH with both within 1..16384"};
     Result<GlBackend> backend = parseGlBackend(o.backend);
     if (!backend) return Error{backend.error()};
@@ -182,7 +182,8 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     const int texelsX = m.width, texelsY = m.height, layers = static_cast<int>(planes.layers.size());
     std::vector<std::uint8_t> bytes(static_cast<std::size_t>(layers) * m.texels() * 4);
     for (std::size_t i = 0; i < bytes.size(); ++i)
-        bytes[i] = static_cast<std::uint8_t>(std::lround(planes.layers[i / (m.texels() * 4)].samples[i % (m.texels() * 4)] * 255));
+        bytes[i] = static_cast<std::uint8_t>(
+            std::lround(planes.layers[i / (m.texels() * 4)].samples[i % (m.texels() * 4)] * 255));
     std::size_t uploaded = 0;
     const GlTexture codes = uploadTextureArray(texelsX, texelsY, layers, 4, bytes.data(), uploaded);
     const std::vector<ShaderValues> frame = learned->shaderValues(learned->frameAt(light, {}));
@@ -203,16 +204,16 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     GlVertexArray vertexArray = makeVertexArray();
     std::map<std::string, ShaderProgram> programs;
     auto program = [&](const std::string& key, std::vector<std::string> defines) -> Status {
-        Result<ShaderProgram> p = buildProgram({"quad.vert"}, {"btflut.glsl", "bench_decoder.frag"}, defines,
-                                               defines.front() == "PLAIN" || defines.front() == "FLAT"
-                                                   ? std::vector<ShaderFile>{}
-                                                   : generated);
+        Result<ShaderProgram> p = buildProgram(
+            {"quad.vert"}, {"btflut.glsl", "bench_decoder.frag"}, defines,
+            defines.front() == "PLAIN" || defines.front() == "FLAT" ? std::vector<ShaderFile>{} : generated);
         if (!p) return Error{p.error()};
         const ShaderProgram& made = programs[key] = std::move(*p);
         gl.UseProgram(made.id());
         gl.Uniform1i(made["planes"], 0);
         setFrame(made, frame);
-        if (defines.front() == "PLAIN") gl.UniformBlockBinding(made.id(), gl.GetUniformBlockIndex(made.id(), "PlainNetwork"), 0);
+        if (defines.front() == "PLAIN")
+            gl.UniformBlockBinding(made.id(), gl.GetUniformBlockIndex(made.id(), "PlainNetwork"), 0);
         return success();
     };
     for (const bool textureSpace : {false, true}) {
@@ -282,7 +283,8 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     const Image plainFrame = frameOf("plain, per fragment"), btflutFrame = frameOf("btflut, per fragment");
     double differs = 0;
     for (std::size_t i = 0; i < plainFrame.samples.size(); ++i)
-        differs = std::max(differs, std::abs(static_cast<double>(plainFrame.samples[i] - btflutFrame.samples[i])) * 255);
+        differs =
+            std::max(differs, std::abs(static_cast<double>(plainFrame.samples[i] - btflutFrame.samples[i])) * 255);
     for (int r = 0; r < o.repeat; ++r)  // interleaved, so drift hits every row alike
         for (Row& row : rows) {
             Result<double> seconds = timeDraws(row, o.frames, timer);
@@ -320,21 +322,23 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
         std::cout << jsonText(out);
         return success();
     }
-    std::printf("decoder of %s (%s: %zu multiply-adds a texel, the frame %zu), %s; ms per million pixels (%s), "
-                "median of %d rounds of %d draws\n",
-                o.bank.c_str(), learnedModelName(m).c_str(), cost.texelMultiplyAdds, cost.frameMultiplyAdds,
-                (*context)->description().c_str(), timer ? "GPU timer" : "wall", o.repeat, o.frames);
-    std::printf("  per fragment at %dx%d (the codes bilinear, magnified %.1fx); texture space at %dx%d, %d passes\n",
-                w, h, kMagnification, texelsX, texelsY, passes);
+    std::printf(
+        "decoder of %s (%s: %zu multiply-adds a texel, the frame %zu), %s; ms per million pixels (%s), "
+        "median of %d rounds of %d draws\n",
+        o.bank.c_str(), learnedModelName(m).c_str(), cost.texelMultiplyAdds, cost.frameMultiplyAdds,
+        (*context)->description().c_str(), timer ? "GPU timer" : "wall", o.repeat, o.frames);
+    std::printf("  per fragment at %dx%d (the codes bilinear, magnified %.1fx); texture space at %dx%d, %d passes\n", w,
+                h, kMagnification, texelsX, texelsY, passes);
     for (const Row& row : rows) std::printf("    %-32s %10.3f\n", row.name.c_str(), median(row.msPerMpx));
-    std::printf("  btflut's decoder / the plain shader, throughput: per fragment %.3f, texture space %.3f (their "
-                "frames differ by at most %.0f/255)\n",
-                fragmentRatio, textureRatio, differs);
-    std::printf("  per fragment, x flat: plain %.1f, btflut %.1f; in a scene (depth tested), btflut matched %.1f x "
-                "the scene drawn flat\n",
-                ms("plain, per fragment") / ms("flat, per fragment"),
-                ms("btflut, per fragment") / ms("flat, per fragment"),
-                ms("btflut matched, scene per fragment") / ms("flat, scene"));
+    std::printf(
+        "  btflut's decoder / the plain shader, throughput: per fragment %.3f, texture space %.3f (their "
+        "frames differ by at most %.0f/255)\n",
+        fragmentRatio, textureRatio, differs);
+    std::printf(
+        "  per fragment, x flat: plain %.1f, btflut %.1f; in a scene (depth tested), btflut matched %.1f x "
+        "the scene drawn flat\n",
+        ms("plain, per fragment") / ms("flat, per fragment"), ms("btflut, per fragment") / ms("flat, per fragment"),
+        ms("btflut matched, scene per fragment") / ms("flat, scene"));
     return success();
 }
 

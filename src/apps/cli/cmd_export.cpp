@@ -252,6 +252,8 @@ bool exportFileName(const std::string& name) {
         if (name == file) return true;
     for (const char* file : kShaderIncludes)
         if (name == file) return true;
+    for (const char* file : kNetworkFiles)
+        if (name == file) return true;
     for (const auto& [file, source] : kThreeRecipe)
         if (name == file) return true;
     return std::regex_match(name, planes);
@@ -312,6 +314,11 @@ Result<EngineExport> engineExport(const LutBank& b, const std::string& bankPath)
     out.side = materialJson(b, m);
     out.files.push_back({"material.json", jsonText(out.side)});
     for (const char* include : kShaderIncludes) out.files.push_back({include, std::string(embeddedShader(include))});
+    if (!m.networkGlsl.empty()) {  // the learned decoder specialised to this material
+        out.files.push_back({kNetworkFiles[0], m.networkGlsl});
+        out.files.push_back({kNetworkFiles[1], m.networkHlsl});
+        out.files.push_back({kNetworkFiles[2], m.networkGlsl});
+    }
     out.summary = out.side["kind"].get<std::string>() + " material, luts.png (3D texture " + std::to_string(m.entries) +
                   "x" + std::to_string(g) + "x" + std::to_string(g * m.blocks) + ", 16-bit)";
     return out;

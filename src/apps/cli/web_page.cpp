@@ -53,7 +53,7 @@ std::string webPage(const std::string& name, const nlohmann::json& material,
         bytes += content.size();
         if (file == "btflut_es.glsl") data["include"] = base64(deflated(content));
         const bool png = file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0;
-        if (png || file == "weights.bin")
+        if (png || file == "weights.bin" || file == "btflut_network.glsl")  // a learned decoder's source too
             data["files"][file] =
                 std::string(png ? "data:image/png;base64," : "data:application/octet-stream;base64,") + base64(content);
     }

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "core/check.h"
 #include "core/predict/gpu_constants.h"
 #include "core/predict/learned_predictor.h"
+#include "core/predict/learned_shader.h"
 #include "core/predict/light_model.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/reference_blend.h"
@@ -162,6 +164,15 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
         out.weights = 4;
         out.weightGridSize = planes.networkSize;
         out.weightGrid = std::move(planes.network);
+        const LearnedModel& model = learned->model();
+        const LearnedShaderCost cost = learnedShaderCost(model);
+        out.texelMultiplyAdds = cost.texelMultiplyAdds;
+        out.frameMultiplyAdds = cost.frameMultiplyAdds;
+        if (hasLearnedShader(model)) {
+            const std::string file = std::filesystem::path(name).filename().string();
+            out.networkGlsl = learnedShaderSource(model, ShaderLanguage::Glsl, file);
+            out.networkHlsl = learnedShaderSource(model, ShaderLanguage::Hlsl, file);
+        }
         return out;
     }
     const ReferenceBlend& references = *bank.predictorAs<ReferenceBlend>();

@@ -33,7 +33,7 @@ namespace btflut {
 
 /// The shader include's version (shaders/btflut.glsl's BTFLUT_GLSL_VERSION, checked equal by
 /// tests/shader_forms_check.sh): what a learned material's sidecar asks for.
-constexpr int kShaderIncludeVersion = 4;
+constexpr int kShaderIncludeVersion = 5;
 
 struct EngineMaterial {
     enum class Kind { Luts, Model, References, Learned } kind = Kind::Luts;
@@ -64,6 +64,11 @@ struct EngineMaterial {
     std::vector<float> weightGrid;        ///< [layer][j][i][4], ceil(weights / 4) layers
     Image labels;                         ///< 8-bit region per texel, empty with one region
     int regions = 1;
+    /// Learned: the decoder specialised to the model (core/predict/learned_shader.h, after the
+    /// include), GLSL (GLSL ES and Godot too) and HLSL; empty for a network past a shader's
+    /// constants, which the include's texture path draws from the weight texture.
+    std::string networkGlsl, networkHlsl;
+    std::size_t texelMultiplyAdds = 0, frameMultiplyAdds = 0;  ///< Learned: its cost (LearnedShaderCost)
 
     int weightLayers() const { return (weights + 3) / 4; }
     /// btflut.glsl's BtflutPredictor.kind (BTFLUT_KIND_...); 0 for Luts.

@@ -38,6 +38,20 @@ nlohmann::json predictorJson(const EngineMaterial& m) {
     if (learned) {
         p["scale"] = m.scale;
         p["bias"] = m.bias;
+        if (!m.networkGlsl.empty())
+            p["network"] = {
+                {"glsl", kNetworkFiles[0]},
+                {"hlsl", kNetworkFiles[1]},
+                {"godot", kNetworkFiles[2]},
+                {"texel_multiply_adds", m.texelMultiplyAdds},
+                {"frame_multiply_adds", m.frameMultiplyAdds},
+                {"how",
+                 "the decoder specialised to this material, its weights as constants: include it after btflut.glsl "
+                 "(btflut.hlsl, btflut.gdshaderinc); per fragment btflutRelightPrediction(..., "
+                 "btflutNetworkPrediction(planes, uv, frame)) with the frame (BtflutLearnedFrame) of the light: "
+                 "btflutNetworkFrame(light, view) per fragment where the light varies over the surface (a point "
+                 "light, a curved mesh: frame_multiply_adds more a pixel), else once per light change as a uniform "
+                 "(the weights.bin network's light part, docs/engines.md)"}};
     }
     if (model) {
         p["basis"] = lightBasisName(m.basis);
