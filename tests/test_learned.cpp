@@ -235,6 +235,21 @@ TEST_CASE("learned model: a time budget bounds the steps, the same on every mach
         bytes = readText(bank);
     }
     REQUIRE(runCli({"bake", manifest, "--budget", "4,0.3s", "-o", dir / "auto.btflut", "-q"}).status == 0);
+    // A bound on the decoding: neural4 (4 x 3 + 4 x 24 + 24 x 24 + 24 x 3 = 756 multiply-adds, RGB)
+    // is no candidate within 100, and the choice is within it.
+    REQUIRE(runCli({"bake", manifest, "--budget", "4,0.3s,100mac", "-o", dir / "cheap.btflut", "-q"}).status == 0);
+    Result<LutBank> cheap = loadBank(dir / "cheap.btflut");
+    REQUIRE(cheap.ok());
+    const nlohmann::json selection = nlohmann::json::parse(cheap->selection);
+    CHECK(selection["decode_budget"] == 100);
+    CHECK(selection["chosen"]["multiply_adds"].get<std::size_t>() <= 100);
+    bool skipped = false;
+    for (const nlohmann::json& c : selection["candidates"])
+        if (c["name"] == "neural4") {
+            CHECK(c["multiply_adds"] == 4 * 3 + 4 * 24 + 24 * 24 + 24 * 3);
+            skipped = c.value("skipped", "").find("past the bound of 100") != std::string::npos;
+        }
+    CHECK(skipped);
 }
 
 TEST_CASE("learned model: few lights, constant and black images, 16-bit images and masks bake finite banks") {

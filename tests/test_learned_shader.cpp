@@ -100,7 +100,7 @@ TEST_CASE("learned shader: the specialised decoder compiles as GLSL ES and HLSL 
     writeText(dir / "btflut.hlsl", std::string(embeddedShader("btflut.hlsl")));
     std::vector<Shape> shapes;
     for (int codes = 1; codes <= LearnedModel::kMaxCodes; ++codes) shapes.push_back({.codes = codes});  // neural1..16
-    shapes.push_back({.codes = 9, .channels = 1});                                 // grey
+    shapes.push_back({.codes = 9, .channels = 1});                                                      // grey
     shapes.push_back({.codes = 9, .channels = 3, .viewFeatures = kLearnedViewFeatures});  // a model of views
     shapes.push_back({.codes = 5, .channels = 1, .hidden = {8}, .lightHidden = {12, 12}});
     shapes.push_back({.codes = 16, .channels = 3, .hidden = {64, 64, 64}, .lightHidden = {64}});
@@ -125,8 +125,8 @@ TEST_CASE("learned shader: the specialised decoder compiles as GLSL ES and HLSL 
     }
     // The largest network a GPU draws (BTFLUT_LEARNED_HIDDEN layers of BTFLUT_LEARNED_WIDTH) holds
     // fewer constants than every target's 64 KB; a larger one is refused (relit on the CPU).
-    const LearnedModel largest = randomModel(
-        {.codes = 16, .hidden = std::vector<int>(BTFLUT_LEARNED_HIDDEN, BTFLUT_LEARNED_WIDTH)}, 2, 2, 3);
+    const LearnedModel largest =
+        randomModel({.codes = 16, .hidden = std::vector<int>(BTFLUT_LEARNED_HIDDEN, BTFLUT_LEARNED_WIDTH)}, 2, 2, 3);
     CHECK(largest.fitsGpu());
     CHECK(learnedShaderCost(largest).constants <= kMaxShaderConstants);
     CHECK(hasLearnedShader(largest));

@@ -205,9 +205,14 @@ TEST_CASE("auto: degenerate captures bake; a budget below every predictor is ref
                             "--budget in bytes goes with --predictor auto");
         requireOneLineError(runCli({"bake", manifest, "--budget", "90s", "--predictor", "rbf", "-o", dir / "x.btflut"}),
                             "--budget in time bounds a learned model's training");
-        for (const char* bad : {"0", "9,abc", "9,9", "65", "2.5", "-3s", "30s,2m", "nans"})
+        for (const char* bad :
+             {"0", "9,abc", "9,9", "65", "2.5", "-3s", "30s,2m", "nans", "0mac", "1.5mac", "9mac,9mac", "mac"})
             requireOneLineError(runCli({"bake", manifest, "--budget", bad, "-o", dir / "x.btflut"}),
-                                "expected bytes per texel (1 to 64), a training time (90s, 2m), or both (9,90s)");
+                                "expected bytes per texel (1 to 64), a training time (90s, 2m), multiply-adds per "
+                                "texel (1500mac), or several of them (9,90s,1500mac)");
+        requireOneLineError(
+            runCli({"bake", manifest, "--budget", "500mac", "--predictor", "hsh2", "-o", dir / "x.btflut"}),
+            "--budget in multiply-adds bounds the candidates of --predictor auto");
         requireOneLineError(runCli({"bake", manifest, "--predictor", "rbf99", "-o", dir / "x.btflut"}), "rbf99");
         CHECK_FALSE(fs::exists(dir / "x.btflut"));
         // The smallest budget bakes within it: the paper's bank or a PCA basis of 3 planes.

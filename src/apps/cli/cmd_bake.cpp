@@ -163,27 +163,38 @@ std::string predictorSummary(const LutBank& bank) {
                 : std::string());
 }
 
-// --budget: bytes per texel and/or a training time ("9", "90s", "2m", "9,90s").
+// --budget: bytes per texel, a training time and/or a decoding bound in multiply-adds per texel
+// ("9", "90s", "2m", "1500mac", "9,90s,1500mac").
 struct Budget {
     std::optional<int> bytes;
     double seconds = 0;
+    std::optional<std::size_t> multiplyAdds;
 };
 Result<Budget> parseBudget(const std::string& text) {
     Budget b;
     std::stringstream in(text);
+    const Error bad{"--budget '" + text +
+                    "': expected bytes per texel (1 to 64), a training time (90s, 2m), multiply-adds per texel "
+                    "(1500mac), or several of them (9,90s,1500mac)"};
     for (std::string part; std::getline(in, part, ',');) {
-        const bool time = !part.empty() && (part.back() == 's' || part.back() == 'm');
-        const std::string number = time ? part.substr(0, part.size() - 1) : part;
+        const bool macs = part.size() > 3 && part.compare(part.size() - 3, 3, "mac") == 0;
+        const bool time = !macs && !part.empty() && (part.back() == 's' || part.back() == 'm');
+        const std::string number = macs   ? part.substr(0, part.size() - 3)
+                                   : time ? part.substr(0, part.size() - 1)
+                                          : part;
         char* end = nullptr;
         const double value = std::strtod(number.c_str(), &end);
-        if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) || value <= 0 ||
-            (time ? b.seconds > 0 : b.bytes.has_value()) || (!time && (value != std::floor(value) || value > 64)))
-            return Error{"--budget '" + text +
-                         "': expected bytes per texel (1 to 64), a training time (90s, 2m), or both (9,90s)"};
-        if (time)
+        if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) || value <= 0) return bad;
+        if (macs) {
+            if (b.multiplyAdds || value != std::floor(value) || value > 1e7) return bad;
+            b.multiplyAdds = static_cast<std::size_t>(value);
+        } else if (time) {
+            if (b.seconds > 0) return bad;
             b.seconds = part.back() == 'm' ? 60 * value : value;
-        else
+        } else {
+            if (b.bytes || value != std::floor(value) || value > 64) return bad;
             b.bytes = static_cast<int>(value);
+        }
     }
     return b;
 }
@@ -196,6 +207,8 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     Result<Budget> budget = parseBudget(o.budget);
     if (!budget) return Error{budget.error()};
     if (budget->bytes && o.predictor != "auto") return Error{"--budget in bytes goes with --predictor auto"};
+    if (budget->multiplyAdds && o.predictor != "auto")
+        return Error{"--budget in multiply-adds bounds the candidates of --predictor auto"};
     if (budget->seconds > 0 && o.predictor != "auto" && !learnedModelNamed(o.predictor))
         return Error{"--budget in time bounds a learned model's training: --predictor auto or neuralN"};
     if (Status s = requireExtension(o.output, {"btflut"}, "output"); !s) return s;
@@ -260,7 +273,10 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     const ImageProvider provider = fitting ? ImageProvider(std::ref(collector)) : ImageProvider();
     Result<LutBank> bank = Error{""};
     if (o.predictor == "auto") {
-        AutoBakeOptions automatic{.base = options, .budget = budget->bytes.value_or(9), .seconds = budget->seconds};
+        AutoBakeOptions automatic{.base = options,
+                                  .budget = budget->bytes.value_or(9),
+                                  .decodeBudget = budget->multiplyAdds.value_or(kDefaultDecodeBudget),
+                                  .seconds = budget->seconds};
         if (o.match >= 0) automatic.match = o.match;
         if (!o.quiet && ::isatty(STDERR_FILENO))  // progress for people; errors stay one line
             automatic.log = [](const std::string& line) { std::cerr << "\rauto: " << line << "\x1b[K\n"; };
@@ -380,10 +396,12 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
                     "at all (the prediction as it is), between: the two blended (default: 1, or validated with auto)")
         ->check(CLI::Range(0.0, 1.0));
     app->add_option("--budget", o->budget,
-                    "BYTES, TIME or BYTES,TIME: bytes per texel the predictor may store (with --predictor auto; "
-                    "default 9), and how long a learned model may train (auto: its candidate, a third for each "
-                    "fold and the bank; neuralN: the bank), as 90s or 2m: the steps this machine's trainer runs "
-                    "in that time (1 million samples a second), so the bank is the same wherever it is baked");
+                    "BYTES, TIME, DECODE or several, comma-separated: bytes per texel the predictor may store (with "
+                    "--predictor auto; default 9); how long a learned model may train (auto: its candidate, a third "
+                    "for each fold and the bank; neuralN: the bank), as 90s or 2m: the steps this machine's trainer "
+                    "runs in that time (1 million samples a second), so the bank is the same wherever it is baked; "
+                    "and the multiply-adds per texel a candidate's prediction may cost a GPU while the light moves, "
+                    "as 1500mac (auto; default 2000: neural9 decodes in 891)");
     app->add_option("--domain", o->domain,
                     "what lookups interpolate over: layers (each view's lights, then between views; any "
                     "material), isotropic (theta_i, theta_r, phi_i - phi_r; for isotropic materials measured "

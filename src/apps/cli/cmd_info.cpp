@@ -36,25 +36,35 @@ void printSelection(const std::string& selection) {
     if (!s.is_object() || !s.contains("chosen")) return;
     const nlohmann::json& chosen = s["chosen"];
     std::cout << "  chosen:    " << chosen.value("name", std::string("?")) << ", match "
-              << fixed(chosen.value("match", 1.0), 2) << ", " << chosen.value("bytes", 0)
-              << " bytes per texel, by validation on " << s.value("folds", 0)
-              << " fold(s) of the dataset's own lights within a budget of " << s.value("budget", 0) << " bytes ("
-              << s.value("rule", std::string()) << ")\n";
+              << fixed(chosen.value("match", 1.0), 2) << ", " << chosen.value("bytes", 0) << " bytes per texel"
+              << (chosen.contains("multiply_adds")
+                      ? ", " + std::to_string(chosen["multiply_adds"].get<std::size_t>()) + " multiply-adds a texel"
+                      : std::string())
+              << ", by validation on " << s.value("folds", 0)
+              << " fold(s) of the dataset's own lights within a budget of " << s.value("budget", 0) << " bytes"
+              << (s.contains("decode_budget")
+                      ? " and " + std::to_string(s["decode_budget"].get<std::size_t>()) + " multiply-adds"
+                      : std::string())
+              << " (" << s.value("rule", std::string()) << ")\n";
     if (s.contains("note")) std::cout << "             " << s["note"].get<std::string>() << "\n";
     if (!s.contains("candidates") || !s["candidates"].is_array()) return;
-    std::cout << "             candidate   bytes  match   PSNR      L1\n";
+    std::cout << "             candidate   bytes  mult-adds  match   PSNR      L1\n";
     for (const nlohmann::json& c : s["candidates"]) {
         const std::string name = c.value("name", std::string("?"));
-        char line[200];
+        // Multiply-adds per texel: banks baked before they were recorded say "-".
+        const std::string macs =
+            c.contains("multiply_adds") ? std::to_string(c["multiply_adds"].get<std::size_t>()) : "-";
+        char line[300];
         if (c.contains("skipped")) {
-            std::snprintf(line, sizeof line, "             %-10s %6d  %s\n", name.c_str(), c.value("bytes", 0),
-                          c["skipped"].get<std::string>().c_str());
+            std::snprintf(line, sizeof line, "             %-10s %6d  %9s  %s\n", name.c_str(), c.value("bytes", 0),
+                          macs.c_str(), c["skipped"].get<std::string>().c_str());
             std::cout << line;
             continue;
         }
         for (const nlohmann::json& v : c.value("validation", nlohmann::json::array())) {
-            std::snprintf(line, sizeof line, "             %-10s %6d  %5.2f  %5.2f  %6.4f\n", name.c_str(),
-                          c.value("bytes", 0), v.value("match", 1.0), v.value("psnr", 0.0), v.value("l1", 0.0));
+            std::snprintf(line, sizeof line, "             %-10s %6d  %9s  %5.2f  %5.2f  %6.4f\n", name.c_str(),
+                          c.value("bytes", 0), macs.c_str(), v.value("match", 1.0), v.value("psnr", 0.0),
+                          v.value("l1", 0.0));
             std::cout << line;
         }
     }

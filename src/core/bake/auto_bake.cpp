@@ -9,6 +9,7 @@
 #include "core/eval/metrics.h"
 #include "core/io/json_text.h"
 #include "core/parallel.h"
+#include "core/predict/learned_shader.h"
 #include "core/relight/relighter.h"
 
 namespace btflut {
@@ -22,8 +23,9 @@ struct Candidate {
     std::string name;
     BakeOptions options;
     int bytes = 0;
-    bool classic = false;  // the paper's bank: one reference, its LUTs (matched fully by definition)
-    std::string skipped;   // why it was not validated (over the budget, its bake failed)
+    std::size_t multiplyAdds = 0;  // its prediction's per texel (a GPU's decoding when the light moves)
+    bool classic = false;          // the paper's bank: one reference, its LUTs (matched fully by definition)
+    std::string skipped;           // why it was not validated (over the budget, its bake failed)
     // Per match strength: sums over the validation images, and each image's L1 (in one order
     // for every candidate: the folds', then their images').
     std::map<float, std::pair<double, double>> sums;  // match -> (psnr, l1)
@@ -33,26 +35,34 @@ struct Candidate {
 
 // `views`: a rectified set of several views, where only the one-reference bank and a learned
 // model of the views bake.
-std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int budget, double seconds,
+std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, const AutoBakeOptions& bounds,
                                      std::size_t lights, bool views) {
+    const int budget = bounds.budget;
     const int region = base.regions > 1 || !base.labelsPath.empty() ? 1 : 0;
     const int albedo = channels == 3 ? 3 : 0;
     std::vector<Candidate> out;
-    auto add = [&](std::string name, BakeOptions o, int bytes, bool classic = false) {
-        Candidate c{std::move(name), std::move(o), bytes + region, classic};
-        if (c.bytes > budget) c.skipped = "needs " + std::to_string(c.bytes) + " bytes per texel";
+    // Its multiply-adds per texel: a light model's planes (and the albedo's product), the three
+    // references blended, a learned model's decoder (learned_shader.h).
+    auto add = [&](std::string name, BakeOptions o, int bytes, std::size_t multiplyAdds, bool classic = false) {
+        Candidate c{std::move(name), std::move(o), bytes + region, multiplyAdds, classic};
+        if (c.bytes > budget)
+            c.skipped = "needs " + std::to_string(c.bytes) + " bytes per texel";
+        else if (c.multiplyAdds > bounds.decodeBudget)
+            c.skipped = "decodes in " + std::to_string(c.multiplyAdds) + " multiply-adds a texel, past the bound of " +
+                        std::to_string(bounds.decodeBudget);
         out.push_back(std::move(c));
     };
     BakeOptions classic = base;
     classic.references = 1;
     classic.colour = ColourMode::Grey;
-    add("K1", classic, channels, true);
+    add("K1", classic, channels, 0, true);
     const int codes = std::min(budget - region, LearnedModel::kMaxCodes);
     auto addLearned = [&] {  // predicting colour itself: no albedo
         if (codes < 1) return;
         BakeOptions learned = classic;
-        learned.learned = LearnedOptions{.codes = codes, .seconds = seconds / 3};
-        add("neural" + std::to_string(codes), learned, codes);
+        learned.learned = LearnedOptions{.codes = codes, .seconds = bounds.seconds / 3};
+        add("neural" + std::to_string(codes), learned, codes,
+            learnedTexelMultiplyAdds(codes, channels == 3 ? 3 : 1, learned.learned->hidden));
     };
     if (views) {
         addLearned();
@@ -64,12 +74,12 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, int 
         BakeOptions refs = classic;
         refs.references = k;
         refs.colour = channels == 3 ? ColourMode::Lrgb : ColourMode::Grey;
-        add("K" + std::to_string(k) + (channels == 3 ? " lrgb" : ""), refs, k + albedo);
+        add("K" + std::to_string(k) + (channels == 3 ? " lrgb" : ""), refs, k + albedo, 3);
     }
     auto model = [&](const std::string& name, LightModelOptions m, int bytes) {
         BakeOptions o = classic;
         o.model = m;
-        add(name, o, bytes);
+        add(name, o, bytes, static_cast<std::size_t>(bytes));  // a plane (or the albedo's channel) a byte
     };
     model("ptm", {.basis = LightBasis::Ptm}, 6 + albedo);
     model("hsh2", {.basis = LightBasis::Hsh, .order = 2}, 4 + albedo);
@@ -229,7 +239,7 @@ Choice choose(const std::vector<Candidate>& candidates) {
     Choice out;
     double chosenPsnr = -INFINITY;
     for (const Candidate& c : candidates) {
-        nlohmann::json row{{"name", c.name}, {"bytes", c.bytes}};
+        nlohmann::json row{{"name", c.name}, {"bytes", c.bytes}, {"multiply_adds", c.multiplyAdds}};
         if (!c.skipped.empty() || c.images == 0) {
             row["skipped"] = c.skipped.empty() ? "not validated" : c.skipped;
             out.rows.push_back(row);
@@ -278,10 +288,10 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
     // model of them against the one-reference bank), else the one-reference bank.
     const bool views = !dataset.fixedView();
     const bool validates = !views || (dataset.rectified && dataset.fewestLightsPerView().second >= 3);
-    std::vector<Candidate> candidates =
-        candidatesFor(options.base, first.channels, options.budget, options.seconds, n, views);
+    std::vector<Candidate> candidates = candidatesFor(options.base, first.channels, options, n, views);
     nlohmann::json selection{
         {"budget", options.budget},
+        {"decode_budget", options.decodeBudget},
         {"rule",
          "the highest validation PSNR with histogram L1 within 0.002 of the one-reference bank's and of the same "
          "predictor's matched fully, each by the mean of the per-image differences plus its standard error"}};
@@ -308,7 +318,10 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
     if (choice.chosen) {
         final = choice.chosen->options;
         final.match = choice.match;
-        selection["chosen"] = {{"name", choice.chosen->name}, {"match", choice.match}, {"bytes", choice.chosen->bytes}};
+        selection["chosen"] = {{"name", choice.chosen->name},
+                               {"match", choice.match},
+                               {"bytes", choice.chosen->bytes},
+                               {"multiply_adds", choice.chosen->multiplyAdds}};
         log("chose " + choice.chosen->name +
             (choice.chosen->classic ? "" : ", match " + std::to_string(choice.match).substr(0, 4)));
     } else {

@@ -1,6 +1,7 @@
 #pragma once
 // `bake --predictor auto` (the default): the predictor, and how strongly to match it, chosen
-// by validation on the dataset's own lights, within a byte budget per texel.
+// by validation on the dataset's own lights, within a byte budget per texel and a bound on its
+// decoding's multiply-adds per texel.
 //
 //   Result<LutBank> bank = bakeAuto(dataset, {.budget = 9});
 //   bank->selection;   // JSON: every candidate's validation figures and the choice
@@ -25,9 +26,17 @@
 
 namespace btflut {
 
+/// auto's default bound on a candidate's multiply-adds per texel (AutoBakeOptions::decodeBudget).
+constexpr std::size_t kDefaultDecodeBudget = 2000;
+
 struct AutoBakeOptions {
     BakeOptions base;  ///< grid, entries, threads, reference, quantiles, regions, ptm, progress
     int budget = 9;    ///< bytes per texel the predictor may store
+    /// Multiply-adds per texel its prediction may cost: what a moving light pays per texel on a
+    /// GPU. The default keeps a moving light within issue 46's frame targets on llvmpipe
+    /// (neural9's 891: 2.9 flat frames moving, 8.7 per fragment, at 1920 x 1080; both grow
+    /// about linearly with the multiply-adds, to 5 and 20 near 2,000).
+    std::size_t decodeBudget = kDefaultDecodeBudget;
     /// Seconds the learned candidate may train, 0 no bound: a third for each of its two folds
     /// and the final bake (LearnedOptions::seconds: steps, not the clock, so the bank is the same).
     double seconds = 0;

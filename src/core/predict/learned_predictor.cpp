@@ -54,6 +54,10 @@ std::vector<std::string> LearnedPredictor::shaderDefines() const {
             "BLEND_LEARNED_CHANNELS " + std::to_string(m_model.channels)};
 }
 
+std::size_t LearnedPredictor::multiplyAdds() const {
+    return learnedTexelMultiplyAdds(m_model.codes, m_model.channels, m_model.hidden);
+}
+
 std::string LearnedPredictor::shaderSource() const {
     return hasLearnedShader(m_model) ? learnedShaderSource(m_model, ShaderLanguage::Glsl) : std::string();
 }

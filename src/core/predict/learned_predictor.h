@@ -29,6 +29,8 @@ public:
 
     std::string name() const override { return learnedModelName(m_model); }
     double bytesPerTexel() const override { return m_model.codes; }
+    /// The decoder's per texel (learned_shader.h; the light's part is once per light).
+    std::size_t multiplyAdds() const override;
     std::string description() const override;
     PredictorPlanes planes() const override;
     std::vector<std::string> shaderDefines() const override;

@@ -207,19 +207,26 @@ void emitPrediction(std::string& out, const Syntax& s, const LearnedModel& m) {
 
 }  // namespace
 
+std::size_t learnedTexelMultiplyAdds(int codes, int channels, const std::vector<int>& hidden) {
+    std::vector<int> sizes{codes};  // the codes' inputs alone: the light's are the frame's
+    sizes.insert(sizes.end(), hidden.begin(), hidden.end());
+    sizes.push_back(channels);
+    std::size_t n = static_cast<std::size_t>(codes) * static_cast<std::size_t>(channels);
+    for (std::size_t k = 0; k + 1 < sizes.size(); ++k)
+        n += static_cast<std::size_t>(sizes[k]) * static_cast<std::size_t>(sizes[k + 1]);
+    return n;
+}
+
 LearnedShaderCost learnedShaderCost(const LearnedModel& m) {
     BTFLUT_CHECK(!m.empty());
     LearnedShaderCost cost;
     const std::vector<int> sizes = m.decoderSizes(), light = m.lightSizes();
-    const auto N = static_cast<std::size_t>(m.codes), C = static_cast<std::size_t>(m.channels),
-               F = static_cast<std::size_t>(m.features());
-    cost.texelMultiplyAdds = N * C + N * static_cast<std::size_t>(sizes[1]);
+    const auto N = static_cast<std::size_t>(m.codes), F = static_cast<std::size_t>(m.features());
+    cost.texelMultiplyAdds = learnedTexelMultiplyAdds(m.codes, m.channels, m.hidden);
     cost.frameMultiplyAdds = F * static_cast<std::size_t>(sizes[1]);
     cost.constants = 2 * static_cast<std::size_t>(groups(m.codes)) + N * static_cast<std::size_t>(groups(sizes[1]));
-    for (std::size_t k = 1; k + 1 < sizes.size(); ++k) {
-        cost.texelMultiplyAdds += static_cast<std::size_t>(sizes[k]) * static_cast<std::size_t>(sizes[k + 1]);
+    for (std::size_t k = 1; k + 1 < sizes.size(); ++k)
         cost.constants += static_cast<std::size_t>(sizes[k] + 1) * static_cast<std::size_t>(groups(sizes[k + 1]));
-    }
     for (std::size_t k = 0; k + 1 < light.size(); ++k)
         cost.frameMultiplyAdds += static_cast<std::size_t>(light[k]) * static_cast<std::size_t>(light[k + 1]);
     return cost;

@@ -38,6 +38,8 @@ struct LearnedShaderCost {
     std::size_t constants = 0;          ///< vec4 literals of btflutNetworkValue (constant storage a target holds)
 };
 LearnedShaderCost learnedShaderCost(const LearnedModel& model);
+/// The texel's multiply-adds of a model of these sizes (before it is trained: auto's bound).
+std::size_t learnedTexelMultiplyAdds(int codes, int channels, const std::vector<int>& hidden);
 
 /// The most vec4 constants a specialised decoder holds: 64 KB, what every target's constant
 /// storage holds (a GL uniform block's and a D3D11 constant buffer's 4096 vectors). The largest

@@ -16,6 +16,10 @@ public:
 
     std::string name() const override { return lightModelName(m_model); }
     double bytesPerTexel() const override { return m_model.bytesPerTexel(); }
+    /// Each plane's weight per channel, and the albedo's product.
+    std::size_t multiplyAdds() const override {
+        return static_cast<std::size_t>(m_model.planes * m_model.channels) + (m_model.albedo.empty() ? 0 : 3);
+    }
     std::string description() const override;
     PredictorPlanes planes() const override;
     std::vector<std::string> shaderDefines() const override;

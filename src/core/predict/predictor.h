@@ -74,6 +74,9 @@ public:
     virtual std::string name() const = 0;
     /// Bytes per texel it stores (the region labels, a bank's, not counted).
     virtual double bytesPerTexel() const = 0;
+    /// Multiply-adds per texel of its prediction at a light (what a moving light costs a GPU per
+    /// texel beyond the LUT; auto bounds it: AutoBakeOptions::decodeBudget).
+    virtual std::size_t multiplyAdds() const = 0;
     /// What it is, in words, for `info` and the viewer: "hsh2 (4 bytes per texel), relit per
     /// light", "3 reference(s) blended per light".
     virtual std::string description() const = 0;

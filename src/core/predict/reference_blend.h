@@ -3,6 +3,7 @@
 // triangulation of their lights (clamped outside its hull), on their 8-bit codes: the
 // predictor of `bake --references K` (references.h picks them).
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ public:
 
     std::string name() const override { return "references"; }
     double bytesPerTexel() const override;
+    /// The references around the light (three at most), each weighted, per channel.
+    std::size_t multiplyAdds() const override {
+        return std::min<std::size_t>(m_references.size(), 3) * static_cast<std::size_t>(m_references.front().channels);
+    }
     std::string description() const override {
         return std::to_string(m_references.size()) + " reference(s) blended per light";
     }

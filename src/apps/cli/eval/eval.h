@@ -118,6 +118,8 @@ struct Variant {
     /// lut auto: what bake chose in each fold ("hsh2 match 0.50"), in fold order.
     std::vector<std::string> chosen;
     double bytesPerTexel = 0;
+    /// Multiply-adds per texel of its prediction (Predictor::multiplyAdds; 0 for the paper's bank).
+    double multiplyAdds = 0;
     double gpuBytesPerTexel = std::nan(""), frameMs = std::nan(""), gpuMaxDiff = std::nan("");
 };
 

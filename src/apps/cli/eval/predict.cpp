@@ -13,6 +13,7 @@
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/model_fill.h"
+#include "core/predict/learned_shader.h"
 #include "core/predict/neural_rti.h"
 #include "core/relight/relighter.h"
 
@@ -60,6 +61,7 @@ public:
             if (Status s = saveBank(*bank, path); !s) return Error{s.error()};
             m_bankFiles[v.name] = path;
             v.bytesPerTexel = bytesPerTexel(v, *bank);
+            v.multiplyAdds = bank->makesLuts() ? static_cast<double>(bank->predictor().multiplyAdds()) : 0.0;
         }
         return bank;
     }
@@ -138,6 +140,9 @@ Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants
             if (!model) return Error{model.error()};
             v.bakeSeconds.push_back(seconds(start));
             v.bytesPerTexel = model->codes;
+            const std::vector<int> sizes = model->decoderSizes();  // the light among its inputs, per texel
+            v.multiplyAdds = 0;
+            for (std::size_t k = 0; k + 1 < sizes.size(); ++k) v.multiplyAdds += sizes[k] * sizes[k + 1];
             models[v.name] = [m = std::make_shared<NeuralRti>(std::move(*model))](Direction l, Direction) {
                 return m->render(l);
             };
@@ -148,6 +153,7 @@ Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants
             if (!model) return Error{model.error()};
             v.bakeSeconds.push_back(seconds(start));
             v.bytesPerTexel = model->codes;
+            v.multiplyAdds = static_cast<double>(learnedShaderCost(*model).texelMultiplyAdds);
             models[v.name] = [m = std::make_shared<LearnedModel>(std::move(*model))](Direction l, Direction view) {
                 return m->render(l, view);
             };
@@ -157,6 +163,7 @@ Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants
         if (!model) return Error{model.error()};
         v.bakeSeconds.push_back(seconds(start));
         v.bytesPerTexel = model->bytesPerTexel();
+        v.multiplyAdds = model->planes * model->channels + (model->albedo.empty() ? 0 : 3);
         models[v.name] = [m = std::make_shared<LightModel>(std::move(*model))](Direction l, Direction) {
             return m->render(l);
         };
