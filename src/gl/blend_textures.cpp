@@ -46,7 +46,16 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     return t;
 }
 
+bool softwareRasteriser() {
+    const auto* name = reinterpret_cast<const char*>(gl.GetString(GL_RENDERER));
+    const std::string renderer = name ? name : "";
+    for (const char* software : {"llvmpipe", "softpipe", "SwiftShader", "swrast"})
+        if (renderer.find(software) != std::string::npos) return true;
+    return false;
+}
+
 bool lutsAsUniforms(const LutBank& bank) {
+    if (!softwareRasteriser()) return false;
     const auto floats = static_cast<GLint>(bank.makesLuts() ? bank.matchLength() : bank.lutLength());
     GLint components = 0;
     gl.GetIntegerv(GL_MAX_FRAGMENT_UNIFORM_COMPONENTS, &components);

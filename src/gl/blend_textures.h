@@ -18,10 +18,15 @@
 
 namespace btflut {
 
+/// True when the current context is a software rasteriser (llvmpipe, softpipe, SwiftShader).
+bool softwareRasteriser();
+
 /// True when a bank applies its frame's LUTs (RelightFrame::luts) from uniforms
 /// (lut_common.glsl's LUT_UNIFORMS: at most 3 x 256 floats, and room for them in the current
-/// context), else from textures. Read as an array, uniforms cost llvmpipe a third of a filtered
-/// fetch per pixel.
+/// context), else from textures. Only on a software rasteriser: read as an array, uniforms cost
+/// llvmpipe a third of a filtered fetch per pixel, but a GPU serves uniforms from a constant
+/// cache that serialises a warp's distinct indices (a LUT read per texel is as divergent as the
+/// texture), where its texture cache serves a table at full rate (issue 46).
 bool lutsAsUniforms(const LutBank& bank);
 
 class BlendTextures {
