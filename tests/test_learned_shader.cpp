@@ -24,6 +24,7 @@ namespace {
 struct Shape {
     int codes = 9, channels = 3, viewFeatures = 0;
     std::vector<int> hidden{24, 24}, lightHidden;
+    bool constantResidual = false;  // its last layer's weights zero (the linear start)
 };
 
 // A model of random weights and codes, w x h texels.
@@ -43,7 +44,12 @@ LearnedModel randomModel(const Shape& shape, int w, int h, std::uint64_t seed) {
     }
     m.coefficients.resize(m.texels() * static_cast<std::size_t>(m.codes));
     for (std::uint8_t& c : m.coefficients) c = static_cast<std::uint8_t>(random.uniform() * 255.99);
-    m.decoder = Network::random(m.decoderSizes(), random).parameters();
+    Network residual = Network::random(m.decoderSizes(), random);
+    if (shape.constantResidual) {
+        residual.weights(residual.layers() - 1).setZero();
+        residual.bias(residual.layers() - 1).setConstant(0.05f);
+    }
+    m.decoder = residual.parameters();
     m.lightNetwork = Network::random(m.lightSizes(), random).parameters();
     for (float& p : m.lightNetwork) p *= 0.2f;  // a basis of moderate weights, so the values span [0, 1]
     return m;
@@ -104,6 +110,7 @@ TEST_CASE("learned shader: the specialised decoder compiles as GLSL ES and HLSL 
     shapes.push_back({.codes = 9, .channels = 3, .viewFeatures = kLearnedViewFeatures});  // a model of views
     shapes.push_back({.codes = 5, .channels = 1, .hidden = {8}, .lightHidden = {12, 12}});
     shapes.push_back({.codes = 16, .channels = 3, .hidden = {64, 64, 64}, .lightHidden = {64}});
+    shapes.push_back({.codes = 9, .channels = 1, .constantResidual = true});
     for (const Shape& shape : shapes) {
         const LearnedModel m = randomModel(shape, 4, 4, 7);
         INFO("codes " << shape.codes << ", channels " << shape.channels << ", views " << shape.viewFeatures << ", "
@@ -123,6 +130,16 @@ TEST_CASE("learned shader: the specialised decoder compiles as GLSL ES and HLSL 
                            (dir / "main.hlsl") + " -o " + (dir / "main.spv") + " > " + (dir / "log") + " 2>&1")
                               .c_str()) == 0);
     }
+    // A residual network that adds a constant (validation kept the linear start) is left out: the
+    // texel decodes in the codes' basis alone, and the frame computes no residual part.
+    const LearnedModel linear = randomModel({.codes = 9, .channels = 3, .constantResidual = true}, 2, 2, 5);
+    CHECK(linear.residualConstant());
+    CHECK_FALSE(randomModel({.codes = 9}, 2, 2, 5).residualConstant());
+    CHECK(linear.decoderCost() == 27);
+    CHECK(learnedShaderCost(linear).texelMultiplyAdds == 27);
+    CHECK(learnedShaderCost(linear).frameMultiplyAdds ==
+          learnedShaderCost(randomModel({.codes = 9}, 2, 2, 5)).frameMultiplyAdds - 9 * 24);
+    CHECK(learnedShaderSource(linear, ShaderLanguage::Glsl, "linear").find("h1_0") == std::string::npos);
     // The largest network a GPU draws (BTFLUT_LEARNED_HIDDEN layers of BTFLUT_LEARNED_WIDTH) holds
     // fewer constants than every target's 64 KB; a larger one is refused (relit on the CPU).
     const LearnedModel largest =
@@ -153,7 +170,8 @@ void main() {
 }
 )";
         for (const Shape& shape : {Shape{.codes = 9}, Shape{.codes = 6, .channels = 1},
-                                   Shape{.codes = 4, .viewFeatures = kLearnedViewFeatures, .lightHidden = {16}}}) {
+                                   Shape{.codes = 4, .viewFeatures = kLearnedViewFeatures, .lightHidden = {16}},
+                                   Shape{.codes = 9, .constantResidual = true}}) {
             const int w = 16, h = 8;
             const LearnedModel m = randomModel(shape, w, h, 11);
             const std::string source = learnedShaderSource(m, ShaderLanguage::Glsl, "test");

@@ -41,9 +41,15 @@ std::vector<int> LearnedModel::lightSizes() const {
     return sizes;
 }
 
+bool LearnedModel::residualConstant() const {
+    const Network residual = Network::fromParameters(decoderSizes(), decoder);
+    return residual.weights(residual.layers() - 1).isZero(0.f);
+}
+
 std::size_t LearnedModel::decoderCost() const {
     const std::vector<int> sizes = decoderSizes();
     std::size_t n = static_cast<std::size_t>(codes) * static_cast<std::size_t>(channels);
+    if (residualConstant()) return n;
     for (std::size_t k = 0; k + 1 < sizes.size(); ++k) n += static_cast<std::size_t>(sizes[k]) * sizes[k + 1];
     return n;
 }

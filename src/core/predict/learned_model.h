@@ -67,7 +67,11 @@ struct LearnedModel {
     std::vector<int> decoderSizes() const;
     /// The light network's: F inputs, its hidden widths, channels (N + 1) outputs.
     std::vector<int> lightSizes() const;
-    /// Multiply-adds per texel and light: the linear basis's and the residual network's.
+    /// Whether the residual network adds only a constant: its last layer's weights are all zero
+    /// (it trains from zero, and validation can keep the linear start), so decoders skip it.
+    bool residualConstant() const;
+    /// Multiply-adds per texel and light: the linear basis's and the residual network's (none
+    /// when it is constant).
     std::size_t decoderCost() const;
     /// The parameters of a decoder of these layer sizes (weights and biases).
     static std::size_t parameterCount(const std::vector<int>& sizes);

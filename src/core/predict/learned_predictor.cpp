@@ -23,7 +23,8 @@ std::string LearnedPredictor::description() const {
     out << name() << " (" << bytesPerTexel() << " bytes per texel; a linear basis of the codes and a ";
     const std::vector<int> sizes = m_model.decoderSizes();
     for (std::size_t k = 0; k < sizes.size(); ++k) out << (k ? "-" : "") << sizes[k];
-    out << " residual network, " << m_model.decoderCost() << " multiply-adds per texel), relit per light"
+    out << " residual network" << (m_model.residualConstant() ? " that adds a constant (the linear start kept)" : "")
+        << ", " << m_model.decoderCost() << " multiply-adds per texel), relit per light"
         << (viewDependent() ? " and view" : "");
     return out.str();
 }

@@ -119,7 +119,12 @@ void emitValue(std::string& out, const Syntax& s, const LearnedModel& m, std::si
         out += ";\n";
     }
     std::vector<std::string> x = v;
-    for (std::size_t layer = 0; layer < residual.layers(); ++layer) {
+    if (m.residualConstant()) {  // its last layer's bias alone (the linear start)
+        x.clear();
+        const Vector& bias = residual.bias(residual.layers() - 1);
+        for (int c = 0; c < m.channels; ++c) x.push_back(literal(bias(c)));
+    }
+    for (std::size_t layer = 0; layer < (m.residualConstant() ? 0 : residual.layers()); ++layer) {
         const bool last = layer + 1 == residual.layers();
         std::vector<std::string> start;
         if (layer == 0)
@@ -178,10 +183,13 @@ void emitFrame(std::string& out, const Syntax& s, const LearnedModel& m, std::si
                 out += "    f.basis[" + std::to_string((k / 4) * 3 + c) + "]." + std::string(component(k % 4), 1) +
                        " = " + row + ";\n";
         }
-    const std::vector<std::string> first = emitLayer(out, s, "a", h, residual.weights(0), m.codes,
-                                                     biasLiterals(s, residual.bias(0), constants), false, constants);
-    for (int j = 0; j < groups(static_cast<int>(first.size())); ++j)
-        out += "    f.hidden[" + std::to_string(j) + "] = a_" + std::to_string(j) + ";\n";
+    if (!m.residualConstant()) {  // else btflutNetworkValue reads no hidden
+        const std::vector<std::string> first =
+            emitLayer(out, s, "a", h, residual.weights(0), m.codes, biasLiterals(s, residual.bias(0), constants), false,
+                      constants);
+        for (int j = 0; j < groups(static_cast<int>(first.size())); ++j)
+            out += "    f.hidden[" + std::to_string(j) + "] = a_" + std::to_string(j) + ";\n";
+    }
     out += "    return f;\n}\n\n";
 }
 
@@ -222,11 +230,16 @@ LearnedShaderCost learnedShaderCost(const LearnedModel& m) {
     LearnedShaderCost cost;
     const std::vector<int> sizes = m.decoderSizes(), light = m.lightSizes();
     const auto N = static_cast<std::size_t>(m.codes), F = static_cast<std::size_t>(m.features());
-    cost.texelMultiplyAdds = learnedTexelMultiplyAdds(m.codes, m.channels, m.hidden);
-    cost.frameMultiplyAdds = F * static_cast<std::size_t>(sizes[1]);
-    cost.constants = 2 * static_cast<std::size_t>(groups(m.codes)) + N * static_cast<std::size_t>(groups(sizes[1]));
-    for (std::size_t k = 1; k + 1 < sizes.size(); ++k)
-        cost.constants += static_cast<std::size_t>(sizes[k] + 1) * static_cast<std::size_t>(groups(sizes[k + 1]));
+    if (m.residualConstant()) {  // the codes' basis alone
+        cost.texelMultiplyAdds = N * static_cast<std::size_t>(m.channels);
+        cost.constants = 2 * static_cast<std::size_t>(groups(m.codes));
+    } else {
+        cost.texelMultiplyAdds = learnedTexelMultiplyAdds(m.codes, m.channels, m.hidden);
+        cost.frameMultiplyAdds = F * static_cast<std::size_t>(sizes[1]);
+        cost.constants = 2 * static_cast<std::size_t>(groups(m.codes)) + N * static_cast<std::size_t>(groups(sizes[1]));
+        for (std::size_t k = 1; k + 1 < sizes.size(); ++k)
+            cost.constants += static_cast<std::size_t>(sizes[k] + 1) * static_cast<std::size_t>(groups(sizes[k + 1]));
+    }
     for (std::size_t k = 0; k + 1 < light.size(); ++k)
         cost.frameMultiplyAdds += static_cast<std::size_t>(light[k]) * static_cast<std::size_t>(light[k + 1]);
     return cost;
