@@ -403,6 +403,36 @@ TEST_CASE("compare: exit 0 within the tolerance, 1 outside, 2 on bad input; the 
     CHECK(runCli({"compare", dir / "b.png", dir / "golden2.png", "-q", "--update"}).out.empty());  // now within
 }
 
+TEST_CASE("compare holds the alpha channel to the tolerance: the same colours, transparent, are another image") {
+    TempDir dir;
+    Image opaque(16, 8, 4), clear(16, 8, 4), rgb(16, 8, 3);
+    for (std::size_t i = 0; i < opaque.pixelCount(); ++i)
+        for (int c = 0; c < 4; ++c) {
+            const float v = c == 3 ? 1.f : static_cast<float>((i * 7 + c * 40) % 256) / 255.f;
+            opaque.samples[i * 4 + c] = v;
+            clear.samples[i * 4 + c] = c == 3 ? 0.f : v;
+            if (c < 3) rgb.samples[i * 3 + c] = v;
+        }
+    REQUIRE(savePng(opaque, dir / "opaque.png").ok());
+    REQUIRE(savePng(clear, dir / "clear.png").ok());
+    REQUIRE(savePng(rgb, dir / "rgb.png").ok());
+    const CliRun differs = runCli({"compare", dir / "opaque.png", dir / "clear.png"});
+    CHECK(differs.status == 1);
+    CHECK(differs.out.find("OUTSIDE") != std::string::npos);
+    CHECK(differs.out.find("alpha: max 255.00/255, pixels 100.000%") != std::string::npos);
+    CHECK(differs.out.find("(identical)") == std::string::npos);
+    const nlohmann::json json =
+        nlohmann::json::parse(runCli({"compare", dir / "opaque.png", dir / "clear.png", "--json"}).out);
+    CHECK_FALSE(json["identical"].get<bool>());
+    CHECK(json["alpha_max_255"].get<double>() == 255);
+    // Within a tolerance that allows it; an image with no alpha is opaque.
+    CHECK(runCli({"compare", dir / "opaque.png", dir / "clear.png", "--tolerance", "max=255"}).status == 0);
+    const CliRun same = runCli({"compare", dir / "opaque.png", dir / "rgb.png"});
+    CHECK(same.status == 0);
+    CHECK(same.out.find("psnr inf (identical)") != std::string::npos);
+    CHECK(runCli({"compare", dir / "rgb.png", dir / "clear.png"}).status == 1);
+}
+
 TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folders, folders of images, JUnit") {
     TempDir dir;
     Image a = randomGreyImage(64, 48, 1), b = a;

@@ -106,7 +106,12 @@ struct Figures {
     ImageErrors e;
     double p99 = 0;
     double pixels = 0;
-    bool identical() const { return e.maxDifference == 0; }
+    // The alpha channel's largest difference (1/255; opaque where a file keeps no alpha) and
+    // the share of pixels (per cent) where it exceeds the threshold: a pixel made transparent
+    // is another image, whatever its colour.
+    bool alpha = false;  // either image keeps one
+    double alphaMax = 0, alphaPixels = 0;
+    bool identical() const { return e.maxDifference == 0 && alphaMax == 0; }
 };
 
 // p99 and pixels from the codes of two images of one bit depth, in bands of rows in parallel
@@ -255,6 +260,7 @@ struct Outcome {
 std::string psnrText(const Figures& f) {
     char text[32];
     if (f.identical()) return "inf (identical)";
+    if (f.e.maxDifference == 0) return "inf (colour identical)";
     std::snprintf(text, sizeof text, "%.2f dB", f.e.psnr);
     return text;
 }
@@ -271,6 +277,11 @@ std::string line(const Outcome& r, const Tolerance& t, const std::string& tolera
         psnrText(r.f).c_str(), e.ssim, e.maxDifference * 255, e.meanDifference * 255, r.f.p99, r.f.pixels, t.threshold,
         e.l1, e.emd, r.failed.empty() ? ("within " + tolerance).c_str() : "OUTSIDE the tolerance");
     std::string out = text;
+    if (r.f.alpha) {
+        std::snprintf(text, sizeof text, "\n  alpha: max %.2f/255, pixels %.3f%% over %g/255", r.f.alphaMax,
+                      r.f.alphaPixels, t.threshold);
+        out += text;
+    }
     for (const std::string& name : r.failed)
         for (const Bound& bound : t.bounds)
             if (bound.name == name) {
@@ -297,6 +308,8 @@ nlohmann::json outcomeJson(const Outcome& r, const CompareOptions& o, const std:
     const ImageErrors& e = r.f.e;
     out.update({{"psnr", r.f.identical() ? nlohmann::json(nullptr) : nlohmann::json(e.psnr)},
                 {"identical", r.f.identical()},
+                {"alpha_max_255", r.f.alpha ? nlohmann::json(r.f.alphaMax) : nlohmann::json(nullptr)},
+                {"alpha_pixels_percent", r.f.alpha ? nlohmann::json(r.f.alphaPixels) : nlohmann::json(nullptr)},
                 {"ssim", e.ssim},
                 {"max_255", e.maxDifference * 255},
                 {"mean_255", e.meanDifference * 255},
@@ -354,6 +367,37 @@ ImageCodes asRgb(const ImageCodes& grey) {
     return out;
 }
 
+// A pixel's alpha in [0, 1]: the stored one, or opaque where the file keeps none.
+std::vector<float> alphaOf(const ImageCodes& image) {
+    std::vector<float> alpha(image.pixelCount(), 1.f);
+    if (image.stride == image.channels) return alpha;
+    const auto stride = static_cast<std::size_t>(image.stride), at = static_cast<std::size_t>(image.channels);
+    for (std::size_t i = 0; i < alpha.size(); ++i)
+        alpha[i] = image.bitDepth == 16 ? static_cast<float>(image.sixteen()[i * stride + at]) / 65535.f
+                                        : static_cast<float>(image.eight()[i * stride + at]) / 255.f;
+    return alpha;
+}
+
+// The alpha figures, and "alpha" among the failed bounds where it differs by more than the
+// tolerance's max (the threshold when it sets none).
+void compareAlpha(const ImageCodes& a, const ImageCodes& b, const Mask& mask, const Tolerance& t, Outcome& r) {
+    r.f.alpha = a.stride > a.channels || b.stride > b.channels;
+    if (!r.f.alpha) return;
+    const std::vector<float> alphaA = alphaOf(a), alphaB = alphaOf(b);
+    std::size_t over = 0;
+    for (std::size_t i = 0; i < alphaA.size(); ++i) {
+        if (!mask.inside[i]) continue;
+        const double d = std::abs(static_cast<double>(alphaA[i]) - alphaB[i]) * 255;
+        r.f.alphaMax = std::max(r.f.alphaMax, d);
+        over += d > t.threshold;
+    }
+    r.f.alphaPixels = 100.0 * static_cast<double>(over) / static_cast<double>(std::max<std::size_t>(1, mask.count()));
+    double limit = t.threshold;
+    for (const Bound& bound : t.bounds)
+        if (bound.name == "max") limit = bound.limit;
+    if (r.f.alphaMax > limit + 1e-9) r.failed.push_back("alpha");
+}
+
 // Compares one pair; a problem that stops the pair (unreadable, another size) is an error for a
 // pair and a failed row in folders. Writes the diff and side-by-side images it is asked for.
 Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const std::string& actual,
@@ -379,9 +423,6 @@ Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const
         return Error{actual + " is " + std::to_string(a->width) + "x" + std::to_string(a->height) + ", " + expected +
                      " is " + std::to_string(b->width) + "x" + std::to_string(b->height) +
                      ": images of different sizes"};
-    // Grey against RGB: the grey in all three channels, compared as RGB.
-    if (a->channels == 1 && b->channels == 3) *a = asRgb(*a);
-    if (a->channels == 3 && b->channels == 1) *b = asRgb(*b);
     Mask mask = fullMask(b->width, b->height);
     if (!o.mask.empty()) {
         Result<Mask> loaded = loadMask(o.mask, b->width, b->height);
@@ -405,6 +446,10 @@ Result<Outcome> compareImages(const CompareOptions& o, const Tolerance& t, const
         mask = std::move(part);
     }
     if (!o.mask.empty() && mask.count() == 0) return Error{o.mask + ": the mask has no pixels to compare"};
+    compareAlpha(*a, *b, mask, t, r);
+    // Grey against RGB: the grey in all three channels, compared as RGB.
+    if (a->channels == 1 && b->channels == 3) *a = asRgb(*a);
+    if (a->channels == 3 && b->channels == 1) *b = asRgb(*b);
     r.f.e = compareCodes(*a, *b, mask);
     if (a->bitDepth == b->bitDepth)
         countPixels(*a, *b, mask, t.threshold, r.f);

@@ -72,6 +72,12 @@ Status checkSize(std::uint64_t width, std::uint64_t height, const Request& r) {
     return success();
 }
 
+// Whether a PNG without an alpha channel marks a colour transparent (a tRNS chunk).
+bool hasTransparency(spng_ctx* ctx) {
+    spng_trns trns{};
+    return spng_get_trns(ctx, &trns) == 0;
+}
+
 Result<ImageCodes> decodePng(const Bytes& b, const Request& r) {
     const std::string& name = r.name;
     // libspng checks chunk CRCs, but stops at the end of the image data: a cut in the
@@ -98,8 +104,10 @@ Result<ImageCodes> decodePng(const Bytes& b, const Request& r) {
         format = SPNG_FMT_GA8, stride = 2;
     else if (grey)
         format = SPNG_FMT_GA16, stride = 2;
-    else if (!sixteen)
+    else if (!sixteen && ihdr.color_type != SPNG_COLOR_TYPE_TRUECOLOR_ALPHA && !hasTransparency(ctx.get()))
         format = SPNG_FMT_RGB8, stride = 3;
+    else if (!sixteen)  // its alpha kept (compare holds it to the tolerance)
+        format = SPNG_FMT_RGBA8, stride = 4;
     else
         format = SPNG_FMT_RGBA16, stride = 4;
     std::size_t size = 0;
