@@ -45,6 +45,9 @@ Result<HeightField> synthesizeHeightField(const HeightFieldSpec& spec) {
     Spectrum white(fftw_alloc_complex(complex), fftw_free), work(fftw_alloc_complex(complex), fftw_free);
     std::vector<Buffer> out;
     for (int i = 0; i < 3; ++i) out.emplace_back(fftw_alloc_real(real), fftw_free);
+    if (!noise || !white || !work || !out[0] || !out[1] || !out[2])  // FFTW returns null, it throws nothing
+        return Error{"out of memory for a " + std::to_string(n) + " x " + std::to_string(n) + " height field (" +
+                     std::to_string((4 * real + 2 * complex) * sizeof(double) >> 20) + " MB of FFT buffers)"};
 
     // White noise, then its spectrum.
     Random random(spec.seed);
@@ -74,14 +77,15 @@ Result<HeightField> synthesizeHeightField(const HeightFieldSpec& spec) {
                 const double kx = frequency(i), ky = frequency(j);
                 const double ku = cu * kx + su * ky, kv = -su * kx + cu * ky;
                 const double amplitude = std::exp(-(lu * lu * ku * ku + lv * lv * kv * kv) / 8);
-                std::complex<double> c(white.get()[j * half + i][0], white.get()[j * half + i][1]);
+                const std::size_t at = static_cast<std::size_t>(j) * static_cast<std::size_t>(half) + i;
+                std::complex<double> c(white.get()[at][0], white.get()[at][1]);
                 c *= amplitude;
                 // Spectral derivative; the Nyquist row and column have no well-defined sign.
                 const bool nyquist = (n % 2 == 0) && (i == n / 2 || j == n / 2);
                 if (which == 1) c *= nyquist ? 0.0 : std::complex<double>(0, kx);
                 if (which == 2) c *= nyquist ? 0.0 : std::complex<double>(0, ky);
-                work.get()[j * half + i][0] = c.real();
-                work.get()[j * half + i][1] = c.imag();
+                work.get()[at][0] = c.real();
+                work.get()[at][1] = c.imag();
             }
         fftw_execute_dft_c2r(inverse, work.get(), out[static_cast<std::size_t>(which)].get());
     }
