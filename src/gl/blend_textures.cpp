@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gl/context.h"
 #include "gl/textures.h"
 
 namespace btflut {
@@ -44,14 +45,6 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     if (!bank.blend.labels.empty())
         t.m_labels = uploadLabels(first.width, first.height, bank.blend.labels.data(), bytes);
     return t;
-}
-
-bool softwareRasteriser() {
-    const auto* name = reinterpret_cast<const char*>(gl.GetString(GL_RENDERER));
-    const std::string renderer = name ? name : "";
-    for (const char* software : {"llvmpipe", "softpipe", "SwiftShader", "swrast"})
-        if (renderer.find(software) != std::string::npos) return true;
-    return false;
 }
 
 bool lutsAsUniforms(const LutBank& bank) {

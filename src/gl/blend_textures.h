@@ -18,9 +18,6 @@
 
 namespace btflut {
 
-/// True when the current context is a software rasteriser (llvmpipe, softpipe, SwiftShader).
-bool softwareRasteriser();
-
 /// True when a bank applies its frame's LUTs (RelightFrame::luts) from uniforms
 /// (lut_common.glsl's LUT_UNIFORMS: at most 3 x 256 floats, and room for them in the current
 /// context), else from textures. Only on a software rasteriser: read as an array, uniforms cost

@@ -22,6 +22,18 @@ std::string glStrings() {
     return str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
 }
 
+}  // namespace
+
+bool softwareRasteriser() {
+    const auto* name = reinterpret_cast<const char*>(gl.GetString(GL_RENDERER));
+    const std::string renderer = name ? name : "";
+    for (const char* software : {"llvmpipe", "softpipe", "SwiftShader", "swrast"})
+        if (renderer.find(software) != std::string::npos) return true;
+    return false;
+}
+
+namespace {
+
 // OSMesa brings LLVM with it (tens of megabytes to relocate), so it is loaded when an OSMesa
 // context is wanted, not when btflut starts: commands without OpenGL start in milliseconds.
 struct OsMesaApi {

@@ -27,6 +27,10 @@ public:
 /// error says what each backend answered.
 Result<std::unique_ptr<HeadlessContext>> createHeadlessContext(GlBackend backend);
 
+/// True when the current context is a software rasteriser (llvmpipe, softpipe, SwiftShader):
+/// no GPU, so its costs (uniform arrays, timer queries) are not a GPU's.
+bool softwareRasteriser();
+
 /// In sanitized builds (BTFLUT_SANITIZE), keeps Mesa's driver modules loaded until exit so
 /// that leak reports can name them; does nothing otherwise. Called before any context is made.
 void keepGlDriversLoadedForLeakChecks();

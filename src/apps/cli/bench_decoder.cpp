@@ -173,8 +173,7 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     // not when its tiles are shaded (it reads ~0 for one draw), so there the wall time.
     GLint timerBits = 0;
     gl.GetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timerBits);
-    const std::string renderer = reinterpret_cast<const char*>(gl.GetString(GL_RENDERER));
-    const bool timer = timerBits > 0 && renderer.find("llvmpipe") == std::string::npos;
+    const bool timer = timerBits > 0 && !softwareRasteriser();
 
     // What every row reads: the codes, and the frame at one light.
     const Direction light = Direction::fromDegrees(45, 250);

@@ -42,8 +42,12 @@ std::vector<int> LearnedModel::lightSizes() const {
 }
 
 bool LearnedModel::residualConstant() const {
-    const Network residual = Network::fromParameters(decoderSizes(), decoder);
-    return residual.weights(residual.layers() - 1).isZero(0.f);
+    // Network::parameters' order ends with the last layer's weights, then its biases.
+    const std::vector<int> sizes = decoderSizes();
+    const auto outputs = static_cast<std::size_t>(sizes.back()), inputs = static_cast<std::size_t>(sizes.end()[-2]);
+    const auto weights = decoder.end() - static_cast<std::ptrdiff_t>(outputs * (inputs + 1));
+    return std::all_of(weights, weights + static_cast<std::ptrdiff_t>(outputs * inputs),
+                       [](float w) { return w == 0.f; });
 }
 
 std::size_t LearnedModel::decoderCost() const {

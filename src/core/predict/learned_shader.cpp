@@ -119,12 +119,13 @@ void emitValue(std::string& out, const Syntax& s, const LearnedModel& m, std::si
         out += ";\n";
     }
     std::vector<std::string> x = v;
-    if (m.residualConstant()) {  // its last layer's bias alone (the linear start)
+    const bool constant = m.residualConstant();
+    if (constant) {  // its last layer's bias alone (the linear start)
         x.clear();
         const Vector& bias = residual.bias(residual.layers() - 1);
         for (int c = 0; c < m.channels; ++c) x.push_back(literal(bias(c)));
     }
-    for (std::size_t layer = 0; layer < (m.residualConstant() ? 0 : residual.layers()); ++layer) {
+    for (std::size_t layer = 0; layer < (constant ? 0 : residual.layers()); ++layer) {
         const bool last = layer + 1 == residual.layers();
         std::vector<std::string> start;
         if (layer == 0)
