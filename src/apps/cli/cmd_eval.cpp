@@ -126,8 +126,9 @@ void addEvalCommand(CLI::App& root, Commands& commands) {
                     "lut with a predictor (and lut auto): each match strength of a list, 0 (the prediction as it is) "
                     "to 1 (the target's histogram), e.g. 0,0.5,1; default: bake's (auto: validated)");
     app->add_option("--budget", o->budgets,
-                    "lut auto: each budget of a list, in bytes per texel the predictor may store (e.g. 3,6,9); "
-                    "default: bake's");
+                    "lut auto: each budget of a list, in bytes per texel the predictor may store (e.g. 3,6,9; "
+                    "default: bake's); and a training time for the learned kinds, neural, neuralrti and lut auto's "
+                    "candidates (e.g. 9,300s)");
     app->add_flag("--blended-luts", o->blendedLuts,
                   "also the alternative to blend-then-match: each reference matched alone, the results blended");
     app->add_option("--fill", o->fills,

@@ -6,17 +6,21 @@
 
 namespace btflut {
 
-Network Network::random(const std::vector<int>& sizes, Random& random) {
+Network Network::random(const std::vector<int>& sizes, Random& random, WeightInit init) {
     BTFLUT_CHECK(sizes.size() >= 2);
     Network net;
     net.m_sizes = sizes;
     for (std::size_t k = 0; k + 1 < sizes.size(); ++k) {
-        const float range = std::sqrt(3.f / static_cast<float>(sizes[k]));
+        const float range = std::sqrt((init == WeightInit::Torch ? 1.f : 3.f) / static_cast<float>(sizes[k]));
+        auto draw = [&] { return static_cast<float>(random.uniform() * 2 - 1) * range; };
         Matrix w(sizes[k + 1], sizes[k]);
         for (Eigen::Index r = 0; r < w.rows(); ++r)  // row by row: the order parameters() gives
-            for (Eigen::Index c = 0; c < w.cols(); ++c) w(r, c) = static_cast<float>(random.uniform() * 2 - 1) * range;
+            for (Eigen::Index c = 0; c < w.cols(); ++c) w(r, c) = draw();
+        Vector b = Vector::Zero(sizes[k + 1]);
+        if (init == WeightInit::Torch)
+            for (Eigen::Index r = 0; r < b.size(); ++r) b(r) = draw();
         net.m_weights.push_back(std::move(w));
-        net.m_biases.push_back(Vector::Zero(sizes[k + 1]));
+        net.m_biases.push_back(std::move(b));
     }
     return net;
 }
@@ -101,13 +105,17 @@ void Network::backward(const NetworkPass& pass, const Matrix& outputGradient, bo
     }
 }
 
-Adam::Adam(const Network& network) {
+Adam::Adam(const Network& network, bool amsgrad) : m_amsgrad(amsgrad) {
     for (std::size_t k = 0; k < network.layers(); ++k) {
         const Matrix& w = network.weights(k);
         m_weightMean.push_back(Matrix::Zero(w.rows(), w.cols()));
         m_weightSquare.push_back(Matrix::Zero(w.rows(), w.cols()));
         m_biasMean.push_back(Vector::Zero(w.rows()));
         m_biasSquare.push_back(Vector::Zero(w.rows()));
+        if (amsgrad) {
+            m_weightSquareMax.push_back(Matrix::Zero(w.rows(), w.cols()));
+            m_biasSquareMax.push_back(Vector::Zero(w.rows()));
+        }
     }
 }
 
@@ -116,14 +124,18 @@ void Adam::step(Network& network, const NetworkGradient& gradient, float rate) {
     ++m_steps;
     const float c1 = 1 - std::pow(beta1, static_cast<float>(m_steps)),
                 c2 = 1 - std::pow(beta2, static_cast<float>(m_steps));
-    auto update = [&](auto& parameter, auto& mean, auto& square, const auto& g) {
+    auto update = [&](auto& parameter, auto& mean, auto& square, auto* squareMax, const auto& g) {
         mean = beta1 * mean + (1 - beta1) * g;
         square = beta2 * square + (1 - beta2) * g.cwiseAbs2();
-        parameter.array() -= rate * (mean.array() / c1) / ((square.array() / c2).sqrt() + epsilon);
+        if (squareMax) *squareMax = squareMax->cwiseMax(square);
+        const auto& divisor = squareMax ? *squareMax : square;
+        parameter.array() -= rate * (mean.array() / c1) / ((divisor.array() / c2).sqrt() + epsilon);
     };
     for (std::size_t k = 0; k < network.layers(); ++k) {
-        update(network.weights(k), m_weightMean[k], m_weightSquare[k], gradient.weights[k]);
-        update(network.bias(k), m_biasMean[k], m_biasSquare[k], gradient.biases[k]);
+        update(network.weights(k), m_weightMean[k], m_weightSquare[k], m_amsgrad ? &m_weightSquareMax[k] : nullptr,
+               gradient.weights[k]);
+        update(network.bias(k), m_biasMean[k], m_biasSquare[k], m_amsgrad ? &m_biasSquareMax[k] : nullptr,
+               gradient.biases[k]);
     }
 }
 

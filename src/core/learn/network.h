@@ -37,11 +37,16 @@ struct NetworkGradient {
     Matrix input;
 };
 
+/// How random() draws a layer's parameters.
+enum class WeightInit {
+    UnitVariance,  ///< weights uniform in +-sqrt(3 / inputs) (unit variance through each layer), biases 0
+    Torch,         ///< PyTorch's nn.Linear default: weights and biases uniform in +-1 / sqrt(inputs)
+};
+
 class Network {
 public:
     Network() = default;
-    /// Weights uniform in +-sqrt(3 / inputs) (unit variance through each layer), biases 0.
-    static Network random(const std::vector<int>& sizes, Random& random);
+    static Network random(const std::vector<int>& sizes, Random& random, WeightInit init = WeightInit::UnitVariance);
     /// From its parameters as parameters() gives them; sizes: inputs, hidden..., outputs.
     static Network fromParameters(const std::vector<int>& sizes, const std::vector<float>& parameters);
 
@@ -74,15 +79,17 @@ private:
     std::vector<Vector> m_biases;
 };
 
-/// Adam (Kingma & Ba 2015) with its moments per parameter.
+/// Adam (Kingma & Ba 2015) with its moments per parameter; with `amsgrad`, AMSGrad (Reddi et
+/// al. 2018: the step divides by the largest second moment so far), as PyTorch's amsgrad=True.
 class Adam {
 public:
-    explicit Adam(const Network& network);
+    explicit Adam(const Network& network, bool amsgrad = false);
     void step(Network& network, const NetworkGradient& gradient, float rate);
 
 private:
-    std::vector<Matrix> m_weightMean, m_weightSquare;
-    std::vector<Vector> m_biasMean, m_biasSquare;
+    bool m_amsgrad;
+    std::vector<Matrix> m_weightMean, m_weightSquare, m_weightSquareMax;
+    std::vector<Vector> m_biasMean, m_biasSquare, m_biasSquareMax;
     int m_steps = 0;
 };
 

@@ -113,7 +113,8 @@ std::vector<float> encodeTexels(const Network& encoder, const TexelSamples& from
 }
 
 void quantiseCodes(const std::vector<float>& codes, const std::vector<std::uint32_t>& inside, std::size_t N,
-                   std::vector<float>& scale, std::vector<float>& bias, std::vector<std::uint8_t>& bytes) {
+                   std::vector<float>& scale, std::vector<float>& bias, std::vector<std::uint8_t>& bytes,
+                   bool truncate) {
     scale.assign(N, 1.f);
     bias.assign(N, 0.f);
     bytes.resize(codes.size());
@@ -126,9 +127,10 @@ void quantiseCodes(const std::vector<float>& codes, const std::vector<std::uint3
         }
         if (high - low > 1e-6f) scale[k] = (high - low) / 255.f;
         bias[k] = -low / scale[k];
-        for (std::size_t i = 0; i < texels; ++i)
-            bytes[i * N + k] =
-                static_cast<std::uint8_t>(std::lround(std::clamp((codes[i * N + k] - low) / scale[k], 0.f, 255.f)));
+        for (std::size_t i = 0; i < texels; ++i) {
+            const float v = std::clamp((codes[i * N + k] - low) / scale[k], 0.f, 255.f);
+            bytes[i * N + k] = static_cast<std::uint8_t>(truncate ? static_cast<long>(v) : std::lround(v));
+        }
     }
 }
 

@@ -67,8 +67,10 @@ Matrix codeValues(const std::vector<std::uint8_t>& bytes, const std::vector<floa
 /// size (the same sums on any thread count).
 std::vector<float> encodeTexels(const Network& encoder, const TexelSamples& from, std::size_t texels, int threads);
 /// 8 bits per code over the range the `inside` texels span (others clamped into it):
-/// value = (byte - bias) scale.
+/// value = (byte - bias) scale; each byte the nearest, or with `truncate` the one below (as
+/// NeuralRTI stores them).
 void quantiseCodes(const std::vector<float>& codes, const std::vector<std::uint32_t>& inside, std::size_t N,
-                   std::vector<float>& scale, std::vector<float>& bias, std::vector<std::uint8_t>& bytes);
+                   std::vector<float>& scale, std::vector<float>& bias, std::vector<std::uint8_t>& bytes,
+                   bool truncate = false);
 
 }  // namespace btflut

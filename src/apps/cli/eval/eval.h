@@ -52,7 +52,9 @@ struct EvalOptions {
     std::string lutSources = "exact";  ///< lut: exact (made at the light), grid (read from the bank's grid), a list
     std::string domains = "auto";      ///< the banks' domains: auto (bake's choice), layers, isotropic, a list
     std::string matches;               ///< lut with a predictor: match strengths, a list; empty: bake's
-    std::string budgets;               ///< lut auto: bytes per texel, a list; empty: bake's
+    /// lut auto: bytes per texel, a list (empty: bake's); and a training time for the learned
+    /// kinds (neural, neuralrti, lut auto's candidates): "9,12,300s"
+    std::string budgets;
     int sheetLights = 4;
     /// Called with (steps done, steps) as folds' banks are baked and images predicted; may be empty.
     std::function<void(std::size_t, std::size_t)> progress;
@@ -87,7 +89,8 @@ struct Variant {
     /// training images.
     std::optional<LightModelOptions> basis;
     std::optional<LearnedOptions> learned;
-    bool neuralRti = false;  ///< the published NeuralRTI (predict/neural_rti.h), the learned kind's baseline
+    bool neuralRti = false;      ///< the published NeuralRTI (predict/neural_rti.h), the learned kind's baseline
+    double trainingSeconds = 0;  ///< the learned kinds' training time (--budget 300s); 0: their own
     bool unmatched() const { return basis || learned || neuralRti; }
     /// The mode as the report names it: the render mode, or the model's kind.
     std::string modeName() const {
@@ -117,6 +120,7 @@ struct Variant {
     std::vector<double> targetL1;
     /// lut auto: what bake chose in each fold ("hsh2 match 0.50"), in fold order.
     std::vector<std::string> chosen;
+    std::vector<std::string> training;  ///< neuralrti: each fold's epochs, steps, loss curve and why it stopped
     double bytesPerTexel = 0;
     /// Multiply-adds per texel of its prediction (Predictor::multiplyAdds; 0 for the paper's bank).
     double multiplyAdds = 0;

@@ -157,6 +157,7 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         dataset.source.c_str(), dataset.images.size(), o.holdout.c_str(), folds.size(), tests, maskPixels);
     std::string text = line;
     std::string chosenText;                             // lut auto's choice per fold, after the table
+    std::string trainingText;                           // neuralrti's training per fold
     std::string targetText;                             // the targets' own L1, after the table
     std::map<std::string, const DatasetImage*> byName;  // each held-out image's light and view, for the rows
     for (const DatasetImage& image : dataset.images) byName[image.name] = &image;
@@ -238,6 +239,11 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                 chosenText += (f ? ", " : " ") + std::string("fold ") + std::to_string(f + 1) + " " + v.chosen[f];
             chosenText += "\n";
         }
+        if (!v.training.empty()) {  // neuralrti: how each fold's training went
+            mode["training"] = v.training;
+            for (std::size_t f = 0; f < v.training.size(); ++f)
+                trainingText += "  " + v.name + " fold " + std::to_string(f + 1) + ": " + v.training[f] + "\n";
+        }
         // Beside each mean its spread over the predictions: the per-image standard deviation and
         // the 95% interval of the mean (normal approximation, mean +- 1.96 sd / sqrt(n)), so two
         // modes' figures can be told apart from the noise of which images were held out.
@@ -284,6 +290,7 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
             targetText;
     if (!chosenText.empty())
         text += "\nlut auto chose, per fold (bake's validation on the fold's training lights):\n" + chosenText;
+    if (!trainingText.empty()) text += "\nNeuralRTI's training (its own 10% of pairs validating):\n" + trainingText;
     // Bins outside the measured hull (the bank clamped or modelled them) apart from those inside.
     const bool anyOutside = std::any_of(json["modes"].begin(), json["modes"].end(),
                                         [](const nlohmann::json& m) { return m["outside_hull"]["count"] > 0; });

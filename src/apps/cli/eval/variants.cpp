@@ -1,5 +1,6 @@
 // btflut eval: the variants (columns of the report) that the options ask for.
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <sstream>
 
@@ -219,12 +220,25 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             return Error{"--match '" + o.matches + "': expected a comma-separated list of strengths from 0 to 1"};
         strengths.push_back(s);
     }
+    // --budget: bytes per texel (each a lut auto of its own) and at most one training time.
     std::vector<int> budgets;
-    if (!o.budgets.empty()) {
-        Result<std::vector<int>> parsed = parseList(o.budgets, "budget", 1, 255);
-        if (!parsed) return Error{parsed.error()};
-        budgets = *parsed;
+    double trainingSeconds = 0;
+    for (const std::string& item : split(o.budgets)) {
+        const bool time = !item.empty() && (item.back() == 's' || item.back() == 'm');
+        const std::string number = time ? item.substr(0, item.size() - 1) : item;
+        char* end = nullptr;
+        const double value = std::strtod(number.c_str(), &end);
+        if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) || value <= 0 ||
+            (time && (trainingSeconds > 0 || value > 1e6)) || (!time && (value != std::floor(value) || value > 255)))
+            return Error{"--budget '" + o.budgets +
+                         "': expected bytes per texel from 1 to 255 and at most one training time (90s, 5m), "
+                         "a comma-separated list"};
+        if (time)
+            trainingSeconds = item.back() == 'm' ? 60 * value : value;
+        else
+            budgets.push_back(static_cast<int>(value));
     }
+    for (Variant& v : variants) v.trainingSeconds = trainingSeconds;
     auto sweep = [&](const auto& values, auto applies, auto set) {
         if (values.empty()) return;
         all.clear();
