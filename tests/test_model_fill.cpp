@@ -127,8 +127,16 @@ TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured 
     CliRun clampedRun = runCli({"relight", dir / "clamp.btflut", "--light", "85,120", "-o", dir / "c.png"});
     REQUIRE(clampedRun.status == 0);
     CHECK(clampedRun.out.find("LUT clamped") != std::string::npos);
-    CHECK(clampedRun.err.find("beyond the measured lights") != std::string::npos);
+    CHECK(clampedRun.err.find("outside the measured lights' hull: its theta is past theirs") != std::string::npos);
     CHECK(clampedRun.err.find("`bake --fill model`") != std::string::npos);
+    if (haveSharedData("psm-rock")) {  // a narrow capture: theta 30 is within its lights, phi 40 in a gap of theirs
+        REQUIRE(runCli({"bake", sharedDataDir() + "/psm-rock", "--references", "1", "-o", dir / "rock.btflut", "-q"})
+                    .status == 0);
+        const CliRun gap = runCli({"relight", dir / "rock.btflut", "--light", "30,40", "-o", dir / "g.png"});
+        CHECK(gap.status == 0);
+        CHECK(gap.err.find("its theta is within theirs (up to 38.9), but no measured light lies between phi") !=
+              std::string::npos);
+    }
     CHECK(runCli({"relight", dir / "clamp.btflut", "--light", "85,120", "-o", dir / "c.png", "-q"}).err.empty());
     // --json: what was written and where the light fell; info -q: nothing, the exit status.
     const CliRun json = runCli({"relight", dir / "clamp.btflut", "--light", "85,120", "-o", dir / "c.png", "--json"});

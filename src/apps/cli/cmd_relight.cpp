@@ -50,18 +50,44 @@ void report(const RelightOptions& o, const Image& out, const std::string& lut, D
 }
 
 // A light beyond the measured ones gets the nearest edge's LUT (clamped): for a narrow capture
-// that can be far from the light asked for, so say so, and what fills such lights instead.
+// that can be far from the light asked for, so say so, why (past their highest theta, or in an
+// azimuth gap of theirs), and what fills such lights instead.
 void noteClampedLight(const LutBank& bank, const RelightFrame& frame, Direction light) {
     if (frame.lightProvenance != Provenance::Clamped) return;
+    constexpr double kDegrees = 180 / M_PI;
     double reach = 0;
+    std::vector<double> phis;  // the measured lights' azimuths, off the zenith
     const ViewLayer& layer = bank.layers.front();
-    for (std::size_t n = 0; n < layer.measuredNodes; ++n) reach = std::max(reach, layer.nodes[n].light.theta);
-    char line[400];
-    std::snprintf(line, sizeof line,
-                  "btflut relight: note: the light (%.1f, %.1f) is beyond the measured lights (they reach theta "
-                  "%.1f): its LUT is clamped to the nearest measured edge's, which can show wrong shadows and speckle "
-                  "far from it; `bake --fill model` fills such lights from the fitted rough-surface model\n",
-                  light.theta * 180 / M_PI, light.phi * 180 / M_PI, reach * 180 / M_PI);
+    for (std::size_t n = 0; n < layer.measuredNodes; ++n) {
+        const Direction l = layer.nodes[n].light;
+        reach = std::max(reach, l.theta);
+        if (l.theta > 1 / kDegrees) phis.push_back(std::fmod(l.phi * kDegrees + 360, 360));
+    }
+    std::string why;
+    char text[200];
+    if (light.theta > reach || phis.empty()) {
+        std::snprintf(text, sizeof text, "its theta is past theirs (they reach theta %.1f)", reach * kDegrees);
+        why = text;
+    } else {
+        // The azimuth gap the light falls in: the measured azimuths on either side of it.
+        std::sort(phis.begin(), phis.end());
+        const double phi = std::fmod(light.phi * kDegrees + 360, 360);
+        auto above = std::upper_bound(phis.begin(), phis.end(), phi);
+        const double after = above == phis.end() ? phis.front() : *above,
+                     before = above == phis.begin() ? phis.back() : *(above - 1);
+        std::snprintf(text, sizeof text,
+                      "its theta is within theirs (up to %.1f), but no measured light lies between phi %.1f and "
+                      "%.1f, where its phi is",
+                      reach * kDegrees, before, after);
+        why = text;
+    }
+    char line[600];
+    std::snprintf(
+        line, sizeof line,
+        "btflut relight: note: the light (theta %.1f, phi %.1f) is outside the measured lights' hull: %s; its "
+        "LUT is clamped to the nearest measured edge's, which can show wrong shadows and speckle far from it; "
+        "`bake --fill model` fills such lights from the fitted rough-surface model\n",
+        light.theta * kDegrees, light.phi * kDegrees, why.c_str());
     std::cerr << line;
 }
 
