@@ -161,6 +161,33 @@ TEST_CASE("bake, info, relight and export work from files") {
     for (int code = 0; code < 100; ++code) CHECK(std::lround(atlas->at(code, 12, 0) * 255) == code);
 }
 
+TEST_CASE("one exit-code convention: bad input 1 (values out of range too), usage 2, compare 2 on bad input") {
+    TempDir dir;
+    const std::string manifest = writeSyntheticDataset(dir, kCliShots);
+    for (const std::vector<std::string>& bad :
+         {std::vector<std::string>{"bake", manifest, "--grid", "0", "-o", dir / "m.btflut"},
+          {"bake", manifest, "--references", "1000", "-o", dir / "m.btflut"},
+          {"bake", manifest, "--grid", "seven", "-o", dir / "m.btflut"},
+          {"hist", manifest, "--bins", "0", "-o", dir / "h.csv"},
+          {"bake", manifest, "--budget", "0", "-o", dir / "m.btflut"},
+          {"bake", dir / "nothing", "-o", dir / "m.btflut"}}) {
+        const CliRun r = runCli(bad);
+        INFO(bad[0] << " " << bad[2] << " " << bad[3] << ": " << r.err);
+        CHECK(r.status == 1);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+        CHECK(r.err.find("btflut " + bad[0] + ": error: ") == 0);
+    }
+    for (const std::vector<std::string>& usage :
+         {std::vector<std::string>{"bake", manifest, "--gird", "5"}, {"bake"}, {"bakke", manifest}, {"hist"}}) {
+        INFO(usage[0]);
+        CHECK(runCli(usage).status == 2);
+    }
+    // compare: 0 within, 1 outside, 2 bad input, values out of range included.
+    CHECK(runCli({"compare", dir / "shot0.png", dir / "shot0.png", "--tolerance", "psnr=-5"}).status == 2);
+    CHECK(runCli({"compare", dir / "shot0.png", dir / "none.png"}).status == 2);
+    CHECK(runCli({"--help"}).out.find("Exit status: 0 done; 1 bad input") != std::string::npos);
+}
+
 TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched") {
     TempDir dir;
     std::string manifest = writeSyntheticDataset(dir, kCliShots);

@@ -179,6 +179,10 @@ int run(const std::vector<std::string>& args) {
         "(van Ginneken, Koenderink & Dana, IJCV 1999). Angles are in degrees; a direction\n"
         "is THETA,PHI in the sample frame (z = surface normal, x = image right)."};
     root.name("btflut");
+    root.footer(
+        "Exit status: 0 done; 1 bad input (a missing or corrupt file, a value out of range, out of memory); 2 "
+        "usage (an unknown command or option, a missing argument). compare: 0 within the tolerance, 1 outside, "
+        "2 bad input.");
     root.set_version_flag("--version", std::string("btflut ") + BTFLUT_VERSION + " (.btflut format up to version " +
                                            std::to_string(kBankFormatVersion) + ", btflut.glsl version " +
                                            std::to_string(kShaderIncludeVersion) + ")");
@@ -227,13 +231,21 @@ int run(const std::vector<std::string>& args) {
         return 2;
     }
     std::string commandPath = sub ? sub->get_name() : "";  // with a nested command: "bench render"
+    const CLI::App* deepest = sub;
     for (const CLI::App* at = sub; at;) {
         const CLI::App* next = nullptr;
         for (const CLI::App* nested : at->get_subcommands([](const CLI::App*) { return true; }))
             if (std::find(args.begin(), args.end(), nested->get_name()) != args.end()) next = nested;
-        if (next) commandPath += " " + next->get_name();
+        if (next) {
+            commandPath += " " + next->get_name();
+            deepest = next;
+        }
         at = next;
     }
+    // A value out of range or not a number is bad input, with the command's bad-input status.
+    int badInputExit = 1;
+    for (const Command& command : commands)
+        if (command.app == deepest) badInputExit = command.errorExit;
     const std::string help = sub ? "btflut " + commandPath + " --help" : "btflut --help";
     if (sub)  // a misspelt option, before CLI11 reports the required option it hides
         if (const std::string unknown = unknownOption(root, *sub, args); !unknown.empty()) {
@@ -249,8 +261,11 @@ int run(const std::vector<std::string>& args) {
         return root.exit(e);
     } catch (const CLI::ParseError& e) {
         if (e.get_exit_code() == 0) return root.exit(e);
-        std::cerr << "btflut: error: " << e.what() << " (see " << help << ")\n";
-        return 2;
+        std::cerr << "btflut" << (commandPath.empty() ? "" : " " + commandPath) << ": error: " << e.what() << " (see "
+                  << help << ")\n";
+        const bool badValue =
+            dynamic_cast<const CLI::ValidationError*>(&e) || dynamic_cast<const CLI::ConversionError*>(&e);
+        return badValue ? badInputExit : 2;
     }
     setMaxImagePixels(maxPixels);
     for (const Command& command : commands) {
