@@ -377,6 +377,11 @@ TEST_CASE("neuralrti: the published recipe converges on a relief, the same bytes
                                                              << baseline->epochs.size() << " (" << baseline->stopped
                                                              << ")");
     CHECK(last < 0.5 * first);
+    // The weights kept are the best validation's.
+    REQUIRE(baseline->bestEpoch >= 1);
+    REQUIRE(baseline->bestEpoch <= static_cast<int>(baseline->epochs.size()));
+    for (const NeuralRtiEpoch& e : baseline->epochs)
+        CHECK(baseline->epochs[static_cast<std::size_t>(baseline->bestEpoch - 1)].validationLoss <= e.validationLoss);
     double psnr = 0;
     for (Direction l :
          {Direction::fromDegrees(25, 10), Direction::fromDegrees(45, 200), Direction::fromDegrees(60, 300)}) {

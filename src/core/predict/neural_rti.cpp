@@ -178,6 +178,8 @@ Result<NeuralRti> fitNeuralRti(const std::vector<const Image*>& images, const st
 
     PlateauSchedule schedule(kPublishedRate);
     std::size_t steps = 0;
+    Network bestEncoder = encoder, bestDecoder = decoder;
+    double bestLoss = 1e300;
     for (int epoch = 0; epoch < o.maxEpochs && n.stopped.empty(); ++epoch) {
         double trainingError = 0;
         std::size_t trained = 0;
@@ -202,6 +204,12 @@ Result<NeuralRti> fitNeuralRti(const std::vector<const Image*>& images, const st
         e.steps = steps;
         n.epochs.push_back(e);
         if (!std::isfinite(e.validationLoss)) return Error{what + ": training NeuralRTI diverged"};
+        if (e.validationLoss < bestLoss) {
+            bestLoss = e.validationLoss;
+            bestEncoder = encoder;
+            bestDecoder = decoder;
+            n.bestEpoch = static_cast<int>(n.epochs.size());
+        }
         if (steps >= mostSteps && o.seconds > 0 && epoch + 1 < o.maxEpochs)
             n.stopped = "time bound";
         else if (!schedule.epochEnded(e.validationLoss))
@@ -209,6 +217,8 @@ Result<NeuralRti> fitNeuralRti(const std::vector<const Image*>& images, const st
     }
     if (n.stopped.empty()) n.stopped = std::to_string(o.maxEpochs) + " epochs";
     if (o.progress) o.progress(1);
+    encoder = std::move(bestEncoder);
+    decoder = std::move(bestDecoder);
     if (!encoder.finite() || !decoder.finite()) return Error{what + ": training NeuralRTI diverged"};
     quantiseCodes(encodeTexels(encoder, from, first.pixelCount(), o.threads), drawn->inside,
                   static_cast<std::size_t>(o.codes), n.scale, n.bias, n.coefficients, true);
