@@ -188,6 +188,23 @@ TEST_CASE("one exit-code convention: bad input 1 (values out of range too), usag
     CHECK(runCli({"--help"}).out.find("Exit status: 0 done; 1 bad input") != std::string::npos);
 }
 
+TEST_CASE("bake says which images share a light direction, the node their LUTs are averaged into") {
+    TempDir dir;
+    const std::string manifest = writeSyntheticDataset(dir, kCliShots);
+    // shot3 at shot1's light: 4 images, 3 nodes.
+    std::ofstream(dir / "twice.lp") << "4\nshot0.png 0 0 1\nshot1.png 0.5 0 0.8660254\nshot2.png -0.25 0.4330127 "
+                                       "0.8660254\nshot3.png 0.5 0 0.8660254\n";
+    const CliRun r = runCli({"bake", dir / "twice.lp", "--references", "1", "-o", dir / "t.btflut"});
+    REQUIRE_MESSAGE(r.status == 0, r.err);
+    CHECK(r.out.find("4 images, 1 view layer(s), 3 measured nodes (averaged into one node, a light direction twice: "
+                     "shot3 at shot1's)") != std::string::npos);
+    const CliRun json = runCli({"bake", dir / "twice.lp", "--references", "1", "-o", dir / "t.btflut", "--json"});
+    CHECK(nlohmann::json::parse(json.out)["images_sharing_a_node"] == nlohmann::json{"shot3 at shot1's"});
+    const CliRun plain = runCli({"bake", manifest, "--references", "1", "-o", dir / "p.btflut"});
+    CHECK(plain.status == 0);
+    CHECK(plain.out.find("4 measured nodes,") != std::string::npos);
+}
+
 TEST_CASE("bad input: one line naming the file, non-zero exit, outputs untouched") {
     TempDir dir;
     std::string manifest = writeSyntheticDataset(dir, kCliShots);

@@ -208,3 +208,18 @@ TEST_CASE("a pixel's ray finds the texture coordinates of the quad point it show
         CHECK((*uv)[1] == doctest::Approx(sv * 3).epsilon(0.06));
     }
 }
+
+TEST_CASE("a key given twice in one object is refused, at any depth; in different objects it is fine") {
+    std::string twice = kScene;
+    twice.replace(twice.find(R"("interpolation")"), 0, R"("light": {"direction": [1, 0, 1]}, )");
+    Result<Scene> scene = parseScene(twice, "s.json", "/scenes");
+    REQUIRE_FALSE(scene.ok());
+    CHECK(scene.error() ==
+          "s.json: the key \"light\" is given twice in one object (JSON would keep the last "
+          "silently); give it once");
+    std::string inner = kScene;
+    inner.replace(inner.find(R"("size": [2, 1])"), 0, R"("size": [1, 1], )");
+    REQUIRE_FALSE(parseScene(inner, "s.json", "/scenes").ok());
+    CHECK(parseScene(inner, "s.json", "/scenes").error().find("\"size\" is given twice") != std::string::npos);
+    CHECK(parseScene(kScene, "s.json", "/scenes").ok());  // "material" in two quads: two objects
+}

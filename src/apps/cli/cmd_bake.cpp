@@ -163,6 +163,21 @@ std::string predictorSummary(const LutBank& bank) {
                 : std::string());
 }
 
+// Images at the light and view direction of an earlier one: bake averages their LUTs into that
+// node (setNodes), so a bank has fewer measured nodes than images. "rock.2 at rock.1's".
+std::vector<std::string> imagesSharingANode(const Dataset& dataset) {
+    std::vector<std::string> shared;
+    const auto& images = dataset.images;
+    for (std::size_t i = 0; i < images.size(); ++i)
+        for (std::size_t j = 0; j < i; ++j)
+            if (angleBetween(images[i].light, images[j].light) < kSameDirection &&
+                angleBetween(images[i].view, images[j].view) < kSameDirection) {
+                shared.push_back(images[i].name + " at " + images[j].name + "'s");
+                break;
+            }
+    return shared;
+}
+
 // --budget: bytes per texel, a training time and/or a decoding bound in multiply-adds per texel
 // ("9", "90s", "2m", "1500mac", "9,90s,1500mac").
 struct Budget {
@@ -305,7 +320,8 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
                          {"reference", bank->referenceName},
                          {"ptm", !bank->ptm.empty()},
                          {"chosen_by_validation", !bank->selection.empty()},
-                         {"bytes", std::filesystem::file_size(o.output)}};
+                         {"bytes", std::filesystem::file_size(o.output)},
+                         {"images_sharing_a_node", imagesSharingANode(*dataset)}};
         if (bank->makesLuts()) {
             j["predictor"] = bank->predictorName();
             j["bytes_per_texel"] = bank->predictorBytesPerTexel();
@@ -318,10 +334,15 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
         std::size_t nodes = 0;
         for (const ViewLayer& l : bank->layers)
             for (const LightNode& n : l.nodes) nodes += !n.modelled;
+        std::string merged;  // why there are fewer nodes than images
+        if (nodes < dataset->images.size())
+            for (const std::string& pair : imagesSharingANode(*dataset))
+                merged += (merged.empty() ? " (averaged into one node, a light direction twice: " : "; ") + pair;
+        if (!merged.empty()) merged += ")";
         std::cout << "wrote " << o.output << ": " << dataset->images.size() << " images, " << bank->layers.size()
-                  << " view layer(s), " << nodes << " measured nodes, " << bank->gridSize << "x" << bank->gridSize
-                  << " grid, " << bank->entries << " entries, domain " << domainName(bank->domain) << ", colour "
-                  << colourName(bank->colour) << predictorSummary(*bank)
+                  << " view layer(s), " << nodes << " measured nodes" << merged << ", " << bank->gridSize << "x"
+                  << bank->gridSize << " grid, " << bank->entries << " entries, domain " << domainName(bank->domain)
+                  << ", colour " << colourName(bank->colour) << predictorSummary(*bank)
                   << (bank->selection.empty() ? "" : " (chosen by validation; btflut info)") << ", reference "
                   << bank->referenceName << (bank->ptm.empty() ? "" : ", PTM") << ", "
                   << std::filesystem::file_size(o.output) << " bytes\n";
