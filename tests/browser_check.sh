@@ -173,6 +173,24 @@ dom=$(timeout 180 chromium --headless --no-sandbox --user-data-dir="$work/profil
 grep -q 'clamped: beyond the measured lights; bake --fill model' <<<"$dom" ||
   { echo "export --web: a light beyond the measured ones is not said to be clamped" >&2; exit 1; }
 echo "export --web: a light beyond the measured ones is said to be clamped"
+# The panel names the predictor as bake and info do.
+for pair in "neural5|learned (neural5)" "hsh2|model (hsh2)" "references|references (references)"; do
+  IFS='|' read -r name label <<<"$pair"
+  dom=$(timeout 180 chromium --headless --no-sandbox --user-data-dir="$work/profile" --use-angle=swiftshader \
+        --enable-unsafe-swiftshader --virtual-time-budget=30000 --dump-dom "file://$work/$name.html" 2>/dev/null)
+  grep -q "texels, $label," <<<"$dom" || { echo "export --web, $name: the panel does not say '$label'" >&2; exit 1; }
+done
+echo "export --web: the panel names each bank's predictor"
+# Without #light a page opens at a light the capture measured around, never a clamped one
+# (psm-rock's lights do not reach (30, 45)); the legend names the interpolated area.
+if [ -f "$work/rock-rgb.html" ]; then
+  dom=$(timeout 180 chromium --headless --no-sandbox --user-data-dir="$work/profile" --use-angle=swiftshader \
+        --enable-unsafe-swiftshader --virtual-time-budget=30000 --dump-dom "file://$work/rock-rgb.html" 2>/dev/null)
+  grep -q 'id="light">theta' <<<"$dom" && ! grep -q 'clamped: beyond' <<<"$dom" ||
+    { echo "export --web: psm-rock's page opens at a clamped light" >&2; exit 1; }
+  grep -q 'dark: interpolated between them' <<<"$dom" || { echo "export --web: the legend omits the interpolated area" >&2; exit 1; }
+  echo "export --web: psm-rock's page opens at a measured light"
+fi
 # Without WebGL2: a message, not a blank canvas.
 dom=$(timeout 120 chromium --headless --no-sandbox --user-data-dir="$work/profile" --disable-webgl --disable-3d-apis \
       --virtual-time-budget=10000 --dump-dom "file://$work/one.html" 2>/dev/null)

@@ -76,7 +76,7 @@ const name = data.name || json.reference.name || 'material';
 document.title = name + ' (btflut)';
 document.getElementById('name').textContent = name;
 document.getElementById('facts').textContent = json.reference.width + ' x ' + json.reference.height + ' texels, ' + json.kind +
-  (json.predictor ? ' (' + (json.predictor.basis || 'references') + ')' : '') + ', ' + json.luts.grid_size + ' x ' +
+  (json.predictor ? ' (' + (json.predictor.name || json.predictor.basis || 'references') + ')' : '') + ', ' + json.luts.grid_size + ' x ' +
   json.luts.grid_size + ' light grid' + (data.bytes ? ', ' + (data.bytes / 1024).toFixed(0) + ' KB exported' : '');
 readHash();
 load().then(draw).catch((e) => {

@@ -10,6 +10,19 @@ function lightProvenance() {
   const i = Math.round((x + 1) / 2 * (g - 1)), j = Math.round((y + 1) / 2 * (g - 1));
   return provenance[j * g + i] || 'measured';
 }
+// The light a page opens at without #light: (30, 45), unless that is beyond the measured lights
+// (a narrow capture), then the measured light nearest it on the disk.
+function defaultLight() {
+  state.theta = 30; state.phi = 45;
+  if (!['clamped', 'extrapolated'].includes(lightProvenance())) return;
+  const [x0, y0] = diskPoint(30, 45);
+  let best = Infinity;
+  for (const node of layer.lights || []) {
+    if (node.modelled) continue;
+    const [x, y] = diskPoint(node.theta, node.phi), d = Math.hypot(x - x0, y - y0);
+    if (d < best) best = d, state.theta = node.theta, state.phi = node.phi;
+  }
+}
 function updatePanel() {
   panel.style.display = state.ui ? 'block' : 'none';
   const beyond = ['clamped', 'extrapolated'].includes(lightProvenance());  // 'extrapolated': older exports

@@ -23,10 +23,9 @@ function showMessage(text) {
 const state = {theta: 30, phi: 45, zoom: null, centre: null, view: '2d', ui: true, exposure: 1, anchored: false};
 function readHash() {
   const fields = Object.fromEntries(location.hash.slice(1).split('&').filter(Boolean).map((p) => p.split('=').map(decodeURIComponent)));
-  if (fields.light) {
-    const [theta, phi] = fields.light.split(',').map(Number);
-    if (Number.isFinite(theta) && Number.isFinite(phi)) state.theta = Math.min(89.9, Math.max(0, theta)), state.phi = phi;
-  }
+  const [theta, phi] = (fields.light || '').split(',').map(Number);
+  if (fields.light && Number.isFinite(theta) && Number.isFinite(phi)) state.theta = Math.min(89.9, Math.max(0, theta)), state.phi = phi;
+  else if (!fields.light) defaultLight();
   if (fields.zoom) state.zoom = fields.zoom === 'fit' ? null : Math.min(64, Math.max(1 / 64, Number(fields.zoom) || 1));
   if (fields.view === 'sphere' || fields.view === '2d') state.view = fields.view;
   if (fields.ui !== undefined) state.ui = fields.ui !== '0';

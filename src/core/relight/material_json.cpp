@@ -137,7 +137,10 @@ nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
     }
     if (!b.modelFill.empty()) side["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
 
-    if (predictor) side["predictor"] = predictorJson(m);
+    if (predictor) {
+        side["predictor"] = predictorJson(m);
+        side["predictor"]["name"] = b.predictorName();  // as bake's --predictor and info name it: "neural9", "hsh2"
+    }
     // The sample's part of the image where the bank's mask leaves some out: what a closed
     // surface (the page's sphere) wraps, so no background is tiled over it.
     const Mask& mask = b.blend.mask;
