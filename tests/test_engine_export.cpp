@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/bank/bank_file.h"
+#include "core/image/canvas.h"
 #include "core/predict/gpu_constants.h"
 #include "core/predict/ptm_file.h"
 #include "helpers.h"
@@ -463,6 +464,11 @@ TEST_CASE("compare as a CI tool: pixels over a threshold, parsing, output folder
     Result<Image> side = loadImage(dir / "new2/s.png");
     REQUIRE(side.ok());
     CHECK(side->width == 3 * 64);
+    CHECK(side->height == loadImage(dir / "a.png")->height + Canvas::kTextHeight + 6);  // a strip naming each pane
+    bool inked = false;  // the strip's label over the first pane
+    for (int x = 0; x < 64; ++x)
+        for (int y = 0; y < Canvas::kTextHeight + 6; ++y) inked = inked || side->at(x, y, 0) < 0.5f;
+    CHECK(inked);
     REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "1", "-o", dir / "m.btflut", "-q"}).status == 0);
     // bake --json: the summary, and nothing else on stdout.
     const CliRun baked = runCli(

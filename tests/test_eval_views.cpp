@@ -148,8 +148,20 @@ TEST_CASE(
                         "-o", folder})
                     .status == 0);
         const nlohmann::json json = evalJson({"eval", folder, "--holdout", "loo", "--no-gl", "--json"});
+        // curet-c2's pairs are sparse: every held-out pair is outside its fold's hull, and eval says so.
+        for (const nlohmann::json& m : json["modes"]) CHECK(m["inside_hull"]["count"] == 0);
+        CHECK(json["note"].get<std::string>().find("every held-out image lies outside the hull") == 0);
         std::map<std::string, double> l1;
         for (const nlohmann::json& m : json["modes"]) l1[m["name"].get<std::string>()] = m["l1"].get<double>();
+        // Bytes per texel: each fold's bank's, the table their mean (lut auto may choose per fold).
+        for (const nlohmann::json& m : json["modes"]) {
+            if (m["mode"] != "lut") continue;
+            const auto folds = m["bytes_per_texel_by_fold"].get<std::vector<double>>();
+            REQUIRE(folds.size() == json["folds"].get<std::size_t>());
+            double sum = 0;
+            for (double b : folds) sum += b;
+            CHECK(m["bytes_per_texel"].get<double>() == doctest::Approx(sum / static_cast<double>(folds.size())));
+        }
         MESSAGE(preset << ": held-out L1 lut " << l1["lut K1 R1 grey"] << ", nearest " << l1["nearest"] << ", brdf "
                        << l1["brdf"]);
         CHECK(l1.at("lut K1 R1 grey") < l1.at("nearest"));

@@ -185,6 +185,20 @@ TEST_CASE("charts: the Pareto front, and panels drawn with missing figures") {
     CHECK(coloured > 100);
 }
 
+TEST_CASE("charts: a series with no figure is named under the title, not dropped unseen") {
+    ChartPanel panel{.title = "PSNR against frame time", .xLabel = "ms", .yLabel = "dB"};
+    panel.series.push_back({"lut auto", {2.0}, {30.0}});
+    ChartPanel withMissing = panel;
+    withMissing.series.push_back({"neuralrti", {std::nan("")}, {25.0}});
+    auto inkUnderTitle = [](const Image& chart) {  // the rows between the title and the plot area
+        std::size_t n = 0;
+        for (int y = Canvas::kTextHeight + 4; y < 2 * Canvas::kTextHeight + 4; ++y)
+            for (int x = 0; x < chart.width; ++x) n += chart.at(x, y, 0) < 0.9f;
+        return n;
+    };
+    CHECK(inkUnderTitle(drawCharts({withMissing}, 1)) > inkUnderTitle(drawCharts({panel}, 1)) + 20);
+}
+
 TEST_CASE("charts: distinct tick numbers, and labels of coincident points apart") {
     // L1 figures 0.1452 .. 0.1462 were all labelled 0.146 at three digits.
     const std::vector<std::string> close = axisTickLabels({0.1452, 0.1462}, false);

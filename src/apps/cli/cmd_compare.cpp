@@ -17,6 +17,7 @@
 #include "core/check.h"
 #include "core/data/dataset.h"
 #include "core/eval/metrics.h"
+#include "core/image/canvas.h"
 #include "core/io/file_io.h"
 #include "core/io/json_text.h"
 #include "core/parallel.h"
@@ -225,18 +226,23 @@ Image differenceImage(const Image& a, const Image& b, const Mask& mask, double f
     return out;
 }
 
-// Expected | actual | difference, side by side, RGB.
+// Expected | actual | difference, side by side, RGB, under a strip that names each pane.
 Image sideBySide(const Image& actual, const Image& expected, const Image& difference) {
-    const int w = expected.width, h = expected.height;
-    Image out(3 * w, h, 3);
+    const int w = expected.width, strip = Canvas::kTextHeight + 6;
+    Canvas canvas(3 * w, strip + expected.height);
     const Image* panes[3] = {&expected, &actual, &difference};
-    for (int k = 0; k < 3; ++k)
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x)
-                for (int c = 0; c < 3; ++c)
-                    out.samples[(static_cast<std::size_t>(y) * 3 * w + k * w + x) * 3 + c] =
-                        panes[k]->at(x, y, std::min(c, panes[k]->channels - 1));
-    return out;
+    const char* names[3] = {"expected", "actual", "difference"};
+    for (int k = 0; k < 3; ++k) {
+        Image pane(panes[k]->width, panes[k]->height, 3);  // 16-bit and grey panes as RGB in [0, 1]
+        for (std::size_t i = 0; i < pane.pixelCount(); ++i)
+            for (int c = 0; c < 3; ++c)
+                pane.samples[i * 3 + static_cast<std::size_t>(c)] =
+                    panes[k]->samples[i * static_cast<std::size_t>(panes[k]->channels) +
+                                      static_cast<std::size_t>(std::min(c, panes[k]->channels - 1))];
+        canvas.blit(k * w, strip, pane);
+        canvas.text(k * w + 4, 3, Canvas::fitted(names[k], w - 8), kInk);
+    }
+    return canvas.take();
 }
 
 Status copyFile(const std::string& from, const std::string& to) {

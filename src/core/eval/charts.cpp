@@ -118,6 +118,16 @@ void drawPanel(Canvas& canvas, int left, int top, const ChartPanel& p) {
     auto py = [&](double y) { return y0 + kPanelH - ay.at(y, kPanelH); };
     const std::string title = Canvas::fitted(p.title, kPanelW + kLeft - 8);
     canvas.text(std::max(left + 4, x0 + (kPanelW - Canvas::textWidth(title)) / 2), top + 2, title, kInk);
+    // Series with no point to draw (a mode eval did not time: --no-gl) are named, not dropped unseen.
+    std::string missing;
+    for (const ChartSeries& s : p.series) {
+        bool any = false;
+        for (std::size_t i = 0; i < s.x.size(); ++i) any = any || (std::isfinite(s.x[i]) && std::isfinite(s.y[i]));
+        if (!any) missing += (missing.empty() ? "" : ", ") + s.label;
+    }
+    if (!missing.empty() && !xs.empty())
+        canvas.text(x0 + 4, top + 4 + Canvas::kTextHeight, Canvas::fitted("no figure: " + missing, kPanelW - 8),
+                    kAxisGrey);
     canvas.fill(x0, y0 + kPanelH, x0 + kPanelW, y0 + kPanelH + 1, kAxisGrey);
     canvas.fill(x0, y0, x0 + 1, y0 + kPanelH, kAxisGrey);
     if (xs.empty()) {

@@ -16,8 +16,9 @@
 namespace btflut {
 
 Rgb paletteColour(std::size_t i) {
-    static const Rgb kPalette[] = {{0.25f, 0.4f, 0.7f}, {0.85f, 0.3f, 0.1f}, {0.1f, 0.6f, 0.3f},  {0.6f, 0.2f, 0.7f},
-                                   {0.9f, 0.6f, 0.0f},  {0.1f, 0.6f, 0.7f},  {0.7f, 0.45f, 0.2f}, {0.85f, 0.3f, 0.55f}};
+    static const Rgb kPalette[] = {{0.25f, 0.4f, 0.7f}, {0.85f, 0.3f, 0.1f}, {0.1f, 0.6f, 0.3f},
+                                   {0.6f, 0.2f, 0.7f},  {0.9f, 0.6f, 0.0f},  {0.15f, 0.15f, 0.15f},
+                                   {0.7f, 0.45f, 0.2f}, {0.85f, 0.3f, 0.55f}};
     return kPalette[i % 8];
 }
 

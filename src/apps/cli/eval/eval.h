@@ -121,7 +121,10 @@ struct Variant {
     /// lut auto: what bake chose in each fold ("hsh2 match 0.50"), in fold order.
     std::vector<std::string> chosen;
     std::vector<std::string> training;  ///< neuralrti: each fold's epochs, steps, loss curve and why it stopped
-    double bytesPerTexel = 0;
+    double bytesPerTexel = 0;           ///< the unmatched models' (the same in every fold)
+    /// Banked modes: each fold's bank's bytes per texel and multiply-adds (lut auto may choose
+    /// another predictor per fold); the report gives their means.
+    std::vector<double> foldBytesPerTexel, foldMultiplyAdds;
     /// Multiply-adds per texel of its prediction (Predictor::multiplyAdds; 0 for the paper's bank).
     double multiplyAdds = 0;
     double gpuBytesPerTexel = std::nan(""), frameMs = std::nan(""), gpuMaxDiff = std::nan("");

@@ -60,8 +60,6 @@ public:
             const std::string path = (m_scratch / (std::to_string(m_bankFiles.size()) + ".btflut")).string();
             if (Status s = saveBank(*bank, path); !s) return Error{s.error()};
             m_bankFiles[v.name] = path;
-            v.bytesPerTexel = bytesPerTexel(v, *bank);
-            v.multiplyAdds = bank->makesLuts() ? static_cast<double>(bank->predictor().multiplyAdds()) : 0.0;
         }
         return bank;
     }
@@ -88,8 +86,14 @@ private:
         m_banks[key] = std::make_unique<LutBank>(std::move(*bank));
         m_relighters[key] = std::make_unique<Relighter>(*m_banks[key]);
         const std::string chosen = setting.predictor == "auto" ? choiceOf(*m_banks[key]) : std::string();
+        const LutBank& baked = *m_banks[key];
         for (Variant& other : m_variants)
-            if (other.mode == RenderMode::Lut && other.setting() == key) {
+            if (!other.unmatched() && keyOf(other) == key) {
+                // Each fold's bank: lut auto may choose another predictor, and so another size, per fold.
+                other.foldBytesPerTexel.push_back(bytesPerTexel(other, baked));
+                other.foldMultiplyAdds.push_back(
+                    baked.makesLuts() ? static_cast<double>(baked.predictor().multiplyAdds()) : 0.0);
+                if (other.mode != RenderMode::Lut) continue;
                 other.bakeSeconds.push_back(took);
                 if (!chosen.empty()) other.chosen.push_back(chosen);
             }
@@ -124,7 +128,8 @@ namespace {
 std::string trainingSummary(const NeuralRti& n) {
     std::string text = std::to_string(n.epochs.size()) + " epochs, " +
                        std::to_string(n.epochs.empty() ? 0 : n.epochs.back().steps) + " steps (stopped: " + n.stopped +
-                       "); validation MSE by epoch";
+                       "; kept epoch " + std::to_string(n.bestEpoch) +
+                       ", the best validation); validation MSE by epoch";
     char value[64];
     for (const NeuralRtiEpoch& e : n.epochs) {
         std::snprintf(value, sizeof value, " %.3g", e.validationLoss);
@@ -281,8 +286,9 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
     for (const Variant& v : variants) sheetHistograms.push_back({v.name, {}});
     auto histogramOf = [&](const Image& image, const DatasetImage& info) {
         char label[96];
-        std::snprintf(label, sizeof label, "%s l%.0f,%.0f v%.0f,%.0f", info.name.c_str(), info.light.thetaDegrees(),
-                      info.light.phiDegrees(), info.view.thetaDegrees(), info.view.phiDegrees());
+        std::snprintf(label, sizeof label, "%s light %.0f,%.0f view %.0f,%.0f", info.name.c_str(),
+                      info.light.thetaDegrees(), info.light.phiDegrees(), info.view.thetaDegrees(),
+                      info.view.phiDegrees());
         return imageHistograms(image, mask, label, info.light, info.view, 64, false).front();
     };
     // The contact sheet's --contact lights: spread evenly over every held-out image.
@@ -316,9 +322,11 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
             const bool sheetRow = onSheet.count(t) > 0;
             std::vector<SheetCell> errorRow;  // the contact sheet's row under it: where each mode misses
             if (sheetRow) {
-                char light[64];
-                std::snprintf(light, sizeof light, "\nlight %.0f, %.0f", info.light.thetaDegrees(),
-                              info.light.phiDegrees());
+                char light[96];  // the view too where the capture has several
+                std::snprintf(light, sizeof light,
+                              dataset.fixedView() ? "\nlight %.0f, %.0f" : "\nlight %.0f, %.0f view %.0f, %.0f",
+                              info.light.thetaDegrees(), info.light.phiDegrees(), info.view.thetaDegrees(),
+                              info.view.phiDegrees());
                 sheet.push_back({{info.name + " (photo)" + light, *photo}});
                 sheetHistograms.front().rows.push_back(histogramOf(*photo, info));
             }

@@ -182,6 +182,9 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         const double l1 = mean(&ImageErrors::l1), emd = mean(&ImageErrors::emd), psnr = mean(&ImageErrors::psnr),
                      ssim = mean(&ImageErrors::ssim), bake = meanOf(v.bakeSeconds),
                      relight = v.relightSeconds.empty() ? std::nan("") : median(v.relightSeconds) * 1e3;
+        // Banked modes: the folds' mean (lut auto may choose a predictor of another size per fold).
+        const double bytes = v.foldBytesPerTexel.empty() ? v.bytesPerTexel : meanOf(v.foldBytesPerTexel),
+                     multiplyAdds = v.foldMultiplyAdds.empty() ? v.multiplyAdds : meanOf(v.foldMultiplyAdds);
         // A figure a mode has none of (no GL, no bake) is "-", not nan.
         auto cell = [](double x, int width, int decimals, const char* unit = "") {
             char c[64];
@@ -194,7 +197,7 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         char name[64];
         std::snprintf(name, sizeof name, "%-30s", v.name.c_str());
         text += std::string(name) + " " + cell(l1, 7, 4) + " " + cell(emd, 7, 4) + " " + cell(psnr, 7, 2) + " " +
-                cell(ssim, 6, 3) + " " + cell(v.bytesPerTexel, 9, 2) + " " + cell(v.gpuBytesPerTexel, 9, 2) + " " +
+                cell(ssim, 6, 3) + " " + cell(bytes, 9, 2) + " " + cell(v.gpuBytesPerTexel, 9, 2) + " " +
                 cell(bake, 8, 3) + " " + cell(relight, 6, 2, " ms") + " " + cell(v.frameMs, 8, 2) + " " +
                 cell(v.gpuMaxDiff, 8, 1) + "\n";
         auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
@@ -210,8 +213,9 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                                  {"emd", number(emd)},
                                  {"psnr", number(psnr)},
                                  {"ssim", number(ssim)},
-                                 {"bytes_per_texel", v.bytesPerTexel},
-                                 {"multiply_adds_per_texel", v.multiplyAdds},
+                                 {"bytes_per_texel", bytes},
+                                 {"bytes_per_texel_by_fold", v.foldBytesPerTexel},
+                                 {"multiply_adds_per_texel", multiplyAdds},
                                  {"gpu_bytes_per_texel", number(v.gpuBytesPerTexel)},
                                  {"bake_seconds", number(bake)},
                                  {"relight_ms", number(relight)},
@@ -294,6 +298,19 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
     // Bins outside the measured hull (the bank clamped or modelled them) apart from those inside.
     const bool anyOutside = std::any_of(json["modes"].begin(), json["modes"].end(),
                                         [](const nlohmann::json& m) { return m["outside_hull"]["count"] > 0; });
+    // Every held-out image outside the hull (curet-c2's sparse pairs): the table measures
+    // extrapolation alone, which a reader must be told before reading it as interpolation.
+    const bool allOutside =
+        !json["modes"].empty() && std::all_of(json["modes"].begin(), json["modes"].end(), [](const nlohmann::json& m) {
+            return m["inside_hull"]["count"] == 0 && m["outside_hull"]["count"] > 0;
+        });
+    if (allOutside) {
+        const std::string note =
+            "every held-out image lies outside the hull of its fold's training lights (and views): the figures "
+            "measure extrapolation only; hold out fewer, or capture denser";
+        text = "note: " + note + "\n" + text;
+        json["note"] = note;
+    }
     if (anyOutside || !dataset.fixedView()) {
         text += "\ninside and outside the measured hull of each bank's domain: L1, EMD (predictions)\n";
         for (const nlohmann::json& m : json["modes"]) {
