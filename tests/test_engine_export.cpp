@@ -197,7 +197,7 @@ TEST_CASE("export: the folder refused when not empty (unless --force); a failed 
     REQUIRE(runCli({"bake", BTFLUT_DEFAULT_MATERIAL, "--references", "1", "-o", bank, "-q"}).status == 0);
     fs::create_directories(dir / "busy");
     std::ofstream(dir / "busy/notes.txt") << "mine";
-    requireOneLineError(runCli({"export", bank, "-o", dir / "busy"}), "the folder is not empty");
+    requireOneLineError(runCli({"export", bank, "-o", dir / "busy"}), "the folder holds files that are neither");
     CHECK_FALSE(fs::exists(dir / "busy/luts.png"));
     CHECK(runCli({"export", bank, "-o", dir / "busy", "--force"}).status == 0);
     CHECK(readText(dir / "busy/notes.txt") == "mine");
@@ -207,11 +207,26 @@ TEST_CASE("export: the folder refused when not empty (unless --force); a failed 
             0);
     REQUIRE(runCli({"export", dir / "rbf.btflut", "-o", dir / "asset"}).status == 0);
     CHECK(fs::exists(dir / "asset/weights.bin"));
+    // The engines' import sidecars beside the files (Godot's .import, Unity's .meta) do not make
+    // it the user's folder; those of files written again stay, those of stale files go.
+    for (const char* sidecar :
+         {"reference.png.import", "reference.png.meta", "weights.bin.import", "planes-0.png.meta"})
+        std::ofstream(dir / ("asset/" + std::string(sidecar))) << "engine";
     CliRun again = runCli({"export", bank, "-o", dir / "asset"});
     REQUIRE_MESSAGE(again.status == 0, again.err);
     CHECK(readJson(dir / "asset/material.json")["kind"] == "luts");
     CHECK_FALSE(fs::exists(dir / "asset/weights.bin"));
     CHECK_FALSE(fs::exists(dir / "asset/planes-0.png"));
+    CHECK_FALSE(fs::exists(dir / "asset/weights.bin.import"));
+    CHECK_FALSE(fs::exists(dir / "asset/planes-0.png.meta"));
+    CHECK(readText(dir / "asset/reference.png.import") == "engine");
+    CHECK(readText(dir / "asset/reference.png.meta") == "engine");
+    // --force in a folder with the user's files: the previous export's stale files go, the user's stay.
+    REQUIRE(runCli({"export", dir / "rbf.btflut", "-o", dir / "busy", "--force"}).status == 0);
+    CHECK(fs::exists(dir / "busy/weights.bin"));
+    REQUIRE(runCli({"export", bank, "-o", dir / "busy", "--force"}).status == 0);
+    CHECK_FALSE(fs::exists(dir / "busy/weights.bin"));
+    CHECK(readText(dir / "busy/notes.txt") == "mine");
     requireOneLineError(runCli({"export", bank, "--ptm", dir / "m.ptm"}), "the bank holds no PTM (bake it with --ptm)");
     requireOneLineError(runCli({"export", bank}), "give -o DIR");
     // An existing file where the folder goes, and a folder that cannot be made under a file:
@@ -278,7 +293,7 @@ TEST_CASE(
     fs::create_directories(dir / "busy");
     std::ofstream(dir / "busy/notes.txt") << "mine";
     requireOneLineError(runCli({"export", bank, "-o", dir / "busy", "--web", dir / "both.html"}),
-                        "the folder is not empty");
+                        "the folder holds files that are neither");
     CHECK_FALSE(fs::exists(dir / "both.html"));
     fs::create_directories(dir / "taken.html");
     requireOneLineError(runCli({"export", bank, "--web", dir / "taken.html"}), "taken.html");

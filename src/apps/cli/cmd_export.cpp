@@ -259,21 +259,37 @@ bool exportFileName(const std::string& name) {
     return std::regex_match(name, planes);
 }
 
-// True for a folder that holds a previous export and nothing else: an asset pipeline
-// re-exports into it without --force.
-bool holdsOnlyAnExport(const std::string& folder) {
+// The export file an engine's import sidecar belongs to ("reference.png" for Godot's
+// "reference.png.import" and Unity's "reference.png.meta"), or empty for any other name.
+std::string sidecarOf(const std::string& name) {
+    for (const std::string suffix : {".import", ".meta"})
+        if (name.size() > suffix.size() && name.ends_with(suffix)) {
+            const std::string base = name.substr(0, name.size() - suffix.size());
+            if (exportFileName(base)) return base;
+        }
+    return {};
+}
+
+// What an existing -o folder holds: a previous export (a btflut material.json), and files
+// that are neither an export's nor an engine's import sidecar of one (the user's).
+struct FolderContents {
+    bool previousExport = false, others = false;
+};
+FolderContents folderContents(const std::string& folder) {
+    FolderContents c;
     std::error_code ec;
-    bool sidecar = false;
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
-        if (!it->is_regular_file(ec) || !exportFileName(name)) return false;
-        sidecar = sidecar || name == "material.json";
+        const bool ours = it->is_regular_file(ec) && (exportFileName(name) || !sidecarOf(name).empty());
+        c.others = c.others || !ours;
     }
-    if (ec || !sidecar) return false;
-    Result<Bytes> text = readFile((fs::path(folder) / "material.json").string());
-    if (!text) return false;
-    const nlohmann::json material = nlohmann::json::parse(text->begin(), text->end(), nullptr, false);
-    return !material.is_discarded() && material.is_object() && material.value("format", "") == "btflut-material";
+    if (Result<Bytes> text = readFile((fs::path(folder) / "material.json").string()); text) {
+        const nlohmann::json material = nlohmann::json::parse(text->begin(), text->end(), nullptr, false);
+        c.previousExport =
+            !material.is_discarded() && material.is_object() && material.value("format", "") == "btflut-material";
+    }
+    c.others = c.others || ec;
+    return c;
 }
 
 // An engine export's files in memory (docs/engines.md): reference.png (its own bit depth),
@@ -325,17 +341,19 @@ Result<EngineExport> engineExport(const LutBank& b, const std::string& bankPath)
 }
 
 // -o DIR/: whether the folder may be written (before anything is made), and whether it holds
-// a previous export and nothing else (a re-export: its stale files go).
+// a previous export (a re-export: its stale files go). A folder of an export and the import
+// sidecars Godot and Unity write beside its files (.import, .meta) is an asset pipeline's:
+// exported into again without --force; one with other files needs --force.
 Result<bool> folderReady(const ExportOptions& o) {
     std::error_code ec;
     if (!fs::exists(o.output, ec)) return false;
     if (!fs::is_directory(o.output, ec)) return Error{o.output + ": exists and is not a folder"};
-    const bool reexport = holdsOnlyAnExport(o.output);
-    if (!fs::is_empty(o.output, ec) && !o.force && !reexport)
+    const FolderContents c = folderContents(o.output);
+    if (c.others && !o.force)
         return Error{o.output +
-                     ": the folder is not empty and holds more than a btflut export (--force writes over "
-                     "btflut's files in it)"};
-    return reexport;
+                     ": the folder holds files that are neither a btflut export's nor an engine's import sidecars "
+                     "of them (--force writes over btflut's files in it and keeps the others)"};
+    return c.previousExport;
 }
 
 // A file's absolute file:// URL, percent-encoded: a relative path with '#' in a browser's
@@ -362,13 +380,18 @@ Status exportFolder(const ExportOptions& o, const EngineExport& made, bool reexp
     for (const auto& [name, bytes] : made.files) files.push_back({name, bytes});
     for (const auto& [name, source] : kThreeRecipe) files.push_back({name, embeddedWebFile(source)});
     if (Status s = writeFolder(o.output, files); !s) return s;
-    // What a previous export wrote and this one did not (planes of a bigger model, weights);
-    // only in a folder that held nothing else (with --force, other files may be the user's).
+    // What a previous export wrote and this one did not (planes of a bigger model, weights),
+    // and the engines' import sidecars of those files; the sidecars of files written again
+    // stay (Unity's .meta holds the GUID that a scene's references use). Other files stay.
+    auto written = [&](const std::string& name) {
+        return std::any_of(files.begin(), files.end(), [&](const auto& f) { return f.first == name; });
+    };
+    std::vector<fs::path> stale;
     for (fs::directory_iterator it(o.output, ec), end; reexport && !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        const bool written = std::any_of(files.begin(), files.end(), [&](const auto& f) { return f.first == name; });
-        if (!written && exportFileName(name)) fs::remove(it->path(), ec);
+        const std::string name = it->path().filename().string(), base = sidecarOf(name);
+        if ((exportFileName(name) && !written(name)) || (!base.empty() && !written(base))) stale.push_back(it->path());
     }
+    for (const fs::path& path : stale) fs::remove(path, ec);
     if (o.quiet) return success();
     std::cout << "wrote " << o.output << ": " << made.summary;
     for (const auto& file : files)
