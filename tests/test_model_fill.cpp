@@ -2,6 +2,7 @@
 // bake --fill model, eval --fill) against today's clamping.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -135,6 +136,17 @@ TEST_CASE("bake --fill model: modelled nodes recorded in the bank, the measured 
         const CliRun gap = runCli({"relight", dir / "rock.btflut", "--light", "30,40", "-o", dir / "g.png"});
         CHECK(gap.status == 0);
         CHECK(gap.err.find("its theta is within theirs (up to 38.9), but no measured light lies between phi") !=
+              std::string::npos);
+        // info: short by default, the validation tables with --verbose, where fits too big for
+        // 12 lights say why they have no figure.
+        REQUIRE(runCli({"bake", sharedDataDir() + "/psm-rock", "--predictor", "hsh2", "-o", dir / "hsh2.btflut", "-q"})
+                    .status == 0);
+        const CliRun brief = runCli({"info", dir / "hsh2.btflut"});
+        CHECK(std::count(brief.out.begin(), brief.out.end(), '\n') < 16);
+        CHECK(brief.out.find("estimates' validation L1: btflut info --verbose") != std::string::npos);
+        const CliRun verbose = runCli({"info", dir / "hsh2.btflut", "--verbose"});
+        CHECK(verbose.out.find("poly1 ridge 0.01 ") != std::string::npos);
+        CHECK(verbose.out.find("poly3 ridge 0.01            not fitted: more terms than two lights a term allow") !=
               std::string::npos);
     }
     CHECK(runCli({"relight", dir / "clamp.btflut", "--light", "85,120", "-o", dir / "c.png", "-q"}).err.empty());

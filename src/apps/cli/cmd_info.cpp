@@ -21,6 +21,7 @@ struct InfoOptions {
     std::string bank;
     bool json = false;
     bool quiet = false;
+    bool verbose = false;  ///< the validation tables too
 };
 
 std::string fixed(double v, int decimals) {
@@ -31,7 +32,7 @@ std::string fixed(double v, int decimals) {
 
 // How bake --predictor auto chose: each candidate's validation figures at its best match
 // strength within the L1 rule, and the choice.
-void printSelection(const std::string& selection) {
+void printSelection(const std::string& selection, bool verbose) {
     const nlohmann::json s = nlohmann::json::parse(selection, nullptr, false);
     if (!s.is_object() || !s.contains("chosen")) return;
     const nlohmann::json& chosen = s["chosen"];
@@ -48,6 +49,11 @@ void printSelection(const std::string& selection) {
               << " (" << s.value("rule", std::string()) << ")\n";
     if (s.contains("note")) std::cout << "             " << s["note"].get<std::string>() << "\n";
     if (!s.contains("candidates") || !s["candidates"].is_array()) return;
+    if (!verbose) {
+        std::cout << "             (each of the " << s["candidates"].size()
+                  << " candidates' validation: btflut info --verbose)\n";
+        return;
+    }
     std::cout << "             candidate   bytes  mult-adds  match   PSNR      L1\n";
     for (const nlohmann::json& c : s["candidates"]) {
         const std::string name = c.value("name", std::string("?"));
@@ -72,7 +78,7 @@ void printSelection(const std::string& selection) {
 
 // How the targets are estimated between the measured lights: the choice, and each
 // candidate's validation L1 in the first layer (per region).
-void printTargetChoice(const LutBank& b) {
+void printTargetChoice(const LutBank& b, bool verbose) {
     const nlohmann::json s = nlohmann::json::parse(b.targetChoice, nullptr, false);
     std::cout << "  between:   " << targetChoiceSummary(b);
     if (!s.is_object() || !s.contains("layers") || !s["layers"].is_array() || s["layers"].empty()) {
@@ -96,14 +102,24 @@ void printTargetChoice(const LutBank& b) {
                   << fixed(m.value("rms", 0.0), 4) << "\n";
     else if (m.contains("error"))
         std::cout << "             model: not a candidate (" << m.value("error", std::string()) << ")\n";
+    const nlohmann::json candidates = layer.value("candidates", nlohmann::json::array());
+    if (!verbose) {
+        std::cout << "             (each of the " << candidates.size()
+                  << " estimates' validation L1: btflut info --verbose)\n";
+        return;
+    }
     if (s["layers"].size() > 1) std::cout << "             layer 0 of " << s["layers"].size() << ":\n";
     std::cout << "             estimate                     L1 (64 bins) per region\n";
-    for (const nlohmann::json& c : layer.value("candidates", nlohmann::json::array())) {
+    for (const nlohmann::json& c : candidates) {
         char line[64];
         std::snprintf(line, sizeof line, "             %-26s", c.value("name", std::string("?")).c_str());
         std::cout << line;
-        for (const nlohmann::json& l1 : c.value("l1", nlohmann::json::array()))
-            std::cout << "  " << (l1.is_number() ? fixed(l1.get<double>(), 4) : std::string("  -   "));
+        // A fit with more terms than the folds' lights allow (two a term) is not a candidate.
+        const nlohmann::json l1s = c.value("l1", nlohmann::json::array());
+        if (std::none_of(l1s.begin(), l1s.end(), [](const nlohmann::json& l1) { return l1.is_number(); }))
+            std::cout << "  not fitted: more terms than two lights a term allow";
+        for (const nlohmann::json& l1 : l1s)
+            if (l1.is_number()) std::cout << "  " << fixed(l1.get<double>(), 4);
         std::cout << "\n";
     }
 }
@@ -236,14 +252,14 @@ Status runInfo(const InfoOptions& o) {
                                                 ? "their blend"
                                                 : "their blend corrected by a fit over the light (below)"))
                   << "\n";
-        printTargetChoice(b);
+        printTargetChoice(b, o.verbose);
         if (const ReferenceBlend* references = b.predictorAs<ReferenceBlend>())
             for (std::size_t k = 0; k < references->lights().size(); ++k)
                 std::cout << "    reference " << k << ": " << references->lights()[k].name << ", light "
                           << degrees(references->lights()[k].light) << "\n";
     }
-    if (!b.selection.empty()) printSelection(b.selection);
-    if (!b.makesLuts()) printTargetChoice(b);
+    if (!b.selection.empty()) printSelection(b.selection, o.verbose);
+    if (!b.makesLuts()) printTargetChoice(b, o.verbose);
     if (!b.ptm.empty())
         std::cout << "  ptm: " << b.ptm.width << "x" << b.ptm.height << ", 6 coefficients + RGB albedo per texel ("
                   << b.ptm.coefficients.size() + b.ptm.albedo.size() << " bytes)\n";
@@ -287,7 +303,9 @@ void addInfoCommand(CLI::App& root, Commands& commands) {
     auto o = std::make_shared<InfoOptions>();
     CLI::App* app = root.add_subcommand("info", "Describe a LUT bank: header, grid, coverage, size");
     app->add_option("BANK", o->bank, "M.btflut")->required();
-    app->add_flag("--json", o->json, "print JSON");
+    app->add_flag("--json", o->json, "print JSON (everything, the validation tables included)");
+    app->add_flag("--verbose", o->verbose,
+                  "also the validation tables: each candidate predictor's and each estimate of the targets'");
     addQuietFlag(
         *app, o->quiet,
         "print nothing: exit 0 when the bank reads whole, non-zero with one line when not (a check for scripts)");
