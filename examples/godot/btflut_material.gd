@@ -40,6 +40,8 @@ func _process(_delta: float) -> void:
 # channels, depth, samples: PackedInt32Array, rows top first}.
 func _decode_png(path: String) -> Dictionary:
 	var bytes := FileAccess.get_file_as_bytes(path)
+	if bytes.is_empty():  # an exported game packs the file only under an export filter
+		return {"error": path + ": cannot be read (exported games need the export filter material/*: docs/engines.md)"}
 	if bytes.size() < 8 or bytes.slice(0, 8) != PackedByteArray([137, 80, 78, 71, 13, 10, 26, 10]):
 		return {"error": path + ": not a PNG file"}
 	var width := 0
