@@ -218,12 +218,14 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     CHECK_FALSE(decodeBank(truncated, "cut.btflut").ok());
 }
 
-TEST_CASE("learned model: a time budget bounds the steps, the same on every machine") {
-    // 1 second: 1e6 samples / (2048 a step x 2.2 runs) = 221 steps; a step bound or the epochs
-    // may be smaller.
+TEST_CASE("learned model: a time budget sets the steps, the same on every machine") {
+    // 1 second: 1e6 samples / (2048 a step x 2.2 runs) = 221 steps, whatever the default steps
+    // (a time given is used: 120 s trains 26,633 steps where the default is 6000); the epochs
+    // may be fewer.
     CHECK(stepBudget(6000, 32768, 49, 1.0) == 221);
     CHECK(stepBudget(6000, 32768, 49, 0.0) == 6000);
-    CHECK(stepBudget(100, 32768, 49, 1.0) == 100);
+    CHECK(stepBudget(100, 32768, 49, 1.0) == 221);
+    CHECK(stepBudget(6000, 32768, 49, 120.0) == 26633);
     CHECK(stepBudget(6000, 100, 20, 60.0) == 50);  // 50 passes over 2000 samples
     TempDir dir;
     const std::string manifest = writeRelief(dir, Relief{.size = 24}, dome(20, 70));

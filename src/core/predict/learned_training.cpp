@@ -47,11 +47,13 @@ Result<TrainingSamples> drawTrainingSamples(const TexelSamples& from, const Mask
 
 int stepBudget(int steps, std::size_t texels, std::size_t lights, double seconds) {
     const std::size_t epoch = texels * lights / kBatchSamples + 1;
-    std::size_t most = std::min<std::size_t>(static_cast<std::size_t>(std::max(steps, 0)), kEpochs * epoch);
-    if (seconds > 0)
-        most = std::min(most, static_cast<std::size_t>(seconds * kTrainedSamplesPerSecond /
-                                                       (static_cast<double>(kBatchSamples) * kTrainingRuns)));
-    return static_cast<int>(most);
+    // A time given is the time to use (more steps than the default where it allows them);
+    // without one, `steps`.
+    const std::size_t asked = seconds > 0
+                                  ? static_cast<std::size_t>(seconds * kTrainedSamplesPerSecond /
+                                                             (static_cast<double>(kBatchSamples) * kTrainingRuns))
+                                  : static_cast<std::size_t>(std::max(steps, 0));
+    return static_cast<int>(std::min(asked, kEpochs * epoch));
 }
 
 Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels) {

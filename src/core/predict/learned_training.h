@@ -45,8 +45,9 @@ constexpr double kTrainedSamplesPerSecond = 1.0e6;
 /// light (as long at most) and the tuning to quantised codes (a fifth).
 constexpr double kTrainingRuns = 2.2;
 
-/// Steps to train: at most `steps`, at most kEpochs passes over the samples (a small capture
-/// trains in proportion) and, when `seconds` > 0, what trains in about that long.
+/// Steps to train: `steps`, or when `seconds` > 0 what trains in about that long (a time given
+/// is used, beyond the default steps); at most kEpochs passes over the samples (a small capture
+/// trains in proportion).
 int stepBudget(int steps, std::size_t texels, std::size_t lights, double seconds = 0);
 
 /// The samples of a batch's texels as decoders order them (light-major: l T + t), C x L T.
