@@ -143,12 +143,14 @@ struct LutBank {
     bool ptmInFile = false;  ///< read from a file holding a PTM (decoded or skipped)
 
     /// Banks that make their LUTs at run time (bake --references K > 1, --regions, --colour
-    /// lrgb; relighter.h): K references blended per light, and regions of the sample, each
-    /// matched to its own target. Their nodes hold the targets' quantile functions.
+    /// lrgb, a light model or a learned model; relighter.h): a predictor relit per light, and
+    /// regions of the sample, each matched to its own target. Their nodes hold the targets'
+    /// quantile functions.
     struct Blend {
         /// What predicts each texel before each light's LUT matches it (predictor.h): the
-        /// references blended (reference_blend.h) or a light model (model_predictor.h; a
-        /// bank's PTM as one). Shared by the bank's copies: a predictor never changes.
+        /// references blended (reference_blend.h), a light model (model_predictor.h; a bank's
+        /// PTM as one) or a learned model (learned_predictor.h). Shared by the bank's copies:
+        /// a predictor never changes.
         std::shared_ptr<const Predictor> predictor;
         /// How far each light's LUT moves the prediction's distribution towards the target's:
         /// 1 fully (the target's histogram), 0 not at all (the prediction as it is); between,
@@ -189,7 +191,8 @@ struct LutBank {
         return dynamic_cast<const Kind*>(blend.predictor.get());
     }
     /// The predictor's name as the command line gives it (`--predictor`): the light model's
-    /// (ptm, hsh2, rbf9, bln9c, ...) or "references"; "" for a bank of LUTs.
+    /// (ptm, hsh2, rbf9, bln9c, ...), the learned model's (neural9) or "references"; "" for a
+    /// bank of LUTs.
     std::string predictorName() const;
     /// Bytes per texel the predictor stores (Predictor::bytesPerTexel), with regions one more
     /// for the labels; a bank of LUTs: its reference's.

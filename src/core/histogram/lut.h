@@ -82,7 +82,7 @@ std::vector<float> quantileFunction(std::span<const double> mass, int samples);
 Lut matchToQuantiles(const LevelCounts& reference, std::span<const float> quantiles, int entries);
 
 /// Dither for pixel (x, y) (and channel c), uniform in [-1/2, 1/2): a fixed integer hash,
-/// reproduced bit for bit by shaders/lut_common.glsl.
+/// reproduced bit for bit by shaders/btflut.glsl's btflutDitherOffset.
 inline float ditherOffset(std::uint32_t x, std::uint32_t y, std::uint32_t c = 0) {
     std::uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ c * 0xcb1ab31fu;
     h ^= h >> 16;

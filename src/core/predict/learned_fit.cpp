@@ -118,9 +118,6 @@ float validationLoss(const Trained& t, const Validation& v) {
     return (decoded.output - v.target).squaredNorm() / static_cast<float>(v.target.size());
 }
 
-// Phase 1: encoder and decoder together on the sample texels' samples, `steps` Adam steps.
-// With a validation, the step (a multiple of steps / 16, 0 the linear start) where its loss
-// was least goes to `best`.
 // The linear start (linearStart) with a residual network at zero.
 Trained started(const Matrix& samples, const Matrix& lights, const LearnedOptions& o, int channels, int terms,
                 Random& random) {
@@ -133,7 +130,9 @@ Trained started(const Matrix& samples, const Matrix& lights, const LearnedOption
     return t;
 }
 
-// `steps` Adam steps of a rate schedule spanning `schedule` steps.
+// Phase 1: encoder and decoder together on the sample texels' samples, `steps` Adam steps of a
+// rate schedule spanning `schedule` steps. With a validation, the step (a multiple of steps /
+// 16, 0 the linear start) where its loss was least goes to `best`.
 Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedOptions& o, int channels, int terms,
                      int steps, int schedule, float peak, std::uint64_t seed, const Validation* validation, int* best,
                      const std::function<void(double)>& progress) {

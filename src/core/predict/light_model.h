@@ -16,7 +16,8 @@
 //   bln  the same PCA basis resampled on a G x G grid over the equal-area light disk
 //        (regularised least squares), read bilinearly.
 // The texture-space GL pass evaluates the same sums in the same integers
-// (LightModelFixed, shaders/lut_common.glsl), so CPU and GPU predictions agree to the code.
+// (LightModelFixed; shaders/btflut.glsl's btflutModelFrame and lut_common.glsl), so CPU and GPU
+// predictions agree to the code.
 //
 //   Result<LightModel> m = fitLightModel(images, lights, mask, {.basis = LightBasis::Rbf, .planes = 9});
 //   Image predicted = m->render(light);                 // float, the CPU reference

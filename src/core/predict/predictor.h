@@ -2,8 +2,9 @@
 // The predictor of a bank that makes its LUTs at run time (LutBank::makesLuts): what places
 // shadows and highlights per texel before each light's LUT matches the histogram
 // (docs/predictors.md). One class per kind, each answering what relighting asks of it, so
-// the relighter (relight/relighter.h) never branches on the kind and a new kind is a new
-// file here, not a branch in every evaluator:
+// the relighter (relight/relighter.h) never branches on the kind. (A kind's file chunk,
+// shaders and engine export still live outside its class: bank/predictor_chunks.cpp,
+// shaders/btflut.glsl and lut_common.glsl, relight/engine_material.cpp.)
 //   reference_blend.h   K references blended with the light's barycentric weights
 //   model_predictor.h   a linear light model (ptm, hsh, rbf, bln; a bank's PTM as one)
 //   learned_predictor.h a learned model: per-texel codes and a small decoder network
@@ -12,8 +13,9 @@
 //   PredictorFrame f = p.frameAt(light, view);       // per light change: integers
 //   std::size_t q = p.code(f, texel, channel);       // 0 .. p.codes(), what the GPU computes
 //
-// Predictions are exact integer arithmetic (kWeightUnit, light_model.h), so the CPU and the
-// GPU's shaders (shaders/lut_common.glsl) get the same codes.
+// The linear kinds' predictions are exact integer arithmetic (kWeightUnit, light_model.h), so
+// the CPU and the GPU's shaders (shaders/lut_common.glsl, btflut.glsl) get the same codes; the
+// learned kind's decoder is float, its GPU form generated per material (learned_shader.h).
 
 #include <array>
 #include <cstddef>
@@ -70,7 +72,8 @@ class Predictor {
 public:
     virtual ~Predictor() = default;
 
-    /// The name `--predictor` takes: "references", or the light model's (ptm, hsh2, bln9c).
+    /// The name `--predictor` takes: "references", the light model's (ptm, hsh2, bln9c) or the
+    /// learned model's (neural9).
     virtual std::string name() const = 0;
     /// Bytes per texel it stores (the region labels, a bank's, not counted).
     virtual double bytesPerTexel() const = 0;
