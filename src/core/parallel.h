@@ -18,9 +18,14 @@
 
 namespace btflut {
 
+/// The threads a count of 0 (all cores) or more means: at least 1.
+inline int threadCount(int threads) {
+    return std::max(1, threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency()));
+}
+
 template <typename Work>
 void parallelFor(std::size_t count, int threads, Work&& work) {
-    unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
+    auto n = static_cast<unsigned>(threadCount(threads));
     n = std::max(1u, std::min<unsigned>(n, static_cast<unsigned>(std::min<std::size_t>(count, 1u << 16))));
     std::atomic<std::size_t> next{0};
     // The first exception (out of memory) ends every thread's loop and is rethrown here, after
@@ -61,8 +66,7 @@ namespace btflut {
 class LockstepThreads {
 public:
     explicit LockstepThreads(int threads) {
-        unsigned n = threads > 0 ? static_cast<unsigned>(threads) : std::thread::hardware_concurrency();
-        n = std::max(1u, n);
+        const auto n = static_cast<unsigned>(threadCount(threads));
         for (unsigned t = 1; t < n; ++t) {
             try {
                 m_pool.emplace_back([this, t] { loop(t); });

@@ -416,13 +416,14 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
                     "how far each light's LUT moves the prediction's distribution to the measured one: 1 fully, 0 not "
                     "at all (the prediction as it is), between: the two blended (default: 1, or validated with auto)")
         ->check(CLI::Range(0.0, 1.0));
-    app->add_option("--budget", o->budget,
-                    "BYTES, TIME, DECODE or several, comma-separated: bytes per texel the predictor may store (with "
-                    "--predictor auto; default 9); how long a learned model may train (auto: its candidate, a third "
-                    "for each fold and the bank; neuralN: the bank), as 90s or 2m: the steps this machine's trainer "
-                    "runs in that time (1 million samples a second), so the bank is the same wherever it is baked; "
-                    "and the multiply-adds per texel a candidate's prediction may cost a GPU while the light moves, "
-                    "as 1500mac (auto; default 2000: neural9 decodes in 891)");
+    app->add_option(
+        "--budget", o->budget,
+        "BYTES, TIME, DECODE or several, comma-separated: bytes per texel the predictor may store (with "
+        "--predictor auto; default 9); how long a learned model may train (auto: its candidate, a third "
+        "for each fold and the bank; neuralN: the bank), as 90s or 2m: the steps this machine's trainer "
+        "runs in that time on 2 cores (1.2e10 multiply-adds a second), so the bank is the same wherever it is baked; "
+        "and the multiply-adds per texel a candidate's prediction may cost a GPU while the light moves, "
+        "as 1500mac (auto; default 2000: neural9 decodes in 891)");
     app->add_option("--domain", o->domain,
                     "what lookups interpolate over: layers (each view's lights, then between views; any "
                     "material), isotropic (theta_i, theta_r, phi_i - phi_r; for isotropic materials measured "

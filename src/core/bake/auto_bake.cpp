@@ -179,7 +179,8 @@ void score(Candidate& c, LutBank& bank, const Fold& fold, const Validation& v, i
 
 // Each candidate baked on each fold's training lights and scored on its held-out images; a
 // candidate whose bake fails on a fold is skipped on all. A candidate's folds are baked side
-// by side: a learned one trains on one core, and a bake is the same on any thread count.
+// by side, the cores shared between them (a learned one trains on its share), and a bake is
+// the same on any thread count.
 void validate(std::vector<Candidate>& candidates, const Validation& v, const AutoBakeOptions& options) {
     std::size_t steps = 0, done = 0;
     for (const Candidate& c : candidates) steps += c.skipped.empty() ? v.folds.size() : 0;
@@ -191,6 +192,7 @@ void validate(std::vector<Candidate>& candidates, const Validation& v, const Aut
         o.progress = {};
         o.ptm = false;
         o.matchGrid = false;  // validated with exact LUTs; only the chosen bank gets its grid
+        o.threads = std::max(1, threadCount(options.base.threads) / std::max(1, static_cast<int>(v.folds.size())));
         std::vector<std::optional<Result<LutBank>>> banks(v.folds.size());
         parallelFor(v.folds.size(), options.base.threads, [&](std::size_t f) {
             const ImageProvider images = [&](std::size_t i, Image&) -> Result<const Image*> {

@@ -32,6 +32,13 @@ std::size_t Network::parameterCount(const std::vector<int>& sizes) {
     return n;
 }
 
+std::size_t Network::multiplyAddCount(const std::vector<int>& sizes) {
+    std::size_t n = 0;
+    for (std::size_t k = 0; k + 1 < sizes.size(); ++k)
+        n += static_cast<std::size_t>(sizes[k]) * static_cast<std::size_t>(sizes[k + 1]);
+    return n;
+}
+
 Network Network::fromParameters(const std::vector<int>& sizes, const std::vector<float>& parameters) {
     BTFLUT_CHECK(sizes.size() >= 2 && parameters.size() == parameterCount(sizes));
     Network net;
@@ -136,6 +143,13 @@ void Adam::step(Network& network, const NetworkGradient& gradient, float rate) {
                gradient.weights[k]);
         update(network.bias(k), m_biasMean[k], m_biasSquare[k], m_amsgrad ? &m_biasSquareMax[k] : nullptr,
                gradient.biases[k]);
+    }
+}
+
+void addGradient(NetworkGradient& into, const NetworkGradient& g) {
+    for (std::size_t k = 0; k < into.weights.size(); ++k) {
+        into.weights[k] += g.weights[k];
+        into.biases[k] += g.biases[k];
     }
 }
 

@@ -37,6 +37,9 @@ struct NetworkGradient {
     Matrix input;
 };
 
+/// Adds g's parameter gradients (not its input's) to `into`'s, of the same network.
+void addGradient(NetworkGradient& into, const NetworkGradient& g);
+
 /// How random() draws a layer's parameters.
 enum class WeightInit {
     UnitVariance,  ///< weights uniform in +-sqrt(3 / inputs) (unit variance through each layer), biases 0
@@ -55,6 +58,8 @@ public:
     int outputs() const { return m_sizes.back(); }
     std::size_t layers() const { return m_weights.size(); }
     static std::size_t parameterCount(const std::vector<int>& sizes);
+    /// Multiply-adds of one input's forward pass.
+    static std::size_t multiplyAddCount(const std::vector<int>& sizes);
     /// Per layer its weights (row-major: an output's inputs together), then its biases.
     std::vector<float> parameters() const;
     bool finite() const;

@@ -5,6 +5,7 @@
 // decoder tuned to them.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include "core/parallel.h"
@@ -102,6 +103,68 @@ LearnedDecoder randomDecoder(const LearnedOptions& o, int channels, int features
     return {Network::random(light, random), Network::random(residual, random)};
 }
 
+// A step's batch cut into kShards contiguous shards of its texels, each shard's forward and
+// backward pass on one of the threads, and the gradients summed in shard order: a step on
+// every core, and the same sums (so the same bank) on any thread count.
+constexpr int kShards = 4;
+
+class ShardedStep {
+public:
+    explicit ShardedStep(int threads) : m_threads(std::min(threadCount(threads), kShards)), m_shards(kShards) {}
+
+    /// The batch's mean squared error; its gradient in decoderGradient() and, with an encoder
+    /// (which makes the codes from `samples`), encoderGradient(). samples: a column per texel
+    /// (its samples, light-major); codes: theirs, when no encoder makes them.
+    float run(const Network* encoder, const LearnedDecoder& decoder, const Matrix& samples, const Matrix* codes,
+              const Matrix& lights, int channels) {
+        const Eigen::Index T = samples.cols(), share = (T + kShards - 1) / kShards;
+        const double values = static_cast<double>(T) * static_cast<double>(lights.cols()) * channels;
+        m_threads.run([&](int thread) {
+            for (int s = thread; s < kShards; s += m_threads.size()) {
+                Shard& shard = m_shards[static_cast<std::size_t>(s)];
+                const Eigen::Index begin = std::min<Eigen::Index>(T, s * share), count = std::min(T - begin, share);
+                shard.squaredError = 0;
+                if (count == 0) continue;
+                shard.samples = samples.middleCols(begin, count);
+                if (encoder) {
+                    encoder->forward(shard.samples, shard.encoded);
+                    decoder.forward(shard.encoded.output(), lights, shard.decoded);
+                } else {
+                    decoder.forward(codes->middleCols(begin, count), lights, shard.decoded);
+                }
+                shard.gradient = shard.decoded.output - decoderTarget(shard.samples, lights.cols(), channels);
+                shard.squaredError = static_cast<double>(shard.gradient.squaredNorm());
+                shard.gradient *= static_cast<float>(2 / values);
+                shard.decoder = decoder.backward(shard.decoded, shard.gradient);
+                if (encoder) shard.encoder = encoder->backward(shard.encoded, shard.decoder.codes, false);
+            }
+        });
+        double squaredError = m_shards[0].squaredError;
+        for (Eigen::Index s = 1; s < kShards && s * share < T; ++s) {
+            const Shard& shard = m_shards[static_cast<std::size_t>(s)];
+            squaredError += shard.squaredError;
+            addGradient(m_shards[0].decoder.light, shard.decoder.light);
+            addGradient(m_shards[0].decoder.residual, shard.decoder.residual);
+            if (encoder) addGradient(m_shards[0].encoder, shard.encoder);
+        }
+        return static_cast<float>(squaredError / values);
+    }
+    const LearnedDecoder::Gradient& decoderGradient() const { return m_shards[0].decoder; }
+    const NetworkGradient& encoderGradient() const { return m_shards[0].encoder; }
+
+private:
+    struct Shard {
+        Matrix samples, gradient;
+        NetworkPass encoded;
+        LearnedDecoder::Pass decoded;
+        LearnedDecoder::Gradient decoder;
+        NetworkGradient encoder;
+        double squaredError = 0;
+    };
+    LockstepThreads m_threads;
+    std::vector<Shard> m_shards;
+};
+
 // Lights held out of a first training run: the sample texels' codes from their samples under
 // the other lights, decoded at the held-out lights.
 struct Validation {
@@ -143,24 +206,18 @@ Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedO
     const auto L = static_cast<std::size_t>(lights.cols());
     const std::size_t perBatch = std::max<std::size_t>(1, kBatchSamples / L);
     const auto T = static_cast<std::size_t>(samples.cols());
-    Matrix x(samples.rows(), static_cast<Eigen::Index>(perBatch)), gradient;
-    NetworkPass encoded;
-    LearnedDecoder::Pass decoded;
+    Matrix x(samples.rows(), static_cast<Eigen::Index>(perBatch));
+    ShardedStep batch(o.threads);
     const int every = std::max(1, steps / 16);
     float least = validation ? validationLoss(t, *validation) : 0.f;
     if (best) *best = 0;
     for (int step = 0; step < steps; ++step) {
         for (std::size_t j = 0; j < perBatch; ++j)
             x.col(static_cast<Eigen::Index>(j)) = samples.col(static_cast<Eigen::Index>(random.next() % T));
-        t.encoder.forward(x, encoded);
-        t.decoder.forward(encoded.output(), lights, decoded);
-        const float loss = squaredError(decoded.output, decoderTarget(x, lights.cols(), channels), gradient);
-        if (!std::isfinite(loss)) return t;
-        const LearnedDecoder::Gradient g = t.decoder.backward(decoded, gradient);
-        const NetworkGradient e = t.encoder.backward(encoded, g.codes, false);
+        if (!std::isfinite(batch.run(&t.encoder, t.decoder, x, nullptr, lights, channels))) return t;
         const float rate = rateAt(step, schedule, peak);
-        decoderAdam.step(t.decoder, g, rate);
-        encoderAdam.step(t.encoder, e, rate * kLinearRate);
+        decoderAdam.step(t.decoder, batch.decoderGradient(), rate);
+        encoderAdam.step(t.encoder, batch.encoderGradient(), rate * kLinearRate);
         if (validation && (step + 1) % every == 0) {
             const float v = validationLoss(t, *validation);
             if (v < least) {
@@ -223,7 +280,18 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
         return Error{what + ": a network of the learned model is larger than " +
                      std::to_string(LearnedModel::kMaxParameters) + " parameters"};
     const TexelSamples texelSamples{images, m.channels};
-    Result<TrainingSamples> drawn = drawTrainingSamples(texelSamples, mask, m.texels(), o.sampleTexels, o.seed, what);
+    // A sample's forward pass: the residual network, the basis and the encoder's share.
+    const double sampleMultiplyAdds = static_cast<double>(Network::multiplyAddCount(m.decoderSizes()) +
+                                                          2 * static_cast<std::size_t>(m.codes * m.channels));
+    // A time that trains more than kEpochs passes over the default sample draws more texels
+    // (to the mask's, and memory's, limit): more data, not more passes over the same.
+    std::size_t sampleTexels = o.sampleTexels;
+    if (o.seconds > 0) {
+        const auto steps = static_cast<std::size_t>(
+            stepBudget(o.steps, std::numeric_limits<std::uint32_t>::max(), 1, o.seconds, sampleMultiplyAdds));
+        sampleTexels = std::max(sampleTexels, steps * kBatchSamples / (kEpochs * lights.size()));
+    }
+    Result<TrainingSamples> drawn = drawTrainingSamples(texelSamples, mask, m.texels(), sampleTexels, o.seed, what);
     if (!drawn) return Error{drawn.error()};
     const Matrix& samples = drawn->samples;
     const std::size_t keep = drawn->texels.size();
@@ -239,7 +307,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     // learns the training lights' shadows, which need not generalise: the linear start can be
     // best). Fewer than kMinLights lights keep the linear start; under 6, hsh2's terms.
     const float rate = o.rate;
-    const int budget = stepBudget(o.steps, keep, lights.size(), o.seconds);
+    const int budget = stepBudget(o.steps, keep, lights.size(), o.seconds, sampleMultiplyAdds);
     int steps = 0, terms = 4;
     if (lights.size() >= 6) {
         std::vector<std::size_t> train, held;
@@ -294,21 +362,19 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     {
         DecoderAdam adam(decoder);
         Random random(o.seed + 17);
-        const auto L = static_cast<Eigen::Index>(lights.size());
         const std::size_t perBatch = std::max<std::size_t>(1, kBatchSamples / lights.size()), T = keep;
         const int tuning = steps / 5;
         Matrix codeBatch(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(perBatch)),
-            x(samples.rows(), static_cast<Eigen::Index>(perBatch)), gradient;
-        LearnedDecoder::Pass pass;
+            x(samples.rows(), static_cast<Eigen::Index>(perBatch));
+        ShardedStep batch(o.threads);
         for (int step = 0; step < tuning; ++step) {
             for (std::size_t j = 0; j < perBatch; ++j) {
                 const auto at = static_cast<Eigen::Index>(random.next() % T);
                 codeBatch.col(static_cast<Eigen::Index>(j)) = quantised.col(at);
                 x.col(static_cast<Eigen::Index>(j)) = samples.col(at);
             }
-            decoder.forward(codeBatch, features, pass);
-            if (!std::isfinite(squaredError(pass.output, decoderTarget(x, L, m.channels), gradient))) break;
-            adam.step(decoder, decoder.backward(pass, gradient), rateAt(step, tuning, peak / 8));
+            if (!std::isfinite(batch.run(nullptr, decoder, x, &codeBatch, features, m.channels))) break;
+            adam.step(decoder, batch.decoderGradient(), rateAt(step, tuning, peak / 8));
             if (o.progress && step % 64 == 0) o.progress(0.9 + 0.1 * step / tuning);
         }
     }

@@ -52,10 +52,8 @@ bool LearnedModel::residualConstant() const {
 
 std::size_t LearnedModel::decoderCost() const {
     const std::vector<int> sizes = decoderSizes();
-    std::size_t n = static_cast<std::size_t>(codes) * static_cast<std::size_t>(channels);
-    if (residualConstant()) return n;
-    for (std::size_t k = 0; k + 1 < sizes.size(); ++k) n += static_cast<std::size_t>(sizes[k]) * sizes[k + 1];
-    return n;
+    const std::size_t n = static_cast<std::size_t>(codes) * static_cast<std::size_t>(channels);
+    return residualConstant() ? n : n + Network::multiplyAddCount(sizes);
 }
 
 std::size_t LearnedModel::parameterCount(const std::vector<int>& sizes) { return Network::parameterCount(sizes); }

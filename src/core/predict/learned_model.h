@@ -117,7 +117,8 @@ struct LearnedOptions {
     std::size_t sampleTexels = std::size_t{1} << 15;
     int steps = 6000;  ///< Adam steps of about 2048 texel-light samples
     /// Training's time bound, 0 none: the steps the trainer runs in about that long on this
-    /// machine (learned_training.h, kTrainedSamplesPerSecond), so the bank is the same anywhere.
+    /// machine (learned_training.h, kTrainingMultiplyAddsPerSecond), so the bank is the same
+    /// anywhere.
     double seconds = 0;
     float rate = 0.02f;  ///< Adam's peak rate (the residual network's; the linear parts' 1/20)
     int threads = 0;

@@ -45,13 +45,13 @@ Result<TrainingSamples> drawTrainingSamples(const TexelSamples& from, const Mask
     return out;
 }
 
-int stepBudget(int steps, std::size_t texels, std::size_t lights, double seconds) {
+int stepBudget(int steps, std::size_t texels, std::size_t lights, double seconds, double sampleMultiplyAdds) {
     const std::size_t epoch = texels * lights / kBatchSamples + 1;
     // A time given is the time to use (more steps than the default where it allows them);
     // without one, `steps`.
+    const double stepCost = 3 * std::max(1.0, sampleMultiplyAdds) * static_cast<double>(kBatchSamples) * kTrainingRuns;
     const std::size_t asked = seconds > 0
-                                  ? static_cast<std::size_t>(seconds * kTrainedSamplesPerSecond /
-                                                             (static_cast<double>(kBatchSamples) * kTrainingRuns))
+                                  ? static_cast<std::size_t>(seconds * kTrainingMultiplyAddsPerSecond / stepCost)
                                   : static_cast<std::size_t>(std::max(steps, 0));
     return static_cast<int>(std::min(asked, kEpochs * epoch));
 }
@@ -61,13 +61,6 @@ Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels) {
     Matrix target(C, lights * T);
     for (Eigen::Index l = 0; l < lights; ++l) target.block(0, l * T, C, T) = samples.block(l * C, 0, C, T);
     return target;
-}
-
-float squaredError(const Matrix& output, const Matrix& target, Matrix& gradient) {
-    gradient = output - target;
-    const float loss = gradient.squaredNorm() / static_cast<float>(gradient.size());
-    gradient *= 2.f / static_cast<float>(gradient.size());
-    return loss;
 }
 
 float rateAt(int step, int steps, float peak) {

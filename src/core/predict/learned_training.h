@@ -37,23 +37,22 @@ struct TrainingSamples {
 Result<TrainingSamples> drawTrainingSamples(const TexelSamples& from, const Mask& mask, std::size_t texels,
                                             std::size_t most, std::uint64_t seed, const std::string& what);
 
-/// Samples a second the trainer is taken to run when a time bounds it: this machine's one thread
-/// (2 cores; bench train measured 1.23 million), rounded down, so a bound gives the same steps,
-/// and the same bank, wherever it is baked.
-constexpr double kTrainedSamplesPerSecond = 1.0e6;
+/// Multiply-adds of training a second when a time bounds it: this machine's 2 cores, a batch's
+/// shards on both (a sample costs 3 times its forward pass: forward, backward, Adam; dome-synth's
+/// neural9 measured 1.4e10), rounded down, so a bound gives the same steps, and the same bank,
+/// wherever it is baked.
+constexpr double kTrainingMultiplyAddsPerSecond = 1.2e10;
 /// A fit's training runs, in units of one run's steps: the validated run, the run on every
 /// light (as long at most) and the tuning to quantised codes (a fifth).
 constexpr double kTrainingRuns = 2.2;
 
-/// Steps to train: `steps`, or when `seconds` > 0 what trains in about that long (a time given
-/// is used, beyond the default steps); at most kEpochs passes over the samples (a small capture
-/// trains in proportion).
-int stepBudget(int steps, std::size_t texels, std::size_t lights, double seconds = 0);
+/// Steps to train: `steps`, or when `seconds` > 0 what trains in about that long, a sample's
+/// forward pass costing `sampleMultiplyAdds` (a time given is used, beyond the default steps);
+/// at most kEpochs passes over the samples (a small capture trains in proportion).
+int stepBudget(int steps, std::size_t texels, std::size_t lights, double seconds = 0, double sampleMultiplyAdds = 0);
 
 /// The samples of a batch's texels as decoders order them (light-major: l T + t), C x L T.
 Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels);
-/// d loss / d output of the mean squared error; returns the loss.
-float squaredError(const Matrix& output, const Matrix& target, Matrix& gradient);
 /// Cosine decay from `peak` after a short warm-up.
 float rateAt(int step, int steps, float peak);
 

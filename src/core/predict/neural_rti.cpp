@@ -22,12 +22,6 @@ Matrix lightPositions(const std::vector<Direction>& lights) {
     return xy;
 }
 
-std::size_t forwardMultiplyAdds(const std::vector<int>& sizes) {
-    std::size_t n = 0;
-    for (std::size_t k = 0; k + 1 < sizes.size(); ++k) n += static_cast<std::size_t>(sizes[k] * sizes[k + 1]);
-    return n;
-}
-
 // One thread's share of a batch: its pairs' forward and backward passes through both networks.
 struct Worker {
     Matrix x, decoderInput, target, gradient, codeGradient;
@@ -63,13 +57,6 @@ struct Worker {
         encoder.backward(encoded, codeGradient, false, encoderGradient);
     }
 };
-
-void addGradient(NetworkGradient& into, const NetworkGradient& g) {
-    for (std::size_t k = 0; k < into.weights.size(); ++k) {
-        into.weights[k] += g.weights[k];
-        into.biases[k] += g.biases[k];
-    }
-}
 
 }  // namespace
 
@@ -140,8 +127,9 @@ Result<NeuralRti> fitNeuralRti(const std::vector<const Image*>& images, const st
     const std::size_t stepsPerEpoch = (training + kPublishedBatch - 1) / kPublishedBatch;
     std::size_t mostSteps = stepsPerEpoch * static_cast<std::size_t>(o.maxEpochs);
     if (o.seconds > 0) {
-        const double perPair = 3.0 * static_cast<double>(forwardMultiplyAdds(n.encoderSizes(static_cast<int>(L))) +
-                                                         forwardMultiplyAdds(n.decoderSizes()));
+        const double perPair =
+            3.0 * static_cast<double>(Network::multiplyAddCount(n.encoderSizes(static_cast<int>(L))) +
+                                      Network::multiplyAddCount(n.decoderSizes()));
         mostSteps = std::min(mostSteps, static_cast<std::size_t>(o.seconds * kNeuralRtiMultiplyAddsPerSecond /
                                                                  (perPair * static_cast<double>(kPublishedBatch))));
         if (mostSteps == 0)
