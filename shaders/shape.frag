@@ -14,11 +14,16 @@ uniform bool rgbLuts;
 uniform bool greyReference;
 uniform float inputCode;
 uniform float outputCode;
+// The part of the texture the shape wraps (x, y, width, height; rows top first), repeated
+// mirrored: every other tile flipped, so tiles meet without seams. Where the bank's mask leaves
+// background in the image, the mask's largest rectangle (ShapeRenderer, as the web page does).
+uniform bool windowed;
+uniform vec4 window;
 
 in vec3 worldPosition;
 in vec3 worldNormal;
 in vec3 worldTangent;
-in vec2 uv;
+in vec2 tiled;
 out vec4 colour;
 
 #if defined(PREDICTOR)
@@ -31,6 +36,8 @@ uniform BtflutPredictor predictor;
 #endif
 
 void main() {
+    vec2 f = fract(tiled);
+    vec2 uv = windowed ? window.xy + mix(f, 1.0 - f, mod(floor(tiled), 2.0)) * window.zw : tiled;
     vec3 n = normalize(worldNormal);
     vec3 t = normalize(worldTangent - n * dot(n, worldTangent));
     vec3 b = cross(n, t);  // image up

@@ -10,7 +10,7 @@ uniform vec2 uvRepeats;   // texture repeats around and along
 out vec3 worldPosition;
 out vec3 worldNormal;
 out vec3 worldTangent;
-out vec2 uv;
+out vec2 tiled;
 
 void main() {
     const ivec2 corners[6] = ivec2[6](ivec2(0, 0), ivec2(1, 0), ivec2(1, 1), ivec2(0, 0), ivec2(1, 1), ivec2(0, 1));
@@ -28,6 +28,6 @@ void main() {
         worldPosition = vec3(radial.xy, 2.0 * v - 1.0);
         worldNormal = radial;
     }
-    uv = vec2(u, 1.0 - v) * uvRepeats;  // texture rows run down the image: image up is +v on the shape
+    tiled = vec2(u, 1.0 - v) * uvRepeats;  // texture rows run down the image: image up is +v on the shape
     gl_Position = viewProjection * vec4(worldPosition, 1.0);
 }

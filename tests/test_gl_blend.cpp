@@ -255,3 +255,55 @@ TEST_SUITE("gl") {
         }
     }
 }
+
+TEST_SUITE("gl") {
+    TEST_CASE("the sphere wraps the mask's largest rectangle: no background is tiled over it") {
+        TempDir dir;
+        auto context = createHeadlessContext(GlBackend::Auto);
+        if (!context.ok()) FAIL(context.error());
+        // A relief with a black border of 6 texels outside its mask. Seen from far along +x, the
+        // sphere's front is the texture's seam (u = 0, its first and last columns): the whole
+        // image would show the border there, the mask's rectangle (mirrored) shows the relief.
+        const Relief relief{.size = 32, .border = 6};
+        Result<Dataset> dataset = openDataset(writeRelief(dir, relief, dome(24, 70)));
+        REQUIRE(dataset.ok());
+        Result<LutBank> bank =
+            bakeBank(*dataset, {.threads = 1, .model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2}});
+        REQUIRE_MESSAGE(bank.ok(), bank.error());
+        const std::optional<PixelRect> window = sampleWindow(*bank);
+        REQUIRE(window);
+        CHECK(*window == PixelRect{6, 6, 20, 20});
+        REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+        auto shape = ShapeRenderer::create(dir / "m.btflut");
+        REQUIRE_MESSAGE(shape.ok(), shape.error());
+        const int size = 64;
+        ShapeFrame frame{Shape::Sphere, {200, 0, 0}, {0, 0, 0}, {0, 0, 1}, 2 * std::atan(1.05 / 200) * 180 / M_PI, {}};
+        frame.light.direction = {1, 0, 0};
+        REQUIRE((*shape)->draw(frame, size, size).ok());
+        const Image gpu = readFramebufferRgb((*shape)->framebuffer(), size, size);
+        // The relit border (black texels, matched to the sample's histogram) is darker than any
+        // of the relief's texels.
+        const Relighter relighter(*bank);
+        const Image relit = relighter.apply(relighter.gridFrame(Direction::fromDegrees(0, 0)), false);
+        const float border = relit.at(0, 0, 0);
+        float darkest = 1;
+        for (int y = 6; y < 26; ++y)
+            for (int x = 6; x < 26; ++x) darkest = std::min(darkest, relit.at(x, y, 0));
+        INFO("the relit border " << border << ", the relief's darkest texel " << darkest);
+        REQUIRE(darkest > border + 0.008f);
+        // Within 0.3 radii of the centre: none of the border's value (the window's edge texels are
+        // sampled at their centres, never blended with the border outside).
+        int inside = 0, background = 0;
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const double px = (x + 0.5 - size / 2.0) / (size / 2.0) * 1.05,
+                             py = (y + 0.5 - size / 2.0) / (size / 2.0) * 1.05;
+                if (px * px + py * py > 0.3 * 0.3) continue;
+                ++inside;
+                background += std::abs(gpu.at(x, y, 0) - border) < 0.006f;
+            }
+        INFO(background << " of " << inside << " pixels at the sphere's front show the border");
+        CHECK(inside > 100);
+        CHECK(background == 0);
+    }
+}

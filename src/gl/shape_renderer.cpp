@@ -64,6 +64,7 @@ Result<std::unique_ptr<ShapeRenderer>> ShapeRenderer::create(const std::string& 
     r->m_reference = uploadMipmapped(bank.reference, bytes);  // repeats
     r->m_textures = EngineTextures::upload(*material, bytes);
     r->m_gridNote = gridNoteOf(bank);
+    r->m_window = sampleWindow(bank);
     r->m_bank = std::move(*loaded);
     // The textures are on the GPU now: keep what bind() reads (the scalars, and whether there is
     // an albedo), not a second copy of the images.
@@ -103,10 +104,23 @@ Status ShapeRenderer::draw(const ShapeFrame& frame, int width, int height) {
     gl.Uniform1i(location("along"), kAlong);
     // Texels about square: the sphere's equator is 2 pi round and pi from pole to pole; the
     // cylinder 2 pi round and 2 high.
-    const double aspect = static_cast<double>(m_bank.reference.width) / m_bank.reference.height;
-    const float around =
-        static_cast<float>(std::max(1.0, std::round((frame.shape == Shape::Sphere ? 2.0 : M_PI) / aspect)));
-    gl.Uniform2f(location("uvRepeats"), around, 1.f);
+    // A window (the mask's largest rectangle) is tiled mirrored: an even count around.
+    const Image& reference = m_bank.reference;
+    const std::optional<PixelRect>& window = m_window;
+    const double aspect = window ? static_cast<double>(window->width) / window->height
+                                 : static_cast<double>(reference.width) / reference.height;
+    const double turn = (frame.shape == Shape::Sphere ? 2.0 : M_PI) / aspect;
+    const double around = window ? 2 * std::max(1.0, std::round(turn / 2)) : std::max(1.0, std::round(turn));
+    gl.Uniform2f(location("uvRepeats"), static_cast<float>(around), 1.f);
+    gl.Uniform1i(location("windowed"), window ? 1 : 0);
+    if (window) {
+        // From its first texels' centres to its last's: bilinear filtering never reaches outside.
+        const float w = static_cast<float>(reference.width), h = static_cast<float>(reference.height);
+        const std::array<float, 4> rect{
+            (static_cast<float>(window->x) + 0.5f) / w, (static_cast<float>(window->y) + 0.5f) / h,
+            static_cast<float>(window->width - 1) / w, static_cast<float>(window->height - 1) / h};
+        gl.Uniform4fv(location("window"), 1, rect.data());
+    }
     gl.Uniform1i(location("pointLight"), frame.light.point ? 1 : 0);
     gl.Uniform3f(location("lightDirection"), static_cast<float>(frame.light.direction.x),
                  static_cast<float>(frame.light.direction.y), static_cast<float>(frame.light.direction.z));

@@ -7,12 +7,14 @@
 // with a predictor (a light model, or references blended) the predictor's weights at each
 // fragment's light (closed form, or read from a grid over the light disk), its planes or
 // references bilinearly at the texel, and the match LUT from the bank's match grid at that
-// light (per region).
+// light (per region). Where the bank's mask leaves background in the image, the shape wraps the
+// mask's largest rectangle (sampleWindow), tiled mirrored, as the web page's sphere does.
 //
 //   Result<std::unique_ptr<ShapeRenderer>> r = ShapeRenderer::create("rock.btflut");
 //   (*r)->draw({Shape::Sphere, eye, target, up, 40, light}, 800, 600);   // then read framebuffer()
 
 #include <memory>
+#include <optional>
 
 #include "core/bank/lut_bank.h"
 #include "core/data/scene.h"
@@ -64,6 +66,7 @@ private:
     ColourDepthTarget m_target;
     int m_width = 0, m_height = 0;
     std::string m_gridNote;
+    std::optional<PixelRect> m_window;  ///< what the shape wraps (sampleWindow), else the whole image
 };
 
 }  // namespace btflut

@@ -203,7 +203,9 @@ function draw() {
   // The sphere wraps the sample's rectangle (material.json's "sample"; else the whole image),
   // texels about square, an even count around so that the mirrored tiles close up.
   const sample = state.sample || {x: 0, y: 0, width: w, height: h};
-  gl.uniform4f(uniforms.window, sample.x / w, (h - sample.y - sample.height) / h, sample.width / w, sample.height / h);
+  // From its first texels' centres to its last's: bilinear filtering never reaches outside it.
+  gl.uniform4f(uniforms.window, (sample.x + 0.5) / w, (h - sample.y - sample.height + 0.5) / h,
+               Math.max(0, sample.width - 1) / w, Math.max(0, sample.height - 1) / h);
   gl.uniform2f(uniforms.tiles, 2 * Math.max(1, Math.round(Math.PI * radius / sample.width)),
                Math.max(1, Math.round(Math.PI * radius / sample.height)));
   gl.uniform3f(uniforms.light, ...lightVector());

@@ -514,6 +514,14 @@ Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::opt
     return success();
 }
 
+std::optional<PixelRect> sampleWindow(const LutBank& bank) {
+    const Mask& mask = bank.blend.mask;
+    if (!bank.makesLuts() || mask.inside.empty() || mask.count() == mask.inside.size()) return std::nullopt;
+    const PixelRect r = largestRectInside(mask);
+    if (r.width <= 0 || r.height <= 0) return std::nullopt;
+    return r;
+}
+
 float inputCode(const Image& image, ColourMode colour) {
     const int codes = colour == ColourMode::Rgb ? image.maxCode() : image.channels * image.maxCode();
     return 1.f / static_cast<float>(codes);

@@ -289,6 +289,11 @@ struct DirectionalLut {
 Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::optional<BankDomain> domain,
                 const std::string& source);
 
+/// What a closed surface (a sphere) wraps of the reference: where the bank's sample mask
+/// leaves part of the image out, the largest rectangle inside it, so that no background is
+/// tiled over the surface; none where the whole image is the material.
+std::optional<PixelRect> sampleWindow(const LutBank& bank);
+
 /// One code of the value a LUT maps for this image: of a channel in rgb mode or for a grey
 /// image, of the grey value (channels x max code) otherwise. The unit of the dithered input.
 float inputCode(const Image& image, ColourMode colour);

@@ -143,16 +143,12 @@ nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
     }
     // The sample's part of the image where the bank's mask leaves some out: what a closed
     // surface (the page's sphere) wraps, so no background is tiled over it.
-    const Mask& mask = b.blend.mask;
-    if (predictor && !mask.inside.empty() && mask.count() < mask.inside.size()) {
-        const PixelRect r = largestRectInside(mask);
-        if (r.width > 0)
-            side["sample"] = {{"x", r.x},
-                              {"y", r.y},
-                              {"width", r.width},
-                              {"height", r.height},
-                              {"what", "the largest rectangle inside the sample mask, pixels, rows top first"}};
-    }
+    if (const std::optional<PixelRect> r = sampleWindow(b); predictor && r)
+        side["sample"] = {{"x", r->x},
+                          {"y", r->y},
+                          {"width", r->width},
+                          {"height", r->height},
+                          {"what", "the largest rectangle inside the sample mask, pixels, rows top first"}};
     return side;
 }
 
