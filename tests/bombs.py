@@ -145,7 +145,10 @@ def main():
             subprocess.run([btflut, 'bake', data, '--ptm', '-q', '-o', bank], check=True)
             limited = [(4000, ['synth', '--preset', 'concrete', '--size', size, '-o', os.path.join(tmp, 'big')])
                        for size in ('30000', '60000', '100000')]
-            # (render is left out: Mesa's llvmpipe crashes in its shader compiler under 500 MB.)
+            # render: Mesa's llvmpipe crashes in its compiler and rasteriser under ~500 MB, which
+            # btflut turns into one line (gl/context.cpp); under ~200 MB no context is made.
+            limited += [(mb, ['render', bank, '--native', '--light', '30,40', '-o', out + '.png'])
+                        for mb in (200, 300, 500)]
             for mb in (300,):
                 limited += [(mb, ['bake', data, '-o', out + '.btflut']),
                             (mb, ['eval', data, '--no-gl', '--modes', 'lut', '-o', os.path.join(tmp, 'eval')]),

@@ -1,11 +1,17 @@
 #include "gl/context.h"
 
 #include <dlfcn.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 #include <GL/osmesa.h>
 
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <vector>
 
 #include "gl/gl_api.h"
@@ -167,15 +173,65 @@ void keepGlDriversLoadedForLeakChecks() {
 #endif
 }
 
+namespace {
+
+// Under an address-space limit (ulimit -v) Mesa's llvmpipe fails to map memory in its shader
+// compiler and rasteriser without a message, then dereferences what it did not get: a
+// segmentation fault with no line. Where a limit is set, such a signal ends btflut with one
+// line and exit 1 instead (written with write(2), which is safe in a signal handler). Without
+// a limit signals are left alone, for debuggers and sanitizers.
+char g_outOfMemoryLine[256];
+std::size_t g_outOfMemoryLength = 0;
+
+extern "C" void reportOutOfMemory(int) {
+    if (::write(STDERR_FILENO, g_outOfMemoryLine, g_outOfMemoryLength) < 0) {
+        // nothing more can be said
+    }
+    ::_exit(1);
+}
+
+// The address-space limit in MB, 0 for none.
+unsigned long long addressSpaceLimitMb() {
+    rlimit limit{};
+    if (::getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return 0;
+    return static_cast<unsigned long long>(limit.rlim_cur >> 20);
+}
+
+void reportDriverCrashesUnderMemoryLimit() {
+    const unsigned long long mb = addressSpaceLimitMb();
+    if (mb == 0 || g_outOfMemoryLength > 0) return;
+    const int written = std::snprintf(g_outOfMemoryLine, sizeof g_outOfMemoryLine,
+                                      "btflut: error: out of memory in the OpenGL driver under the address-space "
+                                      "limit of %llu MB (ulimit -v); raise it (1 GB renders the bundled material)\n",
+                                      mb);
+    if (written <= 0) return;
+    g_outOfMemoryLength = std::min(static_cast<std::size_t>(written), sizeof g_outOfMemoryLine - 1);
+    struct sigaction action {};
+    action.sa_handler = reportOutOfMemory;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(SIGSEGV, &action, nullptr);
+    ::sigaction(SIGBUS, &action, nullptr);
+}
+
+}  // namespace
+
 Result<std::unique_ptr<HeadlessContext>> createHeadlessContext(GlBackend backend) {
     keepGlDriversLoadedForLeakChecks();
+    reportDriverCrashesUnderMemoryLimit();
+    // Mesa's EGL warns on stderr of each driver it fails to load ("libEGL warning: MESA-LOADER:
+    // failed to open ..."), before btflut's own line says what failed: quiet unless asked for.
+    ::setenv("EGL_LOG_LEVEL", "fatal", 0);
     if (backend == GlBackend::OsMesa) return OsMesaContext::create();
     if (backend == GlBackend::Egl) return EglContext::create();
     Result<std::unique_ptr<HeadlessContext>> egl = EglContext::create();
     if (egl) return egl;
     Result<std::unique_ptr<HeadlessContext>> osmesa = OsMesaContext::create();
     if (osmesa) return osmesa;
-    return Error{"no OpenGL context: " + egl.error() + "; " + osmesa.error()};
+    const unsigned long long mb = addressSpaceLimitMb();
+    return Error{"no OpenGL context: " + egl.error() + "; " + osmesa.error() +
+                 (mb > 0 ? " (under the address-space limit of " + std::to_string(mb) +
+                               " MB, ulimit -v: most likely out of memory)"
+                         : "")};
 }
 
 }  // namespace btflut
