@@ -125,8 +125,8 @@ Status runSceneRender(const RenderOptions& o) {
                   << "\nmeasured images loaded (for nearest quads): " << stats.imagesLoaded
                   << "\nview layers decoded: " << stats.viewLayersLoaded << " of " << stats.viewLayers
                   << "\nrelit textures (mode lut, one per material and light direction): " << stats.relitTextures
-                  << "\nmode lut, banks of one view layer: " << stats.quadsTextureSpace
-                  << " quads drawn from relit textures, " << stats.quadsPerFragment
+                  << "\nmode lut, banks relit whole (one view layer, or a predictor of views): "
+                  << stats.quadsTextureSpace << " quads drawn from relit textures, " << stats.quadsPerFragment
                   << " relit per fragment (the light moved and that cost less)"
                   << "\ntexture memory: " << stats.textureBytes.total() << " bytes (references "
                   << stats.textureBytes.reference << ", blended references " << stats.textureBytes.blend << ", relit "

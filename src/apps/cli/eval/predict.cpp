@@ -146,7 +146,8 @@ std::string trainingSummary(const NeuralRti& n) {
 }  // namespace
 
 Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants, const Dataset& dataset,
-                                                  const Fold& fold, const Image& first, const Mask& mask) {
+                                                  const Fold& fold, const Image& first, const Mask& mask,
+                                                  const std::function<void(std::size_t, double)>& progress) {
     std::map<std::string, Rendering> models;
     if (std::none_of(variants.begin(), variants.end(), [](const Variant& v) { return v.unmatched(); })) return models;
     std::vector<Image> decoded;
@@ -160,12 +161,15 @@ Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants
         if (!dataset.fixedView()) views.push_back(dataset.images[i].view);
     }
     for (const Image& image : decoded) images.push_back(&image);
+    std::size_t fitted = 0;  // the fits before this one
     for (Variant& v : variants) {
         if (!v.unmatched()) continue;
         const auto start = Clock::now();
+        const std::function<void(double)> within = [&progress, fitted](double f) { progress(fitted, f); };
+        ++fitted;
         if (v.neuralRti) {
             Result<NeuralRti> model =
-                fitNeuralRti(images, lights, mask, {.seconds = v.trainingSeconds}, dataset.source);
+                fitNeuralRti(images, lights, mask, {.seconds = v.trainingSeconds, .progress = within}, dataset.source);
             if (!model) return Error{model.error()};
             v.bakeSeconds.push_back(seconds(start));
             v.training.push_back(trainingSummary(*model));
@@ -181,6 +185,7 @@ Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants
         if (v.learned) {
             LearnedOptions options = *v.learned;
             if (v.trainingSeconds > 0) options.seconds = v.trainingSeconds;
+            options.progress = within;
             Result<LearnedModel> model = fitLearnedModel(images, lights, mask, options, dataset.source, views);
             if (!model) return Error{model.error()};
             v.bakeSeconds.push_back(seconds(start));
@@ -297,11 +302,21 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
     const std::vector<std::size_t> tests(heldOut.begin(), heldOut.end());
     const std::size_t sheetLights = std::min<std::size_t>(tests.size(), static_cast<std::size_t>(o.sheetLights));
     for (std::size_t k = 0; k < sheetLights; ++k) onSheet.insert(tests[k * tests.size() / sheetLights]);
-    // Progress: a step per bank setting baked and per held-out image predicted, in every fold.
+    // Progress: a step per bank setting baked, per model fitted alone and per held-out image
+    // predicted, in every fold; a fit's training moves within its step (NeuralRTI's takes
+    // minutes), so steps count in thousandths.
+    constexpr std::size_t kStep = 1000;
+    const auto fits = static_cast<std::size_t>(
+        std::count_if(variants.begin(), variants.end(), [](const Variant& v) { return v.unmatched(); }));
     std::size_t steps = 0, done = 0;
-    for (const Fold& fold : folds) steps += variants.size() + fold.test.size();
+    for (const Fold& fold : folds) steps += (variants.size() + fits + fold.test.size()) * kStep;
     auto step = [&] {
-        if (o.progress) o.progress(++done, steps);
+        done += kStep;
+        if (o.progress) o.progress(done, steps);
+    };
+    auto fitProgress = [&](std::size_t fit, double fraction) {
+        if (o.progress)
+            o.progress(done + fit * kStep + static_cast<std::size_t>(std::clamp(fraction, 0.0, 1.0) * kStep), steps);
     };
     for (std::size_t f = 0; f < folds.size(); ++f) {
         const Fold& fold = folds[f];
@@ -311,8 +326,9 @@ Status predictFolds(std::vector<Variant>& variants, const Dataset& dataset, cons
             if (Result<LutBank*> b = banks.bankFor(v); !b) return Error{b.error()};
             step();
         }
-        Result<std::map<std::string, Rendering>> models = fitBases(variants, dataset, fold, first, mask);
+        Result<std::map<std::string, Rendering>> models = fitBases(variants, dataset, fold, first, mask, fitProgress);
         if (!models) return Error{models.error()};
+        done += fits * kStep;
 
         std::map<std::size_t, Image> trainImages;  // nearest: decoded once per fold
         for (std::size_t t : fold.test) {
