@@ -44,6 +44,15 @@ def main():
         assert done == total, frames[-1]
         piped = subprocess.run(argv[:-1] + [os.path.join(folder, "piped")], capture_output=True, text=True)
         assert piped.returncode == 0 and "evaluating [" not in piped.stderr, piped.stderr
+        # A model fitted alone (a learned one, trained a few seconds): the bar moves within its
+        # step (steps count in thousandths), not only when the training ends.
+        argv = [btflut, "eval", material, "--holdout", "every:3", "--modes", "neural3", "--budget", "3s", "--no-gl",
+                "-o", os.path.join(folder, "fit")]
+        text, status = under_terminal(argv)
+        assert status == 0, text
+        fitting = [line for line in text.split("\r") if line.startswith("evaluating [")]
+        within = [f for f in fitting if int(f.split("]")[1].split("/")[0]) % 1000 != 0]
+        assert within, "the bar does not move while the model trains:\n" + "\n".join(fitting[-5:])
         # Training a learned model: its own bar, with the time left, to the end (a short time
         # budget: the same steps on any machine, a few seconds here).
         argv = [btflut, "bake", material, "--predictor", "neural3", "--budget", "2s", "-o",
@@ -55,8 +64,8 @@ def main():
         assert "1000/1000" in training[-1], training[-1]
         piped = subprocess.run(argv, capture_output=True, text=True)
         assert piped.returncode == 0 and "training" not in piped.stderr, piped.stderr
-    print("terminal_check: progress drawn on a terminal (%d frames; training %d), none when piped"
-          % (len(frames), len(training)))
+    print("terminal_check: progress drawn on a terminal (%d frames; %d within a fit; training %d), none when piped"
+          % (len(frames), len(within), len(training)))
 
 
 if __name__ == "__main__":
