@@ -1,5 +1,6 @@
 """Progress on a terminal: `btflut eval` under a pseudo-terminal draws its progress bar with
-the time left, and `btflut bake --predictor neural3` its training's; piped, they print none.
+the time left (moving while a model trains), `btflut bake --predictor neural3` its training's,
+and auto on a set of views its validation's and the chosen model's; piped, they print none.
 Usage: terminal_check.py BTFLUT MATERIAL"""
 import os
 import pty
@@ -64,6 +65,18 @@ def main():
         assert "1000/1000" in training[-1], training[-1]
         piped = subprocess.run(argv, capture_output=True, text=True)
         assert piped.returncode == 0 and "training" not in piped.stderr, piped.stderr
+        # auto on a set of views: validation's bar moves while the learned candidate's folds
+        # train, and the chosen model's training has its bar.
+        views = os.path.join(folder, "views")
+        subprocess.run([btflut, "synth", "--preset", "concrete", "--geometry", "btf-5", "--size", "64",
+                        "--correlation-length", "4", "--samples", "1", "-q", "-o", views], check=True)
+        text, status = under_terminal([btflut, "bake", views, "-o", os.path.join(folder, "views.btflut")])
+        assert status == 0, text
+        validating = [line for line in text.split("\r") if line.startswith("validating [")]
+        assert any(int(f.split("]")[1].split("/")[0]) % 1000 != 0 for f in validating), \
+            "validation's bar does not move while the folds train:\n" + "\n".join(validating[-5:])
+        chosen = [line for line in text.split("\r") if line.startswith("training the chosen model [")]
+        assert chosen and "1000/1000" in chosen[-1], "no bar for the chosen model's training:\n" + text[-2000:]
     print("terminal_check: progress drawn on a terminal (%d frames; %d within a fit; training %d), none when piped"
           % (len(frames), len(within), len(training)))
 

@@ -295,6 +295,9 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
         if (o.match >= 0) automatic.match = o.match;
         if (!o.quiet && ::isatty(STDERR_FILENO))  // progress for people; errors stay one line
             automatic.log = [](const std::string& line) { std::cerr << "\rauto: " << line << "\x1b[K\n"; };
+        if (!o.quiet)  // the chosen learned model's training: its own bar, in thousandths
+            if (auto bar = terminalProgress("training the chosen model"))
+                automatic.training = [bar](double done) mutable { bar(static_cast<std::size_t>(done * 1000), 1000); };
         bank = bakeAuto(*dataset, automatic, provider);
     } else {
         bank = bakeBank(*dataset, options, provider);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <optional>
 
 #include "core/eval/holdout.h"
@@ -182,8 +183,11 @@ void score(Candidate& c, LutBank& bank, const Fold& fold, const Validation& v, i
 // by side, the cores shared between them (a learned one trains on its share), and a bake is
 // the same on any thread count.
 void validate(std::vector<Candidate>& candidates, const Validation& v, const AutoBakeOptions& options) {
+    // Progress: a step per candidate and fold, in thousandths; a learned candidate's folds
+    // (trained side by side) move within theirs.
+    constexpr std::size_t kStep = 1000;
     std::size_t steps = 0, done = 0;
-    for (const Candidate& c : candidates) steps += c.skipped.empty() ? v.folds.size() : 0;
+    for (const Candidate& c : candidates) steps += c.skipped.empty() ? v.folds.size() * kStep : 0;
     std::vector<Dataset> train;
     for (const Fold& fold : v.folds) train.push_back(subset(v.dataset, fold.train));
     for (Candidate& c : candidates) {
@@ -194,11 +198,22 @@ void validate(std::vector<Candidate>& candidates, const Validation& v, const Aut
         o.matchGrid = false;  // validated with exact LUTs; only the chosen bank gets its grid
         o.threads = std::max(1, threadCount(options.base.threads) / std::max(1, static_cast<int>(v.folds.size())));
         std::vector<std::optional<Result<LutBank>>> banks(v.folds.size());
+        std::vector<double> trained(v.folds.size(), 0.0);  // each fold's training, 0..1
+        std::mutex progressMutex;
         parallelFor(v.folds.size(), options.base.threads, [&](std::size_t f) {
             const ImageProvider images = [&](std::size_t i, Image&) -> Result<const Image*> {
                 return &v.decoded[v.folds[f].train[i]];
             };
-            banks[f] = bakeBank(train[f], o, images);
+            BakeOptions fold = o;
+            if (fold.learned && options.base.progress)
+                fold.learned->progress = [&, f](double fraction) {
+                    std::lock_guard lock(progressMutex);
+                    trained[f] = fraction;
+                    double sum = 0;
+                    for (double t : trained) sum += t;
+                    options.base.progress(done + static_cast<std::size_t>(sum * kStep), steps);
+                };
+            banks[f] = bakeBank(train[f], fold, images);
         });
         for (std::size_t f = 0; f < v.folds.size(); ++f) {
             if (!*banks[f]) {
@@ -210,7 +225,7 @@ void validate(std::vector<Candidate>& candidates, const Validation& v, const Aut
             }
             score(c, **banks[f], v.folds[f], v, options.base.threads);
         }
-        done += v.folds.size();
+        done += v.folds.size() * kStep;
         if (options.base.progress) options.base.progress(done, steps);
     }
 }
@@ -337,6 +352,7 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
                 : "several views, some with fewer than 3 lights: the one-reference bank");
     }
     final.progress = options.base.progress;
+    if (final.learned && options.training) final.learned->progress = options.training;
     Result<LutBank> bank = bakeBank(dataset, final, cached);
     if (!bank && !choice.chosen && dataset.fixedView() && bank.error().find("constant") != std::string::npos) {
         final = classic.options;

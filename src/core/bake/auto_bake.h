@@ -43,6 +43,10 @@ struct AutoBakeOptions {
     std::optional<float> match;  ///< a fixed match strength instead of the validated one
     /// Called with a line per stage (candidates, folds); may be empty.
     std::function<void(const std::string&)> log;
+    /// Called with the fraction done (0..1) of the chosen learned model's training in the final
+    /// bake; may be empty. (base.progress counts validation's steps, in thousandths: a learned
+    /// candidate's folds move within theirs.)
+    std::function<void(double)> training;
 };
 
 /// The bytes per texel of the smallest candidate for a dataset whose images have
