@@ -165,7 +165,25 @@ TEST_CASE("auto on views: rectified ones validate a learned model of them agains
         CHECK_FALSE(c.contains("skipped"));
     }
     CHECK(selection["candidates"][1]["name"] == "neural9");
-    if (bank->makesLuts()) CHECK(bank->predictor().viewDependent());
+    if (bank->makesLuts()) {
+        CHECK(bank->predictor().viewDependent());
+        // The fewest quantiles that cost nothing on the folds (their models reused): fewer than
+        // 1024 samples where one of 64 to 512 does; --quantiles given, as given.
+        REQUIRE(selection.contains("quantiles"));
+        const nlohmann::json& q = selection["quantiles"];
+        INFO(q.dump());
+        CHECK(q["chosen"] == bank->blend.quantiles);
+        CHECK(q["of"] == 1024);
+        for (const auto& row : q["tried"]) CHECK(row["costs_nothing"] == (row["quantiles"] == q["chosen"]));
+        CHECK(bank->blend.quantiles < 1024);
+        AutoBakeOptions given = options;
+        given.chooseQuantiles = false;
+        Result<LutBank> full = bakeAuto(v.dataset, given);
+        REQUIRE(full.ok());
+        CHECK(full->blend.quantiles == 1024);
+        CHECK_FALSE(nlohmann::json::parse(full->selection).contains("quantiles"));
+        CHECK(encodeBank(*bank).size() * 2 < encodeBank(*full).size());
+    }
     // Not rectified: the paper's bank, unvalidated.
     Dataset plain = v.dataset;
     plain.rectified = false;

@@ -293,6 +293,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
                                   .decodeBudget = budget->multiplyAdds.value_or(kDefaultDecodeBudget),
                                   .seconds = budget->seconds};
         if (o.match >= 0) automatic.match = o.match;
+        automatic.chooseQuantiles = app.count("--quantiles") == 0;
         if (!o.quiet && ::isatty(STDERR_FILENO))  // progress for people; errors stay one line
             automatic.log = [](const std::string& line) { std::cerr << "\rauto: " << line << "\x1b[K\n"; };
         if (!o.quiet)  // the chosen learned model's training: its own bar, in thousandths
@@ -400,7 +401,8 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
     app->add_option("--labels", o->labels, "instead of --regions: a label image, each grey value one region");
     app->add_option("--quantiles", o->quantiles,
                     "with --references, --regions or --predictor: samples of each target's quantile function (the "
-                    "bank keeps them instead of LUTs; 4 bytes each per light and region)")
+                    "bank keeps them instead of LUTs; 4 bytes each per light and region). auto on a set of views, "
+                    "without it: the fewest of 64 to 512 that validation finds to cost nothing, else 1024")
         ->check(CLI::Range(2, 65536))
         ->capture_default_str();
     app->add_option(

@@ -32,6 +32,7 @@ struct Candidate {
     std::map<float, std::pair<double, double>> sums;  // match -> (psnr, l1)
     std::map<float, std::vector<double>> l1s;
     std::size_t images = 0;
+    std::vector<std::shared_ptr<const Predictor>> fitted;  // each fold's model (predictors that fit one)
 };
 
 // `views`: a rectified set of several views, where only the one-reference bank and a learned
@@ -162,9 +163,10 @@ struct Validation {
 
 // A candidate's bank on one fold, scored on the fold's held-out images at each match strength
 // (sums, and each image's L1 in the folds' order).
-void score(Candidate& c, LutBank& bank, const Fold& fold, const Validation& v, int threads) {
+void score(Candidate& c, LutBank& bank, const Fold& fold, const Validation& v, int threads,
+           const std::vector<float>& strengths) {
     const Relighter relighter(bank);
-    for (float strength : c.classic || !bank.makesLuts() ? std::vector<float>{1.f} : v.strengths) {
+    for (float strength : c.classic || !bank.makesLuts() ? std::vector<float>{1.f} : strengths) {
         bank.blend.match = strength;  // read by the frames below (one strength at a time)
         std::vector<ImageErrors> figures(fold.test.size());
         parallelFor(fold.test.size(), threads, [&](std::size_t k) {
@@ -223,7 +225,8 @@ void validate(std::vector<Candidate>& candidates, const Validation& v, const Aut
                 c.images = 0;
                 break;
             }
-            score(c, **banks[f], v.folds[f], v, options.base.threads);
+            score(c, **banks[f], v.folds[f], v, options.base.threads, v.strengths);
+            c.fitted.push_back((*banks[f])->blend.predictor);
         }
         done += v.folds.size() * kStep;
         if (options.base.progress) options.base.progress(done, steps);
@@ -274,6 +277,59 @@ Choice choose(const std::vector<Candidate>& candidates) {
             if (excess <= kL1Tolerance && psnr > chosenPsnr) out.chosen = &c, out.match = strength, chosenPsnr = psnr;
         }
         out.rows.push_back(row);
+    }
+    return out;
+}
+
+// A bank of views keeps a quantile function per view, light and region (4 bytes a sample) and
+// grids of them: most of a learned bank of views. The fewest samples, of 64, 128, 256 and 512,
+// that cost nothing against the chosen setting's (base.quantiles) on the same folds: L1 within
+// kQuantileTolerance (the mean per-image difference plus its standard error) and PSNR within
+// kQuantilePsnr. The folds' models are reused, not fitted again.
+constexpr double kQuantileTolerance = 0.0005;
+constexpr double kQuantilePsnr = 0.05;
+
+struct QuantileChoice {
+    int quantiles = 0;
+    nlohmann::json tried = nlohmann::json::array();
+};
+
+QuantileChoice chooseQuantiles(const Candidate& chosen, float match, const Validation& v,
+                               const AutoBakeOptions& options) {
+    QuantileChoice out{chosen.options.quantiles};
+    const double count = static_cast<double>(chosen.images);
+    const double chosenPsnr = chosen.sums.at(match).first / count;
+    for (int quantiles : {64, 128, 256, 512}) {
+        if (quantiles >= chosen.options.quantiles) break;
+        Candidate trial{chosen.name, chosen.options, chosen.bytes, chosen.multiplyAdds};
+        bool baked = true;
+        for (std::size_t f = 0; f < v.folds.size() && baked; ++f) {
+            BakeOptions o = chosen.options;  // as validate() baked the fold, but for the quantiles
+            o.progress = {};
+            o.ptm = false;
+            o.matchGrid = false;
+            o.quantiles = quantiles;
+            o.fitted = chosen.fitted[f];
+            const ImageProvider images = [&](std::size_t i, Image&) -> Result<const Image*> {
+                return &v.decoded[v.folds[f].train[i]];
+            };
+            Result<LutBank> bank = bakeBank(subset(v.dataset, v.folds[f].train), o, images);
+            if (!bank) {
+                baked = false;
+                break;
+            }
+            score(trial, *bank, v.folds[f], v, options.base.threads, {match});
+        }
+        if (!baked) continue;
+        const double psnr = trial.sums.at(match).first / count, l1 = trial.sums.at(match).second / count;
+        const double excess = l1Excess(trial.l1s.at(match), chosen.l1s.at(match));
+        const bool free = excess <= kQuantileTolerance && psnr >= chosenPsnr - kQuantilePsnr;
+        out.tried.push_back(
+            {{"quantiles", quantiles}, {"psnr", psnr}, {"l1", l1}, {"l1_excess", excess}, {"costs_nothing", free}});
+        if (free) {
+            out.quantiles = quantiles;
+            break;
+        }
     }
     return out;
 }
@@ -341,6 +397,20 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
                                {"multiply_adds", choice.chosen->multiplyAdds}};
         log("chose " + choice.chosen->name +
             (choice.chosen->classic ? "" : ", match " + std::to_string(choice.match).substr(0, 4)));
+        if (views && options.chooseQuantiles && !choice.chosen->classic &&
+            choice.chosen->fitted.size() == folds.size()) {
+            const QuantileChoice q = chooseQuantiles(*choice.chosen, choice.match, validation, options);
+            final.quantiles = q.quantiles;
+            selection["quantiles"] = {
+                {"chosen", q.quantiles},
+                {"of", choice.chosen->options.quantiles},
+                {"tried", q.tried},
+                {"rule",
+                 "the fewest samples of each target's quantile function whose validation L1 is within 0.0005 of "
+                 "the full count's (mean per-image difference plus its standard error) and PSNR within 0.05 dB"}};
+            log("quantiles: " + std::to_string(q.quantiles) + " samples of each target (" +
+                std::to_string(choice.chosen->options.quantiles) + " tried first)");
+        }
     } else {
         // Nothing validated: several views, or too few images. The one-reference bank, or where
         // its reference is constant over the sample (a grey card, a black set), a model that

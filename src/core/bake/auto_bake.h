@@ -41,6 +41,9 @@ struct AutoBakeOptions {
     /// and the final bake (LearnedOptions::seconds: steps, not the clock, so the bank is the same).
     double seconds = 0;
     std::optional<float> match;  ///< a fixed match strength instead of the validated one
+    /// Banks of views: the fewest samples of each target's quantile function (64 to 512) that
+    /// validation finds to cost nothing against base.quantiles; false: base.quantiles as given.
+    bool chooseQuantiles = true;
     /// Called with a line per stage (candidates, folds); may be empty.
     std::function<void(const std::string&)> log;
     /// Called with the fraction done (0..1) of the chosen learned model's training in the final

@@ -220,6 +220,7 @@ Result<std::shared_ptr<const Predictor>> fitModel(const Dataset& dataset, const 
     });
     for (const std::string& e : errors)
         if (!e.empty()) return Error{e};
+    if (options.fitted) return options.fitted;
     std::vector<const Image*> view;
     std::vector<Direction> lights, views;
     for (std::size_t i = 0; i < dataset.images.size(); ++i) {

@@ -39,6 +39,9 @@ struct BakeOptions {
     std::optional<LightModelOptions> model;
     /// Or a learned model (learned_model.h), trained on every image, held in memory likewise.
     std::optional<LearnedOptions> learned;
+    /// The model (or learned model) already fitted to these images with these options: used as
+    /// it is, not fitted again (auto baking a fold again with fewer quantiles).
+    std::shared_ptr<const Predictor> fitted;
     float match = 1;  ///< with a model or references: how far each light's LUT matches (LutBank::Blend::match)
     LutBank::Blend::Target target =
         LutBank::Blend::Target::Measured;  ///< with a model or references (LutBank::Blend::target)
