@@ -69,18 +69,20 @@ const int btflutBlendMatch = BTFLUT_MATCH_ONE;
 const int btflutBlendMatch = BTFLUT_MATCH_SUM;
 #endif
 
-// The texel the prediction reads (texelFetch at level 0): set by each shader's main.
-// BLEND_FILTERED (the scene's per-fragment path) samples bilinearly at btflutBlendUv instead,
+// The texel the prediction reads (texelFetch at level blendLevel of the planes' mipmaps: the
+// relight pass's level, 0 unless it relights a minified texture's level alone): set by each
+// shader's main. BLEND_FILTERED (the scene's per-fragment path) samples bilinearly at btflutBlendUv instead,
 // so a magnified quad is smooth while the light moves, as its relit texture is once it stops:
 // the prediction of filtered planes, each rounded to 8 bits (4-bit planes fetched as they are).
 ivec2 btflutBlendAt;
 vec2 btflutBlendUv;
+uniform int blendLevel;
 
 vec4 btflutBlendTexel(int layer) {
 #if defined(BLEND_FILTERED)
     return textureLod(blendPlanes, vec3(btflutBlendUv, float(layer)), 0.0);
 #else
-    return texelFetch(blendPlanes, ivec3(btflutBlendAt, layer), 0);
+    return texelFetch(blendPlanes, ivec3(btflutBlendAt, layer), blendLevel);
 #endif
 }
 
@@ -143,7 +145,7 @@ vec3 btflutBlendColour(uvec2 pixel, bool greyReference) {
 #endif
 #if defined(BLEND_ALBEDO_CHROMA)
     return btflutRelitColour(matched, btflutBlendMatch, false,
-                             texelFetch(blendPlanes, ivec3(btflutBlendAt, BLEND_ALBEDO_LAYER), 0).rgb);
+                             texelFetch(blendPlanes, ivec3(btflutBlendAt, BLEND_ALBEDO_LAYER), blendLevel).rgb);
 #else
     return btflutRelitColour(matched, btflutBlendMatch, greyReference, blend.colour);
 #endif

@@ -9,6 +9,8 @@
 
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
+#include "core/histogram/histogram.h"
+#include "core/relight/level_match.h"
 #include "core/relight/relighter.h"
 #include "gl/context.h"
 #include "gl/scene_renderer.h"
@@ -66,6 +68,20 @@ LutBank savedBank(const TempDir& dir, const std::vector<SyntheticShot>& shots, i
     auto bank = bakeBank(*ds, {});
     REQUIRE(bank.ok());
     REQUIRE(saveBank(*bank, dir / "m.btflut").ok());
+    return std::move(*bank);
+}
+
+// A grey concrete synth of `size` texels a side under rti-25 (dir/set), its neural5 bank
+// trained briefly, saved as dir/n.btflut.
+LutBank learnedSynthBank(const TempDir& dir, int size) {
+    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "rti-25", "--size", std::to_string(size),
+                    "--correlation-length", "5", "-q", "-o", dir / "set"})
+                .status == 0);
+    auto dataset = openDataset(dir / "set");
+    REQUIRE(dataset.ok());
+    auto bank = bakeBank(*dataset, {.learned = LearnedOptions{.codes = 5, .steps = 200}});
+    REQUIRE_MESSAGE(bank.ok(), bank.error());
+    REQUIRE(saveBank(*bank, dir / "n.btflut").ok());
     return std::move(*bank);
 }
 
@@ -287,16 +303,74 @@ TEST_CASE("bench render reports static and moving frames, GPU time and overdraw"
 }
 
 TEST_CASE(
+    "a far quad of a predictor bank is relit at the mip level it reads: 1/64 of the texels at 1/8, the level's "
+    "histogram that of the whole relight box-filtered") {
+    TempDir dir;
+    const LutBank bank = learnedSynthBank(dir, 128);
+    REQUIRE(LevelMatch::supports(bank));
+    auto context = createHeadlessContext(GlBackend::Auto);
+    REQUIRE(context.ok());
+    const Direction light = Direction::fromDegrees(50, 130);  // between the grid's nodes
+    auto histogram = [](const std::vector<double>& greys) {
+        std::vector<double> bins(256, 0.0);
+        for (double v : greys)
+            bins[static_cast<std::size_t>(std::clamp(v, 0.0, 1.0) * 255 + 0.5)] += 1.0 / greys.size();
+        return bins;
+    };
+    // The whole relight, box-filtered to 16 x 16: what level 3 of a mipmapped relit texture holds.
+    const Relighter relighter(bank);
+    const std::vector<double> truth = boxMeans(relighter.apply(relighter.gridFrame(light), true), 8);
+    const LevelMatch levels(bank);
+    {  // The CPU twin: level 3's own LUTs keep the histogram; the bank's would not.
+        auto twin = [&](const std::vector<float>& luts) {
+            const std::vector<float> v = levels.relitLevel(light, 3, luts);
+            return earthMoversDistance(histogram(std::vector<double>(v.begin(), v.end())), histogram(truth));
+        };
+        const double own = twin(levels.luts(light, 3)), banks = twin(relighter.gridFrame(light).luts);
+        INFO("level 3's EMD from the whole relight's: its own LUTs " << own << ", the bank's " << banks);
+        CHECK(own <= 0.005);
+        CHECK(own < banks / 2);
+    }
+    // The quad fills a 16 x 16 frame: each pixel is one texel of level 3.
+    auto far = SceneRenderer::create(frontalScene(dir / "n.btflut", "", 16, 16));
+    REQUIRE(far.ok());
+    const std::vector<double> drawn = greys(drawRelit(**far, light));
+    CHECK((*far)->stats().relightPasses == 1);
+    CHECK((*far)->stats().relitTexels == 16 * 16);
+    const double emd = earthMoversDistance(histogram(drawn), histogram(truth));
+    INFO("the far quad's EMD from the whole relight's level 3: " << emd);
+    CHECK(emd <= 0.005);
+    // It is the CPU twin's level 3, pixel for pixel (within a code, the decoder's float sums).
+    const std::vector<float> twin = levels.relitLevel(light, 3, levels.luts(light, 3));
+    REQUIRE(twin.size() == drawn.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < drawn.size(); ++i) worst = std::max(worst, std::abs(drawn[i] - twin[i]) * 255);
+    CHECK(worst <= 1.01);
+    // Near (one pixel a texel), the whole texture is relit.
+    auto near = SceneRenderer::create(frontalScene(dir / "n.btflut", "", 128, 128));
+    REQUIRE(near.ok());
+    drawRelit(**near, light);
+    CHECK((*near)->stats().relitTexels == 128 * 128);
+
+    // bench levels: the same measure, side by side with the bank's LUTs, and the time of each.
+    CliRun run =
+        runCli({"bench", "levels", dir / "n.btflut", "--level", "3", "--frames", "1", "--repeat", "1", "--json"});
+    REQUIRE_MESSAGE(run.status == 0, run.err);
+    const nlohmann::json out = nlohmann::json::parse(run.out);
+    CHECK(out["texels_whole"] == 128 * 128);
+    CHECK(out["texels_level"] == 16 * 16);
+    CHECK(out["emd_level_luts_max"].get<double>() <= 0.005);
+    CHECK(out["emd_level_luts_mean"].get<double>() < out["emd_bank_luts_mean"].get<double>());
+    CHECK(out["ms_level"].get<double>() > 0);
+    requireOneLineError(runCli({"bench", "levels", dir / "n.btflut", "--level", "8"}), "levels 0 to 7");
+    REQUIRE(runCli({"bake", dir / "set", "--references", "1", "-o", dir / "r.btflut", "-q"}).status == 0);
+    requireOneLineError(runCli({"bench", "levels", dir / "r.btflut"}), "not relit by level");
+}
+
+TEST_CASE(
     "bench decoder: the plain shader of the network draws btflut's frame; ratios per fragment and in texture space") {
     TempDir dir;
-    REQUIRE(runCli({"synth", "--preset", "concrete", "--geometry", "rti-25", "--size", "40", "--correlation-length",
-                    "5", "-q", "-o", dir / "set"})
-                .status == 0);
-    auto dataset = openDataset(dir / "set");
-    REQUIRE(dataset.ok());
-    auto bank = bakeBank(*dataset, {.learned = LearnedOptions{.codes = 5, .steps = 200}});  // grey
-    REQUIRE_MESSAGE(bank.ok(), bank.error());
-    REQUIRE(saveBank(*bank, dir / "n.btflut").ok());
+    learnedSynthBank(dir, 40);
     CliRun run =
         runCli({"bench", "decoder", dir / "n.btflut", "--size", "96x64", "--frames", "1", "--repeat", "1", "--json"});
     REQUIRE_MESSAGE(run.status == 0, run.err);

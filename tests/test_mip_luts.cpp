@@ -6,6 +6,7 @@
 
 #include "core/bank/mip_luts.h"
 #include "core/histogram/lut.h"
+#include "core/predict/predictor.h"
 
 using namespace btflut;
 
@@ -97,4 +98,21 @@ TEST_CASE("per-mip LUTs of an rgb bank have a matrix per channel") {
     CHECK(MipLuts(rgb, ColourMode::Rgb, 64).channels() == 3);
     CHECK(MipLuts(rgb, ColourMode::Grey, 64).channels() == 1);
     CHECK(MipLuts(rgb, ColourMode::Grey, 64).levels() == 5);  // 16x8, 8x4, 4x2, 2x1, 1x1
+}
+
+TEST_CASE("a predictor's planes at a mip level: each texel its square's mean, rounded half up, clipped at odd edges") {
+    CHECK(levelCount(320, 320) == 9);  // 320 160 80 40 20 10 5 2 1
+    CHECK(levelCount(5, 3) == 3);
+    CHECK(levelCount(1, 1) == 1);
+    CHECK(levelSize(5, 1) == 2);
+    CHECK(levelSize(5, 4) == 1);
+    // 5 x 3 at level 1 is 2 x 1: the squares at x 0-1 and 2-3 of rows 0-1 (column 4 and row 2 left out).
+    CHECK(levelBlock(1, 5, 3, 0) == std::vector<std::uint32_t>{0, 1, 5, 6});
+    CHECK(levelBlock(1, 5, 3, 1) == std::vector<std::uint32_t>{2, 3, 7, 8});
+    // A square past the image's edge (level 2 of 3 rows is 1 x 1) keeps the texels inside.
+    CHECK(levelBlock(2, 5, 3, 0) == std::vector<std::uint32_t>{0, 1, 2, 3, 5, 6, 7, 8, 10, 11, 12, 13});
+    const std::vector<std::uint8_t> bytes{0, 1, 2, 3, 10, 20, 30, 40};            // 2 x 2, two channels
+    CHECK(levelOfBytes(bytes, 2, 2, 2, 1) == std::vector<std::uint8_t>{11, 16});  // 10.5 -> 11, 16 -> 16
+    CHECK(meanByte(3, 2) == 2);                                                   // 1.5 rounds up
+    CHECK(meanByte(5, 4) == 1);                                                   // 1.25 rounds down
 }

@@ -10,6 +10,21 @@ namespace btflut {
 
 namespace {
 std::uint8_t byteOf(float v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.f, 1.f) * 255.f)); }
+
+// The predictor's planes as `export` writes them: RGBA8 layers, then the albedo's.
+std::vector<std::uint8_t> planeBytes(const PredictorPlanes& planes) {
+    const std::size_t texels = planes.layers.front().pixelCount(),
+                      layers = planes.layers.size() + (planes.albedo.samples.empty() ? 0 : 1);
+    std::vector<std::uint8_t> data(layers * texels * 4, 255);
+    for (std::size_t l = 0; l < planes.layers.size(); ++l)
+        std::transform(planes.layers[l].samples.begin(), planes.layers[l].samples.end(), &data[l * texels * 4], byteOf);
+    if (!planes.albedo.samples.empty())
+        for (std::size_t i = 0; i < texels; ++i)
+            for (std::size_t c = 0; c < 3; ++c)
+                data[((layers - 1) * texels + i) * 4 + c] = byteOf(planes.albedo.samples[i * 3 + c]);
+    return data;
+}
+
 }  // namespace
 
 BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
@@ -24,19 +39,11 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     if (bank.colour == ColourMode::Rgb) t.m_defines.push_back("RGB_MODE");
     if (bank.blend.regions > 1) t.m_defines.push_back("REGIONS");
     if (t.m_lutsAsUniforms) t.m_defines.push_back("LUT_UNIFORMS " + std::to_string(bank.matchLength()));
-    // The predictor's planes as `export` writes them: RGBA8 layers, then the albedo's.
     const PredictorPlanes planes = predictor->planes();
     const Image& first = planes.layers.front();
-    const std::size_t texels = first.pixelCount(),
-                      layers = planes.layers.size() + (planes.albedo.samples.empty() ? 0 : 1);
-    std::vector<std::uint8_t> data(layers * texels * 4, 255);
-    for (std::size_t l = 0; l < planes.layers.size(); ++l)
-        std::transform(planes.layers[l].samples.begin(), planes.layers[l].samples.end(), &data[l * texels * 4], byteOf);
-    if (!planes.albedo.samples.empty())
-        for (std::size_t i = 0; i < texels; ++i)
-            for (std::size_t c = 0; c < 3; ++c)
-                data[((layers - 1) * texels + i) * 4 + c] = byteOf(planes.albedo.samples[i * 3 + c]);
-    t.m_planes = uploadTextureArray(first.width, first.height, static_cast<int>(layers), 4, data.data(), bytes);
+    const std::vector<std::uint8_t> data = planeBytes(planes);
+    t.m_planes = uploadTextureArray(first.width, first.height, static_cast<int>(data.size() / (first.pixelCount() * 4)),
+                                    4, data.data(), bytes);
     t.m_source = std::make_shared<const std::string>(predictor->shaderSource());
     if (!t.m_source->empty()) t.m_sources.push_back({predictor->name() + " decoder (generated)", *t.m_source});
     // The decoder's texture, where it is not shader source (a network past a shader's constants).
@@ -83,13 +90,38 @@ void BlendTextures::updateLuts(const std::vector<GlTexture>& tables, const Relig
 }
 
 void BlendTextures::bind(const ShaderProgram& p, const RelightFrame& frame, const std::vector<GlTexture>& tables,
-                         int first) const {
+                         int first, int level) const {
     auto unit = [&](int offset, GLenum target, GLuint texture, const char* name) {
         gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + offset));
         gl.BindTexture(target, texture);
         gl.Uniform1i(p[name], first + offset);
     };
     unit(0, GL_TEXTURE_2D_ARRAY, m_planes.id(), "blendPlanes");
+    if (level > 0 && !m_planeMipmaps) {  // made here, as Predictor::levelCodes assumes: drivers round differently
+        const PredictorPlanes planes = m_predictor->planes();
+        const int width = planes.layers.front().width, height = planes.layers.front().height;
+        const std::vector<std::uint8_t> data = planeBytes(planes);
+        const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
+                          layers = data.size() / (texels * 4);
+        gl.PixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        for (int l = 1; l < levelCount(width, height); ++l) {
+            std::vector<std::uint8_t> levels;
+            for (std::size_t layer = 0; layer < layers; ++layer) {
+                const std::vector<std::uint8_t> one =
+                    levelOfBytes(std::span(data).subspan(layer * texels * 4, texels * 4), width, height, 4, l);
+                levels.insert(levels.end(), one.begin(), one.end());
+            }
+            gl.TexImage3D(GL_TEXTURE_2D_ARRAY, l, GL_RGBA8, levelSize(width, l), levelSize(height, l),
+                          static_cast<GLsizei>(layers), 0, GL_RGBA, GL_UNSIGNED_BYTE, levels.data());
+        }
+        m_planeMipmaps = true;
+    }
+    if ((level > 0) != m_mipmapFiltered) {  // a texture whose filter takes no mipmaps has only level 0
+        m_mipmapFiltered = level > 0;
+        gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER,
+                         m_mipmapFiltered ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR);
+    }
+    gl.Uniform1i(p["blendLevel"], level);
     if (m_labels.id()) unit(1, GL_TEXTURE_2D, m_labels.id(), "blendLabels");
     if (m_network.id()) unit(5, GL_TEXTURE_2D_ARRAY, m_network.id(), "blendNetwork");
     for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones

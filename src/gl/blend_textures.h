@@ -47,9 +47,11 @@ public:
     /// Uploads a frame's LUTs into tables made by makeLutTables.
     void updateLuts(const std::vector<GlTexture>& tables, const RelightFrame& frame) const;
     /// Binds the textures and `tables` to units first .. first + kUnits - 1 and sets the
-    /// frame's uniforms.
-    void bind(const ShaderProgram& program, const RelightFrame& frame, const std::vector<GlTexture>& tables,
-              int first) const;
+    /// frame's uniforms. `level` > 0: the prediction reads that level of the planes' mipmaps
+    /// (a relight pass of one level, level_match.h), made the first time it is asked for (each
+    /// level the 2 x 2 mean of the one above); every other draw reads level 0.
+    void bind(const ShaderProgram& program, const RelightFrame& frame, const std::vector<GlTexture>& tables, int first,
+              int level = 0) const;
 
 private:
     const LutBank* m_bank = nullptr;
@@ -59,6 +61,8 @@ private:
     std::shared_ptr<const std::string> m_source;  // m_sources' text, at one address when moved
     std::vector<ShaderFile> m_sources;
     GlTexture m_planes, m_labels, m_network;
+    mutable bool m_planeMipmaps = false;    ///< made (bind at a level)
+    mutable bool m_mipmapFiltered = false;  ///< the planes' filter reads them (texelFetch past level 0 needs it)
 };
 
 }  // namespace btflut

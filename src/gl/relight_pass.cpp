@@ -68,10 +68,11 @@ void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlText
 }
 
 void RelightPass::bindLuts(const ShaderProgram& p, const RelightFrame& frame, const std::vector<GlTexture>& luts,
-                           int first) const {
+                           int first, int level) const {
     const LutBank& bank = *m_bank;
+    BTFLUT_CHECK(level == 0 || m_blend);
     if (m_blend) {
-        m_blend->bind(p, frame, luts, first);
+        m_blend->bind(p, frame, luts, first, level);
     } else if (m_lutsAsUniforms) {
         gl.Uniform1fv(p["lutValues"], static_cast<GLsizei>(bank.lutLength()), frame.luts.data());
     } else {
@@ -89,25 +90,26 @@ void RelightPass::bindLuts(const ShaderProgram& p, const RelightFrame& frame, co
     gl.Uniform1f(p["outCode"], bank.targetCode());
 }
 
-Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither) {
+Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither,
+                        int level) {
     const Image& ref = m_bank->reference;
     Result<const ShaderProgram*> program = this->program(dither);
     if (!program) return Error{program.error()};
     const ShaderProgram& p = **program;
     uploadLuts(frame, luts);
     gl.BindFramebuffer(GL_FRAMEBUFFER, m_framebuffer.id());
-    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, level);
     if (gl.CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return Error{"the GL driver cannot render into the relit texture's format"};
     gl.UseProgram(p.id());
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, m_reference);
     gl.Uniform1i(p["reference"], 0);
-    bindLuts(p, frame, luts, m_blend ? 4 : 1);
+    bindLuts(p, frame, luts, m_blend ? 4 : 1, level);
     gl.Uniform1i(p["referenceChannels"], ref.channels);
     gl.BindVertexArray(m_vertexArray.id());
     gl.Disable(GL_DEPTH_TEST);
-    gl.Viewport(0, 0, ref.width, ref.height);
+    gl.Viewport(0, 0, levelSize(ref.width, level), levelSize(ref.height, level));
     gl.DrawArrays(GL_TRIANGLES, 0, 3);
     return success();
 }

@@ -39,10 +39,13 @@ public:
     std::vector<GlTexture> makeLuts() const;
     std::size_t lutBytes() const;
 
-    /// Uploads the frame's LUTs into `luts` and draws the relit reference into level 0 of
-    /// `target` (a colour-renderable 2D texture of the reference's size). Leaves its own
-    /// framebuffer bound.
-    Status run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither);
+    /// Uploads the frame's LUTs into `luts` and draws the relit reference into level `level`
+    /// of `target` (a colour-renderable 2D texture of the reference's size, with mipmaps past
+    /// level 0). Past level 0 (banks with a predictor), each texel of the level is predicted
+    /// from the planes' same level: the frame's LUTs must be that level's (LevelMatch::luts).
+    /// Leaves its own framebuffer bound.
+    Status run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither,
+               int level = 0);
 
     /// The frame's LUTs into `luts` (made by makeLuts).
     void uploadLuts(const RelightFrame& frame, const std::vector<GlTexture>& luts) const;
@@ -50,7 +53,7 @@ public:
     /// uniforms lut_common.glsl's LUT functions read (and the blend's weights): what
     /// native.frag and scene.frag's LUT_FRAGMENT share.
     void bindLuts(const ShaderProgram& program, const RelightFrame& frame, const std::vector<GlTexture>& luts,
-                  int first) const;
+                  int first, int level = 0) const;
     /// lut_common.glsl's defines for this bank (the blend's, or mapsReferenceDefines), made once.
     const std::vector<std::string>& defines() const { return m_defines; }
     /// The predictor's own shader source, if any (BlendTextures::sources): buildProgram's `generated`.

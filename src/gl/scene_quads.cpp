@@ -2,7 +2,9 @@
 // view directions in its own frame, the LUTs or weights its mode applies, what is loaded the
 // first time a mode needs it, and the texture-space relit textures of mode lut.
 #include <algorithm>
+#include <cmath>
 #include <functional>
+#include <limits>
 
 #include "core/bank/bank_file.h"
 #include "core/check.h"
@@ -200,9 +202,14 @@ void SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
             });
             if (moved && !relit) {
                 double pixels = 0;
-                for (const QuadState* q : quads) pixels += coveredPixels(m_scene.quads[q->index]);
-                perFragment = pixels * perFragmentExtraCost(bank) <
-                              static_cast<double>(bank.reference.pixelCount()) * relitTexelCost(bank);
+                int level = std::numeric_limits<int>::max();  // the finest its quads read: what a relight makes
+                for (const QuadState* q : quads) {
+                    pixels += coveredPixels(m_scene.quads[q->index]);
+                    level = std::min(level, relitLevel(material, m_scene.quads[q->index]));
+                }
+                const double texels = static_cast<double>(levelSize(bank.reference.width, level)) *
+                                      static_cast<double>(levelSize(bank.reference.height, level));
+                perFragment = pixels * perFragmentExtraCost(bank) < texels * relitTexelCost(bank);
             }
         }
         for (QuadState* q : quads) {
@@ -264,6 +271,51 @@ double SceneRenderer::coveredPixels(const SceneQuad& quad) const {
         area += a[0] / a[3] * c[1] / c[3] - c[0] / c[3] * a[1] / a[3];
     }
     return std::abs(area) / 2 * m_scene.width / 2 * m_scene.height / 2;
+}
+
+int SceneRenderer::relitLevel(const Material& material, const SceneQuad& quad) const {
+    const LutBank& bank = material.bank;
+    if (!m_interpolate || m_exactMatch || !LevelMatch::supports(bank)) return 0;
+    const int width = bank.reference.width, height = bank.reference.height;
+    return std::min(levelCount(width, height) - 1, finestLevel(quad, width, height));
+}
+
+int SceneRenderer::finestLevel(const SceneQuad& quad, int texelsWide, int texelsHigh) const {
+    // GL's level of detail is log2 of the longer of the texel coordinates' derivatives along
+    // the screen's x and y. The quad's point (s, t) in [-1, 1]^2 has texel coordinates
+    // (1 + s, 1 - t) / 2 * uvScale * (texelsWide, texelsHigh) (scene.vert); its pixel
+    // coordinates come from the projection, differentiated numerically. Over a 5 x 5 grid
+    // of points the least is taken: under perspective it lies at the nearest corner.
+    const std::array<float, 16> m = viewProjection(m_scene);  // column-major
+    const Vec3 b = bitangentOf(quad);
+    auto pixel = [&](double s, double t, std::array<double, 2>& out) {
+        const double u = s * quad.width / 2, v = t * quad.height / 2;
+        const double p[3] = {quad.center.x + u * quad.tangent.x + v * b.x, quad.center.y + u * quad.tangent.y + v * b.y,
+                             quad.center.z + u * quad.tangent.z + v * b.z};
+        double c[4]{};
+        for (std::size_t r = 0; r < 4; ++r) c[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+        if (c[3] < 1e-6) return false;
+        out = {(c[0] / c[3] + 1) / 2 * m_scene.width, (c[1] / c[3] + 1) / 2 * m_scene.height};
+        return true;
+    };
+    const double du = quad.uvScale * texelsWide / 2, dv = quad.uvScale * texelsHigh / 2;  // texels per unit s, t
+    constexpr double h = 1e-4;
+    double finest = std::numeric_limits<double>::infinity();
+    for (int a = 0; a <= 4; ++a)
+        for (int c = 0; c <= 4; ++c) {
+            const double s = -1 + a / 2.0, t = -1 + c / 2.0;
+            std::array<double, 2> p{}, ps{}, pt{};
+            if (!pixel(s, t, p) || !pixel(s + h, t, ps) || !pixel(s, t + h, pt)) return 0;
+            // J: pixels per (s, t); its inverse: (s, t) per pixel; times the texels per (s, t).
+            const double j00 = (ps[0] - p[0]) / h, j10 = (ps[1] - p[1]) / h, j01 = (pt[0] - p[0]) / h,
+                         j11 = (pt[1] - p[1]) / h;
+            const double det = j00 * j11 - j01 * j10;
+            if (std::abs(det) < 1e-12) return 0;  // seen edge on
+            const double dsdx = j11 / det, dsdy = -j01 / det, dtdx = -j10 / det, dtdy = j00 / det;
+            const double rho = std::max(std::hypot(du * dsdx, dv * dtdx), std::hypot(du * dsdy, dv * dtdy));
+            finest = std::min(finest, std::log2(rho));
+        }
+    return std::max(0, static_cast<int>(std::floor(finest + 1e-3)));
 }
 
 // Loads what a mode needs beyond the reference, the first time it is needed.
@@ -329,60 +381,74 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
 }
 
 // The relit textures of this frame: one per material and distinct light direction among the
-// lit quads drawn in mode lut. A texture already relit for a wanted direction is used as it
-// is; a new direction takes the texture unused for longest (relit again, mipmaps remade), or
-// a new one. Textures are kept when no quad wants them (a viewer pane in another mode, a
-// light that comes back), so a material holds as many as it ever needed at once.
+// lit quads drawn in mode lut. A texture already relit for a wanted direction, at the finest
+// mip level its quads read or finer, is used as it is; else the texture of that direction
+// (relit finer), or the one unused for longest, or a new one, is relit, its mipmaps made from
+// the level relit. Banks with a predictor (LevelMatch::supports) are relit from the level
+// their quads read: a quad minified 8 times decodes 1/64 of the texels. Textures are kept when
+// no quad wants them (a viewer pane in another mode, a light that comes back), so a material
+// holds as many as it ever needed at once.
 Status SceneRenderer::relight(const std::vector<RenderMode>& modes) {
     ++m_frame;
     m_stats.relitTextures = 0;
     m_stats.textureBytes.relit = 0;
     for (auto& [name, material] : m_materials) {
         std::vector<Relit>& relit = material.relit;
-        auto find = [&](const QuadState& q) {
-            return std::find_if(relit.begin(), relit.end(), [&](const Relit& r) {
-                return sameVector(r.light, q.light) && sameVector(r.view, q.view);
-            });
-        };
-        std::vector<QuadState*> due;  // quads whose direction has no relit texture yet
+        std::vector<QuadState*> quads;  // this material's, relit in texture space
         for (std::size_t i = 0; i < m_quads.size(); ++i) {
             QuadState& q = m_quads[i];
-            if (m_scene.quads[q.index].material != name || q.unlit || !relitInTextureSpace(q, modes[i])) continue;
-            if (auto found = find(q); found != relit.end()) {
-                found->lastUsed = m_frame;
-                q.relit = static_cast<std::size_t>(found - relit.begin());
-            } else {
-                due.push_back(&q);
-            }
+            if (m_scene.quads[q.index].material == name && !q.unlit && relitInTextureSpace(q, modes[i]))
+                quads.push_back(&q);
         }
-        for (QuadState* q : due) {
-            auto found = find(*q);  // a quad before it may have made it
+        if (quads.empty()) continue;
+        const LutBank& bank = material.bank;
+        for (QuadState* q : quads) q->level = relitLevel(material, m_scene.quads[q->index]);
+        auto same = [](const QuadState& q, const Relit& r) {
+            return sameVector(r.light, q.light) && sameVector(r.view, q.view);
+        };
+        for (QuadState* q : quads) {
+            int level = q->level;  // the finest any quad of its direction reads
+            for (const QuadState* other : quads)
+                if (sameVector(other->light, q->light) && sameVector(other->view, q->view))
+                    level = std::min(level, other->level);
+            auto found = std::find_if(relit.begin(), relit.end(),
+                                      [&](const Relit& r) { return same(*q, r) && r.level <= level; });
             if (found == relit.end()) {
-                found = std::min_element(relit.begin(), relit.end(),
-                                         [](const Relit& a, const Relit& b) { return a.lastUsed < b.lastUsed; });
-                if (found == relit.end() || found->lastUsed == m_frame) {  // every texture is in use: one more
-                    relit.push_back(
-                        {{}, {}, allocateRelitTexture(material.bank.reference), material.pass->makeLuts(), 0});
+                found = std::find_if(relit.begin(), relit.end(), [&](const Relit& r) { return same(*q, r); });
+                if (found == relit.end())
+                    found = std::min_element(relit.begin(), relit.end(),
+                                             [](const Relit& a, const Relit& b) { return a.lastUsed < b.lastUsed; });
+                if (found == relit.end() || (found->lastUsed == m_frame && !same(*q, *found))) {
+                    relit.push_back({{}, {}, allocateRelitTexture(bank.reference), 0, material.pass->makeLuts(), 0});
                     found = relit.end() - 1;
                 }
                 found->light = q->light;
                 found->view = q->view;
+                found->level = level;
                 const Direction light = fromVector(q->light), view = fromVector(q->view);
-                if (Status s =
-                        material.pass->run(frameFor(material, light, view), found->luts, found->texture.id(), m_dither);
-                    !s)
+                RelightFrame frame = frameFor(material, light, view);
+                if (level > 0) {
+                    if (!material.levelMatch) material.levelMatch.emplace(bank);
+                    frame.luts = material.levelMatch->luts(light, level);
+                }
+                if (Status s = material.pass->run(frame, found->luts, found->texture.id(), m_dither, level); !s)
                     return s;
                 gl.BindTexture(GL_TEXTURE_2D, found->texture.id());
+                gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, level);  // the finer levels are stale
                 gl.GenerateMipmap(GL_TEXTURE_2D);  // from the relit texels: far quads average LUT values
                 ++m_stats.relightPasses;
+                m_stats.relitTexels += static_cast<std::size_t>(levelSize(bank.reference.width, level)) *
+                                       static_cast<std::size_t>(levelSize(bank.reference.height, level));
             }
             found->lastUsed = m_frame;
             q->relit = static_cast<std::size_t>(found - relit.begin());
         }
-        m_stats.relitTextures += relit.size();
-        if (!relit.empty())
+    }
+    for (const auto& [name, material] : m_materials) {
+        m_stats.relitTextures += material.relit.size();
+        if (!material.relit.empty())
             m_stats.textureBytes.relit +=
-                relit.size() * (relitTextureBytes(material.bank.reference) + material.pass->lutBytes());
+                material.relit.size() * (relitTextureBytes(material.bank.reference) + material.pass->lutBytes());
     }
     return success();
 }

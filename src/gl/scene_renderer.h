@@ -41,6 +41,7 @@
 #include "core/data/dataset.h"
 #include "core/data/scene.h"
 #include "core/image/image.h"
+#include "core/relight/level_match.h"
 #include "core/relight/relighter.h"
 #include "gl/blend_textures.h"
 #include "gl/objects.h"
@@ -84,6 +85,9 @@ struct RenderStats {
     std::size_t quadsDrawn = 0, quadsCulled = 0, quadsUnlit = 0;
     std::size_t relitTextures = 0;  ///< mode lut's relit textures held (per material and light direction)
     std::size_t relightPasses = 0;  ///< passes run, since creation
+    /// Texels those passes relit: a quad minified 2^m times is relit at mip level m alone
+    /// (LevelMatch), 1/4^m of its reference's texels.
+    std::size_t relitTexels = 0;
     /// The last frame's lit mode lut quads of banks of one view layer: drawn from a relit
     /// texture, or relit per fragment.
     std::size_t quadsTextureSpace = 0, quadsPerFragment = 0;
@@ -137,18 +141,20 @@ private:
     struct Relit {
         Vec3 light, view;  ///< in the quad's frame (view: what a predictor of views is relit for)
         GlTexture texture;
+        int level = 0;                ///< its mipmap level relit (and those below it, mipmapped from it)
         std::vector<GlTexture> luts;  ///< the pass's, of this texture alone
         std::uint64_t lastUsed = 0;   ///< the frame that last drew it
     };
     struct Material {
         LutBank bank;
-        GlTexture reference;                 ///< uploaded when a mode first needs it
-        std::optional<Relighter> relighter;  ///< the LUTs (and blend) per light
-        std::optional<BlendTextures> blend;  ///< banks that blend references: uploaded when mode lut first needs them
-        std::optional<RelightPass> pass;     ///< banks of one view layer, mode lut
-        std::vector<Relit> relit;            ///< by light direction
-        std::optional<MipLuts> mipLuts;      ///< banks with view layers, mode lut
-        LevelCounts referenceGrey;           ///< for the brdf mode's mean
+        GlTexture reference;                   ///< uploaded when a mode first needs it
+        std::optional<Relighter> relighter;    ///< the LUTs (and blend) per light
+        std::optional<BlendTextures> blend;    ///< banks that blend references: uploaded when mode lut first needs them
+        std::optional<RelightPass> pass;       ///< banks of one view layer, mode lut
+        std::vector<Relit> relit;              ///< by light direction
+        std::optional<MipLuts> mipLuts;        ///< banks with view layers, mode lut
+        std::optional<LevelMatch> levelMatch;  ///< banks with a predictor relit at a mip level (LevelMatch::supports)
+        LevelCounts referenceGrey;             ///< for the brdf mode's mean
         bool ptmLoaded = false;
         std::array<GlTexture, 3> ptm;  ///< coefficients 0-2, 3-5, albedo
         std::array<float, 6> ptmScale{}, ptmBias{};
@@ -169,6 +175,7 @@ private:
         /// else the bank's one layer's.
         Vec3 view{0, 0, 1};
         std::size_t relit = 0;                       ///< mode lut relit (relitLut): its material's relit texture
+        int level = 0;                               ///< ... whose finest mip level it reads (finestLevel)
         bool perFragment = false;                    ///< ... or relit per fragment this frame (choosePaths)
         Vec3 lastFrameLight = kNoLight;              ///< the light in its frame at the previous frame
         RelightFrame frame;                          ///< per fragment: the frame in `luts`
@@ -197,6 +204,13 @@ private:
     void choosePaths(const std::vector<RenderMode>& modes);
     /// The pixels a quad covers on screen (its projection, clipped to the image; occlusion ignored).
     double coveredPixels(const SceneQuad& quad) const;
+    /// The mip level a quad's relit texture is relit from: finestLevel, for banks relit by
+    /// level (LevelMatch::supports, LUTs read from the bank's grid); else 0.
+    int relitLevel(const Material& material, const SceneQuad& quad) const;
+    /// The finest mip level of its texture (`texelsWide` x `texelsHigh`) that trilinear
+    /// filtering reads anywhere on a quad: floor of GL's level of detail at its nearest point
+    /// (0 where it reaches behind the eye).
+    int finestLevel(const SceneQuad& quad, int texelsWide, int texelsHigh) const;
     /// A frame of a material's LUTs for a light and view, as the scene asks (grid, exact, nearest).
     RelightFrame frameFor(const Material& material, Direction light, Direction view) const;
     void bindPerFragment(const ShaderProgram& program, const QuadState& q, const Material& material) const;

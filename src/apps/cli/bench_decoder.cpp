@@ -29,10 +29,7 @@ namespace {
 struct BenchDecoderOptions {
     std::string bank;
     std::string size = "1920x1080";
-    int frames = 5;
-    int repeat = 3;
-    std::string backend = "auto";
-    bool json = false;
+    GlBenchOptions timing;
 };
 
 constexpr double kMagnification = 1.5;  // screen pixels per texel across, per fragment (a near quad)
@@ -154,7 +151,7 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 || w > 16384 ||
         h > 16384)
         return Error{"--size '" + o.size + "': expected WxH with both within 1..16384"};
-    Result<GlBackend> backend = parseGlBackend(o.backend);
+    Result<GlBackend> backend = parseGlBackend(o.timing.backend);
     if (!backend) return Error{backend.error()};
     Result<std::unique_ptr<HeadlessContext>> context = createHeadlessContext(*backend);
     if (!context) return Error{context.error()};
@@ -284,9 +281,9 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     for (std::size_t i = 0; i < plainFrame.samples.size(); ++i)
         differs =
             std::max(differs, std::abs(static_cast<double>(plainFrame.samples[i] - btflutFrame.samples[i])) * 255);
-    for (int r = 0; r < o.repeat; ++r)  // interleaved, so drift hits every row alike
+    for (int r = 0; r < o.timing.repeat; ++r)  // interleaved, so drift hits every row alike
         for (Row& row : rows) {
-            Result<double> seconds = timeDraws(row, o.frames, timer);
+            Result<double> seconds = timeDraws(row, o.timing.frames, timer);
             if (!seconds) return Error{seconds.error()};
             row.msPerMpx.push_back(*seconds * 1e3 / (row.pixels * 1e-6));
         }
@@ -317,7 +314,7 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
                        {"btflut_over_plain_throughput_texture_space", textureRatio},
                        {"ms_per_mpx", nlohmann::json::object()}};
     for (const Row& row : rows) out["ms_per_mpx"][row.name] = median(row.msPerMpx);
-    if (o.json) {
+    if (o.timing.json) {
         std::cout << jsonText(out);
         return success();
     }
@@ -325,7 +322,7 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
         "decoder of %s (%s: %zu multiply-adds a texel, the frame %zu), %s; ms per million pixels (%s), "
         "median of %d rounds of %d draws\n",
         o.bank.c_str(), learnedModelName(m).c_str(), cost.texelMultiplyAdds, cost.frameMultiplyAdds,
-        (*context)->description().c_str(), timer ? "GPU timer" : "wall", o.repeat, o.frames);
+        (*context)->description().c_str(), timer ? "GPU timer" : "wall", o.timing.repeat, o.timing.frames);
     std::printf("  per fragment at %dx%d (the codes bilinear, magnified %.1fx); texture space at %dx%d, %d passes\n", w,
                 h, kMagnification, texelsX, texelsY, passes);
     for (const Row& row : rows) std::printf("    %-32s %10.3f\n", row.name.c_str(), median(row.msPerMpx));
@@ -352,12 +349,7 @@ void addBenchDecoderCommand(CLI::App& bench, Commands& commands) {
         "and their ratio");
     decoder->add_option("BANK", o->bank, "M.btflut with a learned predictor (bake --predictor neuralN)")->required();
     decoder->add_option("--size", o->size, "the per-fragment target, WxH")->capture_default_str();
-    decoder->add_option("--frames", o->frames, "draws per row and round")
-        ->check(CLI::Range(1, 1000))
-        ->capture_default_str();
-    decoder->add_option("--repeat", o->repeat, "rounds")->check(CLI::Range(1, 100))->capture_default_str();
-    decoder->add_option("--backend", o->backend, "auto, osmesa or egl")->capture_default_str();
-    decoder->add_flag("--json", o->json, "print JSON");
+    addGlBenchOptions(*decoder, o->timing, "draws");
     commands.push_back({decoder, [o] { return runBenchDecoder(*o); }});
 }
 

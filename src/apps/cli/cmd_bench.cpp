@@ -513,6 +513,15 @@ Status runBenchTrain(const BenchTrainOptions& o) {
 
 }  // namespace
 
+void addGlBenchOptions(CLI::App& app, GlBenchOptions& o, const std::string& what) {
+    app.add_option("--frames", o.frames, what + " per row and round")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    app.add_option("--repeat", o.repeat, "rounds")->check(CLI::Range(1, 100))->capture_default_str();
+    app.add_option("--backend", o.backend, "auto, osmesa or egl")->capture_default_str();
+    app.add_flag("--json", o.json, "print JSON");
+}
+
 void addBenchCommand(CLI::App& root, Commands& commands) {
     CLI::App* bench = root.add_subcommand("bench", "Benchmarks (timings and ratios; never pass/fail)");
     bench->require_subcommand(1);
@@ -579,6 +588,7 @@ void addBenchCommand(CLI::App& root, Commands& commands) {
     render->add_flag("--json", ro->json, "print JSON");
     commands.push_back({render, [ro] { return runBenchRender(*ro); }});
     addBenchDecoderCommand(*bench, commands);
+    addBenchLevelsCommand(*bench, commands);
 }
 
 }  // namespace btflut::cli

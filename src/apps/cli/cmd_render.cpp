@@ -52,6 +52,8 @@ void printWritten(const RenderOptions& o, const Image& image, const RenderStats*
                             {"quads_unlit", s.quadsUnlit},
                             {"quads_culled", s.quadsCulled},
                             {"relit_textures", s.relitTextures},
+                            {"relight_passes", s.relightPasses},
+                            {"relit_texels", s.relitTexels},
                             {"quads_texture_space", s.quadsTextureSpace},
                             {"quads_per_fragment", s.quadsPerFragment},
                             {"texture_bytes",
@@ -125,6 +127,8 @@ Status runSceneRender(const RenderOptions& o) {
                   << "\nmeasured images loaded (for nearest quads): " << stats.imagesLoaded
                   << "\nview layers decoded: " << stats.viewLayersLoaded << " of " << stats.viewLayers
                   << "\nrelit textures (mode lut, one per material and light direction): " << stats.relitTextures
+                  << ", made by " << stats.relightPasses << " relight passes of " << stats.relitTexels
+                  << " texels (a quad minified 2^m times relit from mip level m alone)"
                   << "\nmode lut, banks relit whole (one view layer, or a predictor of views): "
                   << stats.quadsTextureSpace << " quads drawn from relit textures, " << stats.quadsPerFragment
                   << " relit per fragment (the light moved and that cost less)"

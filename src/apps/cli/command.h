@@ -32,8 +32,18 @@ void addPlotCommand(CLI::App& root, Commands& commands);
 void addSynthCommand(CLI::App& root, Commands& commands);
 void addRenderCommand(CLI::App& root, Commands& commands);
 void addBenchCommand(CLI::App& root, Commands& commands);
-/// `bench decoder` (bench_decoder.cpp), under `bench`.
+/// `bench decoder` (bench_decoder.cpp) and `bench levels` (bench_levels.cpp), under `bench`.
 void addBenchDecoderCommand(CLI::App& bench, Commands& commands);
+void addBenchLevelsCommand(CLI::App& bench, Commands& commands);
+/// What the GL benches beside `bench render` take alike: --frames (`what` each is) per row and
+/// round, --repeat rounds, --backend, --json.
+struct GlBenchOptions {
+    int frames = 5;
+    int repeat = 3;
+    std::string backend = "auto";
+    bool json = false;
+};
+void addGlBenchOptions(CLI::App& app, GlBenchOptions& o, const std::string& what);
 void addViewCommand(CLI::App& root, Commands& commands);
 void addEvalCommand(CLI::App& root, Commands& commands);
 void addOrientCommand(CLI::App& root, Commands& commands);

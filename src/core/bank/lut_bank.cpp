@@ -226,18 +226,13 @@ namespace {
 // as one filtered fetch of the exported 3D texture does.
 std::vector<float> bilinearOnGrid(const std::vector<std::uint16_t>& grid, int gridSize, std::size_t length,
                                   Direction light) {
-    const DiskPoint p = toDisk(light);
-    const double last = gridSize - 1;
-    const double gx = std::clamp((p.x + 1) / 2 * last, 0.0, last), gy = std::clamp((p.y + 1) / 2 * last, 0.0, last);
-    const int i = std::min(static_cast<int>(gx), gridSize - 2), j = std::min(static_cast<int>(gy), gridSize - 2);
-    const double fx = gx - i, fy = gy - j;
+    const GridCell cell = gridCellAt(toDisk(light), gridSize);
     std::vector<float> out(length);
-    auto node = [&](int a, int b) { return &grid[(static_cast<std::size_t>(b) * gridSize + a) * length]; };
-    const std::uint16_t *n00 = node(i, j), *n10 = node(i + 1, j), *n01 = node(i, j + 1), *n11 = node(i + 1, j + 1);
-    for (std::size_t k = 0; k < length; ++k)
-        out[k] = static_cast<float>(
-            ((1 - fx) * (1 - fy) * n00[k] + fx * (1 - fy) * n10[k] + (1 - fx) * fy * n01[k] + fx * fy * n11[k]) /
-            65535.0);
+    for (std::size_t k = 0; k < length; ++k) {
+        double sum = 0;
+        for (std::size_t n = 0; n < 4; ++n) sum += cell.weight[n] * grid[cell.node[n] * length + k];
+        out[k] = static_cast<float>(sum / 65535.0);
+    }
     return out;
 }
 

@@ -111,4 +111,13 @@ Result<Direction> parseDirection(const std::string& text, const std::string& wha
     return directionFromDegrees(values[0], values[1], what);
 }
 
+GridCell gridCellAt(DiskPoint p, int size) {
+    const double last = size - 1;
+    const double gx = std::clamp((p.x + 1) / 2 * last, 0.0, last), gy = std::clamp((p.y + 1) / 2 * last, 0.0, last);
+    const int i = std::min(static_cast<int>(gx), size - 2), j = std::min(static_cast<int>(gy), size - 2);
+    const double fx = gx - i, fy = gy - j;
+    const auto at = [&](int di, int dj) { return static_cast<std::size_t>((j + dj) * size + i + di); };
+    return {{at(0, 0), at(1, 0), at(0, 1), at(1, 1)}, {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy}};
+}
+
 }  // namespace btflut

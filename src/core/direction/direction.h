@@ -8,6 +8,7 @@
 // singularity), the horizon the unit circle, and equal areas of the disk are equal solid
 // angles, so a regular grid on it samples the hemisphere evenly.
 
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -55,6 +56,14 @@ Direction fromDisk(DiskPoint p);
 /// Node (i, j) of a size x size grid over the square around the disk: x = -1 + 2 i / (size - 1),
 /// y likewise with j (the corners lie beyond the horizon).
 DiskPoint diskGridPoint(int i, int j, int size);
+/// The cell of that grid around a disk point (clamped to the grid), for bilinear reads of
+/// node values: its four nodes (j * size + i: (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1))
+/// and their weights.
+struct GridCell {
+    std::array<std::size_t, 4> node{};
+    std::array<double, 4> weight{};
+};
+GridCell gridCellAt(DiskPoint p, int size);
 
 /// Great-circle angle between two directions, radians.
 double angleBetween(Direction a, Direction b);

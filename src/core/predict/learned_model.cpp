@@ -58,14 +58,19 @@ std::size_t LearnedModel::decoderCost() const {
 
 std::size_t LearnedModel::parameterCount(const std::vector<int>& sizes) { return Network::parameterCount(sizes); }
 
-std::vector<float> LearnedModel::predict(Direction light, std::span<const std::uint32_t> texels, int threads,
-                                         Direction view) const {
-    BTFLUT_CHECK(!empty());
-    const LearnedDecoder net{Network::fromParameters(lightSizes(), lightNetwork),
-                             Network::fromParameters(decoderSizes(), decoder)};
-    const std::size_t count = texels.empty() ? this->texels() : texels.size(), C = static_cast<std::size_t>(channels);
-    const std::vector<float> h = featuresAt(light, view);
-    const Matrix features = Eigen::Map<const Matrix>(h.data(), this->features(), 1);
+namespace {
+
+// The decoder at a light over `texels` of `bytes` (all `count` of them when empty).
+std::vector<float> decode(const LearnedModel& m, const std::vector<std::uint8_t>& bytes,
+                          std::span<const std::uint32_t> texels, Direction light, Direction view, int threads,
+                          std::size_t count = 0) {
+    const LearnedDecoder net{Network::fromParameters(m.lightSizes(), m.lightNetwork),
+                             Network::fromParameters(m.decoderSizes(), m.decoder)};
+    if (!texels.empty()) count = texels.size();
+    if (count == 0) count = m.texels();
+    const auto C = static_cast<std::size_t>(m.channels);
+    const std::vector<float> h = m.featuresAt(light, view);
+    const Matrix features = Eigen::Map<const Matrix>(h.data(), m.features(), 1);
     std::vector<float> out(count * C);
     constexpr std::size_t kBlock = 1024;  // fixed, so the sums do not depend on the threads
     parallelFor((count + kBlock - 1) / kBlock, threads, [&](std::size_t block) {
@@ -74,13 +79,28 @@ std::vector<float> LearnedModel::predict(Direction light, std::span<const std::u
         for (std::size_t j = 0; j < n; ++j)
             indices[j] = static_cast<std::uint32_t>(texels.empty() ? first + j : texels[first + j]);
         LearnedDecoder::Pass pass;
-        net.forward(codeValues(coefficients, scale, bias, indices), features, pass);
+        net.forward(codeValues(bytes, m.scale, m.bias, indices), features, pass);
         for (std::size_t j = 0; j < n; ++j)
             for (std::size_t c = 0; c < C; ++c)
                 out[(first + j) * C + c] =
                     std::clamp(pass.output(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(j)), 0.f, 1.f);
     });
     return out;
+}
+
+}  // namespace
+
+std::vector<float> LearnedModel::predict(Direction light, std::span<const std::uint32_t> texels, int threads,
+                                         Direction view) const {
+    BTFLUT_CHECK(!empty());
+    return decode(*this, coefficients, texels, light, view, threads);
+}
+
+std::vector<float> LearnedModel::predictCodes(Direction light, const std::vector<std::uint8_t>& texelCodes, int threads,
+                                              Direction view) const {
+    BTFLUT_CHECK(!empty() && texelCodes.size() % static_cast<std::size_t>(codes) == 0);
+    if (texelCodes.empty()) return {};
+    return decode(*this, texelCodes, {}, light, view, threads, texelCodes.size() / static_cast<std::size_t>(codes));
 }
 
 Image LearnedModel::render(Direction light, Direction view) const {

@@ -137,4 +137,32 @@ void LearnedPredictor::countCodes(const PredictorFrame& frame, std::span<const s
     }
 }
 
+void LearnedPredictor::levelCodes(const PredictorFrame& frame, int level, int width, int height,
+                                  std::span<const std::uint32_t> texels, std::vector<std::size_t>& codes) const {
+    BTFLUT_CHECK(width == m_model.width && height == m_model.height);
+    std::vector<float> values;
+    if (level == 0) {
+        values = m_model.predict(frame.learned->light, texels, 0, frame.learned->view);
+    } else {
+        const auto N = static_cast<std::size_t>(m_model.codes);
+        std::vector<std::uint8_t> means(texels.size() * N);
+        for (std::size_t j = 0; j < texels.size(); ++j) {
+            const std::vector<std::uint32_t> block = levelBlock(level, width, height, texels[j]);
+            for (std::size_t k = 0; k < N; ++k) {
+                std::uint32_t sum = 0;
+                for (std::uint32_t t : block) sum += m_model.coefficients[t * N + k];
+                means[j * N + k] = meanByte(sum, block.size());
+            }
+        }
+        values = m_model.predictCodes(frame.learned->light, means, 0, frame.learned->view);
+    }
+    const auto C = static_cast<std::size_t>(m_model.channels), matched = static_cast<std::size_t>(channels());
+    codes.resize(texels.size() * matched);
+    std::uint8_t p[3];
+    for (std::size_t j = 0; j < texels.size(); ++j) {
+        for (std::size_t c = 0; c < C; ++c) p[c] = codeOfValue(values[j * C + c]);
+        for (std::size_t c = 0; c < matched; ++c) codes[j * matched + c] = codeOf(p, static_cast<int>(c));
+    }
+}
+
 }  // namespace btflut

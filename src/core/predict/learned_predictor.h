@@ -44,6 +44,9 @@ public:
     void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const override;
     void countCodes(const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,
                     std::vector<std::uint64_t>& counts) const override;
+    /// Decodes the means of its codes (their bytes rounded, as an RGBA8 mipmap holds them).
+    void levelCodes(const PredictorFrame& frame, int level, int width, int height,
+                    std::span<const std::uint32_t> texels, std::vector<std::size_t>& codes) const override;
 
     const LearnedModel& model() const { return m_model; }
 

@@ -13,22 +13,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// The light's bilinear cell on the model's grid over the equal-area disk: the four nodes
-// (j * G + i) and their weights.
-struct GridCell {
-    std::array<std::size_t, 4> node{};
-    std::array<double, 4> weight{};
-};
-
-GridCell gridCell(int grid, DiskPoint p) {
-    const double gx = std::clamp((p.x + 1) / 2 * (grid - 1), 0.0, grid - 1.0);
-    const double gy = std::clamp((p.y + 1) / 2 * (grid - 1), 0.0, grid - 1.0);
-    const int i = std::min(static_cast<int>(gx), grid - 2), j = std::min(static_cast<int>(gy), grid - 2);
-    const double fx = gx - i, fy = gy - j;
-    const auto at = [&](int di, int dj) { return static_cast<std::size_t>((j + dj) * grid + i + di); };
-    return {{at(0, 0), at(1, 0), at(0, 1), at(1, 1)}, {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy}};
-}
-
 }  // namespace
 
 const char* lightBasisName(LightBasis basis) {
@@ -150,7 +134,7 @@ LightModel::Weights LightModel::weightsAt(Direction light) const {
             for (std::size_t i = 0; i < lights.size(); ++i) add(i, g[i] / total);
         }
     } else {
-        const GridCell cell = gridCell(grid, toDisk(light));
+        const GridCell cell = gridCellAt(toDisk(light), grid);
         for (std::size_t k = 0; k < 4; ++k) add(cell.node[k], cell.weight[k]);
     }
     for (std::size_t c = 0; c < C; ++c) w.offset[c] = static_cast<float>(sum[c]);

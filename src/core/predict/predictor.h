@@ -17,6 +17,7 @@
 // the CPU and the GPU's shaders (shaders/lut_common.glsl, btflut.glsl) get the same codes; the
 // learned kind's decoder is float, its GPU form generated per material (learned_shader.h).
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -109,6 +110,17 @@ public:
     /// A texel's colour before a grey LUT (RGB in [0, 1]): its chroma is what a grey bank of
     /// RGB keeps.
     virtual void colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const = 0;
+    /// The codes a GPU predicts from level `level` of its planes' mipmaps, at `texels` of that
+    /// level (x + y * its width): level m's texel (x, y) is the mean of the reference's
+    /// (`width` x `height`) 2^m square at (2^m x, 2^m y), rounded to bytes (levelBlock), as
+    /// GenerateMipmap makes levels. What relighting a level directly reads (relight/
+    /// level_match.h). The default rounds the mean of the square's codes: a linear
+    /// predictor's. The learned kind decodes its codes' means (a network of means is not the
+    /// mean of its values). Level 0: code(), decoding only `texels`. `codes`: channels() per
+    /// texel.
+    virtual void levelCodes(const PredictorFrame& frame, int level, int width, int height,
+                            std::span<const std::uint32_t> texels, std::vector<std::size_t>& codes) const;
+
     /// The codes of `texels` counted, code q at counts[q + 1] (codes() + 2 counts): what
     /// matching reads per light, one call for a region rather than one per texel.
     virtual void countCodes(const PredictorFrame& frame, std::span<const std::uint32_t> texels, int channel,
@@ -121,6 +133,27 @@ private:
     int m_channels;
     int m_codes;
 };
+
+/// The reference's texels under level `level`'s texel `texel` (x + y * that level's width,
+/// a level being half the one above, rounded down, at least 1): its 2^level square, clipped.
+std::vector<std::uint32_t> levelBlock(int level, int width, int height, std::uint32_t texel);
+/// A level's size along an axis of `size` texels, as GL's mipmaps halve it.
+inline int levelSize(int size, int level) { return std::max(1, size >> level); }
+/// The mip levels of a `width` x `height` texture, down to 1 x 1.
+inline int levelCount(int width, int height) {
+    int levels = 1;
+    for (int side = std::max(width, height); side > 1; side /= 2) ++levels;
+    return levels;
+}
+/// Level `level` of an image of bytes (`channels` per texel, rows of `width`) as a GPU holds
+/// a predictor's planes' mipmaps (BlendTextures, made here rather than by the driver, whose
+/// rounding varies): each texel its square's mean (levelBlock), rounded half up.
+std::vector<std::uint8_t> levelOfBytes(std::span<const std::uint8_t> bytes, int width, int height, int channels,
+                                       int level);
+/// The mean of `count` bytes summing to `sum`, rounded half up: a level's byte.
+inline std::uint8_t meanByte(std::uint32_t sum, std::size_t count) {
+    return static_cast<std::uint8_t>((2 * sum + count) / (2 * count));
+}
 
 /// countCodes for a kind whose code() is final: the loop, its calls inlined.
 template <class Kind>

@@ -1,0 +1,51 @@
+#include "core/predict/predictor.h"
+
+#include <cmath>
+
+namespace btflut {
+
+std::vector<std::uint32_t> levelBlock(int level, int width, int height, std::uint32_t texel) {
+    const auto side = std::uint32_t{1} << level, levelWidth = static_cast<std::uint32_t>(levelSize(width, level));
+    const std::uint32_t x0 = texel % levelWidth * side, y0 = texel / levelWidth * side;
+    std::vector<std::uint32_t> block;
+    for (std::uint32_t y = y0; y < std::min(y0 + side, static_cast<std::uint32_t>(height)); ++y)
+        for (std::uint32_t x = x0; x < std::min(x0 + side, static_cast<std::uint32_t>(width)); ++x)
+            block.push_back(y * static_cast<std::uint32_t>(width) + x);
+    return block;
+}
+
+std::vector<std::uint8_t> levelOfBytes(std::span<const std::uint8_t> bytes, int width, int height, int channels,
+                                       int level) {
+    const auto C = static_cast<std::size_t>(channels);
+    const std::size_t texels =
+        static_cast<std::size_t>(levelSize(width, level)) * static_cast<std::size_t>(levelSize(height, level));
+    std::vector<std::uint8_t> out(texels * C);
+    for (std::size_t t = 0; t < texels; ++t) {
+        const std::vector<std::uint32_t> block = levelBlock(level, width, height, static_cast<std::uint32_t>(t));
+        for (std::size_t c = 0; c < C; ++c) {
+            std::uint32_t sum = 0;
+            for (std::uint32_t b : block) sum += bytes[b * C + c];
+            out[t * C + c] = meanByte(sum, block.size());
+        }
+    }
+    return out;
+}
+
+void Predictor::levelCodes(const PredictorFrame& frame, int level, int width, int height,
+                           std::span<const std::uint32_t> texels, std::vector<std::size_t>& codes) const {
+    const auto C = static_cast<std::size_t>(channels());
+    codes.resize(texels.size() * C);
+    for (std::size_t j = 0; j < texels.size(); ++j)
+        for (std::size_t c = 0; c < C; ++c) {
+            if (level == 0) {
+                codes[j * C + c] = code(frame, texels[j], static_cast<int>(c));
+                continue;
+            }
+            double sum = 0;
+            const std::vector<std::uint32_t> block = levelBlock(level, width, height, texels[j]);
+            for (std::uint32_t t : block) sum += static_cast<double>(code(frame, t, static_cast<int>(c)));
+            codes[j * C + c] = static_cast<std::size_t>(std::lround(sum / static_cast<double>(block.size())));
+        }
+}
+
+}  // namespace btflut
