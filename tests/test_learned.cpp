@@ -221,6 +221,29 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     CHECK_FALSE(decodeBank(truncated, "cut.btflut").ok());
 }
 
+TEST_CASE("learned model names: neuralN and neuralNwW, the residual's hidden width, and back") {
+    const auto wide = learnedModelNamed("neural9w32");
+    REQUIRE((wide && *wide));
+    CHECK((*wide)->codes == 9);
+    CHECK((*wide)->hidden == std::vector<int>{32, 32});
+    const auto plain = learnedModelNamed("neural5");
+    REQUIRE((plain && *plain));
+    CHECK((*plain)->hidden == LearnedOptions{}.hidden);
+    for (const char* bad : {"neural9w0", "neural9w65", "neural0w24"}) {
+        const auto refused = learnedModelNamed(bad);
+        REQUIRE(refused);
+        CHECK_FALSE(*refused);
+    }
+    CHECK_FALSE(learnedModelNamed("neural9w"));  // not a learned model's name at all
+    CHECK_FALSE(learnedModelNamed("neural9wx"));
+    LearnedModel m;
+    m.codes = 9;
+    m.hidden = {32, 32};
+    CHECK(learnedModelName(m) == "neural9w32");
+    m.hidden = LearnedOptions{}.hidden;
+    CHECK(learnedModelName(m) == "neural9");
+}
+
 TEST_CASE("learned model: a time budget sets the steps, the same on every machine") {
     // 1 second of neural9 on grey (1218 multiply-adds a sample's forward pass): 1.2e10 / (3 x
     // 1218 x 2048 a step x 2.2 runs) = 728 steps, whatever the default steps (a time given is

@@ -118,10 +118,10 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
         if (Status s = relight(plain.id(), frame, m); !s) return s;
         const std::vector<double> truth =
             histogramOf(boxFiltered(levelGreys(whole.id(), 0, width, height, grey), width, height, m));
-        const double matched =
-                         earthMoversDistance(histogramOf(levelGreys(level.id(), m, levelWidth, levelHeight, grey)), truth),
-                     plainEmd =
-                         earthMoversDistance(histogramOf(levelGreys(plain.id(), m, levelWidth, levelHeight, grey)), truth);
+        const double matched = earthMoversDistance(
+                         histogramOf(levelGreys(level.id(), m, levelWidth, levelHeight, grey)), truth),
+                     plainEmd = earthMoversDistance(
+                         histogramOf(levelGreys(plain.id(), m, levelWidth, levelHeight, grey)), truth);
         matchedSum += matched / static_cast<double>(lights.size());
         plainSum += plainEmd / static_cast<double>(lights.size());
         matchedMax = std::max(matchedMax, matched);
@@ -141,10 +141,9 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
         std::function<Status()> draw;
         std::vector<double> ms;
     };
-    std::vector<TimedRow> rows{{"whole, mipmapped", [&] { return relight(whole.id(), frame, 0); }, {}},
-                          {"level " + std::to_string(m) + " alone, mipmapped",
-                           [&] { return relight(level.id(), levelFrame, m); },
-                           {}}};
+    std::vector<TimedRow> rows{
+        {"whole, mipmapped", [&] { return relight(whole.id(), frame, 0); }, {}},
+        {"level " + std::to_string(m) + " alone, mipmapped", [&] { return relight(level.id(), levelFrame, m); }, {}}};
     for (int r = 0; r < o.timing.repeat; ++r)
         for (TimedRow& row : rows) {  // interleaved, so drift hits both alike
             gl.Finish();
@@ -152,8 +151,9 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
             for (int f = 0; f < o.timing.frames; ++f)
                 if (Status s = row.draw(); !s) return s;
             gl.Finish();
-            row.ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
-                             o.timing.frames);
+            row.ms.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+                o.timing.frames);
         }
     if (GLenum error = gl.GetError(); error != GL_NO_ERROR)
         return Error{"OpenGL error " + std::to_string(error) + " in bench levels"};
@@ -180,7 +180,8 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
         return success();
     }
     std::printf("levels of %s (%s, %dx%d), %s; wall ms, median of %d rounds of %d relights\n", o.bank.c_str(),
-                bank.predictorName().c_str(), width, height, (*context)->description().c_str(), o.timing.repeat, o.timing.frames);
+                bank.predictorName().c_str(), width, height, (*context)->description().c_str(), o.timing.repeat,
+                o.timing.frames);
     std::printf("  relit whole, then mipmapped:      %8.3f ms (%zu texels)\n", wholeMs, texels);
     std::printf("  level %d relit alone, mipmapped:   %8.3f ms (%zu texels): %.1f times faster\n", m, levelMs,
                 levelTexels, wholeMs / levelMs);

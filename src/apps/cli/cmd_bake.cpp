@@ -263,7 +263,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
         std::optional<Status> model = setModelNamed(options, o.predictor);
         if (!model)
             return Error{"--predictor '" + o.predictor +
-                         "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN, blnN or neuralN"};
+                         "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN, blnN, neuralN or neuralNwW"};
         if (!*model) return Error{"--predictor " + model->error()};
         if (options.learned) options.learned->seconds = budget->seconds;
     }
@@ -414,7 +414,8 @@ void addBakeCommand(CLI::App& root, Commands& commands) {
            "image: ptm, hsh2 or hsh3 (hemispherical harmonics), rbfN or blnN (N principal components of "
            "the images, interpolated over the lights by radial basis functions or bilinearly; rbf, bln: 9), or a "
            "learned model trained on them: neuralN (N codes per texel and a small decoder network; neural: "
-           "9). Several views: a learned model of the light and the view on rectified sets (auto validates it "
+           "9; neuralNwW: its two hidden layers W wide, 24 otherwise). Several views: a learned model of the light and "
+           "the view on rectified sets (auto validates it "
            "against the paper's bank), else the paper's bank")
         ->capture_default_str();
     app->add_option("--match", o->match,

@@ -178,19 +178,39 @@ LearnedModel::LightFrame LearnedModel::lightFrame(Direction light, Direction vie
 std::optional<Result<LearnedOptions>> learnedModelNamed(const std::string& name) {
     constexpr std::string_view kind = "neural";
     if (name.compare(0, kind.size(), kind) != 0) return std::nullopt;
-    const std::string digits = name.substr(kind.size());
     LearnedOptions o;
-    if (digits.empty()) return Result<LearnedOptions>(o);
-    int n = 0;
-    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
-    if (error != std::errc() || end != digits.data() + digits.size()) return std::nullopt;
-    if (n < 1 || n > LearnedModel::kMaxCodes)
+    // neural, neuralN, or neuralNwW: N codes (9), a residual network of two hidden layers W wide (24).
+    const std::string rest = name.substr(kind.size());
+    if (rest.empty()) return Result<LearnedOptions>(o);
+    const std::size_t w = rest.find('w');
+    const std::string codes = rest.substr(0, w), width = w == std::string::npos ? "" : rest.substr(w + 1);
+    auto number = [](const std::string& digits) -> std::optional<int> {
+        int n = 0;
+        const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
+        if (digits.empty() || error != std::errc() || end != digits.data() + digits.size()) return std::nullopt;
+        return n;
+    };
+    const std::optional<int> n = number(codes);
+    if (!n || (w != std::string::npos && !number(width))) return std::nullopt;
+    if (*n < 1 || *n > LearnedModel::kMaxCodes)
         return Result<LearnedOptions>(Error{"'" + name + "': a learned model has 1 to " +
                                             std::to_string(LearnedModel::kMaxCodes) + " codes per texel"});
-    o.codes = n;
+    o.codes = *n;
+    if (w != std::string::npos) {
+        const int hidden = *number(width);
+        if (hidden < 1 || hidden > BTFLUT_LEARNED_WIDTH)
+            return Result<LearnedOptions>(Error{"'" + name + "': a learned model's hidden layers are 1 to " +
+                                                std::to_string(BTFLUT_LEARNED_WIDTH) + " wide"});
+        o.hidden = {hidden, hidden};
+    }
     return Result<LearnedOptions>(o);
 }
 
-std::string learnedModelName(const LearnedModel& model) { return "neural" + std::to_string(model.codes); }
+std::string learnedModelName(const LearnedModel& model) {
+    const std::string name = "neural" + std::to_string(model.codes);
+    const LearnedOptions defaults;
+    if (model.hidden == defaults.hidden || model.hidden.size() != 2 || model.hidden[0] != model.hidden[1]) return name;
+    return name + "w" + std::to_string(model.hidden[0]);
+}
 
 }  // namespace btflut

@@ -138,8 +138,9 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
                                      const Mask& mask, const LearnedOptions& options, const std::string& what,
                                      const std::vector<Direction>& views = {});
 
-/// The options from a `--predictor` name: neural (9 codes) or neuralN (N codes); nothing when
-/// the name is not one of these, an error for a number out of range.
+/// The options from a `--predictor` name: neural (9 codes), neuralN (N codes) or neuralNwW (N
+/// codes, the residual network's two hidden layers W wide; 24 otherwise); nothing when the name
+/// is not one of these, an error for a number out of range.
 std::optional<Result<LearnedOptions>> learnedModelNamed(const std::string& name);
 std::string learnedModelName(const LearnedModel& model);
 

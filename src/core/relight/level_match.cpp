@@ -14,8 +14,7 @@ namespace {
 double storedCode(std::size_t code, std::uint32_t x, std::uint32_t y, std::uint32_t channel, const float* lut,
                   int entries, float inCode, float outCode) {
     const float v = static_cast<float>(code + 1) * inCode;
-    return std::round(
-        lutOutput(Lut::applyLut(lut, entries, lutInput(v, x, y, inCode, channel)), outCode) / outCode);
+    return std::round(lutOutput(Lut::applyLut(lut, entries, lutInput(v, x, y, inCode, channel)), outCode) / outCode);
 }
 
 }  // namespace
@@ -55,8 +54,8 @@ const std::vector<float>& LevelMatch::nodeLuts(int i, int j, int level) const {
     const PredictorFrame frame = predictor.frameAt(fromDisk(bank.gridPoint(i, j)), bank.layers[0].view);
 
     // Whole level texels, evenly spread, and the reference's texels under them.
-    const std::size_t levelTexels = static_cast<std::size_t>(levelSize(width, level)) *
-                                    static_cast<std::size_t>(levelSize(height, level));
+    const std::size_t levelTexels =
+        static_cast<std::size_t>(levelSize(width, level)) * static_cast<std::size_t>(levelSize(height, level));
     const std::size_t sampled = std::min(levelTexels, std::max<std::size_t>(1, kSampleTexels >> (2 * level)));
     std::vector<std::uint32_t> blocks(sampled), texels;
     std::vector<std::size_t> firstTexel{0};
@@ -73,8 +72,8 @@ const std::vector<float>& LevelMatch::nodeLuts(int i, int j, int level) const {
     const auto channels = static_cast<std::size_t>(predictor.channels()),
                entries = static_cast<std::size_t>(bank.entries);
     BTFLUT_CHECK(channels * entries == bank.matchLength());
-    const std::size_t cell = static_cast<std::size_t>(j) * static_cast<std::size_t>(bank.gridSize) +
-                             static_cast<std::size_t>(i);
+    const std::size_t cell =
+        static_cast<std::size_t>(j) * static_cast<std::size_t>(bank.gridSize) + static_cast<std::size_t>(i);
     const std::uint16_t* grid = &bank.layers[0].matchGridLuts[cell * bank.matchLength()];
     const float inCode = 1.f / static_cast<float>(predictor.codes() + 1), outCode = bank.targetCode();
     const auto outCodes = static_cast<std::size_t>(std::lround(1.0 / outCode));
@@ -95,8 +94,8 @@ const std::vector<float>& LevelMatch::nodeLuts(int i, int j, int level) const {
                 sum += storedCode(fine[t * channels + c], texels[t] % static_cast<std::uint32_t>(width),
                                   texels[t] / static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(c),
                                   lut.data(), bank.entries, inCode, outCode);
-            const auto mean = static_cast<std::size_t>(
-                std::lround(sum / static_cast<double>(firstTexel[s + 1] - firstTexel[s])));
+            const auto mean =
+                static_cast<std::size_t>(std::lround(sum / static_cast<double>(firstTexel[s + 1] - firstTexel[s])));
             ++target.counts[std::min(mean, outCodes)];
             ++predicted.counts[coarse[s * channels + c] + 1];
         }
@@ -135,8 +134,8 @@ std::vector<float> LevelMatch::filteredRelit(Direction light, int level) const {
     const int width = bank.reference.width, height = bank.reference.height;
     const std::vector<float> fine = relitLevel(light, 0, luts(light, 0));
     const auto channels = static_cast<std::size_t>(bank.predictor().channels());
-    const std::size_t texels = static_cast<std::size_t>(levelSize(width, level)) *
-                               static_cast<std::size_t>(levelSize(height, level));
+    const std::size_t texels =
+        static_cast<std::size_t>(levelSize(width, level)) * static_cast<std::size_t>(levelSize(height, level));
     const float outCode = bank.targetCode();
     std::vector<float> out(texels * channels);
     for (std::size_t t = 0; t < texels; ++t) {
@@ -144,8 +143,8 @@ std::vector<float> LevelMatch::filteredRelit(Direction light, int level) const {
         for (std::size_t c = 0; c < channels; ++c) {
             double sum = 0;
             for (std::uint32_t b : block) sum += fine[b * channels + c];
-            out[t * channels + c] = static_cast<float>(
-                std::round(sum / static_cast<double>(block.size()) / outCode) * outCode);
+            out[t * channels + c] =
+                static_cast<float>(std::round(sum / static_cast<double>(block.size()) / outCode) * outCode);
         }
     }
     return out;

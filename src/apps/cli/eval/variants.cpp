@@ -83,12 +83,12 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             }
         }
         if (!mode)
-            return Error{
-                "--modes: '" + name +
-                "' is not a mode eval measures: lut, brdf, nearest, flat, a light model (ptm, hsh, hsh2, "
-                "hsh3, rbf, bln, rbfN, blnN, blnNc), a learned one (neural, neuralN) or neuralrti (the published "
-                "NeuralRTI, unmatched); the default is "
-                "lut,ptm,hsh,rbf,bln,nearest,brdf"};
+            return Error{"--modes: '" + name +
+                         "' is not a mode eval measures: lut, brdf, nearest, flat, a light model (ptm, hsh, hsh2, "
+                         "hsh3, rbf, bln, rbfN, blnN, blnNc), a learned one (neural, neuralN, neuralNwW) or neuralrti "
+                         "(the published "
+                         "NeuralRTI, unmatched); the default is "
+                         "lut,ptm,hsh,rbf,bln,nearest,brdf"};
         if (*mode != RenderMode::Lut) {
             variants.push_back({name, *mode});
             continue;
