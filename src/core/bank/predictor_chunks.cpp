@@ -15,6 +15,30 @@ Result<Direction> getDirection(Reader& in, const std::string& name, const std::s
     return Direction::fromDegrees(theta, phi);
 }
 
+namespace {
+
+// A PNG stored as its length, then its bytes, decoded (the decoder refuses more than w x h);
+// `what` names it in the chunk's errors (made by `fail`), `context` in the decoder's.
+template <class Fail>
+Result<Image> readPng(Reader& in, const Fail& fail, const std::string& what, const std::string& context, int w, int h) {
+    const auto length = in.get<std::uint32_t>();
+    const std::uint8_t* bytes = in.getBytes(length);
+    if (!in.ok()) return fail("truncated " + what);
+    return decodeImage(Bytes(bytes, bytes + length), context, w, h);
+}
+
+// The same, refused unless it is an RGB8 image of exactly w x h: a chunk's planes of codes.
+template <class Fail>
+Result<Image> readRgb8Plane(Reader& in, const Fail& fail, const std::string& what, const std::string& context, int w,
+                            int h) {
+    Result<Image> image = readPng(in, fail, what, context, w, h);
+    if (image && (image->width != w || image->height != h || image->channels != 3 || image->bitDepth != 8))
+        return fail(what + " is not an RGB8 image of the reference's size");
+    return image;
+}
+
+}  // namespace
+
 // LMDL (encodeLightModel in bank_write.cpp): every count checked before anything is allocated
 // by it, every number finite, the planes and albedo the reference's size.
 Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const Head& head) {
@@ -70,16 +94,8 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
         std::memcpy(m.table.data(), bytes, tableLength * sizeof(float));
     for (float v : m.table)
         if (!std::isfinite(v)) return fail("a table value is not finite");
-    auto png = [&](const std::string& what) -> Result<Image> {
-        const auto length = in.get<std::uint32_t>();
-        const std::uint8_t* bytes = in.getBytes(length);
-        if (!in.ok()) return fail("truncated " + what);
-        Result<Image> image =
-            decodeImage(Bytes(bytes, bytes + length), name + " (light model " + what + ")", m.width, m.height);
-        if (!image) return Error{image.error()};
-        if (image->width != m.width || image->height != m.height || image->channels != 3 || image->bitDepth != 8)
-            return fail(what + " is not an RGB8 image of the reference's size");
-        return image;
+    auto png = [&](const std::string& what) {
+        return readRgb8Plane(in, fail, what, name + " (light model " + what + ")", m.width, m.height);
     };
     const std::size_t P = planes, W = wide;
     m.coefficients.resize(m.texels() * P);
@@ -165,15 +181,9 @@ Result<LearnedModel> decodeLearnedModel(Reader& in, const std::string& name, con
     const std::size_t N = codes;
     m.coefficients.resize(m.texels() * N);
     for (std::size_t first = 0; first < N; first += 3) {
-        const auto length = in.get<std::uint32_t>();
-        const std::uint8_t* bytes = in.getBytes(length);
         const std::string what = "codes " + std::to_string(first) + "-" + std::to_string(std::min(N, first + 3) - 1);
-        if (!in.ok()) return fail("truncated " + what);
-        Result<Image> image =
-            decodeImage(Bytes(bytes, bytes + length), name + " (learned " + what + ")", m.width, m.height);
+        Result<Image> image = readRgb8Plane(in, fail, what, name + " (learned " + what + ")", m.width, m.height);
         if (!image) return Error{image.error()};
-        if (image->width != m.width || image->height != m.height || image->channels != 3 || image->bitDepth != 8)
-            return fail(what + " is not an RGB8 image of the reference's size");
         for (std::size_t i = 0; i < m.texels(); ++i)
             for (std::size_t c = 0; c < 3 && first + c < N; ++c)
                 m.coefficients[i * N + first + c] =
@@ -204,11 +214,7 @@ Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t
     ptm.coefficients.resize(ptm.texels() * Ptm::kTerms);
     ptm.albedo.resize(ptm.texels() * 3);
     auto plane = [&](std::uint8_t* bytes, int stride, const char* what) -> Status {
-        auto length = in.get<std::uint32_t>();
-        const std::uint8_t* png = in.getBytes(length);
-        if (!in.ok()) return Error{name + ": PTM chunk: truncated " + what};
-        Result<Image> image =
-            decodeImage(Bytes(png, png + length), name + " (PTM " + what + ")", ptm.width, ptm.height);
+        Result<Image> image = readPng(in, fail, what, name + " (PTM " + std::string(what) + ")", ptm.width, ptm.height);
         if (!image) return Error{image.error()};
         if (image->width != ptm.width || image->height != ptm.height || image->channels != 3)
             return Error{name + ": PTM chunk: " + what + " has the wrong size"};
@@ -231,12 +237,7 @@ Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, co
     auto fail = [&](const std::string& what) { return Error{name + ": " + tagName(tag) + " chunk: " + what}; };
     LutBank::Blend& blend = bank.blend;
     const int w = static_cast<int>(head.refWidth), h = static_cast<int>(head.refHeight);
-    auto png = [&](const std::string& what) -> Result<Image> {
-        const auto length = in.get<std::uint32_t>();
-        const std::uint8_t* bytes = in.getBytes(length);
-        if (!in.ok()) return fail("truncated " + what);
-        return decodeImage(Bytes(bytes, bytes + length), name + " (" + what + ")", w, h);
-    };
+    auto png = [&](const std::string& what) { return readPng(in, fail, what, name + " (" + what + ")", w, h); };
     auto whole = [&](const std::string& what) -> Result<Image> {  // a chunk that is one PNG
         const std::size_t length = in.remaining();
         const std::uint8_t* bytes = in.getBytes(length);
