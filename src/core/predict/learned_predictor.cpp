@@ -146,14 +146,8 @@ void LearnedPredictor::levelCodes(const PredictorFrame& frame, int level, int wi
     } else {
         const auto N = static_cast<std::size_t>(m_model.codes);
         std::vector<std::uint8_t> means(texels.size() * N);
-        for (std::size_t j = 0; j < texels.size(); ++j) {
-            const std::vector<std::uint32_t> block = levelBlock(level, width, height, texels[j]);
-            for (std::size_t k = 0; k < N; ++k) {
-                std::uint32_t sum = 0;
-                for (std::uint32_t t : block) sum += m_model.coefficients[t * N + k];
-                means[j * N + k] = meanByte(sum, block.size());
-            }
-        }
+        for (std::size_t j = 0; j < texels.size(); ++j)
+            levelTexelBytes(m_model.coefficients, width, height, m_model.codes, level, texels[j], &means[j * N]);
         values = m_model.predictCodes(frame.learned->light, means, 0, frame.learned->view);
     }
     const auto C = static_cast<std::size_t>(m_model.channels), matched = static_cast<std::size_t>(channels());

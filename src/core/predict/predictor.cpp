@@ -14,30 +14,33 @@ std::vector<std::uint32_t> levelBlock(int level, int width, int height, std::uin
     return block;
 }
 
+void levelTexelBytes(std::span<const std::uint8_t> bytes, int width, int height, int channels, int level,
+                     std::uint32_t texel, std::uint8_t* out) {
+    const auto C = static_cast<std::size_t>(channels);
+    const int side = 1 << level, levelWidth = levelSize(width, level);
+    const int x0 = static_cast<int>(texel % static_cast<std::uint32_t>(levelWidth)) * side,
+              y0 = static_cast<int>(texel / static_cast<std::uint32_t>(levelWidth)) * side;
+    const int x1 = std::min(x0 + side, width), y1 = std::min(y0 + side, height);
+    for (std::size_t c = 0; c < C; ++c) {
+        std::uint32_t sum = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x)
+                sum += bytes[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                              static_cast<std::size_t>(x)) *
+                                 C +
+                             c];
+        out[c] = meanByte(sum, static_cast<std::size_t>(x1 - x0) * static_cast<std::size_t>(y1 - y0));
+    }
+}
+
 std::vector<std::uint8_t> levelOfBytes(std::span<const std::uint8_t> bytes, int width, int height, int channels,
                                        int level) {
-    // levelBlock's squares, summed in place (a texture's every texel once per level).
     const auto C = static_cast<std::size_t>(channels);
-    const int levelWidth = levelSize(width, level), levelHeight = levelSize(height, level), side = 1 << level;
-    std::vector<std::uint8_t> out(static_cast<std::size_t>(levelWidth) * static_cast<std::size_t>(levelHeight) * C);
-    std::vector<std::uint32_t> sums(C);
-    for (int y = 0; y < levelHeight; ++y)
-        for (int x = 0; x < levelWidth; ++x) {
-            std::fill(sums.begin(), sums.end(), 0u);
-            const int x1 = std::min((x + 1) * side, width), y1 = std::min((y + 1) * side, height);
-            for (int by = y * side; by < y1; ++by)
-                for (int bx = x * side; bx < x1; ++bx)
-                    for (std::size_t c = 0; c < C; ++c)
-                        sums[c] += bytes[(static_cast<std::size_t>(by) * static_cast<std::size_t>(width) +
-                                          static_cast<std::size_t>(bx)) *
-                                             C +
-                                         c];
-            const auto count = static_cast<std::size_t>(x1 - x * side) * static_cast<std::size_t>(y1 - y * side);
-            for (std::size_t c = 0; c < C; ++c)
-                out[(static_cast<std::size_t>(y) * static_cast<std::size_t>(levelWidth) + static_cast<std::size_t>(x)) *
-                        C +
-                    c] = meanByte(sums[c], count);
-        }
+    const std::size_t texels =
+        static_cast<std::size_t>(levelSize(width, level)) * static_cast<std::size_t>(levelSize(height, level));
+    std::vector<std::uint8_t> out(texels * C);
+    for (std::size_t t = 0; t < texels; ++t)
+        levelTexelBytes(bytes, width, height, channels, level, static_cast<std::uint32_t>(t), &out[t * C]);
     return out;
 }
 

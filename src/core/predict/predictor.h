@@ -145,6 +145,11 @@ inline int levelCount(int width, int height) {
     for (int side = std::max(width, height); side > 1; side /= 2) ++levels;
     return levels;
 }
+/// One texel of level `level` of an image of bytes (`channels` per texel, rows of `width`):
+/// its square's mean per channel (levelBlock), rounded half up, into `out`. The one definition
+/// of a level's byte, for the GPU's planes (levelOfBytes) and the CPU's emulation of them.
+void levelTexelBytes(std::span<const std::uint8_t> bytes, int width, int height, int channels, int level,
+                     std::uint32_t texel, std::uint8_t* out);
 /// Level `level` of an image of bytes (`channels` per texel, rows of `width`) as a GPU holds
 /// a predictor's planes' mipmaps (BlendTextures, made here rather than by the driver, whose
 /// rounding varies): each texel its square's mean (levelBlock), rounded half up.
