@@ -170,6 +170,77 @@ TEST_SUITE("gl") {
         CHECK((*big)->stats().relightPasses == 2);
     }
 
+    TEST_CASE(
+        "a quad seen in part is relit in part: the texels it shows, the same pixels as a whole relight, grown as "
+        "the camera pans") {
+        TempDir dir;
+        const LutBank bank = savedBank(dir, steepShots(), 160, 120);
+        auto context = createHeadlessContext(GlBackend::Auto);
+        REQUIRE(context.ok());
+        const Direction light = Direction::fromDegrees(40, 30);
+        const Scene scene = frontalScene(dir / "m.btflut", "", 64, 48);  // the quad fills the frame
+        const double distance = scene.eye.z;
+        const SceneRendererOptions options{.fixedCamera = false, .lutPath = LutPath::TextureSpace};
+        // Zoomed in 4 times on the quad's top left corner (texel 0, 0): the view reaches past it,
+        // so filtering there reads the texture's far edges (it repeats).
+        auto zoom = [&](SceneRenderer& r, double x, double y) {
+            r.setCamera({x, y, distance / 4}, {x, y, 0}, {0, 1, 0});
+        };
+        const double cornerX = -4.0 / 3 + 0.2, cornerY = 0.85;
+        auto whole = SceneRenderer::create(scene, options);
+        REQUIRE(whole.ok());
+        drawRelit(**whole, light);
+        CHECK((*whole)->stats().relitTexels == 160 * 120);
+        zoom(**whole, cornerX, cornerY);
+        const Image fromWhole = drawRelit(**whole, light);
+        CHECK((*whole)->stats().relightPasses == 1);  // what it shows was relit
+
+        auto part = SceneRenderer::create(scene, options);
+        REQUIRE(part.ok());
+        SceneRenderer& r = **part;
+        zoom(r, cornerX, cornerY);
+        const Image fromPart = drawRelit(r, light);
+        CHECK(r.stats().relightPasses == 1);
+        INFO("texels relit for the corner: " << r.stats().relitTexels);
+        CHECK(r.stats().relitTexels < 160 * 120 / 10);
+        CHECK(r.stats().relitTexels > 40 * 30 / 4);
+        double worst = 0;
+        for (std::size_t i = 0; i < fromPart.samples.size(); ++i)
+            worst = std::max(worst, static_cast<double>(std::abs(fromPart.samples[i] - fromWhole.samples[i])));
+        CHECK(worst == 0);  // filtering read only texels it relit
+
+        // Panning under a still light relights the texels it had not; coming back, none.
+        zoom(r, 0, 0);
+        const Image centre = drawRelit(r, light);
+        CHECK(r.stats().relightPasses == 2);
+        zoom(r, cornerX, cornerY);
+        drawRelit(r, light);
+        CHECK(r.stats().relightPasses == 2);
+        zoom(**whole, 0, 0);
+        const Image centreFromWhole = drawRelit(**whole, light);
+        worst = 0;
+        for (std::size_t i = 0; i < centre.samples.size(); ++i)
+            worst = std::max(worst, static_cast<double>(std::abs(centre.samples[i] - centreFromWhole.samples[i])));
+        CHECK(worst == 0);
+        // A light change relights what is seen now.
+        const std::size_t before = r.stats().relitTexels;
+        drawRelit(r, Direction::fromDegrees(50, 200));
+        CHECK(r.stats().relitTexels - before < 160 * 120 / 10);
+
+        // Seen in part at a grazing angle, its far texels minified (coarser levels read, made by
+        // GenerateMipmap from the level relit): the same pixels.
+        auto far = SceneRenderer::create(scene, options);
+        REQUIRE(far.ok());
+        for (SceneRenderer* each : {&**far, &**whole})
+            each->setCamera({cornerX + 0.3, cornerY - 0.9, 0.45}, {cornerX + 0.3, cornerY - 0.2, 0}, {0, 0, 1});
+        const Image farPart = drawRelit(**far, light), farWhole = drawRelit(**whole, light);
+        CHECK((*far)->stats().relitTexels < 160 * 120 / 2);
+        worst = 0;
+        for (std::size_t i = 0; i < farPart.samples.size(); ++i)
+            worst = std::max(worst, static_cast<double>(std::abs(farPart.samples[i] - farWhole.samples[i])));
+        CHECK(worst == 0);
+    }
+
     TEST_CASE("scene quads are dithered per texel, as relight is; --no-dither applies the plain LUT") {
         TempDir dir;
         const LutBank bank = savedBank(dir, steepShots());
@@ -362,6 +433,8 @@ TEST_CASE(
     CHECK(out["emd_level_luts_max"].get<double>() <= 0.005);
     CHECK(out["emd_level_luts_mean"].get<double>() < out["emd_bank_luts_mean"].get<double>());
     CHECK(out["ms_level"].get<double>() > 0);
+    CHECK(out["texels_region"] == 32 * 32);
+    CHECK(out["ms_region"].get<double>() > 0);
     requireOneLineError(runCli({"bench", "levels", dir / "n.btflut", "--level", "8"}), "levels 0 to 7");
     REQUIRE(runCli({"bake", dir / "set", "--references", "1", "-o", dir / "r.btflut", "-q"}).status == 0);
     requireOneLineError(runCli({"bench", "levels", dir / "r.btflut"}), "not relit by level");

@@ -25,6 +25,7 @@ typedef void(APIENTRYP PFNGLTEXSUBIMAGE2DPROC)(GLenum target, GLint level, GLint
     X(PFNGLGETSTRINGPROC, GetString)                           \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                       \
     X(PFNGLVIEWPORTPROC, Viewport)                             \
+    X(PFNGLSCISSORPROC, Scissor)                               \
     X(PFNGLCLEARCOLORPROC, ClearColor)                         \
     X(PFNGLCLEARPROC, Clear)                                   \
     X(PFNGLFINISHPROC, Finish)                                 \

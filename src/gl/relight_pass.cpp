@@ -91,7 +91,7 @@ void RelightPass::bindLuts(const ShaderProgram& p, const RelightFrame& frame, co
 }
 
 Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither,
-                        int level) {
+                        int level, const std::optional<TexelRegion>& region) {
     const Image& ref = m_bank->reference;
     Result<const ShaderProgram*> program = this->program(dither);
     if (!program) return Error{program.error()};
@@ -109,8 +109,18 @@ Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>&
     gl.Uniform1i(p["referenceChannels"], ref.channels);
     gl.BindVertexArray(m_vertexArray.id());
     gl.Disable(GL_DEPTH_TEST);
-    gl.Viewport(0, 0, levelSize(ref.width, level), levelSize(ref.height, level));
-    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    const int width = levelSize(ref.width, level), height = levelSize(ref.height, level);
+    gl.Viewport(0, 0, width, height);
+    if (!region || region->isWhole()) {
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+        return success();
+    }
+    gl.Enable(GL_SCISSOR_TEST);  // image row r is the target's row r (uploadMipmapped), so rows need no flip
+    for (const auto& [x, y, w, h] : region->rectsAt(width, height)) {
+        gl.Scissor(x, y, w, h);
+        gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    gl.Disable(GL_SCISSOR_TEST);
     return success();
 }
 

@@ -16,9 +16,11 @@
 // would make the driver wait for it.
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/image/texel_region.h"
 #include "core/relight/relighter.h"
 #include "gl/blend_textures.h"
 #include "gl/objects.h"
@@ -43,9 +45,10 @@ public:
     /// of `target` (a colour-renderable 2D texture of the reference's size, with mipmaps past
     /// level 0). Past level 0 (banks with a predictor), each texel of the level is predicted
     /// from the planes' same level: the frame's LUTs must be that level's (LevelMatch::luts).
+    /// Only the texels of `region` are written, if one is given (the rest keep what they held).
     /// Leaves its own framebuffer bound.
-    Status run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither,
-               int level = 0);
+    Status run(const RelightFrame& frame, const std::vector<GlTexture>& luts, GLuint target, bool dither, int level = 0,
+               const std::optional<TexelRegion>& region = {});
 
     /// The frame's LUTs into `luts` (made by makeLuts).
     void uploadLuts(const RelightFrame& frame, const std::vector<GlTexture>& luts) const;

@@ -202,13 +202,16 @@ void SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
             });
             if (moved && !relit) {
                 double pixels = 0;
-                int level = std::numeric_limits<int>::max();  // the finest its quads read: what a relight makes
+                int level = std::numeric_limits<int>::max();  // the finest its quads read, where they show it:
+                TexelRegion region;                           // what a relight makes
                 for (const QuadState* q : quads) {
-                    pixels += coveredPixels(m_scene.quads[q->index]);
-                    level = std::min(level, relitLevel(material, m_scene.quads[q->index]));
+                    const SceneQuad& quad = m_scene.quads[q->index];
+                    pixels += coveredPixels(quad);
+                    level = std::min(level, relitLevel(material, quad));
+                    region = region.merged(seenRegion(quad, bank.reference.width, bank.reference.height));
                 }
-                const double texels = static_cast<double>(levelSize(bank.reference.width, level)) *
-                                      static_cast<double>(levelSize(bank.reference.height, level));
+                const auto texels = static_cast<double>(
+                    region.texelsAt(levelSize(bank.reference.width, level), levelSize(bank.reference.height, level)));
                 perFragment = pixels * perFragmentExtraCost(bank) < texels * relitTexelCost(bank);
             }
         }
@@ -231,43 +234,48 @@ void SceneRenderer::choosePaths(const std::vector<RenderMode>& modes) {
     for (QuadState& q : m_quads) q.lastFrameLight = q.unlit ? kNoLight : q.light;
 }
 
-double SceneRenderer::coveredPixels(const SceneQuad& quad) const {
+std::vector<SceneRenderer::ClipPoint> SceneRenderer::clippedQuad(const SceneQuad& quad) const {
     // The quad in clip space, clipped to the view volume's sides and to w > 0 (the polygon
-    // clipping of Sutherland and Hodgman, in homogeneous coordinates), then its area on screen.
-    using Clip = std::array<double, 4>;
+    // clipping of Sutherland and Hodgman, in homogeneous coordinates). Clip coordinates are
+    // linear in the quad's (s, t), so the cut points carry theirs by the same weights.
     const std::array<float, 16> m = viewProjection(m_scene);  // column-major
     const Vec3 b = bitangentOf(quad);
-    std::vector<Clip> polygon;
+    std::vector<ClipPoint> polygon;
     for (const auto& [su, sv] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
         const double u = su * quad.width / 2, v = sv * quad.height / 2;
         const double p[3] = {quad.center.x + u * quad.tangent.x + v * b.x, quad.center.y + u * quad.tangent.y + v * b.y,
                              quad.center.z + u * quad.tangent.z + v * b.z};
-        Clip c{};
+        ClipPoint c{0, 0, 0, 0, static_cast<double>(su), static_cast<double>(sv)};
         for (std::size_t r = 0; r < 4; ++r) c[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
         polygon.push_back(c);
     }
-    const std::array<std::function<double(const Clip&)>, 5> inside{
-        [](const Clip& c) { return c[3] - 1e-6; }, [](const Clip& c) { return c[3] + c[0]; },
-        [](const Clip& c) { return c[3] - c[0]; }, [](const Clip& c) { return c[3] + c[1]; },
-        [](const Clip& c) { return c[3] - c[1]; }};
+    const std::array<std::function<double(const ClipPoint&)>, 5> inside{
+        [](const ClipPoint& c) { return c[3] - 1e-6; }, [](const ClipPoint& c) { return c[3] + c[0]; },
+        [](const ClipPoint& c) { return c[3] - c[0]; }, [](const ClipPoint& c) { return c[3] + c[1]; },
+        [](const ClipPoint& c) { return c[3] - c[1]; }};
     for (const auto& distance : inside) {
-        std::vector<Clip> kept;
+        std::vector<ClipPoint> kept;
         for (std::size_t k = 0; k < polygon.size(); ++k) {
-            const Clip &a = polygon[k], &c = polygon[(k + 1) % polygon.size()];
+            const ClipPoint &a = polygon[k], &c = polygon[(k + 1) % polygon.size()];
             const double da = distance(a), dc = distance(c);
             if (da >= 0) kept.push_back(a);
             if ((da >= 0) != (dc >= 0)) {  // the edge crosses the plane
                 const double t = da / (da - dc);
-                Clip x{};
-                for (std::size_t r = 0; r < 4; ++r) x[r] = a[r] + t * (c[r] - a[r]);
+                ClipPoint x{};
+                for (std::size_t r = 0; r < x.size(); ++r) x[r] = a[r] + t * (c[r] - a[r]);
                 kept.push_back(x);
             }
         }
         polygon = std::move(kept);
     }
+    return polygon;
+}
+
+double SceneRenderer::coveredPixels(const SceneQuad& quad) const {
+    const std::vector<ClipPoint> polygon = clippedQuad(quad);
     double area = 0;  // the shoelace formula over the screen points
     for (std::size_t k = 0; k < polygon.size(); ++k) {
-        const Clip &a = polygon[k], &c = polygon[(k + 1) % polygon.size()];
+        const ClipPoint &a = polygon[k], &c = polygon[(k + 1) % polygon.size()];
         area += a[0] / a[3] * c[1] / c[3] - c[0] / c[3] * a[1] / a[3];
     }
     return std::abs(area) / 2 * m_scene.width / 2 * m_scene.height / 2;
@@ -280,16 +288,16 @@ int SceneRenderer::relitLevel(const Material& material, const SceneQuad& quad) c
     return std::min(levelCount(width, height) - 1, finestLevel(quad, width, height));
 }
 
-int SceneRenderer::finestLevel(const SceneQuad& quad, int texelsWide, int texelsHigh) const {
-    // GL's level of detail is log2 of the longer of the texel coordinates' derivatives along
-    // the screen's x and y. The quad's point (s, t) in [-1, 1]^2 has texel coordinates
-    // (1 + s, 1 - t) / 2 * uvScale * (texelsWide, texelsHigh) (scene.vert); its pixel
-    // coordinates come from the projection, differentiated numerically. Over a 5 x 5 grid
-    // of points the least is taken: under perspective it lies at the nearest corner.
+// GL's level of detail is log2 of the longer of the texel coordinates' derivatives along the
+// screen's x and y. The quad's point (s, t) in [-1, 1]^2 has texel coordinates (1 + s, 1 - t)
+// / 2 * uvScale * (texelsWide, texelsHigh) (scene.vert); its pixel coordinates come from the
+// projection, differentiated numerically. None behind the eye, or seen edge on.
+std::optional<double> SceneRenderer::levelOfDetail(const SceneQuad& quad, double s, double t, int texelsWide,
+                                                   int texelsHigh) const {
     const std::array<float, 16> m = viewProjection(m_scene);  // column-major
     const Vec3 b = bitangentOf(quad);
-    auto pixel = [&](double s, double t, std::array<double, 2>& out) {
-        const double u = s * quad.width / 2, v = t * quad.height / 2;
+    auto pixel = [&](double ps, double pt, std::array<double, 2>& out) {
+        const double u = ps * quad.width / 2, v = pt * quad.height / 2;
         const double p[3] = {quad.center.x + u * quad.tangent.x + v * b.x, quad.center.y + u * quad.tangent.y + v * b.y,
                              quad.center.z + u * quad.tangent.z + v * b.z};
         double c[4]{};
@@ -300,22 +308,65 @@ int SceneRenderer::finestLevel(const SceneQuad& quad, int texelsWide, int texels
     };
     const double du = quad.uvScale * texelsWide / 2, dv = quad.uvScale * texelsHigh / 2;  // texels per unit s, t
     constexpr double h = 1e-4;
+    std::array<double, 2> p{}, ps{}, pt{};
+    if (!pixel(s, t, p) || !pixel(s + h, t, ps) || !pixel(s, t + h, pt)) return std::nullopt;
+    // J: pixels per (s, t); its inverse: (s, t) per pixel; times the texels per (s, t).
+    const double j00 = (ps[0] - p[0]) / h, j10 = (ps[1] - p[1]) / h, j01 = (pt[0] - p[0]) / h, j11 = (pt[1] - p[1]) / h;
+    const double det = j00 * j11 - j01 * j10;
+    if (std::abs(det) < 1e-12) return std::nullopt;
+    const double dsdx = j11 / det, dsdy = -j01 / det, dtdx = -j10 / det, dtdy = j00 / det;
+    return std::log2(std::max(std::hypot(du * dsdx, dv * dtdx), std::hypot(du * dsdy, dv * dtdy)));
+}
+
+int SceneRenderer::finestLevel(const SceneQuad& quad, int texelsWide, int texelsHigh) const {
+    // Over a 5 x 5 grid of points the least is taken: under perspective it lies at the
+    // nearest corner.
     double finest = std::numeric_limits<double>::infinity();
     for (int a = 0; a <= 4; ++a)
         for (int c = 0; c <= 4; ++c) {
-            const double s = -1 + a / 2.0, t = -1 + c / 2.0;
-            std::array<double, 2> p{}, ps{}, pt{};
-            if (!pixel(s, t, p) || !pixel(s + h, t, ps) || !pixel(s, t + h, pt)) return 0;
-            // J: pixels per (s, t); its inverse: (s, t) per pixel; times the texels per (s, t).
-            const double j00 = (ps[0] - p[0]) / h, j10 = (ps[1] - p[1]) / h, j01 = (pt[0] - p[0]) / h,
-                         j11 = (pt[1] - p[1]) / h;
-            const double det = j00 * j11 - j01 * j10;
-            if (std::abs(det) < 1e-12) return 0;  // seen edge on
-            const double dsdx = j11 / det, dsdy = -j01 / det, dtdx = -j10 / det, dtdy = j00 / det;
-            const double rho = std::max(std::hypot(du * dsdx, dv * dtdx), std::hypot(du * dsdy, dv * dtdy));
-            finest = std::min(finest, std::log2(rho));
+            const std::optional<double> lod = levelOfDetail(quad, -1 + a / 2.0, -1 + c / 2.0, texelsWide, texelsHigh);
+            if (!lod) return 0;
+            finest = std::min(finest, *lod);
         }
     return std::max(0, static_cast<int>(std::floor(finest + 1e-3)));
+}
+
+// The texels a quad shows: its part inside the view volume, mapped to texel coordinates, then
+// widened so that every mip level trilinear filtering reads there is whole. Each level below
+// the one relit is made by GenerateMipmap from the whole level, so its texels are fresh only
+// where every texel under them is: the region is aligned to the coarsest level's texels (2^k
+// of level 0's), and padded by two of them for bilinear filtering and mip levels of odd sizes.
+TexelRegion SceneRenderer::seenRegion(const SceneQuad& quad, int texelsWide, int texelsHigh) const {
+    const std::vector<ClipPoint> polygon = clippedQuad(quad);
+    if (polygon.empty()) return TexelRegion::span(0, 0, 0, 0, texelsWide, texelsHigh);
+    double s0 = 1, s1 = -1, t0 = 1, t1 = -1;
+    for (const ClipPoint& c : polygon) {
+        s0 = std::min(s0, c[4]), s1 = std::max(s1, c[4]);
+        t0 = std::min(t0, c[5]), t1 = std::max(t1, c[5]);
+    }
+    const int levels = levelCount(texelsWide, texelsHigh);
+    double coarsest = -std::numeric_limits<double>::infinity();  // GL's largest level of detail over the part seen
+    auto reads = [&](double s, double t) {
+        const std::optional<double> lod = levelOfDetail(quad, s, t, texelsWide, texelsHigh);
+        coarsest = lod ? std::max(coarsest, *lod) : static_cast<double>(levels);
+    };
+    for (const ClipPoint& c : polygon) reads(c[4], c[5]);
+    for (int a = 0; a <= 4; ++a)
+        for (int c = 0; c <= 4; ++c) reads(s0 + (s1 - s0) * a / 4, t0 + (t1 - t0) * c / 4);
+    // Trilinear filtering reads floor(lod) and the level after it.
+    const int top = std::clamp(static_cast<int>(std::floor(coarsest)) + 1, 0, levels - 1);
+    const long long block = 1LL << top, pad = 2 * block;
+    auto axis = [&](double from, double to, int texels) {  // texture coordinates [from, to] in level-0 texels
+        const double scale = quad.uvScale * texels;
+        const long long first = static_cast<long long>(std::floor(from * scale)) - pad,
+                        last = static_cast<long long>(std::ceil(to * scale)) + pad;
+        const auto floorTo = [&](long long v) { return (v >= 0 ? v : v - block + 1) / block * block; };
+        return std::array<long long, 2>{floorTo(first), floorTo(last + block - 1)};
+    };
+    if (quad.uvScale * std::max(texelsWide, texelsHigh) > 1e9) return TexelRegion::whole(texelsWide, texelsHigh);
+    const auto [x0, x1] = axis((1 + s0) / 2, (1 + s1) / 2, texelsWide);
+    const auto [y0, y1] = axis((1 - t1) / 2, (1 - t0) / 2, texelsHigh);
+    return TexelRegion::span(x0, x1, y0, y1, texelsWide, texelsHigh);
 }
 
 // Loads what a mode needs beyond the reference, the first time it is needed.
@@ -402,43 +453,55 @@ Status SceneRenderer::relight(const std::vector<RenderMode>& modes) {
         }
         if (quads.empty()) continue;
         const LutBank& bank = material.bank;
-        for (QuadState* q : quads) q->level = relitLevel(material, m_scene.quads[q->index]);
+        for (QuadState* q : quads) {
+            q->level = relitLevel(material, m_scene.quads[q->index]);
+            q->region = seenRegion(m_scene.quads[q->index], bank.reference.width, bank.reference.height);
+        }
         auto same = [](const QuadState& q, const Relit& r) {
             return sameVector(r.light, q.light) && sameVector(r.view, q.view);
         };
         for (QuadState* q : quads) {
-            int level = q->level;  // the finest any quad of its direction reads
+            int level = q->level;  // the finest any quad of its direction reads, over the texels they show
+            TexelRegion region = q->region;
             for (const QuadState* other : quads)
-                if (sameVector(other->light, q->light) && sameVector(other->view, q->view))
+                if (sameVector(other->light, q->light) && sameVector(other->view, q->view)) {
                     level = std::min(level, other->level);
-            auto found = std::find_if(relit.begin(), relit.end(),
-                                      [&](const Relit& r) { return same(*q, r) && r.level <= level; });
+                    region = region.merged(other->region);
+                }
+            auto found = std::find_if(relit.begin(), relit.end(), [&](const Relit& r) {
+                return same(*q, r) && r.level <= level && r.region.covers(region);
+            });
             if (found == relit.end()) {
                 found = std::find_if(relit.begin(), relit.end(), [&](const Relit& r) { return same(*q, r); });
+                // A camera that pans under a still light grows the texture's region, so that
+                // panning back relights nothing.
+                if (found != relit.end() && found->level == level) region = found->region.merged(region);
                 if (found == relit.end())
                     found = std::min_element(relit.begin(), relit.end(),
                                              [](const Relit& a, const Relit& b) { return a.lastUsed < b.lastUsed; });
                 if (found == relit.end() || (found->lastUsed == m_frame && !same(*q, *found))) {
-                    relit.push_back({{}, {}, allocateRelitTexture(bank.reference), 0, material.pass->makeLuts(), 0});
+                    relit.push_back(
+                        {{}, {}, allocateRelitTexture(bank.reference), 0, {}, material.pass->makeLuts(), 0});
                     found = relit.end() - 1;
                 }
                 found->light = q->light;
                 found->view = q->view;
                 found->level = level;
+                found->region = region;
                 const Direction light = fromVector(q->light), view = fromVector(q->view);
                 RelightFrame frame = frameFor(material, light, view);
                 if (level > 0) {
                     if (!material.levelMatch) material.levelMatch.emplace(bank);
                     frame.luts = material.levelMatch->luts(light, level);
                 }
-                if (Status s = material.pass->run(frame, found->luts, found->texture.id(), m_dither, level); !s)
+                if (Status s = material.pass->run(frame, found->luts, found->texture.id(), m_dither, level, region); !s)
                     return s;
                 gl.BindTexture(GL_TEXTURE_2D, found->texture.id());
                 gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, level);  // the finer levels are stale
                 gl.GenerateMipmap(GL_TEXTURE_2D);  // from the relit texels: far quads average LUT values
                 ++m_stats.relightPasses;
-                m_stats.relitTexels += static_cast<std::size_t>(levelSize(bank.reference.width, level)) *
-                                       static_cast<std::size_t>(levelSize(bank.reference.height, level));
+                m_stats.relitTexels +=
+                    region.texelsAt(levelSize(bank.reference.width, level), levelSize(bank.reference.height, level));
             }
             found->lastUsed = m_frame;
             q->relit = static_cast<std::size_t>(found - relit.begin());

@@ -13,7 +13,8 @@
 // dithered per texel, mipmaps made from the relit texels) and the quad is drawn with the flat
 // shader. Quads of one material under the same light direction (in their own frames) share
 // the relit texture; it is redone only when the light changed, so a frame whose light did not
-// move costs what a flat frame costs.
+// move costs what a flat frame costs. Only the texels the quads show are relit (seenRegion),
+// at the finest mip level they read (relitLevel).
 //
 // While the light moves, a new direction each frame, the pass would relight the whole
 // reference every frame: a quad then draws per fragment instead (LUT_FRAGMENT in scene.frag:
@@ -30,6 +31,7 @@
 // quad is not the LUT of averaged texels, each mipmap level has its own LUT (MipLuts); the
 // shader picks the two levels around its footprint, as trilinear filtering would.
 
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -41,6 +43,7 @@
 #include "core/data/dataset.h"
 #include "core/data/scene.h"
 #include "core/image/image.h"
+#include "core/image/texel_region.h"
 #include "core/relight/level_match.h"
 #include "core/relight/relighter.h"
 #include "gl/blend_textures.h"
@@ -142,6 +145,7 @@ private:
         Vec3 light, view;  ///< in the quad's frame (view: what a predictor of views is relit for)
         GlTexture texture;
         int level = 0;                ///< its mipmap level relit (and those below it, mipmapped from it)
+        TexelRegion region;           ///< ... and the texels of it that hold the relight (level-0 texels)
         std::vector<GlTexture> luts;  ///< the pass's, of this texture alone
         std::uint64_t lastUsed = 0;   ///< the frame that last drew it
     };
@@ -176,6 +180,7 @@ private:
         Vec3 view{0, 0, 1};
         std::size_t relit = 0;                       ///< mode lut relit (relitLut): its material's relit texture
         int level = 0;                               ///< ... whose finest mip level it reads (finestLevel)
+        TexelRegion region;                          ///< ... and the texels it shows (seenRegion)
         bool perFragment = false;                    ///< ... or relit per fragment this frame (choosePaths)
         Vec3 lastFrameLight = kNoLight;              ///< the light in its frame at the previous frame
         RelightFrame frame;                          ///< per fragment: the frame in `luts`
@@ -202,8 +207,15 @@ private:
     bool relitInTextureSpace(const QuadState& q, RenderMode mode) const;
     /// Mode lut on banks of one view layer: per fragment or in texture space, per quad.
     void choosePaths(const std::vector<RenderMode>& modes);
+    /// A point of a quad in clip space (x, y, z, w) and its quad coordinates (s, t) in [-1, 1]^2.
+    using ClipPoint = std::array<double, 6>;
+    /// The quad clipped to the view volume (w > 0 and the four sides): empty when unseen.
+    std::vector<ClipPoint> clippedQuad(const SceneQuad& quad) const;
     /// The pixels a quad covers on screen (its projection, clipped to the image; occlusion ignored).
     double coveredPixels(const SceneQuad& quad) const;
+    /// The texels of its texture (`texelsWide` x `texelsHigh`) that filtering reads on the
+    /// part of a quad on screen, at every mip level it reads there (level-0 texels).
+    TexelRegion seenRegion(const SceneQuad& quad, int texelsWide, int texelsHigh) const;
     /// The mip level a quad's relit texture is relit from: finestLevel, for banks relit by
     /// level (LevelMatch::supports, LUTs read from the bank's grid); else 0.
     int relitLevel(const Material& material, const SceneQuad& quad) const;
@@ -211,6 +223,10 @@ private:
     /// filtering reads anywhere on a quad: floor of GL's level of detail at its nearest point
     /// (0 where it reaches behind the eye).
     int finestLevel(const SceneQuad& quad, int texelsWide, int texelsHigh) const;
+    /// GL's level of detail (log2 of texels per pixel) at a quad's point (s, t): none where it
+    /// is behind the eye or seen edge on.
+    std::optional<double> levelOfDetail(const SceneQuad& quad, double s, double t, int texelsWide,
+                                        int texelsHigh) const;
     /// A frame of a material's LUTs for a light and view, as the scene asks (grid, exact, nearest).
     RelightFrame frameFor(const Material& material, Direction light, Direction view) const;
     void bindPerFragment(const ShaderProgram& program, const QuadState& q, const Material& material) const;

@@ -2,11 +2,14 @@
 // level m relit alone (issue 46: a quad minified 2^m times reads level m, which 1/4^m of the
 // texels make), side by side in one context: the time of each, and how far level m's histogram
 // lies from the whole relight's level m (EMD), with the level's own LUTs (LevelMatch) and with
-// the bank's. Ratios and distances, never pass/fail.
+// the bank's. Also the region a quad zoomed in 4 times shows (the middle 1/16 of level 0, its
+// mipmaps made from the whole level as the scene renderer does). Ratios and distances, never
+// pass/fail.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli/cli.h"
 #include "cli/command.h"
@@ -92,8 +95,9 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
     const Relighter relighter(bank);
     GlTexture whole = allocateRelitTexture(bank.reference), level = allocateRelitTexture(bank.reference),
               plain = allocateRelitTexture(bank.reference);
-    auto relight = [&](GLuint texture, const RelightFrame& frame, int at) -> Status {
-        if (Status s = pass.run(frame, luts, texture, true, at); !s) return s;
+    auto relight = [&](GLuint texture, const RelightFrame& frame, int at,
+                       const std::optional<TexelRegion>& region = {}) -> Status {
+        if (Status s = pass.run(frame, luts, texture, true, at, region); !s) return s;
         gl.BindTexture(GL_TEXTURE_2D, texture);
         gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, at);
         gl.GenerateMipmap(GL_TEXTURE_2D);
@@ -134,6 +138,8 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
 
     // Time: each light change relights (the level's LUTs made before the clock starts).
     const RelightFrame frame = relighter.gridFrame(lights[2]);
+    const TexelRegion middle =
+        TexelRegion::span(width * 3 / 8, width * 5 / 8, height * 3 / 8, height * 5 / 8, width, height);
     RelightFrame levelFrame = frame;
     levelFrame.luts = levels.luts(lights[2], m);
     struct TimedRow {
@@ -143,7 +149,8 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
     };
     std::vector<TimedRow> rows{
         {"whole, mipmapped", [&] { return relight(whole.id(), frame, 0); }, {}},
-        {"level " + std::to_string(m) + " alone, mipmapped", [&] { return relight(level.id(), levelFrame, m); }, {}}};
+        {"level " + std::to_string(m) + " alone, mipmapped", [&] { return relight(level.id(), levelFrame, m); }, {}},
+        {"the middle 1/16, mipmapped", [&] { return relight(plain.id(), frame, 0, middle); }, {}}};
     for (int r = 0; r < o.timing.repeat; ++r)
         for (TimedRow& row : rows) {  // interleaved, so drift hits both alike
             gl.Finish();
@@ -157,7 +164,7 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
         }
     if (GLenum error = gl.GetError(); error != GL_NO_ERROR)
         return Error{"OpenGL error " + std::to_string(error) + " in bench levels"};
-    const double wholeMs = median(rows[0].ms), levelMs = median(rows[1].ms);
+    const double wholeMs = median(rows[0].ms), levelMs = median(rows[1].ms), regionMs = median(rows[2].ms);
     const std::size_t texels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
                       levelTexels = static_cast<std::size_t>(levelWidth) * static_cast<std::size_t>(levelHeight);
     nlohmann::json out{{"context", (*context)->description()},
@@ -169,6 +176,9 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
                        {"ms_whole", wholeMs},
                        {"ms_level", levelMs},
                        {"whole_over_level_time", wholeMs / levelMs},
+                       {"texels_region", middle.texels()},
+                       {"ms_region", regionMs},
+                       {"whole_over_region_time", wholeMs / regionMs},
                        {"ms_first_level_luts", firstMs},
                        {"emd_level_luts_mean", matchedSum},
                        {"emd_level_luts_max", matchedMax},
@@ -185,6 +195,8 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
     std::printf("  relit whole, then mipmapped:      %8.3f ms (%zu texels)\n", wholeMs, texels);
     std::printf("  level %d relit alone, mipmapped:   %8.3f ms (%zu texels): %.1f times faster\n", m, levelMs,
                 levelTexels, wholeMs / levelMs);
+    std::printf("  its middle 1/16 relit, mipmapped: %8.3f ms (%llu texels): %.1f times faster\n", regionMs,
+                static_cast<unsigned long long>(middle.texels()), wholeMs / regionMs);
     std::printf("  a light's first level-%d LUTs: %.1f ms on the CPU (its grid nodes', made once each)\n", m, firstMs);
     std::printf(
         "  level %d's grey histogram against the whole relight's level %d (EMD, mean / max of %zu lights):\n"
