@@ -21,7 +21,7 @@ light=30,40
 # view (the pages draw the quad seen from the front)
 "$btflut" synth --preset concrete --geometry btf-3 --size 32 --correlation-length 4 --samples 1 -q -o "$work/btf"
 banks=("one|$default --references 1|max=2" "hsh2|$default --predictor hsh2|p99=2,mean=0.2"
-       "references|$default --references 3|max=2" "neural5|$default --predictor neural5|p99=2,mean=0.2"
+       "references|$default --references 3|max=2" "neural5|$default --predictor neural5 --budget 5s|p99=2,mean=0.2"
        "views|$work/btf --predictor neural4|p99=2,mean=0.2|--view 0,0")
 if [ ! -d "$data/psm-rock" ] && [ "${BTFLUT_REQUIRE_DATA:-0}" = 1 ]; then
   echo "browser_check: $data/psm-rock is missing (set BTFLUT_DATA)" >&2

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "core/bake/auto_bake.h"
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/data/dataset.h"
@@ -229,6 +230,13 @@ TEST_CASE("learned model names: neuralN and neuralNwW, the residual's hidden wid
     const auto plain = learnedModelNamed("neural5");
     REQUIRE((plain && *plain));
     CHECK((*plain)->hidden == LearnedOptions{}.hidden);
+    // A kind named (bake, eval) or chosen by auto trains for the default time (its steps
+    // priced in multiply-adds), not LearnedOptions' bare steps.
+    CHECK((*plain)->seconds == kDefaultTrainingSeconds);
+    CHECK(AutoBakeOptions{}.seconds == 3 * kDefaultTrainingSeconds);
+    BakeOptions named;
+    REQUIRE(setModelNamed(named, "neural9"));
+    CHECK(named.learned->seconds == kDefaultTrainingSeconds);
     for (const char* bad : {"neural9w0", "neural9w65", "neural0w24"}) {
         const auto refused = learnedModelNamed(bad);
         REQUIRE(refused);

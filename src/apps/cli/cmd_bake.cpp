@@ -265,7 +265,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
             return Error{"--predictor '" + o.predictor +
                          "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN, blnN, neuralN or neuralNwW"};
         if (!*model) return Error{"--predictor " + model->error()};
-        if (options.learned) options.learned->seconds = budget->seconds;
+        if (options.learned && budget->seconds > 0) options.learned->seconds = budget->seconds;
     }
     if (o.match >= 0) options.match = o.match;
     options.regions = o.regions;
@@ -291,7 +291,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
         AutoBakeOptions automatic{.base = options,
                                   .budget = budget->bytes.value_or(9),
                                   .decodeBudget = budget->multiplyAdds.value_or(kDefaultDecodeBudget),
-                                  .seconds = budget->seconds};
+                                  .seconds = budget->seconds > 0 ? budget->seconds : 3 * kDefaultTrainingSeconds};
         if (o.match >= 0) automatic.match = o.match;
         automatic.chooseQuantiles = app.count("--quantiles") == 0;
         if (!o.quiet && ::isatty(STDERR_FILENO))  // progress for people; errors stay one line

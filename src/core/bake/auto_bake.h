@@ -37,9 +37,10 @@ struct AutoBakeOptions {
     /// (neural9's 891: 2.9 flat frames moving, 8.7 per fragment, at 1920 x 1080; both grow
     /// about linearly with the multiply-adds, to 5 and 20 near 2,000).
     std::size_t decodeBudget = kDefaultDecodeBudget;
-    /// Seconds the learned candidate may train, 0 no bound: a third for each of its two folds
-    /// and the final bake (LearnedOptions::seconds: steps, not the clock, so the bank is the same).
-    double seconds = 0;
+    /// Seconds the learned candidate may train, 0 its default steps: a third for each of its two
+    /// folds and the final bake (LearnedOptions::seconds: steps, not the clock, so the bank is
+    /// the same).
+    double seconds = 3 * kDefaultTrainingSeconds;
     std::optional<float> match;  ///< a fixed match strength instead of the validated one
     /// Banks of views: the fewest samples of each target's quantile function (64 to 512) that
     /// validation finds to cost nothing against base.quantiles; false: base.quantiles as given.

@@ -73,7 +73,9 @@ struct TexelRegion {
     }
     bool empty() const { return x.length() == 0 || y.length() == 0; }
     bool isWhole() const { return x.full(width) && y.full(height); }
-    std::uint64_t texels() const { return static_cast<std::uint64_t>(x.length()) * static_cast<std::uint64_t>(y.length()); }
+    std::uint64_t texels() const {
+        return static_cast<std::uint64_t>(x.length()) * static_cast<std::uint64_t>(y.length());
+    }
     bool covers(const TexelRegion& r) const { return r.empty() || (x.covers(r.x, width) && y.covers(r.y, height)); }
     TexelRegion merged(const TexelRegion& r) const {
         if (empty()) return r;

@@ -179,6 +179,7 @@ std::optional<Result<LearnedOptions>> learnedModelNamed(const std::string& name)
     constexpr std::string_view kind = "neural";
     if (name.compare(0, kind.size(), kind) != 0) return std::nullopt;
     LearnedOptions o;
+    o.seconds = kDefaultTrainingSeconds;
     // neural, neuralN, or neuralNwW: N codes (9), a residual network of two hidden layers W wide (24).
     const std::string rest = name.substr(kind.size());
     if (rest.empty()) return Result<LearnedOptions>(o);

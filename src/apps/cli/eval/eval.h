@@ -89,8 +89,9 @@ struct Variant {
     /// training images.
     std::optional<LightModelOptions> basis;
     std::optional<LearnedOptions> learned;
-    bool neuralRti = false;      ///< the published NeuralRTI (predict/neural_rti.h), the learned kind's baseline
-    double trainingSeconds = 0;  ///< the learned kinds' training time (--budget 300s); 0: their own
+    bool neuralRti = false;  ///< the published NeuralRTI (predict/neural_rti.h), the learned kind's baseline
+    double trainingSeconds =
+        0;  ///< the learned kinds' training time (--budget 300s); 0: their own (kDefaultTrainingSeconds)
     bool unmatched() const { return basis || learned || neuralRti; }
     /// The mode as the report names it: the render mode, or the model's kind.
     std::string modeName() const {

@@ -76,7 +76,7 @@ private:
         // lut auto: bake's validated choice, from the fold's training images alone
         AutoBakeOptions automatic{.base = options, .match = setting.match};
         if (setting.budget) automatic.budget = *setting.budget;
-        automatic.seconds = setting.trainingSeconds;
+        if (setting.trainingSeconds > 0) automatic.seconds = setting.trainingSeconds;
         Result<LutBank> bank = setting.predictor == "auto" ? bakeAuto(m_train, automatic) : bakeBank(m_train, options);
         if (!bank) return Error{bank.error()};
         if (setting.filled)  // fitted to the training images only
