@@ -158,7 +158,9 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     Result<LutBank> back = decodeBank(bytes, "learned.btflut");
     REQUIRE_MESSAGE(back.ok(), back.error());
     CHECK(encodeBank(*back) == bytes);
-    CHECK(back->predictorAs<LearnedPredictor>()->model().decoder == m.decoder);
+    const LearnedDecoder& decoded = *back->predictorAs<LearnedPredictor>()->model().decoder;
+    CHECK(decoded.residual.parameters() == m.decoder->residual.parameters());
+    CHECK(decoded.light.parameters() == m.decoder->light.parameters());
     for (int threads : {2, 3}) {
         options.threads = threads;
         Result<LutBank> again = bakeBank(*dataset, options);
@@ -177,9 +179,16 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
         CHECK_MESSAGE(read.error().find(needle) != std::string::npos, read.error());
         CHECK(read.error().find("bad.btflut") == 0);
     };
-    corrupt([](LearnedModel& c) { c.decoder[7] = NAN; }, "LRND chunk: a network parameter is not finite");
-    corrupt([](LearnedModel& c) { c.lightNetwork[0] = INFINITY; }, "LRND chunk: a network parameter is not finite");
-    corrupt([](LearnedModel& c) { c.decoder.pop_back(); }, "LRND chunk: a network's parameters do not fit its sizes");
+    auto withDecoder = [](LearnedModel& c, const std::function<void(LearnedDecoder&)>& change) {
+        LearnedDecoder d = *c.decoder;
+        change(d);
+        c.decoder = std::make_shared<const LearnedDecoder>(std::move(d));
+    };
+    corrupt([&](LearnedModel& c) { withDecoder(c, [](LearnedDecoder& d) { d.residual.weights(0)(0, 7) = NAN; }); },
+            "LRND chunk: a network parameter is not finite");
+    corrupt([&](LearnedModel& c) { withDecoder(c, [](LearnedDecoder& d) { d.light.bias(0)(0) = INFINITY; }); },
+            "LRND chunk: a network parameter is not finite");
+    corrupt([](LearnedModel& c) { c.hidden[0] -= 1; }, "LRND chunk: a network's parameters do not fit its sizes");
     corrupt([](LearnedModel& c) { c.scale[2] = 0; }, "LRND chunk: invalid scale or bias");
     corrupt([](LearnedModel& c) { c.hidden.assign(9, 4); }, "LRND chunk: invalid layer count");
     corrupt([](LearnedModel& c) { c.hidden[0] = 300; }, "LRND chunk: invalid hidden layer width");
@@ -196,7 +205,9 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     LutBank wide = *bank;
     LearnedModel wider = m;
     wider.hidden = {80, 24};
-    wider.decoder.assign(LearnedModel::parameterCount(wider.decoderSizes()), 0.f);
+    wider.decoder = std::make_shared<const LearnedDecoder>(LearnedDecoder{
+        m.decoder->light, Network::fromParameters(wider.decoderSizes(), std::vector<float>(LearnedModel::parameterCount(
+                                                                            wider.decoderSizes())))});
     wide.blend.predictor = std::make_shared<LearnedPredictor>(std::move(wider), true);
     Result<EngineMaterial> refused = engineMaterial(wide, "wide.btflut");
     REQUIRE_FALSE(refused.ok());
@@ -210,7 +221,7 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     const nlohmann::json atlas = readJson(dir / "atlas.json");
     CHECK(atlas["blend"]["predictor"] == "neural9");
     CHECK(atlas["blend"]["learned"]["images"].size() == 3);
-    CHECK(atlas["blend"]["learned"]["residual"].size() == m.decoder.size());
+    CHECK(atlas["blend"]["learned"]["residual"].size() == m.decoder->residual.parameters().size());
     CHECK(fs::exists(dir / "atlas-codes-2.png"));
 
     Bytes older = bytes;
@@ -300,7 +311,8 @@ TEST_CASE("learned model: few lights, constant and black images, 16-bit images a
         INFO(what);
         REQUIRE_MESSAGE(bank.ok(), bank.error());
         const LearnedModel& m = bank->predictorAs<LearnedPredictor>()->model();
-        for (const std::vector<float>* v : {&m.decoder, &m.lightNetwork, &m.scale, &m.bias})
+        REQUIRE((m.decoder->residual.finite() && m.decoder->light.finite()));
+        for (const std::vector<float>* v : {&m.scale, &m.bias})
             for (float x : *v) REQUIRE(std::isfinite(x));
         const Image relit = relight(*bank, Direction::fromDegrees(35, 120), {});
         for (float v : relit.samples) REQUIRE((std::isfinite(v) && v >= 0 && v <= 1));

@@ -9,6 +9,7 @@
 
 #include "core/learn/network.h"
 #include "core/predict/gpu_constants.h"
+#include "core/predict/learned_decoder.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/learned_shader.h"
 #include "gl/context.h"
@@ -49,9 +50,12 @@ LearnedModel randomModel(const Shape& shape, int w, int h, std::uint64_t seed) {
         residual.weights(residual.layers() - 1).setZero();
         residual.bias(residual.layers() - 1).setConstant(0.05f);
     }
-    m.decoder = residual.parameters();
-    m.lightNetwork = Network::random(m.lightSizes(), random).parameters();
-    for (float& p : m.lightNetwork) p *= 0.2f;  // a basis of moderate weights, so the values span [0, 1]
+    LearnedDecoder decoder{Network::random(m.lightSizes(), random), std::move(residual)};
+    for (std::size_t layer = 0; layer < decoder.light.layers(); ++layer) {  // a basis of moderate weights,
+        decoder.light.weights(layer) *= 0.2f;                               // so the values span [0, 1]
+        decoder.light.bias(layer) *= 0.2f;
+    }
+    m.decoder = std::make_shared<const LearnedDecoder>(std::move(decoder));
     return m;
 }
 

@@ -13,6 +13,7 @@
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
 #include "core/learn/network.h"
+#include "core/predict/learned_decoder.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/learned_shader.h"
 #include "gl/blend_textures.h"
@@ -46,7 +47,7 @@ std::vector<std::string> plainDefines(const LearnedModel& m) {
 }
 
 std::vector<float> plainBlock(const LearnedModel& m) {
-    const Network net = Network::fromParameters(m.decoderSizes(), m.decoder);
+    const Network& net = m.decoder->residual;
     const auto groups = [](Eigen::Index n) { return (n + 3) / 4; };
     std::vector<float> out;
     auto codes = [&](const std::vector<float>& values) {

@@ -17,6 +17,7 @@
 #include "cli/web_page.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
+#include "core/predict/learned_decoder.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/light_model.h"
 #include "core/predict/model_predictor.h"
@@ -148,9 +149,9 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
                                    {"scale", m.scale},
                                    {"bias", m.bias},
                                    {"light_network_sizes", m.lightSizes()},
-                                   {"light_network", m.lightNetwork},
+                                   {"light_network", m.decoder->light.parameters()},
                                    {"residual_sizes", m.decoderSizes()},
-                                   {"residual", m.decoder},
+                                   {"residual", m.decoder->residual.parameters()},
                                    {"images", nlohmann::json::array()}};
             const PredictorPlanes planes = learned->planes();
             for (std::size_t k = 0; k < planes.layers.size(); ++k)

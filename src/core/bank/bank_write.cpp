@@ -6,6 +6,7 @@
 #include "core/bank/bank_file.h"
 #include "core/bank/bank_format.h"
 #include "core/check.h"
+#include "core/predict/learned_decoder.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/reference_blend.h"
@@ -109,9 +110,10 @@ Bytes encodeLearnedModel(const LearnedModel& m, std::uint32_t version) {
     }
     for (float v : m.scale) w.put(v);
     for (float v : m.bias) w.put(v);
-    for (const std::vector<float>* network : {&m.lightNetwork, &m.decoder}) {
-        w.put(static_cast<std::uint32_t>(network->size()));
-        w.putBytes(network->data(), network->size() * sizeof(float));
+    for (const Network* network : {&m.decoder->light, &m.decoder->residual}) {
+        const std::vector<float> parameters = network->parameters();
+        w.put(static_cast<std::uint32_t>(parameters.size()));
+        w.putBytes(parameters.data(), parameters.size() * sizeof(float));
     }
     const auto N = static_cast<std::size_t>(m.codes);
     for (std::size_t first = 0; first < N; first += 3) {

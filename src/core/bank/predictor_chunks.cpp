@@ -5,6 +5,7 @@
 
 #include "core/bank/bank_reader.h"
 #include "core/check.h"
+#include "core/predict/learned_decoder.h"
 
 namespace btflut::bank_read {
 
@@ -165,19 +166,22 @@ Result<LearnedModel> decodeLearnedModel(Reader& in, const std::string& name, con
     for (std::uint32_t k = 0; k < codes; ++k)
         if (!std::isfinite(m.scale[k]) || !(m.scale[k] > 0) || !std::isfinite(m.bias[k]))
             return fail("invalid scale or bias");
-    for (std::vector<float>* network : {&m.lightNetwork, &m.decoder}) {
+    LearnedDecoder decoder;
+    for (Network* network : {&decoder.light, &decoder.residual}) {
+        const std::vector<int> sizes = network == &decoder.light ? m.lightSizes() : m.decoderSizes();
         const auto parameters = in.get<std::uint32_t>();
-        const std::size_t expected =
-            LearnedModel::parameterCount(network == &m.decoder ? m.decoderSizes() : m.lightSizes());
+        const std::size_t expected = LearnedModel::parameterCount(sizes);
         if (!in.ok() || parameters != expected || expected > static_cast<std::size_t>(LearnedModel::kMaxParameters) ||
             parameters > in.remaining() / 4)
             return fail("a network's parameters do not fit its sizes");
-        network->resize(parameters);
+        std::vector<float> values(parameters);
         if (const std::uint8_t* bytes = in.getBytes(parameters * sizeof(float)); bytes)
-            std::memcpy(network->data(), bytes, parameters * sizeof(float));
-        for (float v : *network)
+            std::memcpy(values.data(), bytes, parameters * sizeof(float));
+        for (float v : values)
             if (!std::isfinite(v)) return fail("a network parameter is not finite");
+        *network = Network::fromParameters(sizes, values);
     }
+    m.decoder = std::make_shared<const LearnedDecoder>(std::move(decoder));
     const std::size_t N = codes;
     m.coefficients.resize(m.texels() * N);
     for (std::size_t first = 0; first < N; first += 3) {

@@ -13,7 +13,6 @@
 // l T + t is texel t under light l.
 
 #include "core/learn/network.h"
-#include "core/predict/learned_model.h"
 
 namespace btflut {
 

@@ -379,8 +379,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
         }
     }
     if (!(decoder.light.finite() && decoder.residual.finite())) decoder = t.decoder;
-    m.lightNetwork = decoder.light.parameters();
-    m.decoder = decoder.residual.parameters();
+    m.decoder = std::make_shared<const LearnedDecoder>(std::move(decoder));
     if (o.progress) o.progress(1.0);
     return m;
 }

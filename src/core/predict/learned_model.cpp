@@ -42,12 +42,9 @@ std::vector<int> LearnedModel::lightSizes() const {
 }
 
 bool LearnedModel::residualConstant() const {
-    // Network::parameters' order ends with the last layer's weights, then its biases.
-    const std::vector<int> sizes = decoderSizes();
-    const auto outputs = static_cast<std::size_t>(sizes.back()), inputs = static_cast<std::size_t>(sizes.end()[-2]);
-    const auto weights = decoder.end() - static_cast<std::ptrdiff_t>(outputs * (inputs + 1));
-    return std::all_of(weights, weights + static_cast<std::ptrdiff_t>(outputs * inputs),
-                       [](float w) { return w == 0.f; });
+    if (!decoder) return true;
+    const Network& r = decoder->residual;
+    return r.layers() > 0 && (r.weights(r.layers() - 1).array() == 0.f).all();
 }
 
 std::size_t LearnedModel::decoderCost() const {
@@ -64,8 +61,6 @@ namespace {
 std::vector<float> decode(const LearnedModel& m, const std::vector<std::uint8_t>& bytes,
                           std::span<const std::uint32_t> texels, Direction light, Direction view, int threads,
                           std::size_t count = 0) {
-    const LearnedDecoder net{Network::fromParameters(m.lightSizes(), m.lightNetwork),
-                             Network::fromParameters(m.decoderSizes(), m.decoder)};
     if (!texels.empty()) count = texels.size();
     if (count == 0) count = m.texels();
     const auto C = static_cast<std::size_t>(m.channels);
@@ -79,7 +74,7 @@ std::vector<float> decode(const LearnedModel& m, const std::vector<std::uint8_t>
         for (std::size_t j = 0; j < n; ++j)
             indices[j] = static_cast<std::uint32_t>(texels.empty() ? first + j : texels[first + j]);
         LearnedDecoder::Pass pass;
-        net.forward(codeValues(bytes, m.scale, m.bias, indices), features, pass);
+        m.decoder->forward(codeValues(bytes, m.scale, m.bias, indices), features, pass);
         for (std::size_t j = 0; j < n; ++j)
             for (std::size_t c = 0; c < C; ++c)
                 out[(first + j) * C + c] =
@@ -151,8 +146,8 @@ LearnedModel::GpuNetwork LearnedModel::gpuNetwork() const {
     texels.insert(texels.end(), {static_cast<float>(features()), 0.f, 0.f, 0.f});
     appendTexels(texels, scale.data(), scale.size());
     appendTexels(texels, bias.data(), bias.size());
-    appendNetwork(texels, Network::fromParameters(decoderSizes(), decoder));
-    appendNetwork(texels, Network::fromParameters(lightSizes(), lightNetwork));
+    appendNetwork(texels, decoder->residual);
+    appendNetwork(texels, decoder->light);
     GpuNetwork out;
     const std::size_t count = texels.size() / 4;
     out.size = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(count))));
@@ -162,8 +157,7 @@ LearnedModel::GpuNetwork LearnedModel::gpuNetwork() const {
 }
 
 LearnedModel::LightFrame LearnedModel::lightFrame(Direction light, Direction view) const {
-    const Network lightNet = Network::fromParameters(lightSizes(), lightNetwork),
-                  residual = Network::fromParameters(decoderSizes(), decoder);
+    const Network &lightNet = decoder->light, &residual = decoder->residual;
     const std::vector<float> h = featuresAt(light, view);
     const int F = features();
     NetworkPass pass;

@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -31,6 +32,8 @@
 #include "core/result.h"
 
 namespace btflut {
+
+struct LearnedDecoder;  // learned_decoder.h: its networks (Eigen's, which this header keeps out)
 
 /// The light's features h(L) both networks take: its 9 hemispherical harmonics of order 3.
 constexpr int kLearnedLightFeatures = 9;
@@ -51,12 +54,11 @@ struct LearnedModel {
     int viewFeatures = 0;
     std::vector<float> scale, bias;          ///< per code: v_k = (byte_k - bias_k) scale_k
     std::vector<std::uint8_t> coefficients;  ///< N bytes per texel, rows top first
-    /// The decoder (learned_decoder.h): the light network's hidden widths and parameters
-    /// (Network::parameters' order), then the residual network's.
-    std::vector<int> lightHidden;
-    std::vector<float> lightNetwork;
-    std::vector<int> hidden;
-    std::vector<float> decoder;
+    /// The decoder's networks' hidden widths: the light network's and the residual network's.
+    std::vector<int> lightHidden, hidden;
+    /// The decoder (learned_decoder.h), built once (its networks of lightSizes() and
+    /// decoderSizes()) and shared by the model's copies.
+    std::shared_ptr<const LearnedDecoder> decoder;
 
     bool empty() const { return coefficients.empty(); }
     /// F, the features both networks take, and their values for a light (and a view).

@@ -1,4 +1,5 @@
 #include "core/predict/learned_shader.h"
+#include "core/predict/learned_decoder.h"
 
 #include <cstdio>
 
@@ -106,7 +107,7 @@ std::vector<std::string> emitCodeValues(std::string& out, const Syntax& s, const
 // btflutNetworkValue: the codes' linear basis at the frame, and the residual network from its
 // first layer's light part (the frame's `hidden`).
 void emitValue(std::string& out, const Syntax& s, const LearnedModel& m, std::size_t& constants) {
-    const Network residual = Network::fromParameters(m.decoderSizes(), m.decoder);
+    const Network& residual = m.decoder->residual;
     out += std::string(s.vec3()) + " btflutNetworkValue(" + s.vec4() + " codes[" + std::to_string(kCodeLayers) +
            "], BtflutLearnedFrame f) {\n";
     const std::vector<std::string> v = emitCodeValues(out, s, m, constants);
@@ -146,8 +147,7 @@ void emitValue(std::string& out, const Syntax& s, const LearnedModel& m, std::si
 // btflutNetworkFrame: the light's (and view's) features, the light network, and the residual's
 // first layer at codes 0 (its light part and bias), as LearnedModel::lightFrame.
 void emitFrame(std::string& out, const Syntax& s, const LearnedModel& m, std::size_t& constants) {
-    const Network light = Network::fromParameters(m.lightSizes(), m.lightNetwork);
-    const Network residual = Network::fromParameters(m.decoderSizes(), m.decoder);
+    const Network &light = m.decoder->light, &residual = m.decoder->residual;
     const std::string arrayStart = s.hlsl() ? " = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}" : "";
     out += "BtflutLearnedFrame btflutNetworkFrame(" + std::string(s.vec3()) + " lightTangent, " + s.vec3() +
            " viewTangent) {\n";
