@@ -128,8 +128,9 @@ Bytes encodeLearnedModel(const LearnedModel& m, std::uint32_t version) {
     return std::move(w.bytes());
 }
 
-// The HEAD's predictor of a bank that makes its LUTs.
+// The HEAD's predictor: References for a bank of LUTs too.
 FilePredictor filePredictor(const LutBank& bank) {
+    if (!bank.makesLuts()) return FilePredictor::References;
     if (bank.predictorAs<LearnedPredictor>()) return FilePredictor::Learned;
     if (const ModelPredictor* m = bank.predictorAs<ModelPredictor>())
         return m->bankPtm() ? FilePredictor::Ptm : FilePredictor::Model;
@@ -138,25 +139,43 @@ FilePredictor filePredictor(const LutBank& bank) {
 
 }  // namespace
 
+namespace {
+
+bool anyLayer(const LutBank& bank, bool (*uses)(const ViewLayer&)) {
+    return std::any_of(bank.layers.begin(), bank.layers.end(), uses);
+}
+
+// Each version and what it added (docs/btflut-format.md), newest first.
+struct VersionAdded {
+    std::uint32_t version;
+    bool (*uses)(const LutBank&);
+};
+constexpr VersionAdded kVersionsAdded[] = {
+    {9, [](const LutBank& b) { return filePredictor(b) == FilePredictor::Learned && b.predictor().viewDependent(); }},
+    {8, [](const LutBank& b) { return filePredictor(b) == FilePredictor::Learned; }},
+    {7, [](const LutBank& b) { return !b.pairFit.empty(); }},  // the isotropic domain's fit
+    {6, [](const LutBank& b) { return anyLayer(b, [](const ViewLayer& l) { return !l.fit.empty(); }); }},
+    // A light model, a match in part, a target of corrections, auto's choice, match LUTs over the grid.
+    {5,
+     [](const LutBank& b) {
+         return filePredictor(b) == FilePredictor::Model || (b.makesLuts() && b.blend.match != 1) ||
+                (b.makesLuts() && b.blend.target != LutBank::Blend::Target::Measured) || !b.selection.empty() ||
+                anyLayer(b, [](const ViewLayer& l) { return !l.matchGridLuts.empty(); });
+     }},
+    {4, [](const LutBank& b) { return !b.modelFill.empty(); }},
+    {3, [](const LutBank& b) { return b.makesLuts(); }},
+    {2, [](const LutBank& b) { return b.domain != BankDomain::Layers; }},
+};
+
+}  // namespace
+
 std::uint32_t bankFormatVersion(const LutBank& bank) {
     // The oldest version that holds everything: readers of version 1 keep reading the banks
-    // they always could.
-    // A fit between the lights; a choice of the blend everywhere changes no lookup, and such
-    // banks stay readable where they were (the choice's figures are then not kept).
-    if (bank.makesLuts() && filePredictor(bank) == FilePredictor::Learned)
-        return bank.predictor().viewDependent() ? 9 : 8;  // 9: a model of views
-    if (!bank.pairFit.empty()) return 7;                  // the isotropic domain's fit
-    if (std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) { return !l.fit.empty(); }))
-        return 6;
-    if ((bank.makesLuts() && (filePredictor(bank) == FilePredictor::Model || bank.blend.match != 1 ||
-                              bank.blend.target != LutBank::Blend::Target::Measured)) ||
-        !bank.selection.empty() || std::any_of(bank.layers.begin(), bank.layers.end(), [](const ViewLayer& l) {
-            return !l.matchGridLuts.empty();
-        }))
-        return 5;
-    if (!bank.modelFill.empty()) return 4;
-    if (bank.makesLuts()) return 3;
-    return bank.domain == BankDomain::Layers ? 1u : 2u;
+    // they always could. (A choice of the blend everywhere changes no lookup, and such banks
+    // stay readable where they were: the choice's figures are then not kept.)
+    for (const VersionAdded& v : kVersionsAdded)
+        if (v.uses(bank)) return v.version;
+    return 1;
 }
 
 Status checkBankSize(const LutBank& bank) {
@@ -208,7 +227,7 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         head.put(static_cast<std::uint32_t>(bank.blend.quantiles));
     }
     if (version >= 5) {
-        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? filePredictor(bank) : FilePredictor::References));
+        head.put(static_cast<std::uint32_t>(filePredictor(bank)));
         head.put(bank.makesLuts() ? bank.blend.match : 1.f);
         head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.target : LutBank::Blend::Target::Measured));
     }
