@@ -235,6 +235,31 @@ Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedO
     return t;
 }
 
+// Phase 2: the decoder tuned to the sample texels' quantised codes (`codes`, a column per
+// texel of `samples`) for `steps` at a rate of `peak`; the decoder as it was if that diverges.
+LearnedDecoder tunedToCodes(const LearnedDecoder& trained, const Matrix& codes, const Matrix& samples,
+                            const Matrix& lights, int channels, int steps, float peak, const LearnedOptions& o) {
+    LearnedDecoder decoder = trained;
+    DecoderAdam adam(decoder);
+    Random random(o.seed + 17);
+    const auto perBatch =
+        static_cast<Eigen::Index>(std::max<std::size_t>(1, kBatchSamples / static_cast<std::size_t>(lights.cols())));
+    const auto T = static_cast<std::uint64_t>(samples.cols());
+    Matrix codeBatch(codes.rows(), perBatch), x(samples.rows(), perBatch);
+    ShardedStep batch(o.threads);
+    for (int step = 0; step < steps; ++step) {
+        for (Eigen::Index j = 0; j < perBatch; ++j) {
+            const auto at = static_cast<Eigen::Index>(random.next() % T);
+            codeBatch.col(j) = codes.col(at);
+            x.col(j) = samples.col(at);
+        }
+        if (!std::isfinite(batch.run(nullptr, decoder, x, &codeBatch, lights, channels))) break;
+        adam.step(decoder, batch.decoderGradient(), rateAt(step, steps, peak));
+        if (o.progress && step % 64 == 0) o.progress(0.9 + 0.1 * step / steps);
+    }
+    return decoder.light.finite() && decoder.residual.finite() ? decoder : trained;
+}
+
 // The rows of `samples` (light-major, C per light) of the lights `keep`.
 Matrix lightRows(const Matrix& samples, const std::vector<std::size_t>& keep, int channels) {
     const Eigen::Index C = channels;
@@ -356,30 +381,9 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     quantiseCodes(encodeTexels(t.encoder, texelSamples, m.texels(), o.threads), drawn->inside, N, m.scale, m.bias,
                   m.coefficients);
 
-    // Phase 2: the decoder tuned to the quantised codes.
-    const Matrix quantised = codeValues(m.coefficients, m.scale, m.bias, drawn->texels);
-    LearnedDecoder decoder = t.decoder;
-    {
-        DecoderAdam adam(decoder);
-        Random random(o.seed + 17);
-        const std::size_t perBatch = std::max<std::size_t>(1, kBatchSamples / lights.size()), T = keep;
-        const int tuning = steps / 5;
-        Matrix codeBatch(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(perBatch)),
-            x(samples.rows(), static_cast<Eigen::Index>(perBatch));
-        ShardedStep batch(o.threads);
-        for (int step = 0; step < tuning; ++step) {
-            for (std::size_t j = 0; j < perBatch; ++j) {
-                const auto at = static_cast<Eigen::Index>(random.next() % T);
-                codeBatch.col(static_cast<Eigen::Index>(j)) = quantised.col(at);
-                x.col(static_cast<Eigen::Index>(j)) = samples.col(at);
-            }
-            if (!std::isfinite(batch.run(nullptr, decoder, x, &codeBatch, features, m.channels))) break;
-            adam.step(decoder, batch.decoderGradient(), rateAt(step, tuning, peak / 8));
-            if (o.progress && step % 64 == 0) o.progress(0.9 + 0.1 * step / tuning);
-        }
-    }
-    if (!(decoder.light.finite() && decoder.residual.finite())) decoder = t.decoder;
-    m.decoder = std::make_shared<const LearnedDecoder>(std::move(decoder));
+    m.decoder = std::make_shared<const LearnedDecoder>(
+        tunedToCodes(t.decoder, codeValues(m.coefficients, m.scale, m.bias, drawn->texels), samples, features,
+                     m.channels, steps / 5, peak / 8, o));
     if (o.progress) o.progress(1.0);
     return m;
 }
