@@ -454,6 +454,10 @@ TEST_CASE(
     CHECK(out["plain_against_btflut_max_codes"].get<double>() <= 1);
     CHECK(out["btflut_over_plain_throughput_per_fragment"].get<double>() > 0);
     CHECK(out["btflut_over_plain_throughput_texture_space"].get<double>() > 0);
+    // Half floats: within the 1/255 contract, and computed (not float's exact figures).
+    CHECK(out["half_precision"]["max_codes"].get<double>() > 0);
+    CHECK(out["half_precision"]["p99_codes"].get<double>() <= 1);
+    CHECK(out["half_precision"]["share_over_one_code"].get<double>() < 0.001);
     for (const char* row : {"plain, per fragment", "btflut, per fragment", "btflut matched, scene per fragment",
                             "plain, texture space", "btflut, texture space", "btflut matched, texture space"})
         CHECK(out["ms_per_mpx"][row].get<double>() > 0);

@@ -10,6 +10,7 @@
 #include "core/learn/network.h"
 #include "core/predict/gpu_constants.h"
 #include "core/predict/learned_decoder.h"
+#include "core/predict/learned_half.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/learned_shader.h"
 #include "gl/context.h"
@@ -104,6 +105,21 @@ void writeText(const std::string& path, const std::string& text) {
 }
 
 }  // namespace
+
+TEST_CASE("learned shader: the decoder in half precision is within a code of float, and not float") {
+    const Direction lights[] = {Direction::fromDegrees(45, 250), Direction::fromDegrees(70, 140)};
+    for (const bool constant : {false, true}) {
+        INFO("the residual constant: " << constant);
+        const LearnedModel m = randomModel(Shape{.constantResidual = constant}, 24, 20, 3);
+        const HalfPrecisionError e = halfPrecisionError(m, lights, 2);
+        CHECK(e.max > 0.01);  // binary16 has an 11-bit significand: it is not float's arithmetic
+        CHECK(e.max < 2);
+        CHECK(e.p99 <= e.max);
+        CHECK(e.overOneCode < 0.001);
+        CHECK(halfPrecisionError(m, lights, 1).max == e.max);  // blocks of a fixed size: any thread count
+    }
+    CHECK(halfPrecisionError(randomModel(Shape{}, 4, 4, 3), {}).max == 0);  // no lights, nothing compared
+}
 
 TEST_CASE("learned shader: the specialised decoder compiles as GLSL ES and HLSL for every network the baker makes") {
     TempDir dir;

@@ -14,6 +14,7 @@
 #include "core/io/json_text.h"
 #include "core/learn/network.h"
 #include "core/predict/learned_decoder.h"
+#include "core/predict/learned_half.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/learned_shader.h"
 #include "gl/blend_textures.h"
@@ -292,6 +293,9 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
         return Error{"OpenGL error " + std::to_string(error) + " in bench decoder"};
 
     const LearnedShaderCost cost = learnedShaderCost(m);
+    // Whether half floats would hold the contract: the decoder in binary16 on the CPU.
+    const Direction halfLights[] = {light, Direction::fromDegrees(20, 30), Direction::fromDegrees(70, 140)};
+    const HalfPrecisionError half = halfPrecisionError(m, halfLights);
     auto ms = [&](const std::string& name) {
         for (const Row& row : rows)
             if (row.name == name) return median(row.msPerMpx);
@@ -311,6 +315,8 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
                        {"texture_space_passes", passes},
                        {"timer", timer ? "GL_TIME_ELAPSED" : "wall"},
                        {"plain_against_btflut_max_codes", differs},
+                       {"half_precision",
+                        {{"max_codes", half.max}, {"p99_codes", half.p99}, {"share_over_one_code", half.overOneCode}}},
                        {"btflut_over_plain_throughput_per_fragment", fragmentRatio},
                        {"btflut_over_plain_throughput_texture_space", textureRatio},
                        {"ms_per_mpx", nlohmann::json::object()}};
@@ -336,6 +342,10 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
         "the scene drawn flat\n",
         ms("plain, per fragment") / ms("flat, per fragment"), ms("btflut, per fragment") / ms("flat, per fragment"),
         ms("btflut matched, scene per fragment") / ms("flat, scene"));
+    std::printf(
+        "  in half precision (binary16, emulated on the CPU at 3 lights): max %.2f/255, p99 %.2f/255 from float; "
+        "%.4f%% of values more than one code off (the contract: none)\n",
+        half.max, half.p99, 100 * half.overOneCode);
     return success();
 }
 
