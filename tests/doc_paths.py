@@ -29,6 +29,14 @@ for name in texts:
                 continue  # made by the build
             if not (root / path).exists():
                 missing.append(f"{name}:{number}: {path}")
+# The glossary's list of kinds is the enum's (src/core/predict/predictor.h, PredictorKind).
+header = (root / "src/core/predict/predictor.h").read_text()
+enum = re.search(r"enum class PredictorKind[^{]*\{([^}]*)\}", header)
+kinds = [k.lower() for k in re.findall(r"^\s*(\w+)\s*=", enum.group(1), re.M)] if enum else []
+listed = re.search(r"The kinds:\s*([a-z, \n]+)\.", (root / "src/core/README.md").read_text())
+listed = [k.strip() for k in listed.group(1).replace("\n", " ").split(",")] if listed else []
+if not kinds or kinds != listed:
+    missing.append(f"src/core/README.md: its kinds {listed} are not PredictorKind's {kinds}")
 for m in missing:
     print(m)
 print(f"doc paths: {len(missing)} missing" if missing else "doc paths: every named file exists")

@@ -67,7 +67,7 @@ GlTexture uploadRegions(const Image& labels, std::size_t& bytes) {
 EngineTextures EngineTextures::upload(const EngineMaterial& m, std::size_t& bytes) {
     EngineTextures t;
     t.luts = uploadLutGrid(m, bytes);
-    if (m.kind == EngineMaterial::Kind::Luts) return t;
+    if (m.kind == PredictorKind::Luts) return t;
     t.planes = uploadPlanes(m, bytes);
     if (m.weights > 0)
         t.weights = uploadFloatArray(m.weightGridSize, m.weightLayers(), m.weightGrid.data(),
@@ -84,7 +84,7 @@ void EngineTextures::bind(const ShaderProgram& program, const EngineMaterial& m,
         gl.Uniform1i(location(name), first + k);
     };
     unit(0, GL_TEXTURE_3D, luts, "luts");
-    if (m.kind == EngineMaterial::Kind::Luts) return;
+    if (m.kind == PredictorKind::Luts) return;
     unit(1, GL_TEXTURE_2D_ARRAY, planes, "planes");
     unit(2, GL_TEXTURE_2D_ARRAY, weights, "weights");  // none for ptm, hsh: never read
     unit(3, GL_TEXTURE_2D, labels, "labels");

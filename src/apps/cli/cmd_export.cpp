@@ -307,7 +307,7 @@ Result<EngineExport> engineExport(const LutBank& b, const std::string& bankPath)
     Result<EngineMaterial> made = engineMaterial(b, bankPath);
     if (!made) return Error{made.error()};
     const EngineMaterial& m = *made;
-    const bool predictor = m.kind != EngineMaterial::Kind::Luts;
+    const bool predictor = m.kind != PredictorKind::Luts;
     const int g = m.gridSize;
     // Row (block * G + j) * G + i holds node (i, j)'s LUT; a block is a view layer or a region.
     Result<Image> luts =

@@ -130,10 +130,15 @@ Bytes encodeLearnedModel(const LearnedModel& m, std::uint32_t version) {
 
 // The HEAD's predictor: References for a bank of LUTs too.
 FilePredictor filePredictor(const LutBank& bank) {
-    if (!bank.makesLuts()) return FilePredictor::References;
-    if (bank.predictorAs<LearnedPredictor>()) return FilePredictor::Learned;
-    if (const ModelPredictor* m = bank.predictorAs<ModelPredictor>())
-        return m->bankPtm() ? FilePredictor::Ptm : FilePredictor::Model;
+    switch (bank.predictorKind()) {
+        case PredictorKind::Learned:
+            return FilePredictor::Learned;
+        case PredictorKind::Model:
+            return bank.predictorAs<ModelPredictor>()->bankPtm() ? FilePredictor::Ptm : FilePredictor::Model;
+        case PredictorKind::Luts:
+        case PredictorKind::References:
+            break;
+    }
     return FilePredictor::References;
 }
 

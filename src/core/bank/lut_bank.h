@@ -194,6 +194,8 @@ struct LutBank {
     /// (ptm, hsh2, rbf9, bln9c, ...), the learned model's (neural9) or "references"; "" for a
     /// bank of LUTs.
     std::string predictorName() const;
+    /// The predictor's kind; Luts for a bank of LUTs.
+    PredictorKind predictorKind() const { return makesLuts() ? predictor().kind() : PredictorKind::Luts; }
     /// Bytes per texel the predictor stores (Predictor::bytesPerTexel), with regions one more
     /// for the labels; a bank of LUTs: its reference's.
     double predictorBytesPerTexel() const;

@@ -27,6 +27,7 @@ public:
     /// the summed channel codes when it has colour.
     LearnedPredictor(LearnedModel model, bool perChannel);
 
+    PredictorKind kind() const override { return PredictorKind::Learned; }
     std::string name() const override { return learnedModelName(m_model); }
     double bytesPerTexel() const override { return m_model.codes; }
     /// The decoder's per texel (learned_shader.h; the light's part is once per light).

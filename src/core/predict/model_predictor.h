@@ -14,6 +14,7 @@ public:
     /// file keeps it once, as the PTM; docs/btflut-format.md).
     ModelPredictor(LightModel model, bool perChannel, bool bankPtm = false);
 
+    PredictorKind kind() const override { return PredictorKind::Model; }
     std::string name() const override { return lightModelName(m_model); }
     double bytesPerTexel() const override { return m_model.bytesPerTexel(); }
     /// Each plane's weight per channel, and the albedo's product.

@@ -28,6 +28,7 @@
 
 #include "core/direction/direction.h"
 #include "core/image/image.h"
+#include "core/predict/gpu_constants.h"
 #include "core/predict/light_model.h"
 
 namespace btflut {
@@ -69,9 +70,24 @@ struct PredictorFrame {
     std::shared_ptr<LearnedFrame> learned;
 };
 
+/// A bank's kind: the one enum C++, the shaders (BtflutPredictor.kind, BTFLUT_KIND_* in
+/// gpu_constants.h) and material.json ("kind", predictorKindName) share. Luts: the paper's
+/// bank of LUTs, which has no predictor (and no BtflutPredictor). The .btflut file keeps its
+/// own numbers (bank_format.h, FilePredictor).
+enum class PredictorKind : int {
+    Luts = 0,
+    Model = BTFLUT_KIND_MODEL,
+    References = BTFLUT_KIND_REFERENCES,
+    Learned = BTFLUT_KIND_LEARNED,
+};
+/// "luts", "model", "references" or "learned".
+const char* predictorKindName(PredictorKind kind);
+
 class Predictor {
 public:
     virtual ~Predictor() = default;
+
+    virtual PredictorKind kind() const = 0;
 
     /// The name `--predictor` takes: "references", the light model's (ptm, hsh2, bln9c) or the
     /// learned model's (neural9).

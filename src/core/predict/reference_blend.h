@@ -28,6 +28,7 @@ public:
     /// gives the chroma; empty for none.
     ReferenceBlend(std::vector<Image> references, std::vector<ReferenceLight> lights, bool perChannel, Image albedo);
 
+    PredictorKind kind() const override { return PredictorKind::References; }
     std::string name() const override { return "references"; }
     double bytesPerTexel() const override;
     /// The references around the light (three at most), each weighted, per channel.

@@ -69,7 +69,7 @@ std::vector<float> modelWeightGrid(const LightModel& m, int& size) {
 
 // A light model's weights: ptm and hsh in closed form (btflut.glsl), rbf and bln on the grid.
 void setModel(EngineMaterial& out, const LightModel& m) {
-    out.kind = EngineMaterial::Kind::Model;
+    out.kind = PredictorKind::Model;
     out.basis = m.basis;
     out.order = m.order;
     out.planes = m.planes;
@@ -83,20 +83,6 @@ void setModel(EngineMaterial& out, const LightModel& m) {
 }
 
 }  // namespace
-
-int EngineMaterial::predictorKind() const {
-    switch (kind) {
-        case Kind::Luts:
-            return 0;
-        case Kind::Model:
-            return BTFLUT_KIND_MODEL;
-        case Kind::References:
-            return BTFLUT_KIND_REFERENCES;
-        case Kind::Learned:
-            return BTFLUT_KIND_LEARNED;
-    }
-    return 0;
-}
 
 Status drawnOnGpu(const LutBank& bank) {
     if (!bank.makesLuts()) return success();
@@ -158,7 +144,7 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     }
     if (const LearnedPredictor* learned = bank.predictorAs<LearnedPredictor>()) {
         // The decoder in the weight texture: one layer, a square of texels (btflut.glsl).
-        out.kind = EngineMaterial::Kind::Learned;
+        out.kind = PredictorKind::Learned;
         out.planes = learned->model().codes;
         out.channels = learned->model().channels;
         out.weights = 4;
@@ -176,7 +162,7 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
         return out;
     }
     const ReferenceBlend& references = *bank.predictorAs<ReferenceBlend>();
-    out.kind = EngineMaterial::Kind::References;
+    out.kind = PredictorKind::References;
     out.planes = static_cast<int>(references.references().size());
     out.channels = references.references().front().channels;
     out.weights = out.planes;

@@ -36,7 +36,7 @@ namespace btflut {
 constexpr int kShaderIncludeVersion = 5;
 
 struct EngineMaterial {
-    enum class Kind { Luts, Model, References, Learned } kind = Kind::Luts;
+    PredictorKind kind = PredictorKind::Luts;
     ColourMode colour = ColourMode::Grey;
 
     // The LUT grid (every kind).
@@ -72,7 +72,7 @@ struct EngineMaterial {
 
     int weightLayers() const { return (weights + 3) / 4; }
     /// btflut.glsl's BtflutPredictor.kind (BTFLUT_KIND_...); 0 for Luts.
-    int predictorKind() const;
+    int predictorKind() const { return static_cast<int>(kind); }
 };
 
 /// The weight grid's nodes a side for rbf and references (bln: its own grid, read exactly).

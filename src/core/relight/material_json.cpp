@@ -8,19 +8,13 @@ std::string planeImageName(std::size_t k) { return "planes-" + std::to_string(k)
 
 namespace {
 
-const char* predictorKindName(EngineMaterial::Kind kind) {
-    return kind == EngineMaterial::Kind::Model     ? "model"
-           : kind == EngineMaterial::Kind::Learned ? "learned"
-                                                   : "references";
-}
-
 // The sidecar's "predictor" (version 2): what btflut.glsl's BtflutPredictor takes, and the
 // files of its textures.
 nlohmann::json predictorJson(const EngineMaterial& m) {
     std::vector<std::string> images;
     for (std::size_t k = 0; k < m.images.size(); ++k) images.push_back(planeImageName(k));
     const bool albedo = !m.albedo.samples.empty(), labels = !m.labels.samples.empty();
-    const bool model = m.kind == EngineMaterial::Kind::Model, learned = m.kind == EngineMaterial::Kind::Learned;
+    const bool model = m.kind == PredictorKind::Model, learned = m.kind == PredictorKind::Learned;
     nlohmann::json p{
         {"kind", predictorKindName(m.kind)},
         {"kind_index", m.predictorKind()},
@@ -85,16 +79,16 @@ nlohmann::json predictorJson(const EngineMaterial& m) {
 }  // namespace
 
 nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
-    const bool predictor = m.kind != EngineMaterial::Kind::Luts;
+    const bool predictor = m.kind != PredictorKind::Luts;
     const int g = m.gridSize;
     nlohmann::json side{// Banks of LUTs keep version 1, so that loaders written for it still read them.
                         {"format", "btflut-material"},
                         {"version", predictor ? 2 : 1},
-                        {"kind", predictor ? predictorKindName(m.kind) : "luts"},
+                        {"kind", predictorKindName(m.kind)},
                         {"shader", "btflut.glsl"},
-                        {"shader_version", m.kind == EngineMaterial::Kind::Learned ? kShaderIncludeVersion
-                                           : predictor                             ? 2
-                                                                                   : 1},
+                        {"shader_version", m.kind == PredictorKind::Learned ? kShaderIncludeVersion
+                                           : predictor                      ? 2
+                                                                            : 1},
                         {"reference",
                          {{"file", "reference.png"},
                           {"width", b.reference.width},
