@@ -147,12 +147,125 @@ void setFrame(const ShaderProgram& p, const std::vector<ShaderValues>& values) {
     }
 }
 
+// The codes as the plain shader and btflut's read them: RGBA8 layers, four codes a texel.
+GlTexture uploadCodes(const LearnedPredictor& learned) {
+    const LearnedModel& m = learned.model();
+    const PredictorPlanes planes = learned.planes();
+    const int layers = static_cast<int>(planes.layers.size());
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(layers) * m.texels() * 4);
+    for (std::size_t i = 0; i < bytes.size(); ++i)
+        bytes[i] = static_cast<std::uint8_t>(
+            std::lround(planes.layers[i / (m.texels() * 4)].samples[i % (m.texels() * 4)] * 255));
+    std::size_t uploaded = 0;
+    return uploadTextureArray(m.width, m.height, layers, 4, bytes.data(), uploaded);
+}
+
+// The programs every row draws with, by key ("plain fragment", "btflut texture", "flat
+// fragment", ...): the plain reference shader, btflut's generated decoder and a flat texture,
+// per fragment and in texture space, with the frame's uniforms set.
+Result<std::map<std::string, ShaderProgram>> decoderPrograms(const LearnedPredictor& learned,
+                                                             const std::vector<ShaderValues>& frame) {
+    const std::string source = learned.shaderSource();  // the ShaderFile views it
+    const std::vector<ShaderFile> generated{{learned.name() + " decoder (generated)", source}};
+    std::map<std::string, ShaderProgram> programs;
+    auto program = [&](const std::string& key, std::vector<std::string> defines) -> Status {
+        Result<ShaderProgram> p = buildProgram(
+            {"quad.vert"}, {"btflut.glsl", "bench_decoder.frag"}, defines,
+            defines.front() == "PLAIN" || defines.front() == "FLAT" ? std::vector<ShaderFile>{} : generated);
+        if (!p) return Error{p.error()};
+        const ShaderProgram& made = programs[key] = std::move(*p);
+        gl.UseProgram(made.id());
+        gl.Uniform1i(made["planes"], 0);
+        setFrame(made, frame);
+        if (defines.front() == "PLAIN")
+            gl.UniformBlockBinding(made.id(), gl.GetUniformBlockIndex(made.id(), "PlainNetwork"), 0);
+        return success();
+    };
+    for (const bool textureSpace : {false, true}) {
+        const std::string at = textureSpace ? " texture" : " fragment";
+        std::vector<std::string> space;
+        if (textureSpace) space.push_back("TEXTURE_SPACE");
+        std::vector<std::string> plain = plainDefines(learned.model()), ours{"BTFLUT"}, flat{"FLAT"};
+        plain.insert(plain.end(), space.begin(), space.end());
+        ours.insert(ours.end(), space.begin(), space.end());
+        if (Status s = program("plain" + at, plain); !s) return Error{s.error()};
+        if (Status s = program("btflut" + at, ours); !s) return Error{s.error()};
+        if (!textureSpace)
+            if (Status s = program("flat" + at, flat); !s) return Error{s.error()};
+    }
+    return programs;
+}
+
+// What one run measured beside its rows' times.
+struct DecoderRun {
+    std::string context;
+    int width = 0, height = 0, passes = 0;
+    bool timer = false;
+    double differs = 0;  ///< the plain shader's frame against btflut's, in codes
+    HalfPrecisionError half;
+};
+
+// The rows' medians and ratios, as JSON (--json) or text.
+void reportDecoder(const BenchDecoderOptions& o, const LearnedModel& m, const std::vector<Row>& rows,
+                   const DecoderRun& run) {
+    const LearnedShaderCost cost = learnedShaderCost(m);
+    auto ms = [&](const std::string& name) {
+        for (const Row& row : rows)
+            if (row.name == name) return median(row.msPerMpx);
+        BTFLUT_CHECK(false);
+        return 0.0;
+    };
+    const double fragmentRatio = ms("plain, per fragment") / ms("btflut, per fragment"),
+                 textureRatio = ms("plain, texture space") / ms("btflut, texture space");
+    nlohmann::json out{
+        {"context", run.context},
+        {"bank", o.bank},
+        {"decoder", learnedModelName(m)},
+        {"multiply_adds_per_texel", cost.texelMultiplyAdds},
+        {"frame_multiply_adds", cost.frameMultiplyAdds},
+        {"shader_constants", cost.constants},
+        {"width", run.width},
+        {"height", run.height},
+        {"texture_space_passes", run.passes},
+        {"timer", run.timer ? "GL_TIME_ELAPSED" : "wall"},
+        {"plain_against_btflut_max_codes", run.differs},
+        {"half_precision",
+         {{"max_codes", run.half.max}, {"p99_codes", run.half.p99}, {"share_over_one_code", run.half.overOneCode}}},
+        {"btflut_over_plain_throughput_per_fragment", fragmentRatio},
+        {"btflut_over_plain_throughput_texture_space", textureRatio},
+        {"ms_per_mpx", nlohmann::json::object()}};
+    for (const Row& row : rows) out["ms_per_mpx"][row.name] = median(row.msPerMpx);
+    if (o.timing.json) {
+        std::cout << jsonText(out);
+        return;
+    }
+    std::printf(
+        "decoder of %s (%s: %zu multiply-adds a texel, the frame %zu), %s; ms per million pixels (%s), "
+        "median of %d rounds of %d draws\n",
+        o.bank.c_str(), learnedModelName(m).c_str(), cost.texelMultiplyAdds, cost.frameMultiplyAdds,
+        run.context.c_str(), run.timer ? "GPU timer" : "wall", o.timing.repeat, o.timing.frames);
+    std::printf("  per fragment at %dx%d (the codes bilinear, magnified %.1fx); texture space at %dx%d, %d passes\n",
+                run.width, run.height, kMagnification, m.width, m.height, run.passes);
+    for (const Row& row : rows) std::printf("    %-32s %10.3f\n", row.name.c_str(), median(row.msPerMpx));
+    std::printf(
+        "  btflut's decoder / the plain shader, throughput: per fragment %.3f, texture space %.3f (their "
+        "frames differ by at most %.0f/255)\n",
+        fragmentRatio, textureRatio, run.differs);
+    std::printf(
+        "  per fragment, x flat: plain %.1f, btflut %.1f; in a scene (depth tested), btflut matched %.1f x "
+        "the scene drawn flat\n",
+        ms("plain, per fragment") / ms("flat, per fragment"), ms("btflut, per fragment") / ms("flat, per fragment"),
+        ms("btflut matched, scene per fragment") / ms("flat, scene"));
+    std::printf(
+        "  in half precision (binary16, emulated on the CPU at 3 lights): max %.2f/255, p99 %.2f/255 from float; "
+        "%.4f%% of values more than one code off (the contract: none)\n",
+        run.half.max, run.half.p99, 100 * run.half.overOneCode);
+}
+
 Status runBenchDecoder(const BenchDecoderOptions& o) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 || w > 16384 ||
-        h > 16384)
-        return Error{"--size '" + o.size + "': expected WxH with both within 1..16384"};
+    Result<FrameSize> size = parseFrameSize(o.size);
+    if (!size) return Error{size.error()};
+    const int w = size->width, h = size->height;
     Result<GlBackend> backend = parseGlBackend(o.timing.backend);
     if (!backend) return Error{backend.error()};
     Result<std::unique_ptr<HeadlessContext>> context = createHeadlessContext(*backend);
@@ -176,14 +289,8 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
 
     // What every row reads: the codes, and the frame at one light.
     const Direction light = Direction::fromDegrees(45, 250);
-    const PredictorPlanes planes = learned->planes();
-    const int texelsX = m.width, texelsY = m.height, layers = static_cast<int>(planes.layers.size());
-    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(layers) * m.texels() * 4);
-    for (std::size_t i = 0; i < bytes.size(); ++i)
-        bytes[i] = static_cast<std::uint8_t>(
-            std::lround(planes.layers[i / (m.texels() * 4)].samples[i % (m.texels() * 4)] * 255));
-    std::size_t uploaded = 0;
-    const GlTexture codes = uploadTextureArray(texelsX, texelsY, layers, 4, bytes.data(), uploaded);
+    const int texelsX = m.width, texelsY = m.height;
+    const GlTexture codes = uploadCodes(*learned);
     const std::vector<ShaderValues> frame = learned->shaderValues(learned->frameAt(light, {}));
     const std::vector<float> block = plainBlock(m);
     GlBuffer buffer = makeBuffer();
@@ -191,8 +298,6 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     gl.BufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(block.size() * sizeof(float)), block.data(),
                   GL_STATIC_DRAW);
     gl.BindBufferBase(GL_UNIFORM_BUFFER, 0, buffer.id());
-    const std::string source = learned->shaderSource();
-    const std::vector<ShaderFile> generated{{learned->name() + " decoder (generated)", source}};
 
     // Per fragment: the frame's size, the texture magnified; texture space: the codes' size,
     // passes enough for about the same pixels.
@@ -200,32 +305,9 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     const int passes = std::max(1, static_cast<int>(std::lround(static_cast<double>(w) * h / m.texels())));
     const ColourTarget screen = colourTarget(w, h), relit = colourTarget(texelsX, texelsY);
     GlVertexArray vertexArray = makeVertexArray();
-    std::map<std::string, ShaderProgram> programs;
-    auto program = [&](const std::string& key, std::vector<std::string> defines) -> Status {
-        Result<ShaderProgram> p = buildProgram(
-            {"quad.vert"}, {"btflut.glsl", "bench_decoder.frag"}, defines,
-            defines.front() == "PLAIN" || defines.front() == "FLAT" ? std::vector<ShaderFile>{} : generated);
-        if (!p) return Error{p.error()};
-        const ShaderProgram& made = programs[key] = std::move(*p);
-        gl.UseProgram(made.id());
-        gl.Uniform1i(made["planes"], 0);
-        setFrame(made, frame);
-        if (defines.front() == "PLAIN")
-            gl.UniformBlockBinding(made.id(), gl.GetUniformBlockIndex(made.id(), "PlainNetwork"), 0);
-        return success();
-    };
-    for (const bool textureSpace : {false, true}) {
-        const std::string at = textureSpace ? " texture" : " fragment";
-        std::vector<std::string> space;
-        if (textureSpace) space.push_back("TEXTURE_SPACE");
-        std::vector<std::string> plain = plainDefines(m), ours{"BTFLUT"}, flat{"FLAT"};
-        plain.insert(plain.end(), space.begin(), space.end());
-        ours.insert(ours.end(), space.begin(), space.end());
-        if (Status s = program("plain" + at, plain); !s) return s;
-        if (Status s = program("btflut" + at, ours); !s) return s;
-        if (!textureSpace)
-            if (Status s = program("flat" + at, flat); !s) return s;
-    }
+    Result<std::map<std::string, ShaderProgram>> built = decoderPrograms(*learned, frame);
+    if (!built) return Error{built.error()};
+    const std::map<std::string, ShaderProgram>& programs = *built;
     // A full-screen draw of one program into a target.
     auto fullScreen = [&](const std::string& key, const ColourTarget& target, int tw, int th, int count) {
         return [&, key, tw, th, count]() -> Status {
@@ -292,60 +374,10 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     if (GLenum error = gl.GetError(); error != GL_NO_ERROR)
         return Error{"OpenGL error " + std::to_string(error) + " in bench decoder"};
 
-    const LearnedShaderCost cost = learnedShaderCost(m);
     // Whether half floats would hold the contract: the decoder in binary16 on the CPU.
     const Direction halfLights[] = {light, Direction::fromDegrees(20, 30), Direction::fromDegrees(70, 140)};
-    const HalfPrecisionError half = halfPrecisionError(m, halfLights);
-    auto ms = [&](const std::string& name) {
-        for (const Row& row : rows)
-            if (row.name == name) return median(row.msPerMpx);
-        BTFLUT_CHECK(false);
-        return 0.0;
-    };
-    const double fragmentRatio = ms("plain, per fragment") / ms("btflut, per fragment"),
-                 textureRatio = ms("plain, texture space") / ms("btflut, texture space");
-    nlohmann::json out{{"context", (*context)->description()},
-                       {"bank", o.bank},
-                       {"decoder", learnedModelName(m)},
-                       {"multiply_adds_per_texel", cost.texelMultiplyAdds},
-                       {"frame_multiply_adds", cost.frameMultiplyAdds},
-                       {"shader_constants", cost.constants},
-                       {"width", w},
-                       {"height", h},
-                       {"texture_space_passes", passes},
-                       {"timer", timer ? "GL_TIME_ELAPSED" : "wall"},
-                       {"plain_against_btflut_max_codes", differs},
-                       {"half_precision",
-                        {{"max_codes", half.max}, {"p99_codes", half.p99}, {"share_over_one_code", half.overOneCode}}},
-                       {"btflut_over_plain_throughput_per_fragment", fragmentRatio},
-                       {"btflut_over_plain_throughput_texture_space", textureRatio},
-                       {"ms_per_mpx", nlohmann::json::object()}};
-    for (const Row& row : rows) out["ms_per_mpx"][row.name] = median(row.msPerMpx);
-    if (o.timing.json) {
-        std::cout << jsonText(out);
-        return success();
-    }
-    std::printf(
-        "decoder of %s (%s: %zu multiply-adds a texel, the frame %zu), %s; ms per million pixels (%s), "
-        "median of %d rounds of %d draws\n",
-        o.bank.c_str(), learnedModelName(m).c_str(), cost.texelMultiplyAdds, cost.frameMultiplyAdds,
-        (*context)->description().c_str(), timer ? "GPU timer" : "wall", o.timing.repeat, o.timing.frames);
-    std::printf("  per fragment at %dx%d (the codes bilinear, magnified %.1fx); texture space at %dx%d, %d passes\n", w,
-                h, kMagnification, texelsX, texelsY, passes);
-    for (const Row& row : rows) std::printf("    %-32s %10.3f\n", row.name.c_str(), median(row.msPerMpx));
-    std::printf(
-        "  btflut's decoder / the plain shader, throughput: per fragment %.3f, texture space %.3f (their "
-        "frames differ by at most %.0f/255)\n",
-        fragmentRatio, textureRatio, differs);
-    std::printf(
-        "  per fragment, x flat: plain %.1f, btflut %.1f; in a scene (depth tested), btflut matched %.1f x "
-        "the scene drawn flat\n",
-        ms("plain, per fragment") / ms("flat, per fragment"), ms("btflut, per fragment") / ms("flat, per fragment"),
-        ms("btflut matched, scene per fragment") / ms("flat, scene"));
-    std::printf(
-        "  in half precision (binary16, emulated on the CPU at 3 lights): max %.2f/255, p99 %.2f/255 from float; "
-        "%.4f%% of values more than one code off (the contract: none)\n",
-        half.max, half.p99, 100 * half.overOneCode);
+    const DecoderRun run{(*context)->description(), w, h, passes, timer, differs, halfPrecisionError(m, halfLights)};
+    reportDecoder(o, m, rows, run);
     return success();
 }
 

@@ -78,6 +78,15 @@ void addLutImageOptions(CLI::App& app, int& depth, bool& noDither) {
                  "so the LUT can split a level's pixels and reproduce the target histogram closely)");
 }
 
+Result<FrameSize> parseFrameSize(const std::string& text) {
+    FrameSize s;
+    char x = 0, extra = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c", &s.width, &x, &s.height, &extra) != 3 || x != 'x' || s.width <= 0 ||
+        s.height <= 0 || s.width > 16384 || s.height > 16384)
+        return Error{"--size '" + text + "': expected WxH with both within 1..16384"};
+    return s;
+}
+
 double median(std::vector<double> v) {
     BTFLUT_CHECK(!v.empty());
     std::sort(v.begin(), v.end());

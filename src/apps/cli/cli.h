@@ -50,6 +50,12 @@ Result<BankAtDirection> loadBankAt(const std::string& bankPath, const std::strin
 /// Opens a dataset; a non-empty `mask` replaces the dataset's own mask (--mask).
 Result<Dataset> openDatasetWithMask(const std::string& path, const std::string& mask);
 
+/// --size's WxH, both within 1..16384.
+struct FrameSize {
+    int width = 0, height = 0;
+};
+Result<FrameSize> parseFrameSize(const std::string& text);
+
 /// The median of a non-empty list (the upper one of an even count).
 double median(std::vector<double> values);
 

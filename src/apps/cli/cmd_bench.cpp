@@ -306,11 +306,9 @@ Status runBenchRender(const BenchRenderOptions& o) {
     std::string text;
     bool first = true;
     for (const std::string& size : o.sizes) {
-        int w = 0, h = 0;
-        char x = 0, extra = 0;
-        if (std::sscanf(size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 ||
-            w > 16384 || h > 16384)
-            return Error{"--size '" + size + "': expected WxH with both within 1..16384"};
+        Result<FrameSize> parsed = parseFrameSize(size);
+        if (!parsed) return Error{parsed.error()};
+        const int w = parsed->width, h = parsed->height;
         const Scene scene = benchScene(o.bank, w, h, {}, o.overdraw);
         Result<std::unique_ptr<SceneRenderer>> renderer = SceneRenderer::create(scene, {.lutPath = *lutPath});
         if (!renderer) return Error{renderer.error()};

@@ -84,13 +84,10 @@ Status runSceneRender(const RenderOptions& o) {
     Result<Scene> scene = loadScene(o.input);
     if (!scene) return Error{scene.error()};
     if (!o.size.empty()) {
-        int w = 0, h = 0;
-        char x = 0, extra = 0;
-        if (std::sscanf(o.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 ||
-            w > 16384 || h > 16384)
-            return Error{"--size '" + o.size + "': expected WxH with both within 1..16384"};
-        scene->width = w;
-        scene->height = h;
+        Result<FrameSize> size = parseFrameSize(o.size);
+        if (!size) return Error{size.error()};
+        scene->width = size->width;
+        scene->height = size->height;
     }
     if (!o.light.empty()) {
         Result<Direction> light = parseDirection(o.light, "--light");
