@@ -28,6 +28,26 @@ std::string format(const char* pattern, double v) {
     return buf;
 }
 
+// A histogram in the panel at (x0, y0), its bins scaled so that `rowMax` fills the panel: bars,
+// or a step outline (each bin's top, and the rise from the previous one).
+void drawBins(Canvas& canvas, const std::vector<double>& bins, int x0, int y0, int panelW, int panelH, double rowMax,
+              Rgb colour, bool bars) {
+    const auto n = static_cast<int>(bins.size());
+    int previous = -1;
+    for (int b = 0; b < n; ++b) {
+        const int bx0 = x0 + 1 + b * (panelW - 1) / n, bx1 = std::max(x0 + 1 + (b + 1) * (panelW - 1) / n, bx0 + 1);
+        const int barHeight = static_cast<int>(bins[static_cast<std::size_t>(b)] / rowMax * (panelH - 4) + 0.5);
+        const int y = y0 + panelH - barHeight;
+        if (bars) {
+            canvas.fill(bx0, y, bx1, y0 + panelH, colour);
+        } else {
+            canvas.fill(bx0, y - 1, bx1, y + 1, colour);
+            if (previous >= 0) canvas.fill(bx0, std::min(previous, y) - 1, bx0 + 2, std::max(previous, y) + 1, colour);
+        }
+        previous = y;
+    }
+}
+
 }  // namespace
 
 Image plotHistograms(const std::vector<PlotColumn>& columns, const PlotStyle& style) {
@@ -111,33 +131,14 @@ Image plotHistograms(const std::vector<PlotColumn>& columns, const PlotStyle& st
             const std::vector<double>& bins = columns[c].rows[r].bins;
             const double rowMax = paper ? peakOf(columns[c].rows[r]) : common[r];
             if (rowMax <= 0) continue;
-            const auto n = static_cast<int>(bins.size());
             // AgainstFirst: the first column's bars under every panel, each later column's outline in its own.
             std::vector<int> targets;
             if (against && c == 0)
                 for (int p = 0; p < panels; ++p) targets.push_back(p);
             else
                 targets.push_back(panelOf(c));
-            for (int panel : targets) {
-                const int x0 = panelX(panel);
-                int previous = -1;
-                for (int b = 0; b < n; ++b) {
-                    const int bx0 = x0 + 1 + b * (panelW - 1) / n,
-                              bx1 = std::max(x0 + 1 + (b + 1) * (panelW - 1) / n, bx0 + 1);
-                    const int barHeight =
-                        static_cast<int>(bins[static_cast<std::size_t>(b)] / rowMax * (panelH - 4) + 0.5);
-                    const int y = y0 + panelH - barHeight;
-                    if (c == 0) {
-                        canvas.fill(bx0, y, bx1, y0 + panelH, kBar);
-                    } else {  // a step outline: the bin's top, and the rise from the previous one
-                        canvas.fill(bx0, y - 1, bx1, y + 1, colourOf(c));
-                        if (previous >= 0)
-                            canvas.fill(bx0, std::min(previous, y) - 1, bx0 + 2, std::max(previous, y) + 1,
-                                        colourOf(c));
-                    }
-                    previous = y;
-                }
-            }
+            for (int panel : targets)
+                drawBins(canvas, bins, panelX(panel), y0, panelW, panelH, rowMax, c == 0 ? kBar : colourOf(c), c == 0);
             if (!paper) continue;
             // The panel's own scale, over the bars on a white backing.
             const int x0 = panelX(panelOf(c));

@@ -56,37 +56,10 @@ private:
     int m_bins;
 };
 
-}  // namespace
-
-Result<Orientation> estimateOrientation(const std::vector<double>& histogram, const MaterialHistograms& material,
-                                        Direction known, Known which, double tolerance, const OrientOptions& options) {
-    if (histogram.size() != static_cast<std::size_t>(options.bins))
-        return Error{"the histogram has the wrong number of bins"};
-    double mass = 0;
-    for (double v : histogram) mass += v;
-    if (!(mass > 0)) return Error{"the histogram is empty (no sample pixels)"};
-    if (!(known.theta >= 0 && known.theta < 90 * kDegree))
-        return Error{std::string("the known ") + (which == Known::Light ? "light" : "view") +
-                     " must be above the horizon"};
-    const Search search(histogram, material, known, which, options.bins);
-
-    // The grid: tilt rows (row 0 is the pole, one normal) by azimuth columns.
-    const int rows = static_cast<int>(std::floor(options.maxTilt / options.tiltStep + 1e-9)) + 1;
-    const int columns = static_cast<int>(std::lround(2 * std::numbers::pi / options.azimuthStep));
-    auto tiltOf = [&](int r) { return r * options.tiltStep; };
-    auto azimuthOf = [&](int c) { return c * 2 * std::numbers::pi / columns; };
-    std::vector<double> cost(static_cast<std::size_t>(rows) * columns, kInfinite);
-    parallelFor(cost.size(), 0, [&](std::size_t i) {
-        const int r = static_cast<int>(i) / columns, c = static_cast<int>(i) % columns;
-        if (r == 0 && c > 0) return;  // the pole, once
-        cost[i] = search.at(tiltOf(r), azimuthOf(c), 24).distance;
-    });
-    std::fill(cost.begin() + 1, cost.begin() + columns, cost[0]);
-    const double best = *std::min_element(cost.begin(), cost.end());
-    if (!std::isfinite(best)) return Error{"no orientation faces both the light and the camera"};
-
-    // Regions within the tolerance of the best, connected over the grid (azimuth wraps).
-    const double within = best + tolerance;
+// The connected regions of a rows x columns grid of costs (row 0 the pole, one cell;
+// azimuth wraps) whose cost is within `within`, each a list of cells.
+std::vector<std::vector<std::size_t>> regionsWithin(const std::vector<double>& cost, int rows, int columns,
+                                                    double within) {
     std::vector<int> region(cost.size(), -1);
     std::vector<std::vector<std::size_t>> regions;
     for (std::size_t seed = 0; seed < cost.size(); ++seed) {
@@ -118,6 +91,40 @@ Result<Orientation> estimateOrientation(const std::vector<double>& histogram, co
                 }
         }
     }
+    return regions;
+}
+
+}  // namespace
+
+Result<Orientation> estimateOrientation(const std::vector<double>& histogram, const MaterialHistograms& material,
+                                        Direction known, Known which, double tolerance, const OrientOptions& options) {
+    if (histogram.size() != static_cast<std::size_t>(options.bins))
+        return Error{"the histogram has the wrong number of bins"};
+    double mass = 0;
+    for (double v : histogram) mass += v;
+    if (!(mass > 0)) return Error{"the histogram is empty (no sample pixels)"};
+    if (!(known.theta >= 0 && known.theta < 90 * kDegree))
+        return Error{std::string("the known ") + (which == Known::Light ? "light" : "view") +
+                     " must be above the horizon"};
+    const Search search(histogram, material, known, which, options.bins);
+
+    // The grid: tilt rows (row 0 is the pole, one normal) by azimuth columns.
+    const int rows = static_cast<int>(std::floor(options.maxTilt / options.tiltStep + 1e-9)) + 1;
+    const int columns = static_cast<int>(std::lround(2 * std::numbers::pi / options.azimuthStep));
+    auto tiltOf = [&](int r) { return r * options.tiltStep; };
+    auto azimuthOf = [&](int c) { return c * 2 * std::numbers::pi / columns; };
+    std::vector<double> cost(static_cast<std::size_t>(rows) * columns, kInfinite);
+    parallelFor(cost.size(), 0, [&](std::size_t i) {
+        const int r = static_cast<int>(i) / columns, c = static_cast<int>(i) % columns;
+        if (r == 0 && c > 0) return;  // the pole, once
+        cost[i] = search.at(tiltOf(r), azimuthOf(c), 24).distance;
+    });
+    std::fill(cost.begin() + 1, cost.begin() + columns, cost[0]);
+    const double best = *std::min_element(cost.begin(), cost.end());
+    if (!std::isfinite(best)) return Error{"no orientation faces both the light and the camera"};
+
+    // Regions within the tolerance of the best, connected over the grid (azimuth wraps).
+    const std::vector<std::vector<std::size_t>> regions = regionsWithin(cost, rows, columns, best + tolerance);
 
     // Each region's best normal, refined by a pattern search at the finer quadrature.
     Orientation out;
