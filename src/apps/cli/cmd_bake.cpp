@@ -214,6 +214,49 @@ Result<Budget> parseBudget(const std::string& text) {
     return b;
 }
 
+// What a bake wrote: JSON (--json) or a line (not --quiet).
+void reportBake(const BakeCommandOptions& o, const Dataset& dataset, const LutBank& bank) {
+    std::size_t nodes = 0;
+    for (const ViewLayer& l : bank.layers)
+        for (const LightNode& n : l.nodes) nodes += !n.modelled;
+    if (o.json) {
+        nlohmann::json j{{"output", o.output},
+                         {"images", dataset.images.size()},
+                         {"view_layers", bank.layers.size()},
+                         {"measured_nodes", nodes},
+                         {"grid_size", bank.gridSize},
+                         {"entries", bank.entries},
+                         {"domain", domainName(bank.domain)},
+                         {"colour", colourName(bank.colour)},
+                         {"reference", bank.referenceName},
+                         {"ptm", !bank.ptm.empty()},
+                         {"chosen_by_validation", !bank.selection.empty()},
+                         {"bytes", std::filesystem::file_size(o.output)},
+                         {"images_sharing_a_node", imagesSharingANode(dataset)}};
+        if (bank.makesLuts()) {
+            j["predictor"] = bank.predictorName();
+            j["bytes_per_texel"] = bank.predictorBytesPerTexel();
+            j["match"] = bank.blend.match;  // away from the measured lights; at them 1 (Relighter::matchAt)
+            j["regions"] = bank.blend.regions;
+        }
+        std::cout << jsonText(j);
+    }
+    if (!o.quiet) {
+        std::string merged;  // why there are fewer nodes than images
+        if (nodes < dataset.images.size())
+            for (const std::string& pair : imagesSharingANode(dataset))
+                merged += (merged.empty() ? " (averaged into one node, a light direction twice: " : "; ") + pair;
+        if (!merged.empty()) merged += ")";
+        std::cout << "wrote " << o.output << ": " << dataset.images.size() << " images, " << bank.layers.size()
+                  << " view layer(s), " << nodes << " measured nodes" << merged << ", " << bank.gridSize << "x"
+                  << bank.gridSize << " grid, " << bank.entries << " entries, domain " << domainName(bank.domain)
+                  << ", colour " << colourName(bank.colour) << predictorSummary(bank)
+                  << (bank.selection.empty() ? "" : " (chosen by validation; btflut info)") << ", reference "
+                  << bank.referenceName << (bank.ptm.empty() ? "" : ", PTM") << ", "
+                  << std::filesystem::file_size(o.output) << " bytes\n";
+    }
+}
+
 Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     BakeCommandOptions o = given;
     // The references' options without --predictor mean the references, as before auto.
@@ -309,48 +352,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
         if (Status s = fillFromFittedModel(o, *dataset, *bank, histograms ? &*histograms : nullptr); !s) return s;
     }
     if (Status s = saveBank(*bank, o.output, {.embedReference = !o.noReference}); !s) return s;
-    if (o.json) {
-        std::size_t nodes = 0;
-        for (const ViewLayer& l : bank->layers)
-            for (const LightNode& n : l.nodes) nodes += !n.modelled;
-        nlohmann::json j{{"output", o.output},
-                         {"images", dataset->images.size()},
-                         {"view_layers", bank->layers.size()},
-                         {"measured_nodes", nodes},
-                         {"grid_size", bank->gridSize},
-                         {"entries", bank->entries},
-                         {"domain", domainName(bank->domain)},
-                         {"colour", colourName(bank->colour)},
-                         {"reference", bank->referenceName},
-                         {"ptm", !bank->ptm.empty()},
-                         {"chosen_by_validation", !bank->selection.empty()},
-                         {"bytes", std::filesystem::file_size(o.output)},
-                         {"images_sharing_a_node", imagesSharingANode(*dataset)}};
-        if (bank->makesLuts()) {
-            j["predictor"] = bank->predictorName();
-            j["bytes_per_texel"] = bank->predictorBytesPerTexel();
-            j["match"] = bank->blend.match;  // away from the measured lights; at them 1 (Relighter::matchAt)
-            j["regions"] = bank->blend.regions;
-        }
-        std::cout << jsonText(j);
-    }
-    if (!o.quiet) {
-        std::size_t nodes = 0;
-        for (const ViewLayer& l : bank->layers)
-            for (const LightNode& n : l.nodes) nodes += !n.modelled;
-        std::string merged;  // why there are fewer nodes than images
-        if (nodes < dataset->images.size())
-            for (const std::string& pair : imagesSharingANode(*dataset))
-                merged += (merged.empty() ? " (averaged into one node, a light direction twice: " : "; ") + pair;
-        if (!merged.empty()) merged += ")";
-        std::cout << "wrote " << o.output << ": " << dataset->images.size() << " images, " << bank->layers.size()
-                  << " view layer(s), " << nodes << " measured nodes" << merged << ", " << bank->gridSize << "x"
-                  << bank->gridSize << " grid, " << bank->entries << " entries, domain " << domainName(bank->domain)
-                  << ", colour " << colourName(bank->colour) << predictorSummary(*bank)
-                  << (bank->selection.empty() ? "" : " (chosen by validation; btflut info)") << ", reference "
-                  << bank->referenceName << (bank->ptm.empty() ? "" : ", PTM") << ", "
-                  << std::filesystem::file_size(o.output) << " bytes\n";
-    }
+    reportBake(o, *dataset, *bank);
     return success();
 }
 

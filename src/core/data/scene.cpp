@@ -72,6 +72,75 @@ Result<RenderMode> parseRenderMode(const std::string& name) {
     return Error{"mode '" + name + "' is not lut, brdf, ptm, flat or nearest"};
 }
 
+namespace {
+
+// "camera": its position, target and up, and its field of view or orthographic height.
+Status parseCamera(const json& c, Scene& scene, const std::string& at) {
+    for (auto [key, out] : {std::pair{"position", &scene.eye}, {"target", &scene.target}, {"up", &scene.up}})
+        if (c.contains(key)) {
+            Result<Vec3> v = readVector(c[key], at + "camera." + key);
+            if (!v) return Error{v.error()};
+            *out = *v;
+        }
+    Result<double> fov = readNumber(c, "fov_degrees", 45, at + "camera");
+    if (!fov) return Error{fov.error()};
+    scene.fovDegrees = *fov;
+    if (c.contains("orthographic_height")) {
+        Result<double> height = readNumber(c, "orthographic_height", 0, at + "camera");
+        if (!height) return Error{height.error()};
+        if (!(*height > 0 && std::isfinite(*height)))
+            return Error{at + "camera.orthographic_height must be a positive number (the height the image spans)"};
+        scene.orthographicHeight = *height;
+    }
+    return success();
+}
+
+// One of "quads" (`where` names it), its material one of the scene's.
+Result<SceneQuad> parseQuad(const json& q, const Scene& scene, const std::string& where) {
+    if (!q.is_object()) return Error{where + ": expected an object"};
+    if (Status s = requireKnownKeys(q, {"material", "center", "normal", "tangent", "size", "uv_scale", "mode"}, where);
+        !s)
+        return Error{s.error()};
+    SceneQuad quad;
+    if (!q.contains("material") || !q["material"].is_string()) return Error{where + ": no \"material\""};
+    quad.material = q["material"].get<std::string>();
+    if (!scene.materials.count(quad.material))
+        return Error{where + ": material '" + quad.material + "' is not in \"materials\""};
+    for (auto [key, out] : {std::pair{"center", &quad.center}, {"normal", &quad.normal}, {"tangent", &quad.tangent}}) {
+        if (!q.contains(key)) return Error{where + ": no \"" + key + "\""};
+        Result<Vec3> v = readVector(q[key], where + "." + key);
+        if (!v) return Error{v.error()};
+        *out = *v;
+    }
+    const std::optional<Vec3> n = normalized(quad.normal), t = normalized(quad.tangent);
+    if (!n || !t) return Error{where + ": zero normal or tangent"};
+    const glm::dvec3 nn = g(*n);
+    const glm::dvec3 tt = g(*t) - glm::dot(g(*t), nn) * nn;  // tangent made orthogonal to the normal
+    if (glm::length(tt) < 1e-9) return Error{where + ": tangent is parallel to the normal (degenerate quad)"};
+    quad.normal = *n;
+    quad.tangent = v3(glm::normalize(tt));
+    if (q.contains("size")) {
+        if (!q["size"].is_array() || q["size"].size() != 2 || !q["size"][0].is_number() || !q["size"][1].is_number())
+            return Error{where + ".size: expected [width, height]"};
+        quad.width = q["size"][0].get<double>();
+        quad.height = q["size"][1].get<double>();
+    }
+    if (!(quad.width > 0 && quad.height > 0 && quad.width <= 1e9 && quad.height <= 1e9))
+        return Error{where + ".size: width and height must be positive (degenerate quad) and within 1e9"};
+    Result<double> uv = readNumber(q, "uv_scale", 1, where);
+    if (!uv) return Error{uv.error()};
+    if (!(*uv > 0)) return Error{where + ".uv_scale must be positive"};
+    quad.uvScale = *uv;
+    if (q.contains("mode") && !q["mode"].is_string())
+        return Error{where + ".mode: expected a string (lut, brdf, ptm, flat or nearest)"};
+    Result<RenderMode> mode = parseRenderMode(q.value("mode", std::string("lut")));
+    if (!mode) return Error{where + "." + mode.error()};
+    quad.mode = *mode;
+    return quad;
+}
+
+}  // namespace
+
 Result<Scene> parseScene(const std::string& text, const std::string& file, const std::string& folder) {
     Result<json> parsed = parseJsonText(text, file);
     if (!parsed) return Error{parsed.error()};
@@ -106,25 +175,8 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
         scene.width = *width;
         scene.height = *height;
     }
-    if (doc.contains("camera")) {
-        const json& c = doc["camera"];
-        for (auto [key, out] : {std::pair{"position", &scene.eye}, {"target", &scene.target}, {"up", &scene.up}})
-            if (c.contains(key)) {
-                Result<Vec3> v = readVector(c[key], at + "camera." + key);
-                if (!v) return Error{v.error()};
-                *out = *v;
-            }
-        Result<double> fov = readNumber(c, "fov_degrees", 45, at + "camera");
-        if (!fov) return Error{fov.error()};
-        scene.fovDegrees = *fov;
-        if (c.contains("orthographic_height")) {
-            Result<double> height = readNumber(c, "orthographic_height", 0, at + "camera");
-            if (!height) return Error{height.error()};
-            if (!(*height > 0 && std::isfinite(*height)))
-                return Error{at + "camera.orthographic_height must be a positive number (the height the image spans)"};
-            scene.orthographicHeight = *height;
-        }
-    }
+    if (doc.contains("camera"))
+        if (Status st = parseCamera(doc["camera"], scene, at); !st) return Error{st.error()};
     const glm::dvec3 forward = g(scene.target) - g(scene.eye);
     if (glm::length(forward) < 1e-12) return Error{at + "camera: position and target coincide"};
     if (glm::length(glm::cross(forward, g(scene.up))) < 1e-12 * glm::length(forward))
@@ -175,51 +227,9 @@ Result<Scene> parseScene(const std::string& text, const std::string& file, const
     if (!doc.contains("quads") || !doc["quads"].is_array() || doc["quads"].empty())
         return Error{at + "quads: expected a non-empty array"};
     for (std::size_t i = 0; i < doc["quads"].size(); ++i) {
-        const json& q = doc["quads"][i];
-        const std::string where = at + "quads[" + std::to_string(i) + "]";
-        if (!q.is_object()) return Error{where + ": expected an object"};
-        if (Status s =
-                requireKnownKeys(q, {"material", "center", "normal", "tangent", "size", "uv_scale", "mode"}, where);
-            !s)
-            return Error{s.error()};
-        SceneQuad quad;
-        if (!q.contains("material") || !q["material"].is_string()) return Error{where + ": no \"material\""};
-        quad.material = q["material"].get<std::string>();
-        if (!scene.materials.count(quad.material))
-            return Error{where + ": material '" + quad.material + "' is not in \"materials\""};
-        for (auto [key, out] :
-             {std::pair{"center", &quad.center}, {"normal", &quad.normal}, {"tangent", &quad.tangent}}) {
-            if (!q.contains(key)) return Error{where + ": no \"" + key + "\""};
-            Result<Vec3> v = readVector(q[key], where + "." + key);
-            if (!v) return Error{v.error()};
-            *out = *v;
-        }
-        const std::optional<Vec3> n = normalized(quad.normal), t = normalized(quad.tangent);
-        if (!n || !t) return Error{where + ": zero normal or tangent"};
-        const glm::dvec3 nn = g(*n);
-        const glm::dvec3 tt = g(*t) - glm::dot(g(*t), nn) * nn;  // tangent made orthogonal to the normal
-        if (glm::length(tt) < 1e-9) return Error{where + ": tangent is parallel to the normal (degenerate quad)"};
-        quad.normal = *n;
-        quad.tangent = v3(glm::normalize(tt));
-        if (q.contains("size")) {
-            if (!q["size"].is_array() || q["size"].size() != 2 || !q["size"][0].is_number() ||
-                !q["size"][1].is_number())
-                return Error{where + ".size: expected [width, height]"};
-            quad.width = q["size"][0].get<double>();
-            quad.height = q["size"][1].get<double>();
-        }
-        if (!(quad.width > 0 && quad.height > 0 && quad.width <= 1e9 && quad.height <= 1e9))
-            return Error{where + ".size: width and height must be positive (degenerate quad) and within 1e9"};
-        Result<double> uv = readNumber(q, "uv_scale", 1, where);
-        if (!uv) return Error{uv.error()};
-        if (!(*uv > 0)) return Error{where + ".uv_scale must be positive"};
-        quad.uvScale = *uv;
-        if (q.contains("mode") && !q["mode"].is_string())
-            return Error{where + ".mode: expected a string (lut, brdf, ptm, flat or nearest)"};
-        Result<RenderMode> mode = parseRenderMode(q.value("mode", std::string("lut")));
-        if (!mode) return Error{where + "." + mode.error()};
-        quad.mode = *mode;
-        scene.quads.push_back(quad);
+        Result<SceneQuad> quad = parseQuad(doc["quads"][i], scene, at + "quads[" + std::to_string(i) + "]");
+        if (!quad) return Error{quad.error()};
+        scene.quads.push_back(*quad);
     }
     return scene;
 }
