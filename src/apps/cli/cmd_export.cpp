@@ -76,6 +76,57 @@ Result<Image> gridImage(const ExportOptions& o, const LutBank& b, const std::str
                    what);  // the same order as the image's samples
 }
 
+// Writes an image beside the atlas and gives its file name.
+using TextureWriter = std::function<std::string(const std::string& suffix, const Image& image)>;
+
+// The light model's part of the sidecar (docs/predictors.md; its LMDL chunk in
+// docs/btflut-format.md).
+nlohmann::json lightModelSidecar(const LightModel& m, const TextureWriter& texture) {
+    nlohmann::json sidecar{
+        {"basis", lightBasisName(m.basis)}, {"name", lightModelName(m)}, {"planes", m.planes}, {"planes_8bit", m.wide},
+        {"channels", m.channels},           {"order", m.order},          {"scale", m.scale},   {"bias", m.bias},
+        {"images", nlohmann::json::array()}};
+    if (m.basis == LightBasis::Rbf) {
+        sidecar["sigma"] = m.sigma;
+        for (Direction d : m.lights) sidecar["lights"].push_back(directionJson(d));
+    }
+    if (m.basis == LightBasis::Bilinear) sidecar["grid"] = m.grid;
+    if (!m.table.empty()) sidecar["table"] = m.table;
+    const std::vector<Image> images = lightModelImages(m);
+    for (std::size_t k = 0; k < images.size(); ++k)
+        sidecar["images"].push_back(texture("model-" + std::to_string(k), images[k]));
+    sidecar["layout"] =
+        "images: the 8-bit planes three to an image (R, G, B), then the 4-bit planes six to an image (two to a "
+        "channel, the first in the high nibble), then the albedo if the model has one; value = (code - bias) * "
+        "scale; table rows (per rbf light or bln grid node j * grid + i): the channels' offsets, then each "
+        "plane's channel weights";
+    return sidecar;
+}
+
+// The learned model's (docs/predictors.md; its LRND chunk in docs/btflut-format.md).
+nlohmann::json learnedSidecar(const LearnedPredictor& learned, const TextureWriter& texture) {
+    const LearnedModel& m = learned.model();
+    nlohmann::json sidecar{{"codes", m.codes},
+                           {"channels", m.channels},
+                           {"scale", m.scale},
+                           {"bias", m.bias},
+                           {"light_network_sizes", m.lightSizes()},
+                           {"light_network", m.decoder->light.parameters()},
+                           {"residual_sizes", m.decoderSizes()},
+                           {"residual", m.decoder->residual.parameters()},
+                           {"images", nlohmann::json::array()}};
+    const PredictorPlanes planes = learned.planes();
+    for (std::size_t k = 0; k < planes.layers.size(); ++k)
+        sidecar["images"].push_back(texture("codes-" + std::to_string(k), planes.layers[k]));
+    sidecar["layout"] =
+        "images: the codes four to an image (R, G, B, A); value = (code - bias) * scale; each network: per "
+        "layer its weights (an output's inputs together), then its biases, ELU between layers, the last "
+        "linear; the light network of the light's 9 hsh terms of order 3 gives channel c's weight on code k "
+        "(output c (codes + 1) + k) and its offset (output c (codes + 1) + codes); the residual network of the "
+        "codes' values and the same terms adds to each channel";
+    return sidecar;
+}
+
 Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     Result<Image> grid = gridImage(o, b, "atlas");
     if (!grid) return Error{grid.error()};
@@ -84,7 +135,7 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     // The textures a bank that blends references relights from, beside the atlas.
     std::vector<std::pair<std::string, Bytes>> textures;
     const std::filesystem::path out(o.output);
-    auto texture = [&](const std::string& suffix, const Image& image) {
+    const TextureWriter texture = [&](const std::string& suffix, const Image& image) {
         const std::string name = out.stem().string() + "-" + suffix + ".png";
         textures.push_back({(out.parent_path() / name).string(), encodePng(image, image.bitDepth)});
         return name;
@@ -104,33 +155,8 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
         if (references && !references->albedo().samples.empty())
             blend["albedo"] = texture("albedo", references->albedo());
         if (model && !model->bankPtm()) {
-            // The light model (docs/predictors.md; its LMDL chunk in docs/btflut-format.md).
-            const LightModel& m = model->model();
-            nlohmann::json sidecar{{"basis", lightBasisName(m.basis)},
-                                   {"name", lightModelName(m)},
-                                   {"planes", m.planes},
-                                   {"planes_8bit", m.wide},
-                                   {"channels", m.channels},
-                                   {"order", m.order},
-                                   {"scale", m.scale},
-                                   {"bias", m.bias},
-                                   {"images", nlohmann::json::array()}};
-            if (m.basis == LightBasis::Rbf) {
-                sidecar["sigma"] = m.sigma;
-                for (Direction d : m.lights) sidecar["lights"].push_back(directionJson(d));
-            }
-            if (m.basis == LightBasis::Bilinear) sidecar["grid"] = m.grid;
-            if (!m.table.empty()) sidecar["table"] = m.table;
-            const std::vector<Image> images = lightModelImages(m);
-            for (std::size_t k = 0; k < images.size(); ++k)
-                sidecar["images"].push_back(texture("model-" + std::to_string(k), images[k]));
-            sidecar["layout"] =
-                "images: the 8-bit planes three to an image (R, G, B), then the 4-bit planes six to an image (two to a "
-                "channel, the first in the high nibble), then the albedo if the model has one; value = (code - bias) * "
-                "scale; table rows (per rbf light or bln grid node j * grid + i): the channels' offsets, then each "
-                "plane's channel weights";
             blend["predictor"] = b.predictorName();
-            blend["model"] = sidecar;
+            blend["model"] = lightModelSidecar(model->model(), texture);
         } else if (model) {  // the bank's PTM
             blend["predictor"] = "ptm";
             blend["ptm_scale"] = b.ptm.scale;
@@ -142,28 +168,8 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
                 blend["ptm_planes"].push_back(texture("ptm-" + std::to_string(p), plane));
             }
         } else if (const LearnedPredictor* learned = b.predictorAs<LearnedPredictor>()) {
-            // The learned model (docs/predictors.md; its LRND chunk in docs/btflut-format.md).
-            const LearnedModel& m = learned->model();
-            nlohmann::json sidecar{{"codes", m.codes},
-                                   {"channels", m.channels},
-                                   {"scale", m.scale},
-                                   {"bias", m.bias},
-                                   {"light_network_sizes", m.lightSizes()},
-                                   {"light_network", m.decoder->light.parameters()},
-                                   {"residual_sizes", m.decoderSizes()},
-                                   {"residual", m.decoder->residual.parameters()},
-                                   {"images", nlohmann::json::array()}};
-            const PredictorPlanes planes = learned->planes();
-            for (std::size_t k = 0; k < planes.layers.size(); ++k)
-                sidecar["images"].push_back(texture("codes-" + std::to_string(k), planes.layers[k]));
-            sidecar["layout"] =
-                "images: the codes four to an image (R, G, B, A); value = (code - bias) * scale; each network: per "
-                "layer its weights (an output's inputs together), then its biases, ELU between layers, the last "
-                "linear; the light network of the light's 9 hsh terms of order 3 gives channel c's weight on code k "
-                "(output c (codes + 1) + k) and its offset (output c (codes + 1) + codes); the residual network of the "
-                "codes' values and the same terms adds to each channel";
             blend["predictor"] = b.predictorName();
-            blend["learned"] = sidecar;
+            blend["learned"] = learnedSidecar(*learned, texture);
         } else {
             blend["predictor"] = b.predictorName();
             for (std::size_t k = 0; k < references->references().size(); ++k)
