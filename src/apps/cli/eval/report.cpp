@@ -109,44 +109,166 @@ void addByTheta(Report& r) {
     r.byTheta = {std::move(psnr), std::move(l1)};
 }
 
+// A mode's mean error over its predictions inside (0), outside (1) the hull, or all (-1); NaN
+// for none, and for pixel figures where pixels are not compared.
+double meanError(const Variant& v, double ImageErrors::*field, bool pixels, int where = -1) {
+    double sum = 0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < v.errors.size(); ++i)
+        if (where < 0 || static_cast<int>(v.outside[i]) == where) sum += v.errors[i].*field, ++n;
+    const bool pixel = field == &ImageErrors::psnr || field == &ImageErrors::ssim;
+    return n == 0 || (pixel && !pixels) ? std::nan("") : sum / static_cast<double>(n);
+}
+
+nlohmann::json numberOrNull(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+double meanOf(const std::vector<double>& x) {
+    double sum = 0;
+    for (double d : x) sum += d;
+    return x.empty() ? std::nan("") : sum / static_cast<double>(x.size());
+}
+
+// The mean of the finite values; NaN when there are none.
+double meanOfFinite(const std::vector<double>& x) {
+    double sum = 0;
+    std::size_t n = 0;
+    for (double t : x)
+        if (std::isfinite(t)) sum += t, ++n;
+    return n ? sum / static_cast<double>(n) : std::nan("");
+}
+
+// A table cell: a figure a mode has none of (no GL, no bake) is "-", not nan.
+std::string cell(double x, int width, int decimals, const char* unit = "") {
+    char c[64];
+    if (std::isfinite(x))
+        std::snprintf(c, sizeof c, "%*.*f%s", width, decimals, x, unit);
+    else
+        std::snprintf(c, sizeof c, "%*s%*s", width, "-", static_cast<int>(std::string(unit).size()), "");
+    return std::string(c);
+}
+
+// Beside each mean its spread over the predictions: the per-image standard deviation and the
+// 95% interval of the mean (normal approximation, mean +- 1.96 sd / sqrt(n)), so two modes'
+// figures can be told apart from the noise of which images were held out.
+nlohmann::json spreadOf(const Variant& v, bool pixels) {
+    nlohmann::json spread;
+    for (const auto& [key, field] : {std::pair{"l1", &ImageErrors::l1}, std::pair{"emd", &ImageErrors::emd},
+                                     std::pair{"psnr", &ImageErrors::psnr}, std::pair{"ssim", &ImageErrors::ssim}}) {
+        const double m = meanError(v, field, pixels);
+        const std::size_t n = v.errors.size();
+        if (!std::isfinite(m) || n < 2) {
+            spread[key] = nullptr;
+            continue;
+        }
+        double squares = 0;
+        for (const ImageErrors& e : v.errors) squares += (e.*field - m) * (e.*field - m);
+        const double sd = std::sqrt(squares / static_cast<double>(n - 1)),
+                     half = 1.96 * sd / std::sqrt(static_cast<double>(n));
+        spread[key] = {{"sd", numberOrNull(sd)}, {"ci95", {numberOrNull(m - half), numberOrNull(m + half)}}};
+    }
+    return spread;
+}
+
+// A row per held-out prediction of the mode.
+void addRows(nlohmann::json& rows, const Variant& v, const std::map<std::string, const DatasetImage*>& byName,
+             bool pixels) {
+    for (std::size_t i = 0; i < v.errors.size(); ++i) {
+        const DatasetImage& image = *byName.at(v.images[i]);
+        rows.push_back({{"image", v.images[i]},
+                        {"mode", v.name},
+                        {"theta", image.light.thetaDegrees()},
+                        {"phi", image.light.phiDegrees()},
+                        {"view_theta", image.view.thetaDegrees()},
+                        {"view_phi", image.view.phiDegrees()},
+                        {"outside_hull", static_cast<bool>(v.outside[i])},
+                        {"l1", v.errors[i].l1},
+                        {"target_l1", i < v.targetL1.size() ? numberOrNull(v.targetL1[i]) : nlohmann::json()},
+                        {"emd", v.errors[i].emd},
+                        {"psnr", pixels ? nlohmann::json(v.errors[i].psnr) : nlohmann::json(nullptr)},
+                        {"ssim", pixels ? nlohmann::json(v.errors[i].ssim) : nlohmann::json(nullptr)}});
+    }
+}
+
+// The run's head: the dataset, the protocol and the options that made the figures (so a run
+// can be repeated and compared), with empty lists of modes and rows.
+nlohmann::json runJson(const Dataset& dataset, const EvalOptions& o, std::size_t folds, std::size_t tests,
+                       std::size_t maskPixels, const std::string& context) {
+    return {{"dataset", dataset.source},
+            {"images", dataset.images.size()},
+            {"holdout", o.holdout},
+            {"folds", folds},
+            {"held_out", tests},
+            {"mask_pixels", maskPixels},
+            {"context", context},
+            {"modes", nlohmann::json::array()},
+            {"rows", nlohmann::json::array()},
+            {"fixed_view", dataset.fixedView()},
+            {"rectified", dataset.rectified},
+            // What made these figures, so a run can be repeated and compared.
+            {"btflut_version", BTFLUT_VERSION},
+            {"options",
+             {{"holdout", o.holdout},
+              {"modes", o.modes},
+              {"references", o.references},
+              {"regions", o.regions},
+              {"colour", o.colours},
+              {"predictor", o.predictors},
+              {"fill", o.fills},
+              {"target", o.targets},
+              {"mask", o.mask},
+              {"grid", o.grids},
+              {"luts", o.lutSources},
+              {"domain", o.domains},
+              {"match", o.matches},
+              {"budget", o.budgets},
+              {"blended_luts", o.blendedLuts},
+              {"gl", !o.noGl},
+              {"backend", o.backend},
+              {"frames", o.frames}}}};
+}
+
+// Each mode's L1 and EMD inside and outside the measured hull of its bank's domain.
+std::string hullTable(const nlohmann::json& modes) {
+    std::string text = "\ninside and outside the measured hull of each bank's domain: L1, EMD (predictions)\n";
+    for (const nlohmann::json& m : modes) {
+        auto figure = [](const nlohmann::json& x) { return x.is_number() ? x.get<double>() : std::nan(""); };
+        char row[256];
+        std::string cells;
+        for (const char* where : {"inside_hull", "outside_hull"}) {
+            const nlohmann::json& part = m[where];
+            char c[96];
+            if (part["count"] == 0)
+                std::snprintf(c, sizeof c, "  %-8s %7s %7s (0)", where[0] == 'i' ? "inside" : "outside", "-", "-");
+            else
+                std::snprintf(c, sizeof c, "  %-8s %7.4f %7.4f (%zu)", where[0] == 'i' ? "inside" : "outside",
+                              figure(part["l1"]), figure(part["emd"]), part["count"].get<std::size_t>());
+            cells += c;
+        }
+        std::snprintf(row, sizeof row, "%-30s%s\n", m["name"].get<std::string>().c_str(), cells.c_str());
+        text += row;
+    }
+    text += "\n";
+    return text;
+}
+
+// What the table's columns and names mean.
+constexpr const char* kLegend =
+    "L1, EMD: masked 64-bin grey histograms against the photograph's; PSNR (dB, RGB) and SSIM (grey) over the mask;\n"
+    "bytes/tx: data per texel a mode draws from (GPU B/tx: as allocated, padding and mipmaps included); bake s per\n"
+    "bank; relight: CPU, one light change (LUTs and image); frame ms: GL, 4 quads at 1024x1024, the light moving;\n"
+    "GPU-CPU: the largest difference of render --native from relight, in 1/255.\n"
+    "Names: lut K<k> R<r> <colour>: a bank of k references blended per light (K1: the paper's bank), its sample in\n"
+    "r regions matched apart (--regions), colour grey, rgb or lrgb; lut auto: bake's validated choice; lut <basis>: a\n"
+    "light model (ptm, hsh2, rbf9, ...) matched; ptm, hsh, rbf, bln alone: the light model unmatched, as RTI viewers "
+    "draw it.\n";
+
 }  // namespace
 
 Report report(const std::vector<Variant>& variants, const Dataset& dataset, const EvalOptions& o,
               const std::vector<Fold>& folds, std::size_t maskPixels, const std::string& context) {
     std::size_t tests = 0;
     for (const Fold& f : folds) tests += f.test.size();
-    nlohmann::json json{{"dataset", dataset.source},
-                        {"images", dataset.images.size()},
-                        {"holdout", o.holdout},
-                        {"folds", folds.size()},
-                        {"held_out", tests},
-                        {"mask_pixels", maskPixels},
-                        {"context", context},
-                        {"modes", nlohmann::json::array()},
-                        {"rows", nlohmann::json::array()},
-                        {"fixed_view", dataset.fixedView()},
-                        {"rectified", dataset.rectified},
-                        // What made these figures, so a run can be repeated and compared.
-                        {"btflut_version", BTFLUT_VERSION},
-                        {"options",
-                         {{"holdout", o.holdout},
-                          {"modes", o.modes},
-                          {"references", o.references},
-                          {"regions", o.regions},
-                          {"colour", o.colours},
-                          {"predictor", o.predictors},
-                          {"fill", o.fills},
-                          {"target", o.targets},
-                          {"mask", o.mask},
-                          {"grid", o.grids},
-                          {"luts", o.lutSources},
-                          {"domain", o.domains},
-                          {"match", o.matches},
-                          {"budget", o.budgets},
-                          {"blended_luts", o.blendedLuts},
-                          {"gl", !o.noGl},
-                          {"backend", o.backend},
-                          {"frames", o.frames}}}};
+    nlohmann::json json = runJson(dataset, o, folds.size(), tests, maskPixels, context);
     // Pixels compare where every image shares one frame: a fixed camera, or a rectified BTF.
     const bool pixels = dataset.fixedView() || dataset.rectified;
     if (!pixels) json["pixels"] = "not compared: the views' images are not rectified to one frame (PSNR, SSIM null)";
@@ -165,42 +287,20 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                   "SSIM", "bytes/tx", "GPU B/tx", "bake s", "relight", "frame ms", "GPU-CPU");
     text += line;
     for (const Variant& v : variants) {
-        // The mean over the predictions inside (0), outside (1) the hull, or all (-1).
-        auto mean = [&](double ImageErrors::*field, int where = -1) {
-            double sum = 0;
-            std::size_t n = 0;
-            for (std::size_t i = 0; i < v.errors.size(); ++i)
-                if (where < 0 || static_cast<int>(v.outside[i]) == where) sum += v.errors[i].*field, ++n;
-            const bool pixel = field == &ImageErrors::psnr || field == &ImageErrors::ssim;
-            return n == 0 || (pixel && !pixels) ? std::nan("") : sum / static_cast<double>(n);
-        };
-        auto meanOf = [](const std::vector<double>& x) {
-            double sum = 0;
-            for (double d : x) sum += d;
-            return x.empty() ? std::nan("") : sum / static_cast<double>(x.size());
-        };
+        auto mean = [&](double ImageErrors::*field, int where = -1) { return meanError(v, field, pixels, where); };
         const double l1 = mean(&ImageErrors::l1), emd = mean(&ImageErrors::emd), psnr = mean(&ImageErrors::psnr),
                      ssim = mean(&ImageErrors::ssim), bake = meanOf(v.bakeSeconds),
                      relight = v.relightSeconds.empty() ? std::nan("") : median(v.relightSeconds) * 1e3;
         // Banked modes: the folds' mean (lut auto may choose a predictor of another size per fold).
         const double bytes = v.foldBytesPerTexel.empty() ? v.bytesPerTexel : meanOf(v.foldBytesPerTexel),
                      multiplyAdds = v.foldMultiplyAdds.empty() ? v.multiplyAdds : meanOf(v.foldMultiplyAdds);
-        // A figure a mode has none of (no GL, no bake) is "-", not nan.
-        auto cell = [](double x, int width, int decimals, const char* unit = "") {
-            char c[64];
-            if (std::isfinite(x))
-                std::snprintf(c, sizeof c, "%*.*f%s", width, decimals, x, unit);
-            else
-                std::snprintf(c, sizeof c, "%*s%*s", width, "-", static_cast<int>(std::string(unit).size()), "");
-            return std::string(c);
-        };
         char name[64];
         std::snprintf(name, sizeof name, "%-30s", v.name.c_str());
         text += std::string(name) + " " + cell(l1, 7, 4) + " " + cell(emd, 7, 4) + " " + cell(psnr, 7, 2) + " " +
                 cell(ssim, 6, 3) + " " + cell(bytes, 9, 2) + " " + cell(v.gpuBytesPerTexel, 9, 2) + " " +
                 cell(bake, 8, 3) + " " + cell(relight, 6, 2, " ms") + " " + cell(v.frameMs, 8, 2) + " " +
                 cell(v.gpuMaxDiff, 8, 1) + "\n";
-        auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); };
+        auto number = numberOrNull;
         json["modes"].push_back({{"name", v.name},
                                  {"mode", v.modeName()},
                                  {"domain", domainName(v.bankDomain)},
@@ -224,16 +324,11 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         const auto outside = static_cast<std::size_t>(std::count(v.outside.begin(), v.outside.end(), true));
         nlohmann::json& mode = json["modes"].back();
         // The target's own L1 beside the mode's: the histogram estimate's error apart from the match's.
-        double targetSum = 0;
-        std::size_t targets = 0;
-        for (double t : v.targetL1)
-            if (std::isfinite(t)) targetSum += t, ++targets;
-        mode["target_l1"] =
-            targets ? nlohmann::json(targetSum / static_cast<double>(targets)) : nlohmann::json(nullptr);
-        if (targets) {
+        const double target = meanOfFinite(v.targetL1);
+        mode["target_l1"] = numberOrNull(target);
+        if (std::isfinite(target)) {
             char row[160];
-            std::snprintf(row, sizeof row, "  %-30s target %6.4f   relit %6.4f\n", v.name.c_str(),
-                          targetSum / static_cast<double>(targets), l1);
+            std::snprintf(row, sizeof row, "  %-30s target %6.4f   relit %6.4f\n", v.name.c_str(), target, l1);
             targetText += row;
         }
         if (!v.chosen.empty()) {  // lut auto: what bake chose in each fold
@@ -248,44 +343,13 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
             for (std::size_t f = 0; f < v.training.size(); ++f)
                 trainingText += "  " + v.name + " fold " + std::to_string(f + 1) + ": " + v.training[f] + "\n";
         }
-        // Beside each mean its spread over the predictions: the per-image standard deviation and
-        // the 95% interval of the mean (normal approximation, mean +- 1.96 sd / sqrt(n)), so two
-        // modes' figures can be told apart from the noise of which images were held out.
-        for (const auto& [key, field] :
-             {std::pair{"l1", &ImageErrors::l1}, std::pair{"emd", &ImageErrors::emd},
-              std::pair{"psnr", &ImageErrors::psnr}, std::pair{"ssim", &ImageErrors::ssim}}) {
-            const double m = mean(field);
-            const std::size_t n = v.errors.size();
-            if (!std::isfinite(m) || n < 2) {
-                mode["spread"][key] = nullptr;
-                continue;
-            }
-            double squares = 0;
-            for (const ImageErrors& e : v.errors) squares += (e.*field - m) * (e.*field - m);
-            const double sd = std::sqrt(squares / static_cast<double>(n - 1)),
-                         half = 1.96 * sd / std::sqrt(static_cast<double>(n));
-            mode["spread"][key] = {{"sd", number(sd)}, {"ci95", {number(m - half), number(m + half)}}};
-        }
+        mode["spread"] = spreadOf(v, pixels);
         for (int where : {0, 1})
             mode[where ? "outside_hull" : "inside_hull"] = {{"count", where ? outside : v.errors.size() - outside},
                                                             {"l1", number(mean(&ImageErrors::l1, where))},
                                                             {"emd", number(mean(&ImageErrors::emd, where))},
                                                             {"psnr", number(mean(&ImageErrors::psnr, where))}};
-        for (std::size_t i = 0; i < v.errors.size(); ++i) {
-            const DatasetImage& image = *byName.at(v.images[i]);
-            json["rows"].push_back({{"image", v.images[i]},
-                                    {"mode", v.name},
-                                    {"theta", image.light.thetaDegrees()},
-                                    {"phi", image.light.phiDegrees()},
-                                    {"view_theta", image.view.thetaDegrees()},
-                                    {"view_phi", image.view.phiDegrees()},
-                                    {"outside_hull", static_cast<bool>(v.outside[i])},
-                                    {"l1", v.errors[i].l1},
-                                    {"target_l1", i < v.targetL1.size() ? number(v.targetL1[i]) : nlohmann::json()},
-                                    {"emd", v.errors[i].emd},
-                                    {"psnr", pixels ? nlohmann::json(v.errors[i].psnr) : nlohmann::json(nullptr)},
-                                    {"ssim", pixels ? nlohmann::json(v.errors[i].ssim) : nlohmann::json(nullptr)}});
-        }
+        addRows(json["rows"], v, byName, pixels);
     }
     if (!targetText.empty())
         text +=
@@ -311,41 +375,8 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         text = "note: " + note + "\n" + text;
         json["note"] = note;
     }
-    if (anyOutside || !dataset.fixedView()) {
-        text += "\ninside and outside the measured hull of each bank's domain: L1, EMD (predictions)\n";
-        for (const nlohmann::json& m : json["modes"]) {
-            auto figure = [](const nlohmann::json& x) { return x.is_number() ? x.get<double>() : std::nan(""); };
-            char row[256];
-            std::string cells;
-            for (const char* where : {"inside_hull", "outside_hull"}) {
-                const nlohmann::json& part = m[where];
-                char c[96];
-                if (part["count"] == 0)
-                    std::snprintf(c, sizeof c, "  %-8s %7s %7s (0)", where[0] == 'i' ? "inside" : "outside", "-", "-");
-                else
-                    std::snprintf(c, sizeof c, "  %-8s %7.4f %7.4f (%zu)", where[0] == 'i' ? "inside" : "outside",
-                                  figure(part["l1"]), figure(part["emd"]), part["count"].get<std::size_t>());
-                cells += c;
-            }
-            std::snprintf(row, sizeof row, "%-30s%s\n", m["name"].get<std::string>().c_str(), cells.c_str());
-            text += row;
-        }
-        text += "\n";
-    }
-    text +=
-        "L1, EMD: masked 64-bin grey histograms against the photograph's; PSNR (dB, RGB) and SSIM (grey) over the "
-        "mask;\n"
-        "bytes/tx: data per texel a mode draws from (GPU B/tx: as allocated, padding and mipmaps included); bake s "
-        "per\n"
-        "bank; relight: CPU, one light change (LUTs and image); frame ms: GL, 4 quads at 1024x1024, the light moving;\n"
-        "GPU-CPU: the largest difference of render --native from relight, in 1/255.\n"
-        "Names: lut K<k> R<r> <colour>: a bank of k references blended per light (K1: the paper's bank), its sample "
-        "in\n"
-        "r regions matched apart (--regions), colour grey, rgb or lrgb; lut auto: bake's validated choice; lut "
-        "<basis>: "
-        "a\n"
-        "light model (ptm, hsh2, rbf9, ...) matched; ptm, hsh, rbf, bln alone: the light model unmatched, as RTI "
-        "viewers draw it.\n";
+    if (anyOutside || !dataset.fixedView()) text += hullTable(json["modes"]);
+    text += kLegend;
     if (!context.empty()) text += "GL: " + context + "\n";
     Report r{text, json, {}, {}};
     addTradeoff(r);

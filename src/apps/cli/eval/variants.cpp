@@ -51,12 +51,10 @@ Result<std::vector<std::string>> parseChoices(const std::string& text, const std
 
 }  // namespace
 
-Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
-    Result<std::vector<int>> ks = parseList(o.references, "references", 1, 255),
-                             rs = parseList(o.regions, "regions", 1, 255), gs = parseList(o.grids, "grid", 2, 257);
-    if (!ks) return Error{ks.error()};
-    if (!rs) return Error{rs.error()};
-    if (!gs) return Error{gs.error()};
+// The variants of --modes: each baseline, and each lut one per predictor, colour, K
+// references and R regions asked.
+Result<std::vector<Variant>> modeVariants(const EvalOptions& o, const std::vector<int>& ks,
+                                          const std::vector<int>& rs) {
     std::vector<Variant> variants;
     std::vector<std::string> modes = split(o.modes);
     if (modes.empty()) return Error{"--modes is empty"};
@@ -109,7 +107,7 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             for (const std::string& colourText : split(o.colours)) {
                 if (colourText != "grey" && colourText != "rgb")
                     continue;  // a model's colour is its own or matched per channel
-                for (int r : *rs)
+                for (int r : rs)
                     variants.push_back({"lut " + predictor + " R" + std::to_string(r) + " " + colourText,
                                         RenderMode::Lut, predictor, 1, r,
                                         colourText == "rgb" ? ColourMode::Rgb : ColourMode::Grey});
@@ -123,8 +121,8 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             const ColourMode colour = colourText == "rgb"    ? ColourMode::Rgb
                                       : colourText == "lrgb" ? ColourMode::Lrgb
                                                              : ColourMode::Grey;
-            for (int k : *ks)
-                for (int r : *rs) {
+            for (int k : ks)
+                for (int r : rs) {
                     Variant v{"lut K" + std::to_string(k) + " R" + std::to_string(r) + " " + colourText,
                               RenderMode::Lut,
                               "references",
@@ -140,6 +138,86 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
                 }
         }
     }
+    return variants;
+}
+
+// The sweeps of --match and --budget over `variants`, and its training time.
+Status sweepMatchesAndBudgets(const EvalOptions& o, std::vector<Variant>& variants) {
+    // The sweeps: lut variants with a predictor at each match strength, `lut auto` at each budget.
+    std::vector<float> strengths;
+    for (const std::string& item : split(o.matches)) {
+        char* end = nullptr;
+        const float s = std::strtof(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !(s >= 0 && s <= 1))
+            return Error{"--match '" + o.matches + "': expected a comma-separated list of strengths from 0 to 1"};
+        strengths.push_back(s);
+    }
+    // --budget: bytes per texel (each a lut auto of its own) and at most one training time.
+    std::vector<int> budgets;
+    double trainingSeconds = 0;
+    for (const std::string& item : split(o.budgets)) {
+        const bool time = !item.empty() && (item.back() == 's' || item.back() == 'm');
+        const std::string number = time ? item.substr(0, item.size() - 1) : item;
+        char* end = nullptr;
+        const double value = std::strtod(number.c_str(), &end);
+        if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) || value <= 0 ||
+            (time && (trainingSeconds > 0 || value > 1e6)) || (!time && (value != std::floor(value) || value > 255)))
+            return Error{"--budget '" + o.budgets +
+                         "': expected bytes per texel from 1 to 255 and at most one training time (90s, 5m), "
+                         "a comma-separated list"};
+        if (time)
+            trainingSeconds = item.back() == 'm' ? 60 * value : value;
+        else
+            budgets.push_back(static_cast<int>(value));
+    }
+    for (Variant& v : variants) v.trainingSeconds = trainingSeconds;
+    auto sweep = [&](const auto& values, auto applies, auto set) {
+        if (values.empty()) return;
+        std::vector<Variant> all;
+        for (const Variant& v : variants) {
+            if (!applies(v)) {
+                all.push_back(v);
+                continue;
+            }
+            for (const auto& value : values) {
+                Variant r = v;
+                set(r, value);
+                all.push_back(r);
+            }
+        }
+        variants = std::move(all);
+    };
+    sweep(
+        strengths,
+        [](const Variant& v) {
+            return v.mode == RenderMode::Lut &&
+                   (v.predictor == "auto" ||
+                    bakePredicts(v.references, v.regions, false, v.colour, v.predictor != "references"));
+        },
+        [](Variant& r, float s) {
+            char text[32];
+            std::snprintf(text, sizeof text, " match %g", static_cast<double>(s));
+            r.match = s;
+            r.name += text;
+        });
+    sweep(
+        budgets, [](const Variant& v) { return v.mode == RenderMode::Lut && v.predictor == "auto"; },
+        [](Variant& r, int b) {
+            r.budget = b;
+            r.name += " budget " + std::to_string(b);
+        });
+    return success();
+}
+
+Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
+    Result<std::vector<int>> ks = parseList(o.references, "references", 1, 255),
+                             rs = parseList(o.regions, "regions", 1, 255), gs = parseList(o.grids, "grid", 2, 257);
+    if (!ks) return Error{ks.error()};
+    if (!rs) return Error{rs.error()};
+    if (!gs) return Error{gs.error()};
+    Result<std::vector<Variant>> named = modeVariants(o, *ks, *rs);
+    if (!named) return Error{named.error()};
+    std::vector<Variant> variants = std::move(*named);
     // Each lut bank clamped, filled from the model, or both.
     Result<std::vector<std::string>> fillChoices = parseChoices(o.fills, "fill", {"clamp", "model"});
     if (!fillChoices) return Error{fillChoices.error()};
@@ -211,69 +289,7 @@ Result<std::vector<Variant>> variantsOf(const EvalOptions& o) {
             all.push_back(r);
         }
     variants = std::move(all);
-    // The sweeps: lut variants with a predictor at each match strength, `lut auto` at each budget.
-    std::vector<float> strengths;
-    for (const std::string& item : split(o.matches)) {
-        char* end = nullptr;
-        const float s = std::strtof(item.c_str(), &end);
-        if (item.empty() || *end != '\0' || !(s >= 0 && s <= 1))
-            return Error{"--match '" + o.matches + "': expected a comma-separated list of strengths from 0 to 1"};
-        strengths.push_back(s);
-    }
-    // --budget: bytes per texel (each a lut auto of its own) and at most one training time.
-    std::vector<int> budgets;
-    double trainingSeconds = 0;
-    for (const std::string& item : split(o.budgets)) {
-        const bool time = !item.empty() && (item.back() == 's' || item.back() == 'm');
-        const std::string number = time ? item.substr(0, item.size() - 1) : item;
-        char* end = nullptr;
-        const double value = std::strtod(number.c_str(), &end);
-        if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) || value <= 0 ||
-            (time && (trainingSeconds > 0 || value > 1e6)) || (!time && (value != std::floor(value) || value > 255)))
-            return Error{"--budget '" + o.budgets +
-                         "': expected bytes per texel from 1 to 255 and at most one training time (90s, 5m), "
-                         "a comma-separated list"};
-        if (time)
-            trainingSeconds = item.back() == 'm' ? 60 * value : value;
-        else
-            budgets.push_back(static_cast<int>(value));
-    }
-    for (Variant& v : variants) v.trainingSeconds = trainingSeconds;
-    auto sweep = [&](const auto& values, auto applies, auto set) {
-        if (values.empty()) return;
-        all.clear();
-        for (const Variant& v : variants) {
-            if (!applies(v)) {
-                all.push_back(v);
-                continue;
-            }
-            for (const auto& value : values) {
-                Variant r = v;
-                set(r, value);
-                all.push_back(r);
-            }
-        }
-        variants = std::move(all);
-    };
-    sweep(
-        strengths,
-        [](const Variant& v) {
-            return v.mode == RenderMode::Lut &&
-                   (v.predictor == "auto" ||
-                    bakePredicts(v.references, v.regions, false, v.colour, v.predictor != "references"));
-        },
-        [](Variant& r, float s) {
-            char text[32];
-            std::snprintf(text, sizeof text, " match %g", static_cast<double>(s));
-            r.match = s;
-            r.name += text;
-        });
-    sweep(
-        budgets, [](const Variant& v) { return v.mode == RenderMode::Lut && v.predictor == "auto"; },
-        [](Variant& r, int b) {
-            r.budget = b;
-            r.name += " budget " + std::to_string(b);
-        });
+    if (Status swept = sweepMatchesAndBudgets(o, variants); !swept) return Error{swept.error()};
     // Lut variants first, then the baselines in the order asked.
     std::stable_partition(variants.begin(), variants.end(), [](const Variant& v) { return v.mode == RenderMode::Lut; });
     return variants;
