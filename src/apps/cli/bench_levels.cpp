@@ -67,6 +67,54 @@ std::vector<double> boxFiltered(const std::vector<double>& image, int width, int
     return out;
 }
 
+// A relight timed: `draw` relights, `ms` its wall times.
+struct TimedRow {
+    std::string name;
+    std::function<Status()> draw;
+    std::vector<double> ms;
+};
+
+// Each row's wall ms per relight, `repeat` rounds of `frames`, interleaved so that drift hits
+// every row alike.
+Status timeRows(std::vector<TimedRow>& rows, const GlBenchOptions& timing) {
+    for (int r = 0; r < timing.repeat; ++r)
+        for (TimedRow& row : rows) {
+            gl.Finish();
+            const auto start = std::chrono::steady_clock::now();
+            for (int f = 0; f < timing.frames; ++f)
+                if (Status s = row.draw(); !s) return s;
+            gl.Finish();
+            row.ms.push_back(
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+                timing.frames);
+        }
+    return success();
+}
+
+// The figures of `out` (runBenchLevels' JSON) as text.
+void printLevels(const BenchLevelsOptions& o, const nlohmann::json& out, std::size_t lights) {
+    const int m = out["level"], width = out["width"], height = out["height"];
+    const double wholeMs = out["ms_whole"], levelMs = out["ms_level"], regionMs = out["ms_region"],
+                 firstMs = out["ms_first_level_luts"];
+    const std::size_t texels = out["texels_whole"], levelTexels = out["texels_level"];
+    const unsigned long long regionTexels = out["texels_region"];
+    const double matchedSum = out["emd_level_luts_mean"], matchedMax = out["emd_level_luts_max"],
+                 plainSum = out["emd_bank_luts_mean"], plainMax = out["emd_bank_luts_max"];
+    const std::string predictor = out["predictor"], context = out["context"];
+    std::printf("levels of %s (%s, %dx%d), %s; wall ms, median of %d rounds of %d relights\n", o.bank.c_str(),
+                predictor.c_str(), width, height, context.c_str(), o.timing.repeat, o.timing.frames);
+    std::printf("  relit whole, then mipmapped:      %8.3f ms (%zu texels)\n", wholeMs, texels);
+    std::printf("  level %d relit alone, mipmapped:   %8.3f ms (%zu texels): %.1f times faster\n", m, levelMs,
+                levelTexels, wholeMs / levelMs);
+    std::printf("  its middle 1/16 relit, mipmapped: %8.3f ms (%llu texels): %.1f times faster\n", regionMs,
+                regionTexels, wholeMs / regionMs);
+    std::printf("  a light's first level-%d LUTs: %.1f ms on the CPU (its grid nodes', made once each)\n", m, firstMs);
+    std::printf(
+        "  level %d's grey histogram against the whole relight's level %d (EMD, mean / max of %zu lights):\n"
+        "    with the level's LUTs %.4f / %.4f; with the bank's LUTs %.4f / %.4f\n",
+        m, m, lights, matchedSum, matchedMax, plainSum, plainMax);
+}
+
 Status runBenchLevels(const BenchLevelsOptions& o) {
     Result<GlBackend> backend = parseGlBackend(o.timing.backend);
     if (!backend) return Error{backend.error()};
@@ -142,26 +190,11 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
         TexelRegion::span(width * 3 / 8, width * 5 / 8, height * 3 / 8, height * 5 / 8, width, height);
     RelightFrame levelFrame = frame;
     levelFrame.luts = levels.luts(lights[2], m);
-    struct TimedRow {
-        std::string name;
-        std::function<Status()> draw;
-        std::vector<double> ms;
-    };
     std::vector<TimedRow> rows{
         {"whole, mipmapped", [&] { return relight(whole.id(), frame, 0); }, {}},
         {"level " + std::to_string(m) + " alone, mipmapped", [&] { return relight(level.id(), levelFrame, m); }, {}},
         {"the middle 1/16, mipmapped", [&] { return relight(plain.id(), frame, 0, middle); }, {}}};
-    for (int r = 0; r < o.timing.repeat; ++r)
-        for (TimedRow& row : rows) {  // interleaved, so drift hits both alike
-            gl.Finish();
-            const auto start = std::chrono::steady_clock::now();
-            for (int f = 0; f < o.timing.frames; ++f)
-                if (Status s = row.draw(); !s) return s;
-            gl.Finish();
-            row.ms.push_back(
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
-                o.timing.frames);
-        }
+    if (Status timed = timeRows(rows, o.timing); !timed) return timed;
     if (GLenum error = gl.GetError(); error != GL_NO_ERROR)
         return Error{"OpenGL error " + std::to_string(error) + " in bench levels"};
     const double wholeMs = median(rows[0].ms), levelMs = median(rows[1].ms), regionMs = median(rows[2].ms);
@@ -171,6 +204,8 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
                        {"bank", o.bank},
                        {"predictor", bank.predictorName()},
                        {"level", m},
+                       {"width", width},
+                       {"height", height},
                        {"texels_whole", texels},
                        {"texels_level", levelTexels},
                        {"ms_whole", wholeMs},
@@ -189,19 +224,7 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
         std::cout << jsonText(out);
         return success();
     }
-    std::printf("levels of %s (%s, %dx%d), %s; wall ms, median of %d rounds of %d relights\n", o.bank.c_str(),
-                bank.predictorName().c_str(), width, height, (*context)->description().c_str(), o.timing.repeat,
-                o.timing.frames);
-    std::printf("  relit whole, then mipmapped:      %8.3f ms (%zu texels)\n", wholeMs, texels);
-    std::printf("  level %d relit alone, mipmapped:   %8.3f ms (%zu texels): %.1f times faster\n", m, levelMs,
-                levelTexels, wholeMs / levelMs);
-    std::printf("  its middle 1/16 relit, mipmapped: %8.3f ms (%llu texels): %.1f times faster\n", regionMs,
-                static_cast<unsigned long long>(middle.texels()), wholeMs / regionMs);
-    std::printf("  a light's first level-%d LUTs: %.1f ms on the CPU (its grid nodes', made once each)\n", m, firstMs);
-    std::printf(
-        "  level %d's grey histogram against the whole relight's level %d (EMD, mean / max of %zu lights):\n"
-        "    with the level's LUTs %.4f / %.4f; with the bank's LUTs %.4f / %.4f\n",
-        m, m, lights.size(), matchedSum, matchedMax, plainSum, plainMax);
+    printLevels(o, out, lights.size());
     return success();
 }
 
