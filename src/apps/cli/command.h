@@ -35,6 +35,7 @@ void addBenchCommand(CLI::App& root, Commands& commands);
 /// `bench decoder` (bench_decoder.cpp) and `bench levels` (bench_levels.cpp), under `bench`.
 void addBenchDecoderCommand(CLI::App& bench, Commands& commands);
 void addBenchLevelsCommand(CLI::App& bench, Commands& commands);
+void addBenchRenderCommand(CLI::App& bench, Commands& commands);
 /// What the GL benches beside `bench render` take alike: --frames (`what` each is) per row and
 /// round, --repeat rounds, --backend, --json.
 struct GlBenchOptions {
