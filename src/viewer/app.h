@@ -84,6 +84,10 @@ private:
     }
     void updatePlots();
     bool panel(int width, int height);
+    void filePanel();
+    bool lightPanel();
+    bool viewPanel(int width, int height);
+    void materialPanel();
     bool sceneInput(int width, int height);
     Status saveScriptedFrame(int frame, int width, int height);
     Vec3 lightVector() const { return toVector(m_light); }

@@ -119,146 +119,140 @@ bool Viewer::modeCombo(const char* label, RenderMode& mode) const {
     return changed;
 }
 
-// The ImGui panel; returns true when the scene must be drawn again.
-bool Viewer::panel(int width, int height) {
-    bool changed = false;
-    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(width) - kPanelWidth, 0));
-    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(height)));
-    ImGui::Begin("btflut", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
-    ImGui::Text("%.1f fps (%.2f ms/frame), scene %.2f ms", static_cast<double>(ImGui::GetIO().Framerate),
-                1000.0 / static_cast<double>(std::max(ImGui::GetIO().Framerate, 1e-3f)), m_sceneMs);
+// "File": the scene's file, a path to open, the recent ones.
+void Viewer::filePanel() {
+    if (!ImGui::CollapsingHeader("File")) return;
+    ImGui::TextWrapped("%s", m_input.scene.file.c_str());
+    ImGui::SetNextItemWidth(kPanelWidth - 80);
+    const bool entered =
+        ImGui::InputTextWithHint("##path", "bank, dataset or scene; or drop a file", m_pathField.data(),
+                                 m_pathField.size(), ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::SameLine();
+    if ((ImGui::Button("Open") || entered) && m_pathField[0] != '\0') requestOpen(m_pathField.data());
+    for (const std::string& recent : m_recent) {
+        std::error_code ec;
+        const bool present = fs::exists(recent, ec);
+        const std::string label = present ? recent : recent + " (missing)";
+        if (ImGui::Selectable(label.c_str(), recent == m_input.scene.file))
+            present ? requestOpen(recent) : showMessage(recent + ": cannot open (no such file or folder any more)");
+    }
+}
 
-    if (!m_message.empty()) {
-        ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 120, 100, 255));
-        ImGui::TextWrapped("%s", m_message.c_str());
-        ImGui::PopStyleColor();
-        if (ImGui::SmallButton("dismiss")) m_message.clear();
+// "Light": the hemisphere and the light's angles; true when the light moved.
+bool Viewer::lightPanel() {
+    if (!ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) return false;
+    bool changed = false;
+    const LutBank* shown = shownBank();
+    changed |=
+        hemisphereWidget("##hemisphere", m_light, shown ? shown->layers[0].nodes : std::vector<LightNode>{}, 200);
+    if (!m_input.singleQuad)
+        ImGui::TextDisabled("%s", m_hovered.empty() ? "dots: quad 0's material; hover a quad for its own"
+                                                    : ("dots: '" + m_hovered + "', under the cursor").c_str());
+    float theta = static_cast<float>(m_light.thetaDegrees()), phi = static_cast<float>(m_light.phiDegrees());
+    bool edited = ImGui::InputFloat("theta", &theta, 1, 5, "%.1f");
+    edited |= ImGui::InputFloat("phi", &phi, 1, 15, "%.1f");
+    if (edited && std::isfinite(theta) && std::isfinite(phi)) {
+        m_light = Direction::fromDegrees(std::clamp(static_cast<double>(theta), 0.0, 89.0),
+                                         std::fmod(std::fmod(static_cast<double>(phi), 360.0) + 360.0, 360.0));
+        changed = true;
     }
-    if (ImGui::CollapsingHeader("File")) {
-        ImGui::TextWrapped("%s", m_input.scene.file.c_str());
-        ImGui::SetNextItemWidth(kPanelWidth - 80);
-        const bool entered =
-            ImGui::InputTextWithHint("##path", "bank, dataset or scene; or drop a file", m_pathField.data(),
-                                     m_pathField.size(), ImGuiInputTextFlags_EnterReturnsTrue);
+    ImGui::TextDisabled("drag the disk, or shift-drag the scene; F1: keys");
+    return changed;
+}
+
+// "View": panes, projection, compare, tone, geometry, reset and screenshot; true when the
+// scene must be drawn again.
+bool Viewer::viewPanel(int width, int height) {
+    if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) return false;
+    bool changed = false;
+    ImGui::TextUnformatted("Panes");
+    for (int n = 1; n <= 3; ++n) {
         ImGui::SameLine();
-        if ((ImGui::Button("Open") || entered) && m_pathField[0] != '\0') requestOpen(m_pathField.data());
-        for (const std::string& recent : m_recent) {
-            std::error_code ec;
-            const bool present = fs::exists(recent, ec);
-            const std::string label = present ? recent : recent + " (missing)";
-            if (ImGui::Selectable(label.c_str(), recent == m_input.scene.file))
-                present ? requestOpen(recent) : showMessage(recent + ": cannot open (no such file or folder any more)");
-        }
-    }
-    if (ImGui::CollapsingHeader("Light", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const LutBank* shown = shownBank();
-        changed |=
-            hemisphereWidget("##hemisphere", m_light, shown ? shown->layers[0].nodes : std::vector<LightNode>{}, 200);
-        if (!m_input.singleQuad)
-            ImGui::TextDisabled("%s", m_hovered.empty() ? "dots: quad 0's material; hover a quad for its own"
-                                                        : ("dots: '" + m_hovered + "', under the cursor").c_str());
-        float theta = static_cast<float>(m_light.thetaDegrees()), phi = static_cast<float>(m_light.phiDegrees());
-        bool edited = ImGui::InputFloat("theta", &theta, 1, 5, "%.1f");
-        edited |= ImGui::InputFloat("phi", &phi, 1, 15, "%.1f");
-        if (edited && std::isfinite(theta) && std::isfinite(phi)) {
-            m_light = Direction::fromDegrees(std::clamp(static_cast<double>(theta), 0.0, 89.0),
-                                             std::fmod(std::fmod(static_cast<double>(phi), 360.0) + 360.0, 360.0));
-            changed = true;
-        }
-        ImGui::TextDisabled("drag the disk, or shift-drag the scene; F1: keys");
-    }
-    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::TextUnformatted("Panes");
-        for (int n = 1; n <= 3; ++n) {
-            ImGui::SameLine();
-            const std::string label = std::to_string(n) + "##split";
-            if (ImGui::RadioButton(label.c_str(), m_split == n)) {
-                m_split = n;
-                if (n > 1) m_paneModes = splitModes();
-                resetCamera(width, height);
-                changed = true;
-            }
-        }
-        for (int p = 0; p < m_split; ++p)
-            changed |= modeCombo(("mode##pane" + std::to_string(p)).c_str(), m_paneModes[static_cast<std::size_t>(p)]);
-        if (flatOffered()) {
-            ImGui::TextUnformatted("Projection");
-            ImGui::SameLine();
-            if (ImGui::RadioButton("2D (V)", m_flat) && !m_flat)
-                m_flat = true, resetCamera(width, height), changed = true;
-            ImGui::SameLine();
-            if (ImGui::RadioButton("3D", !m_flat) && m_flat) m_flat = false, resetCamera(width, height), changed = true;
-            if (m_flat) {
-                ImGui::SameLine();
-                if (ImGui::SmallButton("fit (F)")) fitFlat(width, height), changed = true;
-                ImGui::SameLine();
-                if (ImGui::SmallButton("1:1 (1)")) m_flatView.zoom = 1, changed = true;
-                ImGui::SameLine();
-                ImGui::Text("%.0f%%", 100 * m_flatView.zoom);
-            }
-        }
-        int compare = static_cast<int>(m_present.compare);
-        ImGui::TextUnformatted("Compare (C)");
-        for (const auto& [value, name] : {std::pair{0, "off"}, {1, "wipe"}, {2, "lens"}}) {
-            ImGui::SameLine();
-            if (ImGui::RadioButton((std::string(name) + "##compare").c_str(), compare == value)) {
-                m_present.compare = static_cast<PresentSettings::Compare>(value);
-                changed = true;
-            }
-        }
-        if (m_present.compare != PresentSettings::Compare::Off) {
-            if (m_split > 1) ImGui::TextDisabled("compares in every pane: each pane's mode against B");
-            changed |= modeCombo("B##compareMode", m_compareMode);
-        }
-        ImGui::SliderFloat("exposure", &m_present.exposure, -4, 4, "%+.1f stops");  // the present pass only
-        ImGui::SliderFloat("gamma", &m_present.gamma, 0.5f, 3, "%.2f");
-        ImGui::SameLine();
-        if (ImGui::SmallButton("reset##tone")) m_present.exposure = 0, m_present.gamma = 1;
-        if (m_input.singleQuad) {
-            ImGui::TextUnformatted("Geometry (G)");
-            for (const auto& [value, name] :
-                 {std::pair{Geometry::Quad, "quad"}, {Geometry::Sphere, "sphere"}, {Geometry::Cylinder, "cylinder"}}) {
-                ImGui::SameLine();
-                if (ImGui::RadioButton(name, m_geometry == value) && m_geometry != value)
-                    changed |= setGeometry(value, width, height);
-            }
-            if (curved()) {
-                bool point = m_pointLight > 0;
-                if (ImGui::Checkbox("point light (P)", &point)) m_pointLight = point ? 3 : 0, changed = true;
-                if (point) {
-                    float distance = static_cast<float>(m_pointLight);
-                    ImGui::SameLine();
-                    ImGui::SetNextItemWidth(140);
-                    if (ImGui::SliderFloat("distance", &distance, 1.2f, 10, "%.1f"))
-                        m_pointLight = distance, changed = true;
-                }
-                ImGui::TextDisabled("mode lut, per fragment: each point's own light and view");
-                if (!m_shapes->gridNote().empty()) {
-                    ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 200, 90, 255));
-                    ImGui::TextWrapped("%s", m_shapes->gridNote().c_str());
-                    ImGui::PopStyleColor();
-                }
-            }
-        }
-        changed |= ImGui::Checkbox("interpolate LUTs between measured directions", &m_interpolate);
-        if (ImGui::Button("Reset light and camera (R)")) {
-            m_light = Direction::fromDegrees(45, 30);
+        const std::string label = std::to_string(n) + "##split";
+        if (ImGui::RadioButton(label.c_str(), m_split == n)) {
+            m_split = n;
+            if (n > 1) m_paneModes = splitModes();
             resetCamera(width, height);
             changed = true;
         }
+    }
+    for (int p = 0; p < m_split; ++p)
+        changed |= modeCombo(("mode##pane" + std::to_string(p)).c_str(), m_paneModes[static_cast<std::size_t>(p)]);
+    if (flatOffered()) {
+        ImGui::TextUnformatted("Projection");
         ImGui::SameLine();
-        if (ImGui::Button("Screenshot (S)")) {
-            m_status = "screenshot: next frame";
-            m_screenshotRequested = true;
+        if (ImGui::RadioButton("2D (V)", m_flat) && !m_flat) m_flat = true, resetCamera(width, height), changed = true;
+        ImGui::SameLine();
+        if (ImGui::RadioButton("3D", !m_flat) && m_flat) m_flat = false, resetCamera(width, height), changed = true;
+        if (m_flat) {
+            ImGui::SameLine();
+            if (ImGui::SmallButton("fit (F)")) fitFlat(width, height), changed = true;
+            ImGui::SameLine();
+            if (ImGui::SmallButton("1:1 (1)")) m_flatView.zoom = 1, changed = true;
+            ImGui::SameLine();
+            ImGui::Text("%.0f%%", 100 * m_flatView.zoom);
         }
-        if (!m_status.empty()) ImGui::TextWrapped("%s", m_status.c_str());
     }
-    if (m_bank && !curved() && ImGui::CollapsingHeader("Histogram and LUT", ImGuiTreeNodeFlags_DefaultOpen)) {
-        ImGui::TextDisabled("bars: rendered material; line: the bank's target");
-        histogramPlot("##histogram", m_renderedHistogram, m_targetHistogram, kPanelWidth - 20, 90);
-        ImGui::PlotLines("##lut", m_lutCurve.data(), static_cast<int>(m_lutCurve.size()), 0, "LUT at the quad centre",
-                         0, 1, ImVec2(kPanelWidth - 20, 90));
+    int compare = static_cast<int>(m_present.compare);
+    ImGui::TextUnformatted("Compare (C)");
+    for (const auto& [value, name] : {std::pair{0, "off"}, {1, "wipe"}, {2, "lens"}}) {
+        ImGui::SameLine();
+        if (ImGui::RadioButton((std::string(name) + "##compare").c_str(), compare == value)) {
+            m_present.compare = static_cast<PresentSettings::Compare>(value);
+            changed = true;
+        }
     }
+    if (m_present.compare != PresentSettings::Compare::Off) {
+        if (m_split > 1) ImGui::TextDisabled("compares in every pane: each pane's mode against B");
+        changed |= modeCombo("B##compareMode", m_compareMode);
+    }
+    ImGui::SliderFloat("exposure", &m_present.exposure, -4, 4, "%+.1f stops");  // the present pass only
+    ImGui::SliderFloat("gamma", &m_present.gamma, 0.5f, 3, "%.2f");
+    ImGui::SameLine();
+    if (ImGui::SmallButton("reset##tone")) m_present.exposure = 0, m_present.gamma = 1;
+    if (m_input.singleQuad) {
+        ImGui::TextUnformatted("Geometry (G)");
+        for (const auto& [value, name] :
+             {std::pair{Geometry::Quad, "quad"}, {Geometry::Sphere, "sphere"}, {Geometry::Cylinder, "cylinder"}}) {
+            ImGui::SameLine();
+            if (ImGui::RadioButton(name, m_geometry == value) && m_geometry != value)
+                changed |= setGeometry(value, width, height);
+        }
+        if (curved()) {
+            bool point = m_pointLight > 0;
+            if (ImGui::Checkbox("point light (P)", &point)) m_pointLight = point ? 3 : 0, changed = true;
+            if (point) {
+                float distance = static_cast<float>(m_pointLight);
+                ImGui::SameLine();
+                ImGui::SetNextItemWidth(140);
+                if (ImGui::SliderFloat("distance", &distance, 1.2f, 10, "%.1f"))
+                    m_pointLight = distance, changed = true;
+            }
+            ImGui::TextDisabled("mode lut, per fragment: each point's own light and view");
+            if (!m_shapes->gridNote().empty()) {
+                ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 200, 90, 255));
+                ImGui::TextWrapped("%s", m_shapes->gridNote().c_str());
+                ImGui::PopStyleColor();
+            }
+        }
+    }
+    changed |= ImGui::Checkbox("interpolate LUTs between measured directions", &m_interpolate);
+    if (ImGui::Button("Reset light and camera (R)")) {
+        m_light = Direction::fromDegrees(45, 30);
+        resetCamera(width, height);
+        changed = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Screenshot (S)")) {
+        m_status = "screenshot: next frame";
+        m_screenshotRequested = true;
+    }
+    if (!m_status.empty()) ImGui::TextWrapped("%s", m_status.c_str());
+    return changed;
+}
+
+// "Material": the bank shown (or a scene's material under the cursor), its lights and hull.
+void Viewer::materialPanel() {
     if (const LutBank* bank = shownBank();
         bank && bank != m_bank && ImGui::CollapsingHeader("Material", ImGuiTreeNodeFlags_DefaultOpen)) {
         // A scene's material under the cursor: what it is made of.
@@ -305,6 +299,33 @@ bool Viewer::panel(int width, int height) {
                 ImGui::BulletText("%s = %s", key.c_str(), jsonText(value, -1).c_str());
         }
     }
+}
+
+// The ImGui panel; returns true when the scene must be drawn again.
+bool Viewer::panel(int width, int height) {
+    bool changed = false;
+    ImGui::SetNextWindowPos(ImVec2(static_cast<float>(width) - kPanelWidth, 0));
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, static_cast<float>(height)));
+    ImGui::Begin("btflut", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::Text("%.1f fps (%.2f ms/frame), scene %.2f ms", static_cast<double>(ImGui::GetIO().Framerate),
+                1000.0 / static_cast<double>(std::max(ImGui::GetIO().Framerate, 1e-3f)), m_sceneMs);
+
+    if (!m_message.empty()) {
+        ImGui::PushStyleColor(ImGuiCol_Text, IM_COL32(255, 120, 100, 255));
+        ImGui::TextWrapped("%s", m_message.c_str());
+        ImGui::PopStyleColor();
+        if (ImGui::SmallButton("dismiss")) m_message.clear();
+    }
+    filePanel();
+    changed |= lightPanel();
+    changed |= viewPanel(width, height);
+    if (m_bank && !curved() && ImGui::CollapsingHeader("Histogram and LUT", ImGuiTreeNodeFlags_DefaultOpen)) {
+        ImGui::TextDisabled("bars: rendered material; line: the bank's target");
+        histogramPlot("##histogram", m_renderedHistogram, m_targetHistogram, kPanelWidth - 20, 90);
+        ImGui::PlotLines("##lut", m_lutCurve.data(), static_cast<int>(m_lutCurve.size()), 0, "LUT at the quad centre",
+                         0, 1, ImVec2(kPanelWidth - 20, 90));
+    }
+    materialPanel();
     ImGui::End();
     return changed;
 }
