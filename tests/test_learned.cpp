@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "cli/eval/neural_rti.h"
 #include "core/bake/auto_bake.h"
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
@@ -15,7 +16,6 @@
 #include "core/predict/learned_decoder.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/learned_training.h"
-#include "core/predict/neural_rti.h"
 #include "core/relight/engine_material.h"
 #include "core/relight/relighter.h"
 #include "helpers.h"

@@ -1,7 +1,7 @@
 #pragma once
-// What training a learned model (learned_fit.cpp) and the published NeuralRTI baseline
-// (neural_rti.h) share: the texels' samples, the batches, the loss, the rate's schedule, the
-// codes of every texel and their 8-bit quantisation.
+// What training a learned model (learned_fit.cpp) and eval's published NeuralRTI baseline
+// (src/apps/cli/eval/neural_rti.h) share: the texels' samples, the batches, the loss, the
+// rate's schedule, the codes of every texel and their 8-bit quantisation.
 
 #include <span>
 #include <string>

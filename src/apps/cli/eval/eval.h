@@ -89,7 +89,7 @@ struct Variant {
     /// training images.
     std::optional<LightModelOptions> basis;
     std::optional<LearnedOptions> learned;
-    bool neuralRti = false;  ///< the published NeuralRTI (predict/neural_rti.h), the learned kind's baseline
+    bool neuralRti = false;  ///< the published NeuralRTI (neural_rti.h), the learned kind's baseline
     double trainingSeconds =
         0;  ///< the learned kinds' training time (--budget 300s); 0: their own (kDefaultTrainingSeconds)
     bool unmatched() const { return basis || learned || neuralRti; }

@@ -9,12 +9,12 @@
 #include <set>
 
 #include "cli/eval/eval.h"
+#include "cli/eval/neural_rti.h"
 #include "core/bake/auto_bake.h"
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/model_fill.h"
 #include "core/predict/learned_shader.h"
-#include "core/predict/neural_rti.h"
 #include "core/relight/relighter.h"
 
 namespace btflut::cli::eval {

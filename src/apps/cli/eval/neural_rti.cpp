@@ -1,4 +1,4 @@
-#include "core/predict/neural_rti.h"
+#include "cli/eval/neural_rti.h"
 
 #include <algorithm>
 #include <cmath>
