@@ -125,8 +125,8 @@ struct RowTimes {
     RenderStats movingLutStats;
 };
 
-Result<RowTimes> timeRows(const std::vector<ModeRow>& rows, SceneRenderer& main, const BenchRenderOptions& o,
-                          bool timer) {
+Result<RowTimes> timeModes(const std::vector<ModeRow>& rows, SceneRenderer& main, const BenchRenderOptions& o,
+                           bool timer) {
     RowTimes times;
     for (const ModeRow& row : rows)  // the first frames load and upload
         if (Status s = row.renderer->draw(benchLights()[0], row.mode); !s) return Error{s.error()};
@@ -240,7 +240,7 @@ Status runBenchRender(const BenchRenderOptions& o) {
             predictor = std::move(*p);
             rows.push_back({"predictor", predictor.get(), RenderMode::Lut});
         }
-        Result<RowTimes> times = timeRows(rows, *renderer->get(), o, timer);
+        Result<RowTimes> times = timeModes(rows, *renderer->get(), o, timer);
         if (!times) return Error{times.error()};
         auto& [wall, gpu, movingLutStats] = *times;
         nlohmann::json entry{{"width", w}, {"height", h}};

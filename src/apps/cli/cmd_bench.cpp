@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
-#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 
@@ -13,16 +12,12 @@
 #include "cli/model_options.h"
 #include "core/bake/bake.h"
 #include "core/bank/lut_bank.h"
-#include "core/check.h"
 #include "core/histogram/histogram.h"
 #include "core/io/json_text.h"
 #include "core/learn/network.h"
 #include "core/physics/geometry.h"
 #include "core/physics/simulate.h"
 #include "core/synth/render.h"
-#include "gl/context.h"
-#include "gl/objects.h"
-#include "gl/scene_renderer.h"
 
 namespace btflut::cli {
 

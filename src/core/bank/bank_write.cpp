@@ -142,10 +142,6 @@ FilePredictor filePredictor(const LutBank& bank) {
     return FilePredictor::References;
 }
 
-}  // namespace
-
-namespace {
-
 bool anyLayer(const LutBank& bank, bool (*uses)(const ViewLayer&)) {
     return std::any_of(bank.layers.begin(), bank.layers.end(), uses);
 }
@@ -163,9 +159,9 @@ constexpr VersionAdded kVersionsAdded[] = {
     // A light model, a match in part, a target of corrections, auto's choice, match LUTs over the grid.
     {5,
      [](const LutBank& b) {
-         return filePredictor(b) == FilePredictor::Model || (b.makesLuts() && b.blend.match != 1) ||
-                (b.makesLuts() && b.blend.target != LutBank::Blend::Target::Measured) || !b.selection.empty() ||
-                anyLayer(b, [](const ViewLayer& l) { return !l.matchGridLuts.empty(); });
+         return filePredictor(b) == FilePredictor::Model ||
+                (b.makesLuts() && (b.blend.match != 1 || b.blend.target != LutBank::Blend::Target::Measured)) ||
+                !b.selection.empty() || anyLayer(b, [](const ViewLayer& l) { return !l.matchGridLuts.empty(); });
      }},
     {4, [](const LutBank& b) { return !b.modelFill.empty(); }},
     {3, [](const LutBank& b) { return b.makesLuts(); }},

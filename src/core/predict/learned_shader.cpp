@@ -1,11 +1,11 @@
 #include "core/predict/learned_shader.h"
-#include "core/predict/learned_decoder.h"
 
 #include <cstdio>
 
 #include "core/check.h"
 #include "core/learn/network.h"
 #include "core/predict/gpu_constants.h"
+#include "core/predict/learned_decoder.h"
 
 namespace btflut {
 

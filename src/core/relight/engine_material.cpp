@@ -69,7 +69,6 @@ std::vector<float> modelWeightGrid(const LightModel& m, int& size) {
 
 // A light model's weights: ptm and hsh in closed form (btflut.glsl), rbf and bln on the grid.
 void setModel(EngineMaterial& out, const LightModel& m) {
-    out.kind = PredictorKind::Model;
     out.basis = m.basis;
     out.order = m.order;
     out.planes = m.planes;
@@ -101,6 +100,7 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     if (bank.reference.samples.empty())
         return Error{name + ": the bank holds no reference image (baked with --no-reference)"};
     EngineMaterial out;
+    out.kind = bank.predictorKind();
     out.colour = bank.colour;
     out.entries = bank.entries;
     out.gridSize = bank.gridSize;
@@ -144,7 +144,6 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     }
     if (const LearnedPredictor* learned = bank.predictorAs<LearnedPredictor>()) {
         // The decoder in the weight texture: one layer, a square of texels (btflut.glsl).
-        out.kind = PredictorKind::Learned;
         out.planes = learned->model().codes;
         out.channels = learned->model().channels;
         out.weights = 4;
@@ -162,7 +161,6 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
         return out;
     }
     const ReferenceBlend& references = *bank.predictorAs<ReferenceBlend>();
-    out.kind = PredictorKind::References;
     out.planes = static_cast<int>(references.references().size());
     out.channels = references.references().front().channels;
     out.weights = out.planes;

@@ -300,7 +300,6 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                 cell(ssim, 6, 3) + " " + cell(bytes, 9, 2) + " " + cell(v.gpuBytesPerTexel, 9, 2) + " " +
                 cell(bake, 8, 3) + " " + cell(relight, 6, 2, " ms") + " " + cell(v.frameMs, 8, 2) + " " +
                 cell(v.gpuMaxDiff, 8, 1) + "\n";
-        auto number = numberOrNull;
         json["modes"].push_back({{"name", v.name},
                                  {"mode", v.modeName()},
                                  {"domain", domainName(v.bankDomain)},
@@ -309,18 +308,18 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
                                  {"colour", colourName(v.colour)},
                                  {"luts_blended", v.blendedLuts},
                                  {"fill", v.filled ? "model" : "clamp"},
-                                 {"l1", number(l1)},
-                                 {"emd", number(emd)},
-                                 {"psnr", number(psnr)},
-                                 {"ssim", number(ssim)},
+                                 {"l1", numberOrNull(l1)},
+                                 {"emd", numberOrNull(emd)},
+                                 {"psnr", numberOrNull(psnr)},
+                                 {"ssim", numberOrNull(ssim)},
                                  {"bytes_per_texel", bytes},
                                  {"bytes_per_texel_by_fold", v.foldBytesPerTexel},
                                  {"multiply_adds_per_texel", multiplyAdds},
-                                 {"gpu_bytes_per_texel", number(v.gpuBytesPerTexel)},
-                                 {"bake_seconds", number(bake)},
-                                 {"relight_ms", number(relight)},
-                                 {"frame_ms", number(v.frameMs)},
-                                 {"gpu_max_diff_255", number(v.gpuMaxDiff)}});
+                                 {"gpu_bytes_per_texel", numberOrNull(v.gpuBytesPerTexel)},
+                                 {"bake_seconds", numberOrNull(bake)},
+                                 {"relight_ms", numberOrNull(relight)},
+                                 {"frame_ms", numberOrNull(v.frameMs)},
+                                 {"gpu_max_diff_255", numberOrNull(v.gpuMaxDiff)}});
         const auto outside = static_cast<std::size_t>(std::count(v.outside.begin(), v.outside.end(), true));
         nlohmann::json& mode = json["modes"].back();
         // The target's own L1 beside the mode's: the histogram estimate's error apart from the match's.
@@ -346,9 +345,9 @@ Report report(const std::vector<Variant>& variants, const Dataset& dataset, cons
         mode["spread"] = spreadOf(v, pixels);
         for (int where : {0, 1})
             mode[where ? "outside_hull" : "inside_hull"] = {{"count", where ? outside : v.errors.size() - outside},
-                                                            {"l1", number(mean(&ImageErrors::l1, where))},
-                                                            {"emd", number(mean(&ImageErrors::emd, where))},
-                                                            {"psnr", number(mean(&ImageErrors::psnr, where))}};
+                                                            {"l1", numberOrNull(mean(&ImageErrors::l1, where))},
+                                                            {"emd", numberOrNull(mean(&ImageErrors::emd, where))},
+                                                            {"psnr", numberOrNull(mean(&ImageErrors::psnr, where))}};
         addRows(json["rows"], v, byName, pixels);
     }
     if (!targetText.empty())
