@@ -38,147 +38,147 @@ float btflutUniformLut(int lut, int count, float v) {
 #if defined(BLEND)
 // The predictor's planes as engines get them (Predictor::planes): RGBA8 layers, a light
 // model's planes four to a layer (its 4-bit codes n as 17 n), or one reference to a layer (a
-// grey one in R, G and B); then the albedo at BLEND_ALBEDO_LAYER (BLEND_MODEL_ALBEDO: it
-// multiplies the model's value; BLEND_ALBEDO_CHROMA: lrgb's chroma after the match).
-uniform sampler2DArray blendPlanes;
-#if defined(BLEND_LEARNED)
-uniform BtflutLearnedFrame blendLearned;  // LearnedModel::lightFrame: the decoder's part at the light
+// grey one in R, G and B); then the albedo at PREDICT_ALBEDO_LAYER (PREDICT_MODEL_ALBEDO: it
+// multiplies the model's value; PREDICT_ALBEDO_CHROMA: lrgb's chroma after the match).
+uniform sampler2DArray predictPlanes;
+#if defined(PREDICT_LEARNED)
+uniform BtflutLearnedFrame predictLearned;  // LearnedModel::lightFrame: the decoder's part at the light
 #if !defined(BTFLUT_NETWORK)
-uniform sampler2DArray blendNetwork;  // the decoder's texture, for a network past a shader's constants
+uniform sampler2DArray predictNetwork;  // the decoder's texture, for a network past a shader's constants
 #endif
-#elif defined(BLEND_MODEL)
-uniform BtflutModelFrame blendModel;  // LightModelFixed: the weights of the codes n of 4-bit planes
+#elif defined(PREDICT_MODEL)
+uniform BtflutModelFrame predictModel;  // LightModelFixed: the weights of the codes n of 4-bit planes
 #else
-uniform int blendLayer[BLEND_FETCHES];   // the references around the light (BLEND_FETCHES: min(K, 3))
-uniform float blendWeight[BLEND_FETCHES]; // integers summing to BTFLUT_WEIGHT_UNIT
+uniform int blendLayer[PREDICT_FETCHES];   // the references around the light (PREDICT_FETCHES: min(K, 3))
+uniform float blendWeight[PREDICT_FETCHES]; // integers summing to BTFLUT_WEIGHT_UNIT
 #endif
-uniform float blendCodes;                // codes of a blended value: 765 for the grey of RGB8, 255 for one channel
-uniform sampler2D blendLuts[3];          // per channel: a LUT per region (row)
-uniform int blendEntries;
-uniform int blendRegions;
+uniform float predictCodes;                // codes of a blended value: 765 for the grey of RGB8, 255 for one channel
+uniform sampler2D matchLuts[3];          // per channel: a LUT per region (row)
+uniform int matchEntries;
+uniform int matchRegions;
 #if defined(REGIONS)
-uniform usampler2D blendLabels;
+uniform usampler2D predictLabels;
 #endif
 
 // How the prediction's codes are matched.
 #if defined(RGB_MODE)
-const int btflutBlendMatch = BTFLUT_MATCH_RGB;
-#elif defined(BLEND_GREY_REFERENCES) || (defined(BLEND_MODEL) && BLEND_MODEL_CHANNELS == 1 && !defined(BLEND_MODEL_ALBEDO)) || (defined(BLEND_LEARNED) && BLEND_LEARNED_CHANNELS == 1)
-const int btflutBlendMatch = BTFLUT_MATCH_ONE;
+const int btflutPredictMatch = BTFLUT_MATCH_RGB;
+#elif defined(PREDICT_GREY_REFERENCES) || (defined(PREDICT_MODEL) && PREDICT_MODEL_CHANNELS == 1 && !defined(PREDICT_MODEL_ALBEDO)) || (defined(PREDICT_LEARNED) && PREDICT_LEARNED_CHANNELS == 1)
+const int btflutPredictMatch = BTFLUT_MATCH_ONE;
 #else
-const int btflutBlendMatch = BTFLUT_MATCH_SUM;
+const int btflutPredictMatch = BTFLUT_MATCH_SUM;
 #endif
 
-// The texel the prediction reads (texelFetch at level blendLevel of the planes' mipmaps: the
+// The texel the prediction reads (texelFetch at level predictLevel of the planes' mipmaps: the
 // relight pass's level, 0 unless it relights a minified texture's level alone): set by each
-// shader's main. BLEND_FILTERED (the scene's per-fragment path) samples bilinearly at btflutBlendUv instead,
+// shader's main. PREDICT_FILTERED (the scene's per-fragment path) samples bilinearly at btflutPredictUv instead,
 // so a magnified quad is smooth while the light moves, as its relit texture is once it stops:
 // the prediction of filtered planes, each rounded to 8 bits (4-bit planes fetched as they are).
-ivec2 btflutBlendAt;
-vec2 btflutBlendUv;
-uniform int blendLevel;
+ivec2 btflutPredictAt;
+vec2 btflutPredictUv;
+uniform int predictLevel;
 
-vec4 btflutBlendTexel(int layer) {
-#if defined(BLEND_FILTERED)
-    return textureLod(blendPlanes, vec3(btflutBlendUv, float(layer)), 0.0);
+vec4 btflutPlaneTexel(int layer) {
+#if defined(PREDICT_FILTERED)
+    return textureLod(predictPlanes, vec3(btflutPredictUv, float(layer)), 0.0);
 #else
-    return texelFetch(blendPlanes, ivec3(btflutBlendAt, layer), blendLevel);
+    return texelFetch(predictPlanes, ivec3(btflutPredictAt, layer), predictLevel);
 #endif
 }
 
-#if defined(BLEND_MODEL)
+#if defined(PREDICT_MODEL)
 // Layer `layer`'s four plane codes: bytes, and a 4-bit plane's n from its 17 n (exact: a
 // multiple of 17 divided by 17). The filtered path fetches 4-bit planes as they are.
 vec4 btflutPlaneCodes(int layer) {
-    vec4 nibble = vec4(greaterThanEqual(vec4(float(4 * layer)) + vec4(0.0, 1.0, 2.0, 3.0), vec4(BLEND_MODEL_WIDE)));
-    vec4 bytes = btflutBytes(btflutBlendTexel(layer));
-#if defined(BLEND_FILTERED)
+    vec4 nibble = vec4(greaterThanEqual(vec4(float(4 * layer)) + vec4(0.0, 1.0, 2.0, 3.0), vec4(PREDICT_MODEL_WIDE)));
+    vec4 bytes = btflutBytes(btflutPlaneTexel(layer));
+#if defined(PREDICT_FILTERED)
     if (any(greaterThan(nibble, vec4(0.0))))
-        bytes = mix(bytes, btflutBytes(texelFetch(blendPlanes, ivec3(btflutBlendAt, layer), 0)), nibble);
+        bytes = mix(bytes, btflutBytes(texelFetch(predictPlanes, ivec3(btflutPredictAt, layer), 0)), nibble);
 #endif
     return bytes / (1.0 + 16.0 * nibble);
 }
 #endif
 
 // The texel's prediction.
-BtflutPrediction btflutBlend() {
-#if defined(BLEND_LEARNED)
+BtflutPrediction btflutPredict() {
+#if defined(PREDICT_LEARNED)
     vec4 codes[BTFLUT_MAX_LAYERS];
-    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < BLEND_LEARNED_LAYERS ? btflutBytes(btflutBlendTexel(l)) : vec4(0.0);
+    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < PREDICT_LEARNED_LAYERS ? btflutBytes(btflutPlaneTexel(l)) : vec4(0.0);
 #if defined(BTFLUT_NETWORK)  // the decoder specialised to the model (Predictor::shaderSource)
-    return btflutLearnedPredictionOf(btflutNetworkValue(codes, blendLearned));
+    return btflutLearnedPredictionOf(btflutNetworkValue(codes, predictLearned));
 #else
-    return btflutLearnedPrediction(blendNetwork, codes, blendLearned);
+    return btflutLearnedPrediction(predictNetwork, codes, predictLearned);
 #endif
-#elif defined(BLEND_MODEL)
+#elif defined(PREDICT_MODEL)
     vec4 codes[BTFLUT_MAX_LAYERS];
-    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < BLEND_MODEL_LAYERS ? btflutPlaneCodes(l) : vec4(0.0);
-#if defined(BLEND_MODEL_ALBEDO)
-    vec3 albedo = btflutBytes(btflutBlendTexel(BLEND_ALBEDO_LAYER)).rgb;
+    for (int l = 0; l < BTFLUT_MAX_LAYERS; ++l) codes[l] = l < PREDICT_MODEL_LAYERS ? btflutPlaneCodes(l) : vec4(0.0);
+#if defined(PREDICT_MODEL_ALBEDO)
+    vec3 albedo = btflutBytes(btflutPlaneTexel(PREDICT_ALBEDO_LAYER)).rgb;
 #else
     vec3 albedo = vec3(255.0);
 #endif
-    return btflutModelPrediction(codes, BLEND_MODEL_LAYERS, BLEND_MODEL_CHANNELS, blendModel, albedo);
+    return btflutModelPrediction(codes, PREDICT_MODEL_LAYERS, PREDICT_MODEL_CHANNELS, predictModel, albedo);
 #else
     BtflutPrediction p = btflutNoPrediction();
-    for (int k = 0; k < BLEND_FETCHES; ++k) btflutAddReference(p, blendWeight[k], btflutBlendTexel(blendLayer[k]));
+    for (int k = 0; k < PREDICT_FETCHES; ++k) btflutAddReference(p, blendWeight[k], btflutPlaneTexel(blendLayer[k]));
     return p;
 #endif
 }
 
 // A region's LUT applied to a blended code (below).
-float btflutBlendMap(int channel, uint region, float code, uvec2 pixel);
+float btflutMatchCode(int channel, uint region, float code, uvec2 pixel);
 
-// The texel's relit colour: grey keeps the blend's chroma (lrgb: the albedo's), rgb matches
+// The texel's relit colour: grey keeps the prediction's chroma (lrgb: the albedo's), rgb matches
 // each channel; `greyReference`: the bank's references have one channel.
-vec3 btflutBlendColour(uvec2 pixel, bool greyReference) {
+vec3 btflutMatchedColour(uvec2 pixel, bool greyReference) {
 #if defined(REGIONS)
-    uint region = texelFetch(blendLabels, btflutBlendAt, 0).r;
+    uint region = texelFetch(predictLabels, btflutPredictAt, 0).r;
 #else
     uint region = 0u;
 #endif
-    BtflutPrediction blend = btflutBlend();
-    vec3 q = btflutCodes(blend, btflutBlendMatch);
-    vec3 matched = vec3(btflutBlendMap(0, region, q.x, pixel));
+    BtflutPrediction prediction = btflutPredict();
+    vec3 q = btflutCodes(prediction, btflutPredictMatch);
+    vec3 matched = vec3(btflutMatchCode(0, region, q.x, pixel));
 #if defined(RGB_MODE)
-    matched = vec3(matched.x, btflutBlendMap(1, region, q.y, pixel), btflutBlendMap(2, region, q.z, pixel));
+    matched = vec3(matched.x, btflutMatchCode(1, region, q.y, pixel), btflutMatchCode(2, region, q.z, pixel));
 #endif
-#if defined(BLEND_ALBEDO_CHROMA)
-    return btflutRelitColour(matched, btflutBlendMatch, false,
-                             texelFetch(blendPlanes, ivec3(btflutBlendAt, BLEND_ALBEDO_LAYER), blendLevel).rgb);
+#if defined(PREDICT_ALBEDO_CHROMA)
+    return btflutRelitColour(matched, btflutPredictMatch, false,
+                             texelFetch(predictPlanes, ivec3(btflutPredictAt, PREDICT_ALBEDO_LAYER), predictLevel).rgb);
 #else
-    return btflutRelitColour(matched, btflutBlendMatch, greyReference, blend.colour);
+    return btflutRelitColour(matched, btflutPredictMatch, greyReference, prediction.colour);
 #endif
 }
 
 // The LUT of a region at v in [0, 1] (linear between entries, as Lut::applyLut).
-float btflutBlendLut(int channel, uint region, float v) {
+float btflutMatchLut(int channel, uint region, float v) {
 #if defined(LUT_UNIFORMS) && defined(RGB_MODE)
-    return btflutUniformLut(int(region) * 3 + channel, blendEntries, v);
+    return btflutUniformLut(int(region) * 3 + channel, matchEntries, v);
 #elif defined(LUT_UNIFORMS)
-    return btflutUniformLut(int(region), blendEntries, v);
+    return btflutUniformLut(int(region), matchEntries, v);
 #endif
-    vec2 at = vec2((clamp(v, 0.0, 1.0) * float(blendEntries - 1) + 0.5) / float(blendEntries),
-                   (float(region) + 0.5) / float(blendRegions));
-    if (channel == 0) return textureLod(blendLuts[0], at, 0.0).r;
-    if (channel == 1) return textureLod(blendLuts[1], at, 0.0).r;
-    return textureLod(blendLuts[2], at, 0.0).r;
+    vec2 at = vec2((clamp(v, 0.0, 1.0) * float(matchEntries - 1) + 0.5) / float(matchEntries),
+                   (float(region) + 0.5) / float(matchRegions));
+    if (channel == 0) return textureLod(matchLuts[0], at, 0.0).r;
+    if (channel == 1) return textureLod(matchLuts[1], at, 0.0).r;
+    return textureLod(matchLuts[2], at, 0.0).r;
 }
 
-// The same, dithered as btflutMapValue (code: 1 / (blendCodes + 1)).
-float btflutBlendLutDithered(int channel, uint region, float v, uvec2 pixel, float outCode) {
-    float moved = v + (btflutDitherOffset(pixel.x, pixel.y, uint(channel)) - 0.5) / (blendCodes + 1.0);
-    float value = btflutBlendLut(channel, region, moved);
+// The same, dithered as btflutMapValue (code: 1 / (predictCodes + 1)).
+float btflutMatchLutDithered(int channel, uint region, float v, uvec2 pixel, float outCode) {
+    float moved = v + (btflutDitherOffset(pixel.x, pixel.y, uint(channel)) - 0.5) / (predictCodes + 1.0);
+    float value = btflutMatchLut(channel, region, moved);
     return value > 0.0 ? min(1.0, value + 0.5 * outCode) : 0.0;
 }
 
-float btflutBlendMap(int channel, uint region, float code, uvec2 pixel) {
+float btflutMatchCode(int channel, uint region, float code, uvec2 pixel) {
 #if defined(PREDICTION_ONLY)
-    return code / blendCodes;  // bench render's baseline: the predictor as an RTI viewer draws it
+    return code / predictCodes;  // bench render's baseline: the predictor as an RTI viewer draws it
 #elif defined(DITHER)
-    return btflutBlendLutDithered(channel, region, btflutCodeValue(code, blendCodes), pixel, outCode);
+    return btflutMatchLutDithered(channel, region, btflutCodeValue(code, predictCodes), pixel, outCode);
 #else
-    return btflutBlendLut(channel, region, btflutCodeValue(code, blendCodes));
+    return btflutMatchLut(channel, region, btflutCodeValue(code, predictCodes));
 #endif
 }
 #endif  // BLEND

@@ -11,8 +11,8 @@ out vec4 colour;
 void main() {
     uvec2 pixel = uvec2(gl_FragCoord.xy);
 #if defined(BLEND)
-    btflutBlendAt = ivec2(pixel);
-    colour = vec4(btflutBlendColour(pixel, referenceChannels == 1), 1.0);
+    btflutPredictAt = ivec2(pixel);
+    colour = vec4(btflutMatchedColour(pixel, referenceChannels == 1), 1.0);
 #else
     colour = vec4(btflutReferenceColour(texelFetch(reference, ivec2(pixel), 0).rgb, referenceChannels == 1, pixel), 1.0);
 #endif

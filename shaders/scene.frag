@@ -3,7 +3,7 @@
 //   layer are relit in texture space and drawn by FLAT_MODE: RelightPass, or per fragment by
 //   LUT_FRAGMENT). RGB_MODE: a LUT per channel; GREY_TEXTURE: a grey reference.
 // LUT_FRAGMENT: a bank of one view layer relit per fragment while the light moves: the
-//   prediction (BLEND: references blended or a light model; else the reference, filtered) and
+//   prediction (PREDICT_*: a predictor's; else the reference, filtered) and
 //   the frame's LUTs (lut_common.glsl); DITHER per texel, as relight.
 // BRDF_MODE: the paper's 2D texture mapping, brightness scaled by the target-to-reference ratio.
 // PTM_MODE: the polynomial texture map, as RTI viewers draw it.
@@ -49,7 +49,7 @@ vec3 shade(float level) {
 #endif
 
 #if defined(LUT_FRAGMENT)
-uniform ivec2 texels;  // the reference's size: the dither and the blend's fetches are per texel, as relight's
+uniform ivec2 texels;  // the reference's size: the dither and the prediction's fetches are per texel, as relight's
 #endif
 
 #if defined(PTM_MODE)
@@ -79,9 +79,9 @@ void main() {
     const bool grey = false;
 #endif
 #if defined(BLEND)
-    btflutBlendAt = texel;
-    btflutBlendUv = uv;
-    colour = vec4(btflutBlendColour(uvec2(texel), grey), 1.0);
+    btflutPredictAt = texel;
+    btflutPredictUv = uv;
+    colour = vec4(btflutMatchedColour(uvec2(texel), grey), 1.0);
 #else
     colour = vec4(btflutReferenceColour(texture(reference, uv).rgb, grey, uvec2(texel)), 1.0);
 #endif

@@ -66,7 +66,7 @@ std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
     auto grey = openDataset(dir / "grey");
     REQUIRE(grey.ok());
     using Basis = LightBasis;
-    using Target = LutBank::Blend::Target;
+    using Target = LutBank::Prediction::Target;
     std::vector<std::pair<std::string, LutBank>> banks;
     for (const auto& [name, options, greyImages] :
          {std::tuple{"grey K3", BakeOptions{.references = 3}, false},
@@ -161,9 +161,9 @@ TEST_SUITE("gl") {
                 CHECK_FALSE((*renderer)->bank("m")->layers[0].matchGridLuts.empty());
                 CHECK((*renderer)->bank("m")->layers[0].gridLuts.empty());
                 REQUIRE((*renderer)->draw(toVector(light), RenderMode::Flat).ok());
-                CHECK((*renderer)->stats().textureBytes.blend == 0);  // flat needs the reference only
+                CHECK((*renderer)->stats().textureBytes.prediction == 0);  // flat needs the reference only
                 REQUIRE((*renderer)->draw(toVector(light)).ok());
-                CHECK((*renderer)->stats().textureBytes.blend > 0);
+                CHECK((*renderer)->stats().textureBytes.prediction > 0);
                 CHECK((*renderer)->stats().quadsPerFragment == (way.path == LutPath::PerFragment ? 1u : 0u));
                 const Image gpu = (*renderer)->readBack();
                 // Relit in texture space, or per fragment at 1:1, dithered per texel.

@@ -173,7 +173,7 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
         LutBank b = *bank;
         LearnedModel changed = m;
         change(changed);
-        b.blend.predictor = std::make_shared<LearnedPredictor>(std::move(changed), true);
+        b.prediction.predictor = std::make_shared<LearnedPredictor>(std::move(changed), true);
         Result<LutBank> read = decodeBank(encodeBank(b), "bad.btflut");
         REQUIRE_FALSE(read.ok());
         CHECK_MESSAGE(read.error().find(needle) != std::string::npos, read.error());
@@ -208,7 +208,7 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     wider.decoder = std::make_shared<const LearnedDecoder>(LearnedDecoder{
         m.decoder->light, Network::fromParameters(wider.decoderSizes(), std::vector<float>(LearnedModel::parameterCount(
                                                                             wider.decoderSizes())))});
-    wide.blend.predictor = std::make_shared<LearnedPredictor>(std::move(wider), true);
+    wide.prediction.predictor = std::make_shared<LearnedPredictor>(std::move(wider), true);
     Result<EngineMaterial> refused = engineMaterial(wide, "wide.btflut");
     REQUIRE_FALSE(refused.ok());
     CHECK_MESSAGE(

@@ -102,7 +102,7 @@ TEST_CASE("learned model of views: a layer per view, one decoder, version 9, rel
     // Matched below 1, a measured (light, view) pair is still matched fully, and the same light
     // seen from between the measured views is not: the ramp is over pairs, not lights alone.
     LutBank half = bank;
-    half.blend.match = 0.5f;
+    half.prediction.match = 0.5f;
     const Relighter halfway(half);
     const Direction measured = bank.layers[0].nodes[0].light;
     CHECK(halfway.matchAt(measured, bank.layers[0].view) == 1.f);
@@ -115,7 +115,7 @@ TEST_CASE("learned model of views: a layer per view, one decoder, version 9, rel
     LutBank bad = bank;
     LearnedModel changed = learned->model();
     changed.viewFeatures = 2;
-    bad.blend.predictor = std::make_shared<LearnedPredictor>(std::move(changed), false);
+    bad.prediction.predictor = std::make_shared<LearnedPredictor>(std::move(changed), false);
     Result<LutBank> refused = decodeBank(encodeBank(bad), "bad.btflut");
     REQUIRE_FALSE(refused.ok());
     CHECK_MESSAGE(refused.error().find("bad.btflut: LRND chunk: invalid view feature count") == 0, refused.error());
@@ -172,15 +172,15 @@ TEST_CASE("auto on views: rectified ones validate a learned model of them agains
         REQUIRE(selection.contains("quantiles"));
         const nlohmann::json& q = selection["quantiles"];
         INFO(q.dump());
-        CHECK(q["chosen"] == bank->blend.quantiles);
+        CHECK(q["chosen"] == bank->prediction.quantiles);
         CHECK(q["of"] == 1024);
         for (const auto& row : q["tried"]) CHECK(row["costs_nothing"] == (row["quantiles"] == q["chosen"]));
-        CHECK(bank->blend.quantiles < 1024);
+        CHECK(bank->prediction.quantiles < 1024);
         AutoBakeOptions given = options;
         given.chooseQuantiles = false;
         Result<LutBank> full = bakeAuto(v.dataset, given);
         REQUIRE(full.ok());
-        CHECK(full->blend.quantiles == 1024);
+        CHECK(full->prediction.quantiles == 1024);
         CHECK_FALSE(nlohmann::json::parse(full->selection).contains("quantiles"));
         CHECK(encodeBank(*bank).size() * 2 < encodeBank(*full).size());
     }

@@ -237,7 +237,7 @@ TEST_CASE("version 6 banks of every basis round-trip; every cut and flipped bit 
         CHECK(encodeBank(*back) == bytes);
         CHECK(back->predictorAs<ModelPredictor>()->model().coefficients ==
               bank->predictorAs<ModelPredictor>()->model().coefficients);
-        CHECK(back->blend.match == 0.5f);
+        CHECK(back->prediction.match == 0.5f);
         for (std::size_t cut = 8; cut < bytes.size(); cut += bytes.size() / 29)
             CHECK_FALSE(decodeBank(Bytes(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(cut)), "cut").ok());
         for (std::size_t at = 12; at < bytes.size(); at += bytes.size() / 41) {

@@ -46,7 +46,7 @@ LutBank quantileBank(const std::vector<Direction>& lights, const std::function<s
     LutBank bank;
     bank.entries = 16;
     bank.gridSize = 9;
-    bank.blend.quantiles = kSamples;
+    bank.prediction.quantiles = kSamples;
     bank.reference = Image(4, 4, 1);
     std::vector<DirectionalLut> luts;
     for (std::size_t n = 0; n < lights.size(); ++n)

@@ -3,8 +3,8 @@
 #include <optional>
 
 #include "core/relight/engine_material.h"
-#include "gl/blend_textures.h"
 #include "gl/objects.h"
+#include "gl/prediction_textures.h"
 #include "gl/relight_pass.h"
 #include "gl/textures.h"
 
@@ -36,12 +36,12 @@ Result<Image> renderNative(const LutBank& bank, Direction light, Direction view,
         return Error{"the reference image (" + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
                      ") is larger than this GL driver's largest texture (" + std::to_string(maxSize) + ")"};
     GlTexture reference = uploadReference(ref);
-    std::optional<BlendTextures> blend;
+    std::optional<PredictionTextures> prediction;
     if (bank.makesLuts()) {
         std::size_t bytes = 0;
-        blend = BlendTextures::upload(bank, bytes);
+        prediction = PredictionTextures::upload(bank, bytes);
     }
-    RelightPass pass(bank, reference.id(), blend ? &*blend : nullptr);
+    RelightPass pass(bank, reference.id(), prediction ? &*prediction : nullptr);
     const std::vector<GlTexture> luts = pass.makeLuts();
     // A float target, so the read-back is the shader's value, not an 8-bit rounding of it.
     GlTexture target = allocateTexture2D(ref.width, ref.height, GL_RGBA32F, GL_RGBA, GL_FLOAT);

@@ -13,26 +13,26 @@ std::vector<std::string> mapsReferenceDefines(const LutBank& bank) {
     return defines;
 }
 
-RelightPass::RelightPass(const LutBank& bank, GLuint reference, const BlendTextures* blend)
+RelightPass::RelightPass(const LutBank& bank, GLuint reference, const PredictionTextures* prediction)
     : m_bank(&bank),
       m_lutsAsUniforms(lutsAsUniforms(bank)),
       m_reference(reference),
-      m_blend(blend),
-      m_defines(blend ? blend->defines() : mapsReferenceDefines(bank)) {
-    BTFLUT_CHECK(bank.makesLuts() == (blend != nullptr));
+      m_prediction(prediction),
+      m_defines(prediction ? prediction->defines() : mapsReferenceDefines(bank)) {
+    BTFLUT_CHECK(bank.makesLuts() == (prediction != nullptr));
     m_framebuffer = makeFramebuffer();
     m_vertexArray = makeVertexArray();
 }
 
 std::vector<GlTexture> RelightPass::makeLuts() const {
-    if (m_blend) return m_blend->makeLutTables();
+    if (m_prediction) return m_prediction->makeLutTables();
     std::vector<GlTexture> luts;
     for (int c = 0; c < m_bank->channels(); ++c) luts.push_back(uploadLut(nullptr, m_bank->entries));
     return luts;
 }
 
 std::size_t RelightPass::lutBytes() const {
-    if (m_blend) return m_blend->lutTableBytes();
+    if (m_prediction) return m_prediction->lutTableBytes();
     return static_cast<std::size_t>(m_bank->channels()) * static_cast<std::size_t>(m_bank->entries) * 4;
 }
 
@@ -51,12 +51,12 @@ Result<const ShaderProgram*> RelightPass::program(bool dither) {
 
 const std::vector<ShaderFile>& RelightPass::sources() const {
     static const std::vector<ShaderFile> none;
-    return m_blend ? m_blend->sources() : none;
+    return m_prediction ? m_prediction->sources() : none;
 }
 
 void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlTexture>& luts) const {
-    if (m_blend) {
-        m_blend->updateLuts(luts, frame);
+    if (m_prediction) {
+        m_prediction->updateLuts(luts, frame);
         return;
     }
     if (m_lutsAsUniforms) return;  // bindLuts sets them
@@ -70,9 +70,9 @@ void RelightPass::uploadLuts(const RelightFrame& frame, const std::vector<GlText
 void RelightPass::bindLuts(const ShaderProgram& p, const RelightFrame& frame, const std::vector<GlTexture>& luts,
                            int first, int level) const {
     const LutBank& bank = *m_bank;
-    BTFLUT_CHECK(level == 0 || m_blend);
-    if (m_blend) {
-        m_blend->bind(p, frame, luts, first, level);
+    BTFLUT_CHECK(level == 0 || m_prediction);
+    if (m_prediction) {
+        m_prediction->bind(p, frame, luts, first, level);
     } else if (m_lutsAsUniforms) {
         gl.Uniform1fv(p["lutValues"], static_cast<GLsizei>(bank.lutLength()), frame.luts.data());
     } else {
@@ -83,7 +83,7 @@ void RelightPass::bindLuts(const ShaderProgram& p, const RelightFrame& frame, co
         const GLint units[3] = {first, first + 1, first + 2};
         gl.Uniform1iv(p["lut"], 3, units);  // the array from its first element (GL ignores unused ones)
     }
-    if (!m_blend) {
+    if (!m_prediction) {
         gl.Uniform1i(p["entries"], bank.entries);
         gl.Uniform1f(p["inCode"], inputCode(bank.reference, bank.colour));
     }
@@ -105,7 +105,7 @@ Status RelightPass::run(const RelightFrame& frame, const std::vector<GlTexture>&
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, m_reference);
     gl.Uniform1i(p["reference"], 0);
-    bindLuts(p, frame, luts, m_blend ? 4 : 1, level);
+    bindLuts(p, frame, luts, m_prediction ? 4 : 1, level);
     gl.Uniform1i(p["referenceChannels"], ref.channels);
     gl.BindVertexArray(m_vertexArray.id());
     gl.Disable(GL_DEPTH_TEST);

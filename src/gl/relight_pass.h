@@ -22,8 +22,8 @@
 
 #include "core/image/texel_region.h"
 #include "core/relight/relighter.h"
-#include "gl/blend_textures.h"
 #include "gl/objects.h"
+#include "gl/prediction_textures.h"
 
 namespace btflut {
 
@@ -35,7 +35,7 @@ public:
     /// `reference`: the bank's reference as a 2D texture read with texelFetch at level 0
     /// (unorm at the image's bit depth, or float); `blend`: the bank's textures when it blends
     /// references (LutBank::makesLuts), else null. Both must outlive the pass.
-    RelightPass(const LutBank& bank, GLuint reference, const BlendTextures* blend);
+    RelightPass(const LutBank& bank, GLuint reference, const PredictionTextures* prediction);
 
     /// The LUT textures one target needs (1D per channel, or the blend's tables) and their bytes.
     std::vector<GlTexture> makeLuts() const;
@@ -52,14 +52,14 @@ public:
 
     /// The frame's LUTs into `luts` (made by makeLuts).
     void uploadLuts(const RelightFrame& frame, const std::vector<GlTexture>& luts) const;
-    /// Binds `luts` from texture unit `first` (BlendTextures::kUnits, or 3) and sets the
+    /// Binds `luts` from texture unit `first` (PredictionTextures::kUnits, or 3) and sets the
     /// uniforms lut_common.glsl's LUT functions read (and the blend's weights): what
     /// native.frag and scene.frag's LUT_FRAGMENT share.
     void bindLuts(const ShaderProgram& program, const RelightFrame& frame, const std::vector<GlTexture>& luts,
                   int first, int level = 0) const;
     /// lut_common.glsl's defines for this bank (the blend's, or mapsReferenceDefines), made once.
     const std::vector<std::string>& defines() const { return m_defines; }
-    /// The predictor's own shader source, if any (BlendTextures::sources): buildProgram's `generated`.
+    /// The predictor's own shader source, if any (PredictionTextures::sources): buildProgram's `generated`.
     const std::vector<ShaderFile>& sources() const;
 
 private:
@@ -68,7 +68,7 @@ private:
     const LutBank* m_bank;
     bool m_lutsAsUniforms;  ///< lutsAsUniforms(bank), asked of GL once
     GLuint m_reference;
-    const BlendTextures* m_blend;
+    const PredictionTextures* m_prediction;
     std::vector<std::string> m_defines;
     std::map<bool, ShaderProgram> m_programs;  // by dither
     GlFramebuffer m_framebuffer;

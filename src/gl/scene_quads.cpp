@@ -376,11 +376,13 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
     const SceneMaterial& paths = m_scene.materials.at(quad.material);
     TextureBytes& bytes = m_stats.textureBytes;
     const bool blends = material.bank.makesLuts() && mode == RenderMode::Lut;
-    if (blends && !material.blend) material.blend = BlendTextures::upload(material.bank, bytes.blend);
+    if (blends && !material.prediction)
+        material.prediction = PredictionTextures::upload(material.bank, bytes.prediction);
     if (!blends && mode != RenderMode::Ptm && mode != RenderMode::Nearest && !material.reference.id())
         material.reference = uploadMipmapped(material.bank.reference, bytes.reference);
     if (relitLut(q, mode) && !material.pass)
-        material.pass.emplace(material.bank, material.reference.id(), material.blend ? &*material.blend : nullptr);
+        material.pass.emplace(material.bank, material.reference.id(),
+                              material.prediction ? &*material.prediction : nullptr);
     if (mode == RenderMode::Lut && !relitLut(q, mode) && q.luts.empty()) {
         if (!material.mipLuts)
             material.mipLuts.emplace(material.bank.reference, material.bank.colour, material.bank.entries);

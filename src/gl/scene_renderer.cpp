@@ -120,7 +120,7 @@ Result<const ShaderProgram*> SceneRenderer::program(RenderMode mode, const Mater
             BTFLUT_CHECK(material.pass.has_value());  // prepare makes it for every quad drawn this way
             const std::vector<std::string>& pass = material.pass->defines();
             defines.insert(defines.end(), pass.begin(), pass.end());
-            if (bank.makesLuts()) defines.push_back("BLEND_FILTERED");
+            if (bank.makesLuts()) defines.push_back("PREDICT_FILTERED");
             if (bank.reference.channels == 1) defines.push_back("GREY_TEXTURE");
             if (m_dither) defines.push_back("DITHER");
             if (m_predictionOnly) defines.push_back("PREDICTION_ONLY");

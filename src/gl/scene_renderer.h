@@ -46,8 +46,8 @@
 #include "core/image/texel_region.h"
 #include "core/relight/level_match.h"
 #include "core/relight/relighter.h"
-#include "gl/blend_textures.h"
 #include "gl/objects.h"
+#include "gl/prediction_textures.h"
 #include "gl/relight_pass.h"
 #include "gl/textures.h"
 
@@ -56,11 +56,11 @@ namespace btflut {
 /// GPU memory of the textures, by use (bytes as the driver stores them: RGB padded to RGBA,
 /// mipmap chains included).
 struct TextureBytes {
-    std::size_t reference = 0;  ///< the reference image (modes lut of classic banks, brdf, flat)
-    std::size_t blend = 0;      ///< the references, albedo and labels of banks that blend references (mode lut)
-    std::size_t relit = 0;      ///< mode lut's relit textures (one per material and light direction) and their LUTs
+    std::size_t reference = 0;   ///< the reference image (modes lut of classic banks, brdf, flat)
+    std::size_t prediction = 0;  ///< the predictor's planes, albedo and labels (mode lut of banks with a predictor)
+    std::size_t relit = 0;       ///< mode lut's relit textures (one per material and light direction) and their LUTs
     std::size_t luts = 0, ptm = 0, images = 0;
-    std::size_t total() const { return reference + blend + relit + luts + ptm + images; }
+    std::size_t total() const { return reference + prediction + relit + luts + ptm + images; }
 };
 
 /// How mode lut draws a bank of one view layer.
@@ -151,9 +151,10 @@ private:
     };
     struct Material {
         LutBank bank;
-        GlTexture reference;                   ///< uploaded when a mode first needs it
-        std::optional<Relighter> relighter;    ///< the LUTs (and blend) per light
-        std::optional<BlendTextures> blend;    ///< banks that blend references: uploaded when mode lut first needs them
+        GlTexture reference;                 ///< uploaded when a mode first needs it
+        std::optional<Relighter> relighter;  ///< the LUTs (and blend) per light
+        std::optional<PredictionTextures>
+            prediction;                        ///< banks with a predictor: uploaded when mode lut first needs them
         std::optional<RelightPass> pass;       ///< banks of one view layer, mode lut
         std::vector<Relit> relit;              ///< by light direction
         std::optional<MipLuts> mipLuts;        ///< banks with view layers, mode lut

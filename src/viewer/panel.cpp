@@ -81,12 +81,12 @@ void Viewer::updatePlots() {
     if (m_bank->makesLuts()) {
         // The target's distribution from its quantile functions (first channel), each region
         // weighted by its sample texels.
-        const LutBank::Blend& blend = m_bank->blend;
-        const auto samples = static_cast<std::size_t>(blend.quantiles),
+        const LutBank::Prediction& prediction = m_bank->prediction;
+        const auto samples = static_cast<std::size_t>(prediction.quantiles),
                    channels = static_cast<std::size_t>(m_bank->channels());
-        for (std::size_t i = 0; i < blend.mask.inside.size(); i += 16)  // every 16th texel: plenty for a plot
-            if (blend.mask.inside[i]) {
-                const std::size_t r = blend.labels.empty() ? 0 : blend.labels[i];
+        for (std::size_t i = 0; i < prediction.mask.inside.size(); i += 16)  // every 16th texel: plenty for a plot
+            if (prediction.mask.inside[i]) {
+                const std::size_t r = prediction.labels.empty() ? 0 : prediction.labels[i];
                 for (std::size_t m = 0; m < samples; m += 8) add(lut.target.values[r * channels * samples + m], 1);
             }
     } else {
@@ -277,9 +277,9 @@ void Viewer::materialPanel() {
         ImGui::Text("%d x %d reference, %s LUTs of %d entries", m_bank->reference.width, m_bank->reference.height,
                     colourName(m_bank->colour), m_bank->entries);
         if (m_bank->makesLuts()) {
-            const LutBank::Blend& blend = m_bank->blend;
+            const LutBank::Prediction& prediction = m_bank->prediction;
             ImGui::Text("lut: %s, matched (%.2f) in %d region(s)", m_bank->predictor().description().c_str(),
-                        static_cast<double>(blend.match), blend.regions);
+                        static_cast<double>(prediction.match), prediction.regions);
         }
         ImGui::Text("%zu view layer(s), %zu lights (theta <= %.0f)", m_bank->layers.size(), nodes, maxTheta);
         ImGui::Text("%.0f%% of light directions inside the measured", 100 * m_coverage);

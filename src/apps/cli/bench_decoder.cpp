@@ -17,8 +17,8 @@
 #include "core/predict/learned_half.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/learned_shader.h"
-#include "gl/blend_textures.h"
 #include "gl/context.h"
+#include "gl/prediction_textures.h"
 #include "gl/relight_pass.h"
 #include "gl/scene_renderer.h"
 #include "gl/shader.h"
@@ -137,7 +137,7 @@ Result<double> timeDraws(Row& row, int count, bool timer) {
 }
 
 void setFrame(const ShaderProgram& p, const std::vector<ShaderValues>& values) {
-    for (const ShaderValues& v : values) {  // blendLearned.basis: frame.basis, ...
+    for (const ShaderValues& v : values) {  // predictLearned.basis: frame.basis, ...
         const std::string name = "frame" + v.name.substr(v.name.find('.'));
         const auto count = static_cast<GLsizei>(v.values.size() / static_cast<std::size_t>(v.size));
         if (v.size == 4)
@@ -328,7 +328,7 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     // btflut's own paths with their match LUTs: the relight pass (a moving light in texture
     // space) and the scene renderer's quad per fragment.
     std::size_t blendBytes = 0;
-    const BlendTextures blend = BlendTextures::upload(bank, blendBytes);
+    const PredictionTextures blend = PredictionTextures::upload(bank, blendBytes);
     RelightPass pass(bank, 0, &blend);
     const std::vector<GlTexture> passLuts = pass.makeLuts();
     const RelightFrame relightFrame = Relighter(bank).gridFrame(light);

@@ -17,8 +17,8 @@
 #include "core/histogram/histogram.h"
 #include "core/io/json_text.h"
 #include "core/relight/level_match.h"
-#include "gl/blend_textures.h"
 #include "gl/context.h"
+#include "gl/prediction_textures.h"
 #include "gl/relight_pass.h"
 #include "gl/textures.h"
 
@@ -137,7 +137,7 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
     gl.GetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timerBits);
 
     std::size_t bytes = 0;
-    const BlendTextures blend = BlendTextures::upload(bank, bytes);
+    const PredictionTextures blend = PredictionTextures::upload(bank, bytes);
     RelightPass pass(bank, 0, &blend);
     const std::vector<GlTexture> luts = pass.makeLuts();
     const Relighter relighter(bank);

@@ -86,7 +86,7 @@ std::string textureMemory(const SceneRenderer& renderer, nlohmann::json& out) {
     // direction of its quads (here four); ptm needs its three coefficient/albedo textures.
     const TextureBytes& bytes = renderer.stats().textureBytes;
     const std::size_t directions = std::max<std::size_t>(renderer.stats().relitTextures, 1);
-    const std::size_t lutBytes = bytes.reference + bytes.blend + bytes.relit + bytes.luts;
+    const std::size_t lutBytes = bytes.reference + bytes.prediction + bytes.relit + bytes.luts;
     out["texture_bytes_lut"] = lutBytes;
     out["texture_bytes_lut_per_direction"] = bytes.relit / directions;
     out["light_directions"] = directions;
@@ -95,13 +95,13 @@ std::string textureMemory(const SceneRenderer& renderer, nlohmann::json& out) {
     std::snprintf(line, sizeof line,
                   "  texture memory per material: lut %zu bytes (source %zu + %zu relit textures of %zu), ptm %zu "
                   "bytes; lut/ptm %.4f\n",
-                  lutBytes, bytes.reference + bytes.blend, directions, bytes.relit / directions, bytes.ptm,
+                  lutBytes, bytes.reference + bytes.prediction, directions, bytes.relit / directions, bytes.ptm,
                   static_cast<double>(lutBytes) / static_cast<double>(bytes.ptm));
     text += line;
     // Drawn per fragment a material needs its source (the reference, or a predictor's
     // planes) and a LUT per channel and region: per texel against the PTM's.
     const double texels = static_cast<double>(renderer.bank("m")->reference.pixelCount());
-    const double perFragment = static_cast<double>(bytes.reference + bytes.blend + bytes.luts) / texels;
+    const double perFragment = static_cast<double>(bytes.reference + bytes.prediction + bytes.luts) / texels;
     out["bytes_per_texel_per_fragment"] = perFragment;
     out["bytes_per_texel_ptm"] = static_cast<double>(bytes.ptm) / texels;
     std::snprintf(line, sizeof line,

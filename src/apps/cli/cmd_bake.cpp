@@ -145,7 +145,7 @@ std::string predictorSummary(const LutBank& bank) {
         return bank.domain == BankDomain::Layers
                    ? ", targets between the measured lights: " + targetChoiceSummary(bank)
                    : ", targets between the measured light and view pairs: " + targetChoiceSummary(bank);
-    const LutBank::Blend& b = bank.blend;
+    const LutBank::Prediction& b = bank.prediction;
     // The name `--predictor` takes (bln9c, not the planes it unpacks to), as info prints it.
     const ReferenceBlend* references = bank.predictorAs<ReferenceBlend>();
     std::string s = references ? ", " + std::to_string(references->references().size()) + " reference(s)"
@@ -158,7 +158,7 @@ std::string predictorSummary(const LutBank& bank) {
             : b.match == 0 ? " matched at the measured lights, unmatched between"
                            : std::string(" matched at the measured lights, ") + match + " between") +
            ", " + std::to_string(b.regions) + " region(s)" +
-           (b.target == LutBank::Blend::Target::Measured
+           (b.target == LutBank::Prediction::Target::Measured
                 ? ", targets between the measured lights: " + targetChoiceSummary(bank)
                 : std::string());
 }
@@ -236,8 +236,8 @@ void reportBake(const BakeCommandOptions& o, const Dataset& dataset, const LutBa
         if (bank.makesLuts()) {
             j["predictor"] = bank.predictorName();
             j["bytes_per_texel"] = bank.predictorBytesPerTexel();
-            j["match"] = bank.blend.match;  // away from the measured lights; at them 1 (Relighter::matchAt)
-            j["regions"] = bank.blend.regions;
+            j["match"] = bank.prediction.match;  // away from the measured lights; at them 1 (Relighter::matchAt)
+            j["regions"] = bank.prediction.regions;
         }
         std::cout << jsonText(j);
     }

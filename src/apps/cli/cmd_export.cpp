@@ -71,7 +71,7 @@ Result<Image> lutRows(const std::string& bankPath, int width, std::uint64_t rows
 // channels (the atlas).
 Result<Image> gridImage(const ExportOptions& o, const LutBank& b, const std::string& what) {
     const std::uint64_t rows = static_cast<std::uint64_t>(b.gridSize) * static_cast<std::uint64_t>(b.gridSize) *
-                               b.layers.size() * static_cast<std::uint64_t>(b.makesLuts() ? b.blend.regions : 1);
+                               b.layers.size() * static_cast<std::uint64_t>(b.makesLuts() ? b.prediction.regions : 1);
     return lutRows(o.bank, static_cast<int>(b.segmentLength()), rows, b.channels(), b.gridTexels(),
                    what);  // the same order as the image's samples
 }
@@ -142,14 +142,14 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     };
     nlohmann::json blend;
     if (b.makesLuts()) {
-        const LutBank::Blend& bl = b.blend;
-        blend["quantiles"] = bl.quantiles;
-        blend["regions"] = bl.regions;
-        blend["match"] = bl.match;  // the LUT blended with the prediction's own distribution below 1
-        blend["target"] = bl.target == LutBank::Blend::Target::Corrections ? "corrections" : "measured";
-        blend["mask"] = texture("mask", byteImage(bl.mask.inside, b.reference.width, b.reference.height, 255));
-        if (!bl.labels.empty())
-            blend["labels"] = texture("labels", byteImage(bl.labels, b.reference.width, b.reference.height, 1));
+        const LutBank::Prediction& prediction = b.prediction;
+        blend["quantiles"] = prediction.quantiles;
+        blend["regions"] = prediction.regions;
+        blend["match"] = prediction.match;  // the LUT blended with the prediction's own distribution below 1
+        blend["target"] = prediction.target == LutBank::Prediction::Target::Corrections ? "corrections" : "measured";
+        blend["mask"] = texture("mask", byteImage(prediction.mask.inside, b.reference.width, b.reference.height, 255));
+        if (!prediction.labels.empty())
+            blend["labels"] = texture("labels", byteImage(prediction.labels, b.reference.width, b.reference.height, 1));
         const ReferenceBlend* references = b.predictorAs<ReferenceBlend>();
         const ModelPredictor* model = b.predictorAs<ModelPredictor>();
         if (references && !references->albedo().samples.empty())

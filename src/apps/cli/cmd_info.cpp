@@ -183,14 +183,15 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
                        {"layers", nlohmann::json::array()}};
     if (b.makesLuts()) {
         const ReferenceBlend* references = b.predictorAs<ReferenceBlend>();
-        out["blend"] = {{"predictor", b.predictorName()},
-                        {"references", references ? references->references().size() : 0},
-                        {"regions", b.blend.regions},
-                        {"quantiles", b.blend.quantiles},
-                        {"match", b.blend.match},
-                        {"target", b.blend.target == LutBank::Blend::Target::Corrections ? "corrections" : "measured"},
-                        {"bytes_per_texel", b.predictorBytesPerTexel()},
-                        {"multiply_adds_per_texel", decodeCost(b)}};
+        out["blend"] = {
+            {"predictor", b.predictorName()},
+            {"references", references ? references->references().size() : 0},
+            {"regions", b.prediction.regions},
+            {"quantiles", b.prediction.quantiles},
+            {"match", b.prediction.match},
+            {"target", b.prediction.target == LutBank::Prediction::Target::Corrections ? "corrections" : "measured"},
+            {"bytes_per_texel", b.predictorBytesPerTexel()},
+            {"multiply_adds_per_texel", decodeCost(b)}};
         if (const ModelPredictor* model = b.predictorAs<ModelPredictor>()) {
             const LightModel& m = model->model();
             out["blend"]["model"] = {{"basis", lightBasisName(m.basis)},
@@ -241,23 +242,24 @@ Status runInfo(const InfoOptions& o) {
     if (b.makesLuts()) {
         // "relit per light" only: how far it is matched is the next line's (0: not at all).
         std::cout << "  predictor: " << b.predictor().description() << ", LUTs made at run time from ";
-        std::cout << b.blend.quantiles << "-sample quantile functions; " << b.blend.regions << " region(s)";
-        if (b.blend.regions > 1) {
-            std::vector<std::size_t> texels(static_cast<std::size_t>(b.blend.regions), 0);
-            for (std::size_t i = 0; i < b.blend.labels.size(); ++i) texels[b.blend.labels[i]] += b.blend.mask.inside[i];
+        std::cout << b.prediction.quantiles << "-sample quantile functions; " << b.prediction.regions << " region(s)";
+        if (b.prediction.regions > 1) {
+            std::vector<std::size_t> texels(static_cast<std::size_t>(b.prediction.regions), 0);
+            for (std::size_t i = 0; i < b.prediction.labels.size(); ++i)
+                texels[b.prediction.labels[i]] += b.prediction.mask.inside[i];
             std::cout << " (sample pixels:";
             for (std::size_t n : texels) std::cout << " " << n;
             std::cout << ")";
         }
         std::cout << "\n  match:     "
-                  << (b.blend.match == 1
+                  << (b.prediction.match == 1
                           ? std::string("fully")
                           : "fully at the measured lights; " +
-                                (b.blend.match == 0
+                                (b.prediction.match == 0
                                      ? std::string("away from them not at all (the prediction as it is)")
-                                     : fixed(b.blend.match, 2) + " of the way to the target away from them") +
+                                     : fixed(b.prediction.match, 2) + " of the way to the target away from them") +
                                 " (ramped over " + fixed(matchRampRadius(b), 3) + " of the light disk)")
-                  << (b.blend.target == LutBank::Blend::Target::Corrections
+                  << (b.prediction.target == LutBank::Prediction::Target::Corrections
                           ? ", through the nodes' corrections blended at the light"
                           : ", to the measured distributions: at a measured light its own, between them " +
                                 std::string(targetChoiceSummary(b) == "blend"

@@ -59,7 +59,7 @@ void printWritten(const RenderOptions& o, const Image& image, const RenderStats*
                             {"texture_bytes",
                              {{"total", s.textureBytes.total()},
                               {"references", s.textureBytes.reference},
-                              {"blended_references", s.textureBytes.blend},
+                              {"blended_references", s.textureBytes.prediction},
                               {"relit", s.textureBytes.relit},
                               {"luts", s.textureBytes.luts},
                               {"ptms", s.textureBytes.ptm},
@@ -130,8 +130,8 @@ Status runSceneRender(const RenderOptions& o) {
                   << stats.quadsTextureSpace << " quads drawn from relit textures, " << stats.quadsPerFragment
                   << " relit per fragment (the light moved and that cost less)"
                   << "\ntexture memory: " << stats.textureBytes.total() << " bytes (references "
-                  << stats.textureBytes.reference << ", blended references " << stats.textureBytes.blend << ", relit "
-                  << stats.textureBytes.relit << ", LUTs " << stats.textureBytes.luts << ", PTMs "
+                  << stats.textureBytes.reference << ", blended references " << stats.textureBytes.prediction
+                  << ", relit " << stats.textureBytes.relit << ", LUTs " << stats.textureBytes.luts << ", PTMs "
                   << stats.textureBytes.ptm << ", measured images " << stats.textureBytes.images << ")\n";
     }
     printWritten(o, *image, &stats);

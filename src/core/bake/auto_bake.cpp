@@ -167,7 +167,7 @@ void score(Candidate& c, LutBank& bank, const Fold& fold, const Validation& v, i
            const std::vector<float>& strengths) {
     const Relighter relighter(bank);
     for (float strength : c.classic || !bank.makesLuts() ? std::vector<float>{1.f} : strengths) {
-        bank.blend.match = strength;  // read by the frames below (one strength at a time)
+        bank.prediction.match = strength;  // read by the frames below (one strength at a time)
         std::vector<ImageErrors> figures(fold.test.size());
         parallelFor(fold.test.size(), threads, [&](std::size_t k) {
             const DatasetImage& info = v.dataset.images[fold.test[k]];
@@ -226,7 +226,7 @@ void validate(std::vector<Candidate>& candidates, const Validation& v, const Aut
                 break;
             }
             score(c, **banks[f], v.folds[f], v, options.base.threads, v.strengths);
-            c.fitted.push_back((*banks[f])->blend.predictor);
+            c.fitted.push_back((*banks[f])->prediction.predictor);
         }
         done += v.folds.size() * kStep;
         if (options.base.progress) options.base.progress(done, steps);

@@ -11,7 +11,7 @@
 // with as many planes as the budget allows (light_model.h). Some of the dataset's lights are
 // left out in turn (every 4th, two folds; each light once for small sets), each candidate is
 // baked from the others, and each left-out image is predicted at match strengths 0, 1/4,
-// ..., 1 (LutBank::Blend::match) and compared with the photograph (eval/metrics.h). The
+// ..., 1 (LutBank::Prediction::match) and compared with the photograph (eval/metrics.h). The
 // choice is the highest PSNR among the settings whose histogram L1 stays within 0.002 of
 // the one-reference bank's and of the same predictor's matched fully, each by the mean of the
 // per-image differences plus its standard error (the histograms are the method's point; the

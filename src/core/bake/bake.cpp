@@ -99,15 +99,15 @@ Result<std::pair<std::size_t, const Image*>> chooseReference(const Dataset& data
 
 // What a bank that makes its LUTs at run time is baked with besides the classic reference:
 // the other references, the regions (as one mask each) and, for lrgb, the albedo.
-struct BlendSetup {
+struct PredictionSetup {
     std::vector<std::size_t> references;  // dataset indices, the classic reference first
     std::vector<Mask> regionMasks;        // the sample mask split by region
     Regions regions;
 };
 
-Result<BlendSetup> setUpBlend(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex,
-                              const Image& ref, const Mask& mask, const ImageProvider& images) {
-    BlendSetup setup;
+Result<PredictionSetup> setUpPrediction(const Dataset& dataset, const BakeOptions& options, std::size_t refIndex,
+                                        const Image& ref, const Mask& mask, const ImageProvider& images) {
+    PredictionSetup setup;
     if (!dataset.fixedView()) {
         // Several views: a learned model of the views on rectified images (one frame for every
         // view), its bank a layer per view; every other predictor predicts one camera's images.
@@ -231,7 +231,7 @@ Result<std::shared_ptr<const Predictor>> fitModel(const Dataset& dataset, const 
     if (options.learned) {
         LearnedOptions o = *options.learned;
         o.threads = options.threads;
-        // Rectified views (setUpBlend refuses others): the networks take the view too.
+        // Rectified views (setUpPrediction refuses others): the networks take the view too.
         if (dataset.fixedView()) views.clear();
         Result<LearnedModel> model = fitLearnedModel(view, lights, mask, o, dataset.source, views);
         if (!model) return Error{model.error()};
@@ -332,11 +332,11 @@ public:
         if (!(m_options.match >= 0 && m_options.match <= 1))
             return Error{"--match must be from 0 (not at all) to 1 (fully)"};
         if (m_makesLuts) {
-            Result<BlendSetup> setup = setUpBlend(m_dataset, m_options, m_refIndex, *m_ref, m_mask, m_images);
+            Result<PredictionSetup> setup = setUpPrediction(m_dataset, m_options, m_refIndex, *m_ref, m_mask, m_images);
             if (!setup) return Error{setup.error()};
-            m_blend = std::move(*setup);
-            m_bank.blend.regions = m_blend.regions.count;
-            m_bank.blend.quantiles = m_options.quantiles;
+            m_prediction = std::move(*setup);
+            m_bank.prediction.regions = m_prediction.regions.count;
+            m_bank.prediction.quantiles = m_options.quantiles;
         } else {
             m_refLevels = countLevels(*m_ref, m_mask, m_options.colour);
             for (const LevelCounts& levels : m_refLevels)
@@ -369,7 +369,7 @@ public:
         std::size_t done = 0;
         if (m_options.ptm) m_ptm.emplace(ref.width, ref.height);
         if (m_options.colour == ColourMode::Lrgb) m_albedo.emplace(ref.width, ref.height);
-        m_blendReferences.resize(m_blend.references.size());  // as the blend keeps them, in pick order
+        m_blendReferences.resize(m_prediction.references.size());  // as the blend keeps them, in pick order
         InIndexOrder accumulating;
         parallelFor(m_dataset.images.size(), m_options.threads, [&](std::size_t i) {
             const DatasetImage& info = m_dataset.images[i];
@@ -443,13 +443,13 @@ private:
     void measureOne(const Image& image, std::size_t index, std::vector<float>& values) {
         if (m_makesLuts) {
             const ColourMode counted = m_options.colour == ColourMode::Rgb ? ColourMode::Rgb : ColourMode::Grey;
-            for (const Mask& region : m_blend.regionMasks)
+            for (const Mask& region : m_prediction.regionMasks)
                 for (const LevelCounts& levels : countLevels(image, region, counted)) {
                     const std::vector<float> q = quantileFunction(levels, m_options.quantiles);
                     values.insert(values.end(), q.begin(), q.end());
                 }
-            for (std::size_t k = 0; k < m_blend.references.size(); ++k)
-                if (m_blend.references[k] == index) m_blendReferences[k] = blendForm(image, m_options.colour);
+            for (std::size_t k = 0; k < m_prediction.references.size(); ++k)
+                if (m_prediction.references[k] == index) m_blendReferences[k] = blendForm(image, m_options.colour);
             return;
         }
         std::vector<LevelCounts> levels = countLevels(image, m_mask, m_options.colour);
@@ -476,15 +476,16 @@ private:
     // The predictor's parts in the bank: the model, or the references, their lights and the
     // albedo; the regions' labels and the sample mask.
     Status setPredictor() {
-        LutBank::Blend& blend = m_bank.blend;
-        blend.match = m_makesLuts ? m_options.match : 1.f;
+        LutBank::Prediction& prediction = m_bank.prediction;
+        prediction.match = m_makesLuts ? m_options.match : 1.f;
         if (!m_makesLuts) return success();
-        blend.target = m_options.target;
-        blend.labels = m_blend.regions.count > 1 ? std::move(m_blend.regions.labels) : std::vector<std::uint8_t>{};
-        blend.mask = m_mask;
+        prediction.target = m_options.target;
+        prediction.labels =
+            m_prediction.regions.count > 1 ? std::move(m_prediction.regions.labels) : std::vector<std::uint8_t>{};
+        prediction.mask = m_mask;
         const bool perChannel = m_bank.colour == ColourMode::Rgb;
         if (m_model) {
-            blend.predictor = std::move(m_model);
+            prediction.predictor = std::move(m_model);
             return success();
         }
         for (const Image& r : m_blendReferences) {
@@ -495,10 +496,10 @@ private:
                     return Error{m_dataset.source + ": a reference image is constant over the sample"};
         }
         std::vector<ReferenceLight> lights;
-        for (std::size_t k : m_blend.references)
+        for (std::size_t k : m_prediction.references)
             lights.push_back({m_dataset.images[k].name, m_dataset.images[k].light});
-        blend.predictor = std::make_shared<ReferenceBlend>(std::move(m_blendReferences), std::move(lights), perChannel,
-                                                           m_albedo ? m_albedo->finish() : Image{});
+        prediction.predictor = std::make_shared<ReferenceBlend>(std::move(m_blendReferences), std::move(lights),
+                                                                perChannel, m_albedo ? m_albedo->finish() : Image{});
         return success();
     }
 
@@ -511,7 +512,7 @@ private:
     Image m_referenceStorage;  // the reference when decoded here
     const Image* m_ref = nullptr;
     Mask m_mask;
-    BlendSetup m_blend;
+    PredictionSetup m_prediction;
     std::vector<LevelCounts> m_refLevels;  // classic banks: the reference's levels per channel
     std::vector<Image> m_decoded;          // a light model's images, decoded once for the fit and the pass
     std::vector<Image> m_blendReferences;

@@ -42,9 +42,9 @@ struct BakeOptions {
     /// The model (or learned model) already fitted to these images with these options: used as
     /// it is, not fitted again (auto baking a fold again with fewer quantiles).
     std::shared_ptr<const Predictor> fitted;
-    float match = 1;  ///< with a model or references: how far each light's LUT matches (LutBank::Blend::match)
-    LutBank::Blend::Target target =
-        LutBank::Blend::Target::Measured;  ///< with a model or references (LutBank::Blend::target)
+    float match = 1;  ///< with a model or references: how far each light's LUT matches (LutBank::Prediction::match)
+    LutBank::Prediction::Target target =
+        LutBank::Prediction::Target::Measured;  ///< with a model or references (LutBank::Prediction::target)
     bool matchGrid = true;  ///< banks with a predictor: bake the LUTs over the grid (LutBank::matchGridLuts)
     /// Banks with a predictor and measured targets: estimate the target between measured
     /// lights as validation chooses (target_choice.h); false: the blend alone.

@@ -86,8 +86,8 @@ LutBank formOf(const LutBank& bank, BankDomain domain) {
     out.colour = bank.colour;
     out.gridSize = bank.gridSize;
     out.domain = domain;
-    out.blend.regions = bank.blend.regions;
-    out.blend.quantiles = bank.blend.quantiles;
+    out.prediction.regions = bank.prediction.regions;
+    out.prediction.quantiles = bank.prediction.quantiles;
     return out;
 }
 
@@ -110,7 +110,7 @@ LutBank trainingBank(const LutBank& bank, const ViewLayer& layer, const std::vec
 
 // A bank of LUTs is one region.
 std::size_t regionsOf(const LutBank& bank) {
-    return bank.makesLuts() ? static_cast<std::size_t>(bank.blend.regions) : 1;
+    return bank.makesLuts() ? static_cast<std::size_t>(bank.prediction.regions) : 1;
 }
 
 std::vector<Direction> lightsOf(const ViewLayer& layer) {
@@ -295,7 +295,7 @@ nlohmann::json choosePairFit(LutBank& bank, const std::vector<Estimator>& list, 
 }  // namespace
 
 void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<double>>& entryWeights) {
-    if (bank.makesLuts() && bank.blend.target != LutBank::Blend::Target::Measured) return;
+    if (bank.makesLuts() && bank.prediction.target != LutBank::Prediction::Target::Measured) return;
     const bool pairs = bank.domain == BankDomain::Isotropic;
     // Model-filled nodes stand where nothing was measured: the isotropic choice has none.
     if (pairs && std::ranges::any_of(bank.layers, [](const ViewLayer& l) { return l.measuredNodes < l.nodes.size(); }))
@@ -308,7 +308,7 @@ void chooseTargetFits(LutBank& bank, int threads, const std::vector<std::vector<
         pairs ? bank.pairNodes.size() >= kMinFitLights
               : std::ranges::any_of(bank.layers, [](const ViewLayer& l) { return l.measuredNodes >= kMinFitLights; });
     if (chooses && regions == 1 && bank.channels() == 1) {
-        const NodeForm form = bank.makesLuts() ? NodeForm{.quantiles = bank.blend.quantiles}
+        const NodeForm form = bank.makesLuts() ? NodeForm{.quantiles = bank.prediction.quantiles}
                                                : NodeForm{.entries = bank.entries,
                                                           .reference = entryWeights.empty() ? std::vector<double>{}
                                                                                             : entryWeights.front()};

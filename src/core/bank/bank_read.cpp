@@ -80,8 +80,8 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
             // references 0: the PTM is the predictor (a PTMC chunk must follow)
             if (head.references > 255 || regions < 1 || regions > 255 || quantiles < 2 || quantiles > 65536)
                 return fail("references, regions or quantiles out of range");
-            bank.blend.regions = static_cast<int>(regions);
-            bank.blend.quantiles = static_cast<int>(quantiles);
+            bank.prediction.regions = static_cast<int>(regions);
+            bank.prediction.quantiles = static_cast<int>(quantiles);
             if (head.references == 0) head.predictor = FilePredictor::Ptm;
         } else if (in.ok() && (head.references != 0 || regions != 0)) {
             return fail("references and regions without quantiles");
@@ -92,12 +92,12 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
         const auto match = in.get<float>();
         const auto target = in.get<std::uint32_t>();
         if (in.ok() && (predictor > (version >= 8 ? 3u : 2u) || !(match >= 0 && match <= 1) || target > 1 ||
-                        (bank.blend.quantiles > 0 ? (head.references == 0) != (predictor != 0)
-                                                  : predictor != 0 || match != 1 || target != 0)))
+                        (bank.prediction.quantiles > 0 ? (head.references == 0) != (predictor != 0)
+                                                       : predictor != 0 || match != 1 || target != 0)))
             return fail("predictor, match or target out of range, or not what the references say");
-        if (bank.blend.quantiles > 0) head.predictor = static_cast<FilePredictor>(predictor);
-        bank.blend.match = match;
-        bank.blend.target = static_cast<LutBank::Blend::Target>(target);
+        if (bank.prediction.quantiles > 0) head.predictor = static_cast<FilePredictor>(predictor);
+        bank.prediction.match = match;
+        bank.prediction.target = static_cast<LutBank::Prediction::Target>(target);
     }
     if (!in.ok() || in.remaining() != 0) return fail("HEAD chunk has the wrong size");
     if (!rl) return Error{rl.error()};
@@ -185,7 +185,7 @@ public:
             case kLabels:
             case kAlbedo:
                 if (!m_bank.makesLuts()) return fail("unexpected chunk " + tagName(chunk.tag));
-                return readBlendChunk(chunk.tag, in, m_name, m_head, m_bank, m_parts);
+                return readPredictionChunk(chunk.tag, in, m_name, m_head, m_bank, m_parts);
             case kLightModel:
                 return lightModel(in);
             case kLearnedModel:
@@ -431,7 +431,7 @@ private:
     // A bank with a predictor: its parts all there and consistent, made into its predictor (a
     // PTM-predicted bank's PTM as a light model).
     Status predictor() {
-        LutBank::Blend& blend = m_bank.blend;
+        LutBank::Prediction& prediction = m_bank.prediction;
         const FilePredictor kind = m_head.predictor;
         if (kind == FilePredictor::Ptm && (!m_havePtm || m_bank.colour != ColourMode::Grey))
             return fail("a PTM-predicted bank without its PTM");
@@ -440,26 +440,26 @@ private:
         if (kind == FilePredictor::Learned && (!m_parts.learned || m_bank.colour == ColourMode::Lrgb ||
                                                (m_bank.colour == ColourMode::Rgb && m_parts.learned->channels != 3)))
             return fail("a bank predicted by a learned model without its model (LRND chunk), or of another colour");
-        if (!m_head.embedded || m_parts.references.size() != m_head.references || blend.mask.inside.empty() ||
-            (blend.regions > 1) != !blend.labels.empty() ||
+        if (!m_head.embedded || m_parts.references.size() != m_head.references || prediction.mask.inside.empty() ||
+            (prediction.regions > 1) != !prediction.labels.empty() ||
             (m_bank.colour == ColourMode::Lrgb) != !m_parts.albedo.samples.empty() ||
             (m_bank.layers.size() != 1 &&
              !(m_parts.learned && m_parts.learned->viewFeatures > 0 && m_bank.domain == BankDomain::Layers)))
             return fail(
                 "the references, mask, labels or albedo of a bank that blends references are missing or do not fit, "
                 "or it has several view layers and no predictor of views");
-        for (std::uint8_t label : blend.labels)
-            if (label >= blend.regions) return fail("a region label is beyond the bank's regions");
+        for (std::uint8_t label : prediction.labels)
+            if (label >= prediction.regions) return fail("a region label is beyond the bank's regions");
         const bool perChannel = m_bank.colour == ColourMode::Rgb;
         if (kind == FilePredictor::Ptm)
-            blend.predictor = std::make_shared<ModelPredictor>(lightModelFromPtm(m_bank.ptm), perChannel, true);
+            prediction.predictor = std::make_shared<ModelPredictor>(lightModelFromPtm(m_bank.ptm), perChannel, true);
         else if (kind == FilePredictor::Model)
-            blend.predictor = std::make_shared<ModelPredictor>(std::move(*m_parts.model), perChannel);
+            prediction.predictor = std::make_shared<ModelPredictor>(std::move(*m_parts.model), perChannel);
         else if (kind == FilePredictor::Learned)
-            blend.predictor = std::make_shared<LearnedPredictor>(std::move(*m_parts.learned), perChannel);
+            prediction.predictor = std::make_shared<LearnedPredictor>(std::move(*m_parts.learned), perChannel);
         else
-            blend.predictor = std::make_shared<ReferenceBlend>(std::move(m_parts.references), std::move(m_parts.lights),
-                                                               perChannel, std::move(m_parts.albedo));
+            prediction.predictor = std::make_shared<ReferenceBlend>(
+                std::move(m_parts.references), std::move(m_parts.lights), perChannel, std::move(m_parts.albedo));
         return success();
     }
 

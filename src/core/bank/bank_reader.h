@@ -95,7 +95,7 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
 Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t width, std::uint32_t height);
 
 // REFS, MASK, LABL, ALBD: the parts of a bank that makes its LUTs at run time.
-Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, const Head& head, LutBank& bank,
-                      PredictorParts& parts);
+Status readPredictionChunk(std::uint32_t tag, Reader& in, const std::string& name, const Head& head, LutBank& bank,
+                           PredictorParts& parts);
 
 }  // namespace btflut::bank_read

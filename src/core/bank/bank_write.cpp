@@ -160,7 +160,8 @@ constexpr VersionAdded kVersionsAdded[] = {
     {5,
      [](const LutBank& b) {
          return filePredictor(b) == FilePredictor::Model ||
-                (b.makesLuts() && (b.blend.match != 1 || b.blend.target != LutBank::Blend::Target::Measured)) ||
+                (b.makesLuts() &&
+                 (b.prediction.match != 1 || b.prediction.target != LutBank::Prediction::Target::Measured)) ||
                 !b.selection.empty() || anyLayer(b, [](const ViewLayer& l) { return !l.matchGridLuts.empty(); });
      }},
     {4, [](const LutBank& b) { return !b.modelFill.empty(); }},
@@ -224,13 +225,14 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         // All zero for a bank of LUTs (a version 4 bank need not make its LUTs at run time).
         const ReferenceBlend* references = bank.predictorAs<ReferenceBlend>();
         head.put(static_cast<std::uint32_t>(references ? references->references().size() : 0));
-        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.regions : 0));
-        head.put(static_cast<std::uint32_t>(bank.blend.quantiles));
+        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.prediction.regions : 0));
+        head.put(static_cast<std::uint32_t>(bank.prediction.quantiles));
     }
     if (version >= 5) {
         head.put(static_cast<std::uint32_t>(filePredictor(bank)));
-        head.put(bank.makesLuts() ? bank.blend.match : 1.f);
-        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.blend.target : LutBank::Blend::Target::Measured));
+        head.put(bank.makesLuts() ? bank.prediction.match : 1.f);
+        head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.prediction.target
+                                                             : LutBank::Prediction::Target::Measured));
     }
     putChunk(file, kHead, head.bytes());
 
@@ -257,7 +259,7 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     }
     if (embed) putChunk(file, kReference, encodePng(bank.reference, bank.reference.bitDepth));
     if (bank.makesLuts()) {
-        const LutBank::Blend& blend = bank.blend;
+        const LutBank::Prediction& prediction = bank.prediction;
         const ReferenceBlend* references = bank.predictorAs<ReferenceBlend>();
         if (references) {
             Writer refs;
@@ -271,9 +273,11 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
             }
             putChunk(file, kReferences, refs.bytes());
         }
-        putChunk(file, kMask, encodePng(byteImage(blend.mask.inside, blend.mask.width, blend.mask.height, 255), 8));
-        if (!blend.labels.empty())
-            putChunk(file, kLabels, encodePng(byteImage(blend.labels, blend.mask.width, blend.mask.height, 1), 8));
+        putChunk(file, kMask,
+                 encodePng(byteImage(prediction.mask.inside, prediction.mask.width, prediction.mask.height, 255), 8));
+        if (!prediction.labels.empty())
+            putChunk(file, kLabels,
+                     encodePng(byteImage(prediction.labels, prediction.mask.width, prediction.mask.height, 1), 8));
         if (references && !references->albedo().samples.empty())
             putChunk(file, kAlbedo, encodePng(references->albedo(), 8));
         if (filePredictor(bank) == FilePredictor::Model)

@@ -181,7 +181,7 @@ LutBank::NodeRef LutBank::nearestNode(Direction light, Direction view) const {
 
 std::vector<std::uint16_t> LutBank::gridTexels() const {
     const auto cells = static_cast<std::size_t>(gridSize) * gridSize, width = segmentLength();
-    const auto regions = static_cast<std::size_t>(makesLuts() ? blend.regions : 1),
+    const auto regions = static_cast<std::size_t>(makesLuts() ? prediction.regions : 1),
                ch = static_cast<std::size_t>(channels());
     std::vector<std::uint16_t> texels(layers.size() * cells * regions * width * ch);
     std::size_t at = 0;
@@ -249,7 +249,7 @@ Status setNodes(LutBank& bank, const std::vector<DirectionalLut>& luts, std::opt
 }
 
 std::optional<PixelRect> sampleWindow(const LutBank& bank) {
-    const Mask& mask = bank.blend.mask;
+    const Mask& mask = bank.prediction.mask;
     if (!bank.makesLuts() || mask.inside.empty() || mask.count() == mask.inside.size()) return std::nullopt;
     const PixelRect r = largestRectInside(mask);
     if (r.width <= 0 || r.height <= 0) return std::nullopt;
@@ -294,22 +294,23 @@ Image applyLuts(const Image& image, ColourMode colour, const std::vector<float>&
 }
 
 const Predictor& LutBank::predictor() const {
-    BTFLUT_CHECK(makesLuts() && blend.predictor);
-    return *blend.predictor;
+    BTFLUT_CHECK(makesLuts() && prediction.predictor);
+    return *prediction.predictor;
 }
 
 std::string LutBank::predictorName() const { return makesLuts() ? predictor().name() : ""; }
 
 double LutBank::predictorBytesPerTexel() const {
     if (!makesLuts()) return reference.channels * (reference.bitDepth / 8.0);
-    return predictor().bytesPerTexel() + (blend.regions > 1 ? 1 : 0);
+    return predictor().bytesPerTexel() + (prediction.regions > 1 ? 1 : 0);
 }
 
 LevelCounts brdfReferenceGrey(const LutBank& bank) {
     const Image& reference = bank.reference;
     // The target's mean is the sample's (brdfScale): the reference's must be too, or a
     // capture whose sample covers 42% of the image is drawn 2.4x too bright.
-    if (bank.makesLuts() && !bank.blend.mask.inside.empty()) return countGreyLevels(reference, bank.blend.mask);
+    if (bank.makesLuts() && !bank.prediction.mask.inside.empty())
+        return countGreyLevels(reference, bank.prediction.mask);
     return countGreyLevels(reference, fullMask(reference.width, reference.height));
 }
 
@@ -325,19 +326,19 @@ float brdfScale(const LutBank& bank, const LevelCounts& referenceGrey, const Ban
     if (bank.makesLuts()) {
         // The target's mean grey: each region's quantile function's mean (trapezoids over
         // [0, 1]), weighted by its sample texels; rgb banks: the mean over their channels.
-        const LutBank::Blend& blend = bank.blend;
-        const auto samples = static_cast<std::size_t>(blend.quantiles),
+        const LutBank::Prediction& prediction = bank.prediction;
+        const auto samples = static_cast<std::size_t>(prediction.quantiles),
                    channels = static_cast<std::size_t>(bank.channels());
-        std::vector<double> texels(static_cast<std::size_t>(blend.regions), 0);
-        for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
-            texels[blend.labels.empty() ? 0 : blend.labels[i]] += blend.mask.inside[i];
+        std::vector<double> texels(static_cast<std::size_t>(prediction.regions), 0);
+        for (std::size_t i = 0; i < prediction.mask.inside.size(); ++i)
+            texels[prediction.labels.empty() ? 0 : prediction.labels[i]] += prediction.mask.inside[i];
         double mean = 0;
         for (std::size_t r = 0; r < texels.size(); ++r)
             for (std::size_t c = 0; c < channels; ++c) {
                 const float* q = &lookup.values[(r * channels + c) * samples];
                 double integral = 0;
                 for (std::size_t m = 0; m + 1 < samples; ++m) integral += 0.5 * (q[m] + q[m + 1]);
-                mean += texels[r] / static_cast<double>(blend.mask.count()) * integral /
+                mean += texels[r] / static_cast<double>(prediction.mask.count()) * integral /
                         static_cast<double>(samples - 1) / static_cast<double>(channels);
             }
         target = mean * total;

@@ -105,7 +105,7 @@ struct ViewLayer {
 };
 
 struct BankLookup {
-    std::vector<float> values;                     ///< nodeLength(): LUTs, or quantile functions (LutBank::blend)
+    std::vector<float> values;                     ///< nodeLength(): LUTs, or quantile functions (LutBank::prediction)
     Provenance provenance = Provenance::Measured;  ///< the worse of the two below
     Provenance lightProvenance = Provenance::Measured, viewProvenance = Provenance::Measured;
 };
@@ -146,7 +146,7 @@ struct LutBank {
     /// lrgb, a light model or a learned model; relighter.h): a predictor relit per light, and
     /// regions of the sample, each matched to its own target. Their nodes hold the targets'
     /// quantile functions.
-    struct Blend {
+    struct Prediction {
         /// What predicts each texel before each light's LUT matches it (predictor.h): the
         /// references blended (reference_blend.h), a light model (model_predictor.h; a bank's
         /// PTM as one) or a learned model (learned_predictor.h). Shared by the bank's copies:
@@ -170,7 +170,7 @@ struct LutBank {
         Mask mask;                         ///< the sample texels: the blend's statistics are theirs
         int regions = 1;
         int quantiles = 0;  ///< samples per quantile function; 0: a bank of LUTs
-    } blend;
+    } prediction;
 
     /// How `bake --predictor auto` chose the predictor: the candidates and their validation
     /// figures, JSON (docs/predictors.md); empty for banks baked otherwise.
@@ -181,14 +181,14 @@ struct LutBank {
     std::string targetChoice;
 
     /// True for banks that make their LUTs at run time (see Blend).
-    bool makesLuts() const { return blend.quantiles > 0; }
+    bool makesLuts() const { return prediction.quantiles > 0; }
     /// The predictor of a bank that makes its LUTs.
     const Predictor& predictor() const;
     /// Its kind, for what only that kind has (its file chunk, its sidecar, its description):
     /// the predictor as `Kind`, or null when it is another (or the bank makes no LUTs).
     template <class Kind>
     const Kind* predictorAs() const {
-        return dynamic_cast<const Kind*>(blend.predictor.get());
+        return dynamic_cast<const Kind*>(prediction.predictor.get());
     }
     /// The predictor's name as the command line gives it (`--predictor`): the light model's
     /// (ptm, hsh2, rbf9, bln9c, ...), the learned model's (neural9) or "references"; "" for a
@@ -209,10 +209,11 @@ struct LutBank {
     std::size_t lutLength() const { return static_cast<std::size_t>(channels()) * entries; }
     /// Values per node: lutLength(), or regions x channels x quantiles (makesLuts).
     std::size_t nodeLength() const {
-        return makesLuts() ? static_cast<std::size_t>(blend.regions) * channels() * blend.quantiles : lutLength();
+        return makesLuts() ? static_cast<std::size_t>(prediction.regions) * channels() * prediction.quantiles
+                           : lutLength();
     }
     /// The length of one monotonic segment of a node's values: entries or quantiles.
-    std::size_t segmentLength() const { return static_cast<std::size_t>(makesLuts() ? blend.quantiles : entries); }
+    std::size_t segmentLength() const { return static_cast<std::size_t>(makesLuts() ? prediction.quantiles : entries); }
 
     /// The LUT for a light and view direction (any direction in the upper hemisphere);
     /// with `interpolate` false, the LUT of the nearest measured node (for comparisons).
@@ -234,7 +235,7 @@ struct LutBank {
     std::vector<float> matchGridLookup(Direction light, Direction view) const;
     /// Values per node of matchGridLuts: regions x channels x entries.
     std::size_t matchLength() const {
-        return static_cast<std::size_t>(blend.regions) * static_cast<std::size_t>(channels()) *
+        return static_cast<std::size_t>(prediction.regions) * static_cast<std::size_t>(channels()) *
                static_cast<std::size_t>(entries);
     }
 

@@ -234,12 +234,12 @@ Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t
     return ptm;
 }
 
-// The chunks of version 3 banks that make their LUTs at run time (LutBank::Blend); sizes
+// The chunks of version 3 banks that make their LUTs at run time (LutBank::Prediction); sizes
 // are checked against HEAD before anything is decoded, and each chunk may come once.
-Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, const Head& head, LutBank& bank,
-                      PredictorParts& parts) {
+Status readPredictionChunk(std::uint32_t tag, Reader& in, const std::string& name, const Head& head, LutBank& bank,
+                           PredictorParts& parts) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + tagName(tag) + " chunk: " + what}; };
-    LutBank::Blend& blend = bank.blend;
+    LutBank::Prediction& prediction = bank.prediction;
     const int w = static_cast<int>(head.refWidth), h = static_cast<int>(head.refHeight);
     auto png = [&](const std::string& what) { return readPng(in, fail, what, name + " (" + what + ")", w, h); };
     auto whole = [&](const std::string& what) -> Result<Image> {  // a chunk that is one PNG
@@ -268,7 +268,7 @@ Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, co
         return success();
     }
     if (tag == kMask || tag == kLabels) {
-        if (!(tag == kMask ? blend.mask.inside : blend.labels).empty()) return fail("twice");
+        if (!(tag == kMask ? prediction.mask.inside : prediction.labels).empty()) return fail("twice");
         Result<Image> image = whole(tag == kMask ? "mask" : "labels");
         if (!image) return Error{image.error()};
         if (image->channels != 1 || image->bitDepth != 8) return fail("not an 8-bit grey image");
@@ -276,11 +276,11 @@ Status readBlendChunk(std::uint32_t tag, Reader& in, const std::string& name, co
         for (std::size_t i = 0; i < bytes.size(); ++i)
             bytes[i] = static_cast<std::uint8_t>(std::lround(image->samples[i] * 255) / (tag == kMask ? 255 : 1));
         if (tag == kLabels) {
-            blend.labels = std::move(bytes);
+            prediction.labels = std::move(bytes);
             return success();
         }
-        blend.mask = {w, h, std::move(bytes)};
-        if (blend.mask.count() == 0) return fail("has no sample pixels");
+        prediction.mask = {w, h, std::move(bytes)};
+        if (prediction.mask.count() == 0) return fail("has no sample pixels");
         return success();
     }
     if (!parts.albedo.samples.empty()) return fail("twice");

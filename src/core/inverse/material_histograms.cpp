@@ -31,7 +31,7 @@ std::vector<double> MaterialHistograms::at(Direction light, Direction view, int 
     std::vector<double> histogram(static_cast<std::size_t>(bins), 0.0);
     const BankLookup lookup = bank->lookup(light, view);
     if (bank->makesLuts()) {  // regions x quantiles: each quantile sample an equal share of its region
-        const auto q = static_cast<std::size_t>(bank->blend.quantiles);
+        const auto q = static_cast<std::size_t>(bank->prediction.quantiles);
         for (std::size_t r = 0; r < regionShares.size(); ++r)
             for (std::size_t m = 0; m < q; ++m)
                 deposit(histogram, lookup.values[r * q + m], regionShares[r] / static_cast<double>(q));
@@ -66,11 +66,12 @@ Result<MaterialHistograms> loadMaterial(const std::string& path) {
     if (bank->reference.samples.empty())
         return Error{path + ": the bank holds no reference image (baked with --no-reference)"};
     if (bank->makesLuts()) {
-        const LutBank::Blend& blend = bank->blend;
-        material.regionShares.assign(static_cast<std::size_t>(blend.regions), 0.0);
-        for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
-            if (blend.mask.inside[i]) material.regionShares[blend.labels.empty() ? 0 : blend.labels[i]] += 1;
-        const double total = static_cast<double>(blend.mask.count());
+        const LutBank::Prediction& prediction = bank->prediction;
+        material.regionShares.assign(static_cast<std::size_t>(prediction.regions), 0.0);
+        for (std::size_t i = 0; i < prediction.mask.inside.size(); ++i)
+            if (prediction.mask.inside[i])
+                material.regionShares[prediction.labels.empty() ? 0 : prediction.labels[i]] += 1;
+        const double total = static_cast<double>(prediction.mask.count());
         for (double& share : material.regionShares) share /= total;
     } else {
         material.referenceGrey =

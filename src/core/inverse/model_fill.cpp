@@ -52,7 +52,7 @@ Result<ModelFillReport> fillFromModel(LutBank& bank, const ModelBankParams& para
             "(bake it with --domain layers, or leave it clamped)"};
     if (bank.colour == ColourMode::Rgb)
         return Error{"--fill model: the model gives grey histograms; bake with --colour grey or lrgb"};
-    if (bank.makesLuts() && bank.blend.regions > 1)
+    if (bank.makesLuts() && bank.prediction.regions > 1)
         return Error{"--fill model: the model describes the whole sample, not each of --regions"};
     for (const ViewLayer& layer : bank.layers)
         for (const LightNode& node : layer.nodes)

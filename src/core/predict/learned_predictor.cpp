@@ -51,8 +51,8 @@ PredictorPlanes LearnedPredictor::planes() const {
 }
 
 std::vector<std::string> LearnedPredictor::shaderDefines() const {
-    return {"BLEND_LEARNED", "BLEND_LEARNED_LAYERS " + std::to_string((m_model.codes + 3) / 4),
-            "BLEND_LEARNED_CHANNELS " + std::to_string(m_model.channels)};
+    return {"PREDICT_LEARNED", "PREDICT_LEARNED_LAYERS " + std::to_string((m_model.codes + 3) / 4),
+            "PREDICT_LEARNED_CHANNELS " + std::to_string(m_model.channels)};
 }
 
 std::size_t LearnedPredictor::multiplyAdds() const {
@@ -76,9 +76,9 @@ std::vector<ShaderValues> LearnedPredictor::shaderValues(const PredictorFrame& f
             offset[c] = f.basis[c * (N + 1) + N];
         }
         std::copy(f.hidden.begin(), f.hidden.end(), hidden.begin());
-        at.uniforms = {{"blendLearned.basis", 4, std::move(basis)},
-                       {"blendLearned.offset", 3, std::move(offset)},
-                       {"blendLearned.hidden", 4, std::move(hidden)}};
+        at.uniforms = {{"predictLearned.basis", 4, std::move(basis)},
+                       {"predictLearned.offset", 3, std::move(offset)},
+                       {"predictLearned.hidden", 4, std::move(hidden)}};
     });
     return at.uniforms;
 }

@@ -49,10 +49,10 @@ PredictorPlanes ModelPredictor::planes() const {
 
 std::vector<std::string> ModelPredictor::shaderDefines() const {
     const std::string layers = std::to_string((m_model.planes + 3) / 4);
-    std::vector<std::string> d{"BLEND_MODEL", "BLEND_MODEL_LAYERS " + layers,
-                               "BLEND_MODEL_WIDE " + std::to_string(m_model.wide),
-                               "BLEND_MODEL_CHANNELS " + std::to_string(m_model.channels)};
-    if (!m_model.albedo.empty()) d.insert(d.end(), {"BLEND_MODEL_ALBEDO", "BLEND_ALBEDO_LAYER " + layers});
+    std::vector<std::string> d{"PREDICT_MODEL", "PREDICT_MODEL_LAYERS " + layers,
+                               "PREDICT_MODEL_WIDE " + std::to_string(m_model.wide),
+                               "PREDICT_MODEL_CHANNELS " + std::to_string(m_model.channels)};
+    if (!m_model.albedo.empty()) d.insert(d.end(), {"PREDICT_MODEL_ALBEDO", "PREDICT_ALBEDO_LAYER " + layers});
     return d;
 }
 
@@ -66,11 +66,11 @@ std::vector<ShaderValues> ModelPredictor::shaderValues(const PredictorFrame& fra
         for (std::size_t c = 0; c < C; ++c)
             weights[((q / 4) * 3 + c) * 4 + q % 4] = static_cast<float>(frame.model.weights[q * C + c]);
     const LightModelFixed& f = frame.model;
-    return {{"blendModel.weights", 4, std::move(weights)},
-            {"blendModel.offset",
+    return {{"predictModel.weights", 4, std::move(weights)},
+            {"predictModel.offset",
              3,
              {static_cast<float>(f.offset[0]), static_cast<float>(f.offset[1]), static_cast<float>(f.offset[2])}},
-            {"blendModel.scale", 1, {f.scale}}};
+            {"predictModel.scale", 1, {f.scale}}};
 }
 
 PredictorFrame ModelPredictor::frameAt(Direction light, Direction /*view: one camera*/) const {

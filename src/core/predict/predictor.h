@@ -108,7 +108,7 @@ public:
 
     /// Its planes as a GPU holds them.
     virtual PredictorPlanes planes() const = 0;
-    /// The #defines that choose and size its prediction in shaders/lut_common.glsl (BLEND_...).
+    /// The #defines that choose and size its prediction in shaders/lut_common.glsl (PREDICT_...).
     virtual std::vector<std::string> shaderDefines() const = 0;
     /// GLSL its shader code needs after the include, made for this predictor (a learned model's
     /// decoder specialised to it: learned_shader.h); empty for most kinds.
@@ -167,7 +167,7 @@ inline int levelCount(int width, int height) {
 void levelTexelBytes(std::span<const std::uint8_t> bytes, int width, int height, int channels, int level,
                      std::uint32_t texel, std::uint8_t* out);
 /// Level `level` of an image of bytes (`channels` per texel, rows of `width`) as a GPU holds
-/// a predictor's planes' mipmaps (BlendTextures, made here rather than by the driver, whose
+/// a predictor's planes' mipmaps (PredictionTextures, made here rather than by the driver, whose
 /// rounding varies): each texel its square's mean (levelBlock), rounded half up.
 std::vector<std::uint8_t> levelOfBytes(std::span<const std::uint8_t> bytes, int width, int height, int channels,
                                        int level);

@@ -63,17 +63,17 @@ PredictorPlanes ReferenceBlend::planes() const {
 }
 
 std::vector<std::string> ReferenceBlend::shaderDefines() const {
-    std::vector<std::string> d{"BLEND_FETCHES " + std::to_string(std::min<std::size_t>(m_references.size(), 3))};
+    std::vector<std::string> d{"PREDICT_FETCHES " + std::to_string(std::min<std::size_t>(m_references.size(), 3))};
     // Grey references are held in all three channels; their code is one channel's (codes
     // 255), not the sum the grey of RGB takes.
-    if (m_references.front().channels == 1) d.push_back("BLEND_GREY_REFERENCES");
+    if (m_references.front().channels == 1) d.push_back("PREDICT_GREY_REFERENCES");
     if (!m_albedo.samples.empty())
-        d.insert(d.end(), {"BLEND_ALBEDO_CHROMA", "BLEND_ALBEDO_LAYER " + std::to_string(m_references.size())});
+        d.insert(d.end(), {"PREDICT_ALBEDO_CHROMA", "PREDICT_ALBEDO_LAYER " + std::to_string(m_references.size())});
     return d;
 }
 
 std::vector<ShaderValues> ReferenceBlend::shaderValues(const PredictorFrame& frame) const {
-    // The references around the light and their weights (BLEND_FETCHES of each; unused ones 0).
+    // The references around the light and their weights (PREDICT_FETCHES of each; unused ones 0).
     const std::size_t fetches = std::min<std::size_t>(m_references.size(), 3);
     std::vector<float> layers(fetches, 0.f), weights(fetches, 0.f);
     for (std::size_t k = 0; k < static_cast<std::size_t>(frame.count); ++k) {

@@ -1,5 +1,5 @@
 #pragma once
-// What banks that blend several references and match regions (LutBank::Blend) are baked
+// What banks that blend several references and match regions (LutBank::Prediction) are baked
 // from: which measured images become the references, the regions of the sample, and the
 // albedo whose chroma an lrgb bank keeps.
 //

@@ -22,7 +22,7 @@ namespace {
 std::vector<std::uint16_t> matchGridTexels(const LutBank& bank, const std::vector<std::uint16_t>& grid) {
     const auto g = static_cast<std::size_t>(bank.gridSize), entries = static_cast<std::size_t>(bank.entries),
                channels = static_cast<std::size_t>(bank.channels()),
-               regions = static_cast<std::size_t>(bank.blend.regions);
+               regions = static_cast<std::size_t>(bank.prediction.regions);
     BTFLUT_CHECK(grid.size() == g * g * regions * channels * entries);
     std::vector<std::uint16_t> texels(grid.size());
     std::size_t at = 0;
@@ -114,7 +114,7 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
         out.outputChannels = bank.colour == ColourMode::Grey ? bank.reference.channels : 3;
         return out;
     }
-    const LutBank::Blend& blend = bank.blend;
+    const LutBank::Prediction& blend = bank.prediction;
     // A block per view layer (a predictor of views has several) and region.
     const LutBank* gridded = &bank;
     LutBank copy;

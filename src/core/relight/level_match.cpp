@@ -21,7 +21,7 @@ double storedCode(std::size_t code, std::uint32_t x, std::uint32_t y, std::uint3
 
 bool LevelMatch::supports(const LutBank& bank) {
     return bank.makesLuts() && bank.layers.size() == 1 && !bank.predictor().viewDependent() &&
-           bank.blend.regions == 1 && !bank.layers[0].matchGridLuts.empty();
+           bank.prediction.regions == 1 && !bank.layers[0].matchGridLuts.empty();
 }
 
 LevelMatch::LevelMatch(const LutBank& bank)
@@ -77,7 +77,7 @@ const std::vector<float>& LevelMatch::nodeLuts(int i, int j, int level) const {
     const std::uint16_t* grid = &bank.layers[0].matchGridLuts[cell * bank.matchLength()];
     const float inCode = 1.f / static_cast<float>(predictor.codes() + 1), outCode = bank.targetCode();
     const auto outCodes = static_cast<std::size_t>(std::lround(1.0 / outCode));
-    const int quantiles = std::max(bank.blend.quantiles, 1024);
+    const int quantiles = std::max(bank.prediction.quantiles, 1024);
 
     std::vector<float> luts;
     std::vector<float> lut(entries);

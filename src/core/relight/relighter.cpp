@@ -45,7 +45,7 @@ LevelCounts ownValues(const LevelCounts& counts) {
 
 Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     if (!bank.makesLuts()) return;
-    const LutBank::Blend& blend = bank.blend;
+    const LutBank::Prediction& blend = bank.prediction;
     m_regionTexels.resize(static_cast<std::size_t>(blend.regions));
     for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
         if (blend.mask.inside[i])
@@ -65,7 +65,7 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
                 }
         }
     }
-    if (blend.target == LutBank::Blend::Target::Corrections) {
+    if (blend.target == LutBank::Prediction::Target::Corrections) {
         // Each node's LUT from the prediction at its light to its target, in a bank of the
         // same nodes (its lookups blend them as a classic bank's).
         auto corrections = std::make_shared<LutBank>();
@@ -76,8 +76,8 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
         corrections->views = bank.views;
         corrections->pairs = bank.pairs;
         corrections->pairNodes = bank.pairNodes;
-        corrections->blend.regions = blend.regions;
-        corrections->blend.quantiles = bank.entries;  // its node values: regions x channels x entries
+        corrections->prediction.regions = blend.regions;
+        corrections->prediction.quantiles = bank.entries;  // its node values: regions x channels x entries
         const auto samples = static_cast<std::size_t>(blend.quantiles);
         for (const ViewLayer& layer : bank.layers) {
             ViewLayer copy;  // the directions and triangulations; its own values
@@ -153,7 +153,7 @@ RelightFrame Relighter::gridFrame(Direction light, Direction view, std::optional
             copy->entries = m_bank.entries;
             copy->colour = m_bank.colour;
             copy->gridSize = m_bank.gridSize;
-            copy->blend.regions = m_bank.blend.regions;
+            copy->prediction.regions = m_bank.prediction.regions;
             LutBank whole = m_bank;
             bakeMatchGrid(whole);
             copy->layers.resize(1);
@@ -225,7 +225,7 @@ LevelCounts Relighter::predictedCounts(const RelightFrame& frame, std::size_t re
 }
 
 float Relighter::matchAt(Direction light, Direction view) const {
-    const float match = m_bank.blend.match;
+    const float match = m_bank.prediction.match;
     if (match >= 1 || m_measured.empty()) return match;
     const DiskPoint p = toDisk(light), v = toDisk(view);
     double nearest = 1e30;
@@ -248,7 +248,7 @@ float Relighter::identity(float v) const {
 // prediction's own).
 std::vector<float> Relighter::lutsFor(const RelightFrame& frame, const std::vector<float>& quantiles) const {
     const auto entries = static_cast<std::size_t>(m_bank.entries),
-               samples = static_cast<std::size_t>(m_bank.blend.quantiles);
+               samples = static_cast<std::size_t>(m_bank.prediction.quantiles);
     const float match = matchAt(frame.light, frame.view);
     std::vector<float> luts;
     for (std::size_t r = 0; r < m_regionTexels.size(); ++r)
@@ -270,7 +270,7 @@ std::vector<float> Relighter::lutsFor(const RelightFrame& frame, const std::vect
 Image Relighter::apply(const RelightFrame& frame, bool dither) const {
     const float targetCode = dither ? m_bank.targetCode() : 0.f;
     if (!m_bank.makesLuts()) return applyLuts(m_bank.reference, m_bank.colour, frame.luts, m_bank.entries, targetCode);
-    const LutBank::Blend& blend = m_bank.blend;
+    const LutBank::Prediction& blend = m_bank.prediction;
     const Image& first = m_bank.reference;  // its size, and its channels a grey bank gives out
     const ColourMode colour = m_bank.colour;
     const int outChannels = colour == ColourMode::Grey ? first.channels : 3;

@@ -2,7 +2,7 @@
 // Relighting a bank's reference(s) for one light: what the renderer's shader does and its
 // CPU twin. For a classic bank (one reference, one region) the frame is the bank's LUT for
 // the light (LutBank::lookup) and applying it is applyLuts. A bank that makes its LUTs at run
-// time (LutBank::Blend: several references, regions, lrgb) is relit in two steps:
+// time (LutBank::Prediction: several references, regions, lrgb) is relit in two steps:
 //   1. predict: the references around the light (a Delaunay triangle of their lights,
 //      clamped outside their hull) are blended per texel with barycentric weights, on their
 //      codes; or the bank's light model (light_model.h: ptm, hsh, rbf, bln) is evaluated
@@ -10,7 +10,7 @@
 //   2. match: per region, the prediction's exact distribution over the region's sample
 //      texels is counted, and ONE LUT maps it onto the target distribution at the light (the
 //      nodes' quantile functions blended, as LutBank::lookup blends LUTs); with
-//      Blend::match below 1, onto the blend of that target with the prediction's own.
+//      Prediction::match below 1, onto the blend of that target with the prediction's own.
 // So the histogram is the target's, as with one reference, while shadows and highlights come
 // from the references lit most like the light. Colour: grey blends RGB references and keeps
 // the blend's chroma; rgb matches each channel; lrgb blends grey references and takes the
@@ -70,7 +70,7 @@ public:
     float inputCode() const { return 1.f / static_cast<float>(m_codes + 1); }
 
     /// How far a light's LUT moves the prediction towards the target: 1 at a measured light
-    /// (its photograph's histogram, exactly), the bank's Blend::match from half the median
+    /// (its photograph's histogram, exactly), the bank's Prediction::match from half the median
     /// spacing of the measured lights on (matchRampRadius), smoothly between (smoothstep of
     /// the equal-area disk distance to the nearest measured light), so nothing jumps. A bank of
     /// views measures (light, view) pairs: the distance is to the nearest pair, its light's and
@@ -102,7 +102,7 @@ private:
     std::vector<DiskPoint> m_measured;                       // the measured lights (matchAt)
     std::vector<DiskPoint> m_measuredViews;                  // ... and their views (a bank of views)
     float m_rampRadius = 0;
-    /// Corrections (LutBank::Blend::Target::Corrections): the bank's nodes with, instead of
+    /// Corrections (LutBank::Prediction::Target::Corrections): the bank's nodes with, instead of
     /// their targets, the LUTs from the prediction at their lights to their targets.
     std::shared_ptr<const LutBank> m_corrections;
     /// For a bank read without its match grid (older files): the grid, made on first use.

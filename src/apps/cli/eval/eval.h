@@ -77,7 +77,7 @@ struct Variant {
     int grid = 17;          // the bank's grid size
     bool fromGrid = false;  // lut: the LUT read from the bank's grid (as an engine does), not made at the light
     /// lut with a predictor: measured (the targets as bake estimates them between the lights),
-    /// blend (the measured targets blended alone) or corrections (LutBank::Blend::Target)
+    /// blend (the measured targets blended alone) or corrections (LutBank::Prediction::Target)
     std::string target = "measured";
     bool blendedLuts = false;                    // the alternative: per-reference LUTs blended
     std::optional<BankDomain> domain;            // the bank's domain (and nearest's distance); empty: bake's choice

@@ -54,7 +54,7 @@ Status measureGl(std::vector<Variant>& variants, const std::map<std::string, std
         switch (v.mode) {
             case RenderMode::Lut:  // what it reads, and one relit texture (per light direction)
                 bytes =
-                    static_cast<double>(bank->makesLuts() ? b.blend : b.reference) +
+                    static_cast<double>(bank->makesLuts() ? b.prediction : b.reference) +
                     static_cast<double>(b.luts) / quads +
                     static_cast<double>(b.relit) / static_cast<double>(std::max<std::size_t>(stats.relitTextures, 1));
                 break;

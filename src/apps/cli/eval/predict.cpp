@@ -251,16 +251,16 @@ Image errorScale(int width, int height) {
 double targetL1Of(const LutBank& bank, const BankLookup& at, const Image& photo, const Mask& mask) {
     if (!bank.makesLuts() || bank.channels() != 1) return std::nan("");
     const std::vector<float>& values = at.values;
-    const auto samples = static_cast<std::size_t>(bank.blend.quantiles);
-    const auto regions = static_cast<std::size_t>(bank.blend.regions);
+    const auto samples = static_cast<std::size_t>(bank.prediction.quantiles);
+    const auto regions = static_cast<std::size_t>(bank.prediction.regions);
     std::vector<std::vector<float>> quantiles;
     std::vector<double> weights(regions, 0.0);
     for (std::size_t r = 0; r < regions; ++r)
         quantiles.emplace_back(values.begin() + static_cast<std::ptrdiff_t>(r * samples),
                                values.begin() + static_cast<std::ptrdiff_t>((r + 1) * samples));
-    const LutBank::Blend& blend = bank.blend;
-    for (std::size_t i = 0; i < blend.mask.inside.size(); ++i)
-        if (blend.mask.inside[i]) weights[blend.labels.empty() ? 0 : blend.labels[i]] += 1;
+    const LutBank::Prediction& prediction = bank.prediction;
+    for (std::size_t i = 0; i < prediction.mask.inside.size(); ++i)
+        if (prediction.mask.inside[i]) weights[prediction.labels.empty() ? 0 : prediction.labels[i]] += 1;
     return targetL1(quantiles, weights, photo, mask);
 }
 

@@ -343,7 +343,7 @@ BakeOptions bakeOptionsOf(const Variant& v, bool ptm) {
     b.references = v.references;
     setModelNamed(b, v.predictor);  // references and auto name no model
     if (b.learned && v.trainingSeconds > 0) b.learned->seconds = v.trainingSeconds;
-    if (v.target == "corrections") b.target = LutBank::Blend::Target::Corrections;
+    if (v.target == "corrections") b.target = LutBank::Prediction::Target::Corrections;
     b.fitTargets = v.target != "blend";
     if (v.match) b.match = *v.match;
     b.regions = v.regions;

@@ -1,4 +1,4 @@
-#include "gl/blend_textures.h"
+#include "gl/prediction_textures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -27,9 +27,9 @@ std::vector<std::uint8_t> planeBytes(const PredictorPlanes& planes) {
 
 }  // namespace
 
-BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
+PredictionTextures PredictionTextures::upload(const LutBank& bank, std::size_t& bytes) {
     BTFLUT_CHECK(bank.makesLuts());
-    BlendTextures t;
+    PredictionTextures t;
     t.m_bank = &bank;
     t.m_lutsAsUniforms = lutsAsUniforms(bank);
     const Predictor* predictor = t.m_predictor = &bank.predictor();
@@ -37,7 +37,7 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     const std::vector<std::string> own = predictor->shaderDefines();
     t.m_defines.insert(t.m_defines.end(), own.begin(), own.end());
     if (bank.colour == ColourMode::Rgb) t.m_defines.push_back("RGB_MODE");
-    if (bank.blend.regions > 1) t.m_defines.push_back("REGIONS");
+    if (bank.prediction.regions > 1) t.m_defines.push_back("REGIONS");
     if (t.m_lutsAsUniforms) t.m_defines.push_back("LUT_UNIFORMS " + std::to_string(bank.matchLength()));
     const PredictorPlanes planes = predictor->planes();
     const Image& first = planes.layers.front();
@@ -49,8 +49,8 @@ BlendTextures BlendTextures::upload(const LutBank& bank, std::size_t& bytes) {
     // The decoder's texture, where it is not shader source (a network past a shader's constants).
     if (!planes.network.empty() && t.m_source->empty())
         t.m_network = uploadFloatArray(planes.networkSize, 1, planes.network.data(), bytes);
-    if (!bank.blend.labels.empty())
-        t.m_labels = uploadLabels(first.width, first.height, bank.blend.labels.data(), bytes);
+    if (!bank.prediction.labels.empty())
+        t.m_labels = uploadLabels(first.width, first.height, bank.prediction.labels.data(), bytes);
     return t;
 }
 
@@ -63,40 +63,40 @@ bool lutsAsUniforms(const LutBank& bank) {
     return floats <= 3 * 256 && 4 * floats + 1024 <= components;
 }
 
-std::vector<GlTexture> BlendTextures::makeLutTables() const {
+std::vector<GlTexture> PredictionTextures::makeLutTables() const {
     std::vector<GlTexture> tables;
     for (int c = 0; c < m_bank->channels(); ++c)
-        tables.push_back(uploadLutTable(nullptr, m_bank->entries, m_bank->blend.regions));
+        tables.push_back(uploadLutTable(nullptr, m_bank->entries, m_bank->prediction.regions));
     return tables;
 }
 
-std::size_t BlendTextures::lutTableBytes() const {
+std::size_t PredictionTextures::lutTableBytes() const {
     return static_cast<std::size_t>(m_bank->channels()) * static_cast<std::size_t>(m_bank->entries) *
-           static_cast<std::size_t>(m_bank->blend.regions) * 4;
+           static_cast<std::size_t>(m_bank->prediction.regions) * 4;
 }
 
-void BlendTextures::updateLuts(const std::vector<GlTexture>& tables, const RelightFrame& frame) const {
+void PredictionTextures::updateLuts(const std::vector<GlTexture>& tables, const RelightFrame& frame) const {
     if (m_lutsAsUniforms) return;  // bind sets them
     const auto entries = static_cast<std::size_t>(m_bank->entries), channels = tables.size(),
-               regions = static_cast<std::size_t>(m_bank->blend.regions);
+               regions = static_cast<std::size_t>(m_bank->prediction.regions);
     std::vector<float> table(regions * entries);
     for (std::size_t c = 0; c < channels; ++c) {
         for (std::size_t r = 0; r < regions; ++r)
             std::copy_n(&frame.luts[(r * channels + c) * entries], entries, &table[r * entries]);
         gl.BindTexture(GL_TEXTURE_2D, tables[c].id());
-        gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_bank->entries, m_bank->blend.regions, GL_RED, GL_FLOAT,
+        gl.TexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, m_bank->entries, m_bank->prediction.regions, GL_RED, GL_FLOAT,
                          table.data());
     }
 }
 
-void BlendTextures::bind(const ShaderProgram& p, const RelightFrame& frame, const std::vector<GlTexture>& tables,
-                         int first, int level) const {
+void PredictionTextures::bind(const ShaderProgram& p, const RelightFrame& frame, const std::vector<GlTexture>& tables,
+                              int first, int level) const {
     auto unit = [&](int offset, GLenum target, GLuint texture, const char* name) {
         gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + offset));
         gl.BindTexture(target, texture);
         gl.Uniform1i(p[name], first + offset);
     };
-    unit(0, GL_TEXTURE_2D_ARRAY, m_planes.id(), "blendPlanes");
+    unit(0, GL_TEXTURE_2D_ARRAY, m_planes.id(), "predictPlanes");
     if (level > 0 && !m_planeMipmaps) {  // made here, as Predictor::levelCodes assumes: drivers round differently
         const PredictorPlanes planes = m_predictor->planes();
         const int width = planes.layers.front().width, height = planes.layers.front().height;
@@ -121,20 +121,20 @@ void BlendTextures::bind(const ShaderProgram& p, const RelightFrame& frame, cons
         gl.TexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER,
                          m_mipmapFiltered ? GL_NEAREST_MIPMAP_NEAREST : GL_LINEAR);
     }
-    gl.Uniform1i(p["blendLevel"], level);
-    if (m_labels.id()) unit(1, GL_TEXTURE_2D, m_labels.id(), "blendLabels");
-    if (m_network.id()) unit(5, GL_TEXTURE_2D_ARRAY, m_network.id(), "blendNetwork");
+    gl.Uniform1i(p["predictLevel"], level);
+    if (m_labels.id()) unit(1, GL_TEXTURE_2D, m_labels.id(), "predictLabels");
+    if (m_network.id()) unit(5, GL_TEXTURE_2D_ARRAY, m_network.id(), "predictNetwork");
     for (int c = 0; c < 3; ++c) {  // every sampler on a unit of its own type, even unused ones
         gl.ActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + first + 2 + c));
         gl.BindTexture(GL_TEXTURE_2D,
                        tables[std::min<std::size_t>(static_cast<std::size_t>(c), tables.size() - 1)].id());
     }
     const GLint units[3] = {first + 2, first + 3, first + 4};
-    gl.Uniform1iv(p["blendLuts"], 3, units);
+    gl.Uniform1iv(p["matchLuts"], 3, units);
     const LutBank& bank = *m_bank;
-    gl.Uniform1f(p["blendCodes"], static_cast<float>(m_predictor->codes()));
-    gl.Uniform1i(p["blendEntries"], bank.entries);
-    gl.Uniform1i(p["blendRegions"], bank.blend.regions);
+    gl.Uniform1f(p["predictCodes"], static_cast<float>(m_predictor->codes()));
+    gl.Uniform1i(p["matchEntries"], bank.entries);
+    gl.Uniform1i(p["matchRegions"], bank.prediction.regions);
     if (m_lutsAsUniforms) gl.Uniform1fv(p["lutValues"], static_cast<GLsizei>(bank.matchLength()), frame.luts.data());
     // The predictor's frame at the light, as its shader code reads it.
     for (const ShaderValues& v : m_predictor->shaderValues(frame)) {

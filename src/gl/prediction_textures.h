@@ -1,9 +1,9 @@
 #pragma once
-// The GPU side of a bank that blends references and matches regions (LutBank::Blend,
-// core/relight/relighter.h): its textures, the shader defines of lut_common.glsl's BLEND path, and
+// The GPU side of a bank that blends references and matches regions (LutBank::Prediction,
+// core/relight/relighter.h): its textures, the shader defines of lut_common.glsl's PREDICT path, and
 // the per-light uniforms and LUT tables. Shared by the native and the scene renderer.
 //
-//   BlendTextures t = BlendTextures::upload(bank, bytes);     // per bank
+//   PredictionTextures t = PredictionTextures::upload(bank, bytes);     // per bank
 //   std::vector<GlTexture> luts = t.makeLutTables();          // per quad
 //   t.updateLuts(luts, frame);                                // per light change
 //   t.bind(program, frame, luts, 1);                          // per draw: units 1.. and uniforms
@@ -26,13 +26,13 @@ namespace btflut {
 /// texture), where its texture cache serves a table at full rate (issue 46).
 bool lutsAsUniforms(const LutBank& bank);
 
-class BlendTextures {
+class PredictionTextures {
 public:
     static constexpr int kUnits = 6;  ///< texture units bind uses from its first: planes, labels, 3 LUTs, network
 
     /// Uploads the predictor's planes (Predictor::planes: RGBA8 layers, then the albedo's; a
     /// learned model's decoder) and the labels; adds their bytes to `bytes`.
-    static BlendTextures upload(const LutBank& bank, std::size_t& bytes);
+    static PredictionTextures upload(const LutBank& bank, std::size_t& bytes);
 
     /// BLEND, the predictor's own (Predictor::shaderDefines), REGIONS, RGB_MODE, LUT_UNIFORMS:
     /// made once by upload.
