@@ -112,6 +112,24 @@ TEST_CASE("learned decoder: the light network's, the residual's and the codes' g
     MESSAGE("decoder gradients: worst relative error " << worst);
 }
 
+TEST_CASE("quantised codes: 8 bits over the inside texels' range, nearest or truncated, others clamped") {
+    // Two codes over four texels; texel 3 is outside the mask and beyond the range.
+    const std::vector<float> codes{0.f, 10.f, 1.f, 10.f, 0.25f, 10.f, 7.f, -3.f};
+    const std::vector<std::uint32_t> inside{0, 1, 2};
+    const QuantisedCodes q = QuantisedCodes::quantise(codes, inside, 2);
+    REQUIRE(q.count() == 2);
+    CHECK(q.scale[0] == doctest::Approx(1.0 / 255));
+    CHECK(q.bytes == std::vector<std::uint8_t>{0, 0, 255, 0, 64, 0, 255, 0});  // 63.75 the nearest; 7 clamps
+    CHECK(q.scale[1] == 1.f);  // a constant code keeps scale 1 and decodes to its value
+    CHECK(q.value(1, 1) == doctest::Approx(10));
+    CHECK(q.value(2, 0) == doctest::Approx(64.0 / 255));
+    const QuantisedCodes truncated = QuantisedCodes::quantise(codes, inside, 2, true);
+    CHECK(truncated.bytes[4] == 63);  // NeuralRTI's: the byte below
+    const Matrix values = codeValues(q, std::vector<std::uint32_t>{2, 0});
+    CHECK(values(0, 0) == doctest::Approx(q.value(2, 0)));
+    CHECK(values(1, 1) == doctest::Approx(10));
+}
+
 TEST_CASE("learned model: a relief between the measured lights, its bank and chunk, the same bytes every run") {
     TempDir dir;
     const Relief relief{.size = 32};
@@ -189,7 +207,7 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     corrupt([&](LearnedModel& c) { withDecoder(c, [](LearnedDecoder& d) { d.light.bias(0)(0) = INFINITY; }); },
             "LRND chunk: a network parameter is not finite");
     corrupt([](LearnedModel& c) { c.hidden[0] -= 1; }, "LRND chunk: a network's parameters do not fit its sizes");
-    corrupt([](LearnedModel& c) { c.scale[2] = 0; }, "LRND chunk: invalid scale or bias");
+    corrupt([](LearnedModel& c) { c.quantised.scale[2] = 0; }, "LRND chunk: invalid scale or bias");
     corrupt([](LearnedModel& c) { c.hidden.assign(9, 4); }, "LRND chunk: invalid layer count");
     corrupt([](LearnedModel& c) { c.hidden[0] = 300; }, "LRND chunk: invalid hidden layer width");
 
@@ -200,7 +218,7 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     CHECK(gpu.texels.size() == static_cast<std::size_t>(gpu.size * gpu.size * 4));
     CHECK(std::vector<float>(gpu.texels.begin(), gpu.texels.begin() + 16) ==
           std::vector<float>{9, 3, 2, 0, 24, 24, 0, 0, 0, 0, 0, 0, 9, 0, 0, 0});
-    CHECK(gpu.texels[16] == m.scale[0]);
+    CHECK(gpu.texels[16] == m.quantised.scale[0]);
     CHECK(drawnOnGpu(*bank).ok());
     LutBank wide = *bank;
     LearnedModel wider = m;
@@ -312,7 +330,7 @@ TEST_CASE("learned model: few lights, constant and black images, 16-bit images a
         REQUIRE_MESSAGE(bank.ok(), bank.error());
         const LearnedModel& m = bank->predictorAs<LearnedPredictor>()->model();
         REQUIRE((m.decoder->residual.finite() && m.decoder->light.finite()));
-        for (const std::vector<float>* v : {&m.scale, &m.bias})
+        for (const std::vector<float>* v : {&m.quantised.scale, &m.quantised.bias})
             for (float x : *v) REQUIRE(std::isfinite(x));
         const Image relit = relight(*bank, Direction::fromDegrees(35, 120), {});
         for (float v : relit.samples) REQUIRE((std::isfinite(v) && v >= 0 && v <= 1));
@@ -418,7 +436,7 @@ TEST_CASE("neuralrti: the published recipe converges on a relief, the same bytes
     const NeuralRtiOptions options{.maxEpochs = 12, .threads = 2};
     Result<NeuralRti> baseline = fitNeuralRti(pointers, lights, mask, options, "relief");
     REQUIRE_MESSAGE(baseline.ok(), baseline.error());
-    CHECK(baseline->coefficients.size() == 9 * images.front().pixelCount());
+    CHECK(baseline->quantised.bytes.size() == 9 * images.front().pixelCount());
     // 90% of 16 x 16 x 24 pairs in batches of 64: 87 steps an epoch.
     REQUIRE(!baseline->epochs.empty());
     CHECK(baseline->epochs.front().steps == 87);
@@ -445,7 +463,7 @@ TEST_CASE("neuralrti: the published recipe converges on a relief, the same bytes
 
     Result<NeuralRti> again = fitNeuralRti(pointers, lights, mask, options, "relief");
     REQUIRE(again.ok());
-    CHECK(again->coefficients == baseline->coefficients);
+    CHECK(again->quantised.bytes == baseline->quantised.bytes);
     CHECK(again->decoder == baseline->decoder);
 
     // A time bound: the steps this machine trains in about that long, the same everywhere.

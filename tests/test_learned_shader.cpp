@@ -41,11 +41,11 @@ LearnedModel randomModel(const Shape& shape, int w, int h, std::uint64_t seed) {
     m.hidden = shape.hidden;
     m.lightHidden = shape.lightHidden;
     for (int k = 0; k < m.codes; ++k) {
-        m.scale.push_back(static_cast<float>(0.01 + 0.02 * random.uniform()));
-        m.bias.push_back(static_cast<float>(255 * random.uniform()));
+        m.quantised.scale.push_back(static_cast<float>(0.01 + 0.02 * random.uniform()));
+        m.quantised.bias.push_back(static_cast<float>(255 * random.uniform()));
     }
-    m.coefficients.resize(m.texels() * static_cast<std::size_t>(m.codes));
-    for (std::uint8_t& c : m.coefficients) c = static_cast<std::uint8_t>(random.uniform() * 255.99);
+    m.quantised.bytes.resize(m.texels() * static_cast<std::size_t>(m.codes));
+    for (std::uint8_t& c : m.quantised.bytes) c = static_cast<std::uint8_t>(random.uniform() * 255.99);
     Network residual = Network::random(m.decoderSizes(), random);
     if (shape.constantResidual) {
         residual.weights(residual.layers() - 1).setZero();

@@ -55,8 +55,8 @@ std::vector<float> plainBlock(const LearnedModel& m) {
         for (int k = 0; k < (m.codes + 3) / 4 * 4; ++k)
             out.push_back(k < m.codes ? values[static_cast<std::size_t>(k)] : 0.f);
     };
-    codes(m.scale);
-    codes(m.bias);
+    codes(m.quantised.scale);
+    codes(m.quantised.bias);
     // Layer l's weights as vec4 columns: input i's to outputs 4 o .. 4 o + 3 at [i * groups + o]
     // (the first layer's code inputs alone: its light inputs are folded into the frame).
     auto columns = [&](const Matrix& w, Eigen::Index inputs) {

@@ -108,8 +108,8 @@ nlohmann::json learnedSidecar(const LearnedPredictor& learned, const TextureWrit
     const LearnedModel& m = learned.model();
     nlohmann::json sidecar{{"codes", m.codes},
                            {"channels", m.channels},
-                           {"scale", m.scale},
-                           {"bias", m.bias},
+                           {"scale", m.quantised.scale},
+                           {"bias", m.quantised.bias},
                            {"light_network_sizes", m.lightSizes()},
                            {"light_network", m.decoder->light.parameters()},
                            {"residual_sizes", m.decoderSizes()},

@@ -108,8 +108,8 @@ Bytes encodeLearnedModel(const LearnedModel& m, std::uint32_t version) {
         w.put(static_cast<std::uint32_t>(widths->size()));
         for (int h : *widths) w.put(static_cast<std::uint32_t>(h));
     }
-    for (float v : m.scale) w.put(v);
-    for (float v : m.bias) w.put(v);
+    for (float v : m.quantised.scale) w.put(v);
+    for (float v : m.quantised.bias) w.put(v);
     for (const Network* network : {&m.decoder->light, &m.decoder->residual}) {
         const std::vector<float> parameters = network->parameters();
         w.put(static_cast<std::uint32_t>(parameters.size()));
@@ -120,7 +120,7 @@ Bytes encodeLearnedModel(const LearnedModel& m, std::uint32_t version) {
         Image image(m.width, m.height, 3);
         for (std::size_t i = 0; i < m.texels(); ++i)
             for (std::size_t c = 0; c < 3 && first + c < N; ++c)
-                image.samples[i * 3 + c] = static_cast<float>(m.coefficients[i * N + first + c]) / 255.f;
+                image.samples[i * 3 + c] = static_cast<float>(m.quantised.bytes[i * N + first + c]) / 255.f;
         const Bytes png = encodePng(image, 8);
         w.put(static_cast<std::uint32_t>(png.size()));
         w.putBytes(png.data(), png.size());

@@ -160,11 +160,12 @@ Result<LearnedModel> decodeLearnedModel(Reader& in, const std::string& name, con
             widths->push_back(static_cast<int>(width));
         }
     }
-    for (std::uint32_t k = 0; k < codes; ++k) m.scale.push_back(in.get<float>());
-    for (std::uint32_t k = 0; k < codes; ++k) m.bias.push_back(in.get<float>());
+    QuantisedCodes& q = m.quantised;
+    for (std::uint32_t k = 0; k < codes; ++k) q.scale.push_back(in.get<float>());
+    for (std::uint32_t k = 0; k < codes; ++k) q.bias.push_back(in.get<float>());
     if (!in.ok()) return fail("truncated");
     for (std::uint32_t k = 0; k < codes; ++k)
-        if (!std::isfinite(m.scale[k]) || !(m.scale[k] > 0) || !std::isfinite(m.bias[k]))
+        if (!std::isfinite(q.scale[k]) || !(q.scale[k] > 0) || !std::isfinite(q.bias[k]))
             return fail("invalid scale or bias");
     LearnedDecoder decoder;
     for (Network* network : {&decoder.light, &decoder.residual}) {
@@ -183,15 +184,14 @@ Result<LearnedModel> decodeLearnedModel(Reader& in, const std::string& name, con
     }
     m.decoder = std::make_shared<const LearnedDecoder>(std::move(decoder));
     const std::size_t N = codes;
-    m.coefficients.resize(m.texels() * N);
+    q.bytes.resize(m.texels() * N);
     for (std::size_t first = 0; first < N; first += 3) {
         const std::string what = "codes " + std::to_string(first) + "-" + std::to_string(std::min(N, first + 3) - 1);
         Result<Image> image = readRgb8Plane(in, fail, what, name + " (learned " + what + ")", m.width, m.height);
         if (!image) return Error{image.error()};
         for (std::size_t i = 0; i < m.texels(); ++i)
             for (std::size_t c = 0; c < 3 && first + c < N; ++c)
-                m.coefficients[i * N + first + c] =
-                    static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
+                q.bytes[i * N + first + c] = static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
     }
     if (in.remaining() != 0) return fail("has the wrong size");
     return m;

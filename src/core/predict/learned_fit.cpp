@@ -5,8 +5,10 @@
 // decoder tuned to them.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
+#include <optional>
 
 #include "core/parallel.h"
 #include "core/predict/learned_decoder.h"
@@ -193,6 +195,38 @@ Trained started(const Matrix& samples, const Matrix& lights, const LearnedOption
     return t;
 }
 
+// The learned kind's one Adam loop: `steps` steps on batches of the sample texels (`samples`,
+// a column per texel) drawn by `random`, each a sharded step of the decoder and of the encoder
+// when it makes the codes (else `codes` are the batch's: a column per texel of `samples`).
+// `rate(step)` is the decoder's rate (the encoder's kLinearRate of it); `after(step)` runs after
+// each step, and false from it stops the loop. False when a step's loss was not finite.
+bool adamSteps(LearnedDecoder& decoder, Network* encoder, const Matrix* codes, const Matrix& samples,
+               const Matrix& lights, int channels, int steps, Random& random, int threads,
+               const std::function<float(int)>& rate, const std::function<bool(int)>& after) {
+    std::optional<Adam> encoderAdam;
+    if (encoder) encoderAdam.emplace(*encoder);
+    DecoderAdam decoderAdam(decoder);
+    const auto perBatch =
+        static_cast<Eigen::Index>(std::max<std::size_t>(1, kBatchSamples / static_cast<std::size_t>(lights.cols())));
+    const auto T = static_cast<std::uint64_t>(samples.cols());
+    Matrix x(samples.rows(), perBatch), codeBatch(codes ? codes->rows() : 0, perBatch);
+    ShardedStep batch(threads);
+    for (int step = 0; step < steps; ++step) {
+        for (Eigen::Index j = 0; j < perBatch; ++j) {
+            const auto at = static_cast<Eigen::Index>(random.next() % T);
+            x.col(j) = samples.col(at);
+            if (codes) codeBatch.col(j) = codes->col(at);
+        }
+        if (!std::isfinite(batch.run(encoder, decoder, x, codes ? &codeBatch : nullptr, lights, channels)))
+            return false;
+        const float r = rate(step);
+        decoderAdam.step(decoder, batch.decoderGradient(), r);
+        if (encoder) encoderAdam->step(*encoder, batch.encoderGradient(), r * kLinearRate);
+        if (!after(step)) break;
+    }
+    return true;
+}
+
 // Phase 1: encoder and decoder together on the sample texels' samples, `steps` Adam steps of a
 // rate schedule spanning `schedule` steps. With a validation, the step (a multiple of steps /
 // 16, 0 the linear start) where its loss was least goes to `best`.
@@ -201,37 +235,27 @@ Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedO
                      const std::function<void(double)>& progress) {
     Random random(seed);
     Trained t = started(samples, lights, o, channels, terms, random);
-    Adam encoderAdam(t.encoder);
-    DecoderAdam decoderAdam(t.decoder);
-    const auto L = static_cast<std::size_t>(lights.cols());
-    const std::size_t perBatch = std::max<std::size_t>(1, kBatchSamples / L);
-    const auto T = static_cast<std::size_t>(samples.cols());
-    Matrix x(samples.rows(), static_cast<Eigen::Index>(perBatch));
-    ShardedStep batch(o.threads);
     const int every = std::max(1, steps / 16);
     float least = validation ? validationLoss(t, *validation) : 0.f;
     if (best) *best = 0;
-    for (int step = 0; step < steps; ++step) {
-        for (std::size_t j = 0; j < perBatch; ++j)
-            x.col(static_cast<Eigen::Index>(j)) = samples.col(static_cast<Eigen::Index>(random.next() % T));
-        if (!std::isfinite(batch.run(&t.encoder, t.decoder, x, nullptr, lights, channels))) return t;
-        const float rate = rateAt(step, schedule, peak);
-        decoderAdam.step(t.decoder, batch.decoderGradient(), rate);
-        encoderAdam.step(t.encoder, batch.encoderGradient(), rate * kLinearRate);
-        if (validation && (step + 1) % every == 0) {
-            const float v = validationLoss(t, *validation);
-            if (v < least) {
-                least = v;
-                *best = step + 1;
+    const bool finite = adamSteps(
+        t.decoder, &t.encoder, nullptr, samples, lights, channels, steps, random, o.threads,
+        [&](int step) { return rateAt(step, schedule, peak); },
+        [&](int step) {
+            if (validation && (step + 1) % every == 0) {
+                const float v = validationLoss(t, *validation);
+                if (v < least) {
+                    least = v;
+                    *best = step + 1;
+                }
             }
-        }
-        if (progress && step % 64 == 0) progress(static_cast<double>(step) / steps);
-        // Half the schedule and no step better than the linear start held out: it is kept
-        // (steps 0), so the rest would be trained for nothing. On six rendered and measured sets
-        // a step that beat it came by a fifth of the schedule or never (bench/RESULTS.md).
-        if (validation && *best == 0 && 2 * (step + 1) >= steps) break;
-    }
-    t.finite = t.encoder.finite() && t.decoder.light.finite() && t.decoder.residual.finite();
+            if (progress && step % 64 == 0) progress(static_cast<double>(step) / steps);
+            // Half the schedule and no step better than the linear start held out: it is kept
+            // (steps 0), so the rest would be trained for nothing. On six rendered and measured
+            // sets a step that beat it came by a fifth of the schedule or never (bench/RESULTS.md).
+            return !(validation && *best == 0 && 2 * (step + 1) >= steps);
+        });
+    t.finite = finite && t.encoder.finite() && t.decoder.light.finite() && t.decoder.residual.finite();
     return t;
 }
 
@@ -240,23 +264,14 @@ Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedO
 LearnedDecoder tunedToCodes(const LearnedDecoder& trained, const Matrix& codes, const Matrix& samples,
                             const Matrix& lights, int channels, int steps, float peak, const LearnedOptions& o) {
     LearnedDecoder decoder = trained;
-    DecoderAdam adam(decoder);
     Random random(o.seed + 17);
-    const auto perBatch =
-        static_cast<Eigen::Index>(std::max<std::size_t>(1, kBatchSamples / static_cast<std::size_t>(lights.cols())));
-    const auto T = static_cast<std::uint64_t>(samples.cols());
-    Matrix codeBatch(codes.rows(), perBatch), x(samples.rows(), perBatch);
-    ShardedStep batch(o.threads);
-    for (int step = 0; step < steps; ++step) {
-        for (Eigen::Index j = 0; j < perBatch; ++j) {
-            const auto at = static_cast<Eigen::Index>(random.next() % T);
-            codeBatch.col(j) = codes.col(at);
-            x.col(j) = samples.col(at);
-        }
-        if (!std::isfinite(batch.run(nullptr, decoder, x, &codeBatch, lights, channels))) break;
-        adam.step(decoder, batch.decoderGradient(), rateAt(step, steps, peak));
-        if (o.progress && step % 64 == 0) o.progress(0.9 + 0.1 * step / steps);
-    }
+    adamSteps(
+        decoder, nullptr, &codes, samples, lights, channels, steps, random, o.threads,
+        [&](int step) { return rateAt(step, steps, peak); },
+        [&](int step) {
+            if (o.progress && step % 64 == 0) o.progress(0.9 + 0.1 * step / steps);
+            return true;
+        });
     return decoder.light.finite() && decoder.residual.finite() ? decoder : trained;
 }
 
@@ -378,12 +393,11 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     if (!t.finite) return Error{what + ": training the learned model diverged (the loss is not finite)"};
 
     const auto N = static_cast<std::size_t>(m.codes);
-    quantiseCodes(encodeTexels(t.encoder, texelSamples, m.texels(), o.threads), drawn->inside, N, m.scale, m.bias,
-                  m.coefficients);
+    m.quantised =
+        QuantisedCodes::quantise(encodeTexels(t.encoder, texelSamples, m.texels(), o.threads), drawn->inside, N);
 
-    m.decoder = std::make_shared<const LearnedDecoder>(
-        tunedToCodes(t.decoder, codeValues(m.coefficients, m.scale, m.bias, drawn->texels), samples, features,
-                     m.channels, steps / 5, peak / 8, o));
+    m.decoder = std::make_shared<const LearnedDecoder>(tunedToCodes(
+        t.decoder, codeValues(m.quantised, drawn->texels), samples, features, m.channels, steps / 5, peak / 8, o));
     if (o.progress) o.progress(1.0);
     return m;
 }

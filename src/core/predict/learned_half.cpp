@@ -28,8 +28,8 @@ std::vector<float> decodeInHalf(const LearnedModel& m, Direction light, int thre
     const Network& residual = m.decoder->residual;
     const std::size_t N = static_cast<std::size_t>(m.codes), C = static_cast<std::size_t>(m.channels);
     const std::vector<Half> basis = halves(frame.basis.data(), frame.basis.size()),
-                            first = halves(frame.hidden.data(), frame.hidden.size()), scale = halves(m.scale.data(), N),
-                            bias = halves(m.bias.data(), N);
+                            first = halves(frame.hidden.data(), frame.hidden.size()),
+                            scale = halves(m.quantised.scale.data(), N), bias = halves(m.quantised.bias.data(), N);
     const bool constant = m.residualConstant();
     std::vector<std::vector<Half>> weights, biases;
     for (std::size_t l = 0; l < residual.layers(); ++l) {
@@ -43,7 +43,7 @@ std::vector<float> decodeInHalf(const LearnedModel& m, Direction light, int thre
         std::vector<Half> v(N), x, y;
         for (std::size_t t = block * kBlock; t < std::min(m.texels(), (block + 1) * kBlock); ++t) {
             for (std::size_t k = 0; k < N; ++k)
-                v[k] = (Half(static_cast<float>(m.coefficients[t * N + k])) - bias[k]) * scale[k];
+                v[k] = (Half(static_cast<float>(m.quantised.bytes[t * N + k])) - bias[k]) * scale[k];
             // The residual network: its first layer's light part and bias come with the frame.
             if (constant) {
                 x = biases.back();

@@ -57,10 +57,9 @@ std::size_t LearnedModel::parameterCount(const std::vector<int>& sizes) { return
 
 namespace {
 
-// The decoder at a light over `texels` of `bytes` (all `count` of them when empty).
-std::vector<float> decode(const LearnedModel& m, const std::vector<std::uint8_t>& bytes,
-                          std::span<const std::uint32_t> texels, Direction light, Direction view, int threads,
-                          std::size_t count = 0) {
+// The decoder at a light over `texels` of `codes` (all `count` of them when empty).
+std::vector<float> decode(const LearnedModel& m, const QuantisedCodes& codes, std::span<const std::uint32_t> texels,
+                          Direction light, Direction view, int threads, std::size_t count = 0) {
     if (!texels.empty()) count = texels.size();
     if (count == 0) count = m.texels();
     const auto C = static_cast<std::size_t>(m.channels);
@@ -74,7 +73,7 @@ std::vector<float> decode(const LearnedModel& m, const std::vector<std::uint8_t>
         for (std::size_t j = 0; j < n; ++j)
             indices[j] = static_cast<std::uint32_t>(texels.empty() ? first + j : texels[first + j]);
         LearnedDecoder::Pass pass;
-        m.decoder->forward(codeValues(bytes, m.scale, m.bias, indices), features, pass);
+        m.decoder->forward(codeValues(codes, indices), features, pass);
         for (std::size_t j = 0; j < n; ++j)
             for (std::size_t c = 0; c < C; ++c)
                 out[(first + j) * C + c] =
@@ -88,14 +87,15 @@ std::vector<float> decode(const LearnedModel& m, const std::vector<std::uint8_t>
 std::vector<float> LearnedModel::predict(Direction light, std::span<const std::uint32_t> texels, int threads,
                                          Direction view) const {
     BTFLUT_CHECK(!empty());
-    return decode(*this, coefficients, texels, light, view, threads);
+    return decode(*this, quantised, texels, light, view, threads);
 }
 
 std::vector<float> LearnedModel::predictCodes(Direction light, const std::vector<std::uint8_t>& texelCodes, int threads,
                                               Direction view) const {
     BTFLUT_CHECK(!empty() && texelCodes.size() % static_cast<std::size_t>(codes) == 0);
     if (texelCodes.empty()) return {};
-    return decode(*this, texelCodes, {}, light, view, threads, texelCodes.size() / static_cast<std::size_t>(codes));
+    const QuantisedCodes given{quantised.scale, quantised.bias, texelCodes};
+    return decode(*this, given, {}, light, view, threads, texelCodes.size() / static_cast<std::size_t>(codes));
 }
 
 Image LearnedModel::render(Direction light, Direction view) const {
@@ -144,8 +144,8 @@ LearnedModel::GpuNetwork LearnedModel::gpuNetwork() const {
         for (std::size_t k = 0; k < 4; ++k)
             texels.push_back(k < widths->size() ? static_cast<float>((*widths)[k]) : 0.f);
     texels.insert(texels.end(), {static_cast<float>(features()), 0.f, 0.f, 0.f});
-    appendTexels(texels, scale.data(), scale.size());
-    appendTexels(texels, bias.data(), bias.size());
+    appendTexels(texels, quantised.scale.data(), quantised.scale.size());
+    appendTexels(texels, quantised.bias.data(), quantised.bias.size());
     appendNetwork(texels, decoder->residual);
     appendNetwork(texels, decoder->light);
     GpuNetwork out;

@@ -29,6 +29,7 @@
 
 #include "core/direction/direction.h"
 #include "core/image/image.h"
+#include "core/predict/quantised_codes.h"
 #include "core/result.h"
 
 namespace btflut {
@@ -52,15 +53,14 @@ struct LearnedModel {
     /// 0, or kLearnedViewFeatures for a model of rectified views, whose networks also take
     /// the view (a bank of such a model has a view layer per measured view).
     int viewFeatures = 0;
-    std::vector<float> scale, bias;          ///< per code: v_k = (byte_k - bias_k) scale_k
-    std::vector<std::uint8_t> coefficients;  ///< N bytes per texel, rows top first
+    QuantisedCodes quantised;  ///< the texels' N codes as bytes: v_k = (byte_k - bias_k) scale_k
     /// The decoder's networks' hidden widths: the light network's and the residual network's.
     std::vector<int> lightHidden, hidden;
     /// The decoder (learned_decoder.h), built once (its networks of lightSizes() and
     /// decoderSizes()) and shared by the model's copies.
     std::shared_ptr<const LearnedDecoder> decoder;
 
-    bool empty() const { return coefficients.empty(); }
+    bool empty() const { return quantised.empty(); }
     /// F, the features both networks take, and their values for a light (and a view).
     int features() const { return kLearnedLightFeatures + viewFeatures; }
     std::vector<float> featuresAt(Direction light, Direction view = {}) const;
@@ -83,7 +83,7 @@ struct LearnedModel {
     /// result does not depend on `threads`.
     std::vector<float> predict(Direction light, std::span<const std::uint32_t> texels = {}, int threads = 1,
                                Direction view = {}) const;
-    /// The same for texels whose codes are given (N bytes each, as `coefficients` holds them)
+    /// The same for texels whose codes are given (N bytes each, as `quantised` holds them)
     /// rather than the model's own: a mipmap level's (LearnedPredictor::levelCodes).
     std::vector<float> predictCodes(Direction light, const std::vector<std::uint8_t>& codes, int threads = 1,
                                     Direction view = {}) const;

@@ -33,13 +33,13 @@ std::string LearnedPredictor::description() const {
 PredictorPlanes LearnedPredictor::planes() const {
     const auto N = static_cast<std::size_t>(m_model.codes);
     PredictorPlanes out;
-    out.scale = m_model.scale;
-    out.bias = m_model.bias;
+    out.scale = m_model.quantised.scale;
+    out.bias = m_model.quantised.bias;
     for (std::size_t first = 0; first < N; first += 4) {
         Image layer(m_model.width, m_model.height, 4);
         for (std::size_t i = 0; i < m_model.texels(); ++i)
             for (std::size_t c = 0; c < 4 && first + c < N; ++c)
-                layer.samples[i * 4 + c] = static_cast<float>(m_model.coefficients[i * N + first + c]) / 255.f;
+                layer.samples[i * 4 + c] = static_cast<float>(m_model.quantised.bytes[i * N + first + c]) / 255.f;
         out.layers.push_back(std::move(layer));
     }
     if (m_model.fitsGpu()) {
@@ -147,7 +147,7 @@ void LearnedPredictor::levelCodes(const PredictorFrame& frame, int level, int wi
         const auto N = static_cast<std::size_t>(m_model.codes);
         std::vector<std::uint8_t> means(texels.size() * N);
         for (std::size_t j = 0; j < texels.size(); ++j)
-            levelTexelBytes(m_model.coefficients, width, height, m_model.codes, level, texels[j], &means[j * N]);
+            levelTexelBytes(m_model.quantised.bytes, width, height, m_model.codes, level, texels[j], &means[j * N]);
         values = m_model.predictCodes(frame.learned->light, means, 0, frame.learned->view);
     }
     const auto C = static_cast<std::size_t>(m_model.channels), matched = static_cast<std::size_t>(channels());

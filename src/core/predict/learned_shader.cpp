@@ -92,8 +92,8 @@ std::vector<std::string> emitCodeValues(std::string& out, const Syntax& s, const
     for (int l = 0; l < groups(m.codes); ++l) {
         float bias[4] = {0, 0, 0, 0}, scale[4] = {0, 0, 0, 0};
         for (int k = 0; k < 4 && 4 * l + k < m.codes; ++k) {
-            bias[k] = m.bias[static_cast<std::size_t>(4 * l + k)];
-            scale[k] = m.scale[static_cast<std::size_t>(4 * l + k)];
+            bias[k] = m.quantised.bias[static_cast<std::size_t>(4 * l + k)];
+            scale[k] = m.quantised.scale[static_cast<std::size_t>(4 * l + k)];
         }
         const std::string v = "v" + std::to_string(l);
         out += "    " + std::string(s.vec4()) + " " + v + " = (codes[" + std::to_string(l) + "] - " +

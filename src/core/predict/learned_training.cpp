@@ -79,14 +79,12 @@ void codesBesideLights(const Matrix& codes, const Matrix& lights, Matrix& input)
     }
 }
 
-Matrix codeValues(const std::vector<std::uint8_t>& bytes, const std::vector<float>& scale,
-                  const std::vector<float>& bias, std::span<const std::uint32_t> texels) {
-    const std::size_t N = scale.size();
+Matrix codeValues(const QuantisedCodes& codes, std::span<const std::uint32_t> texels) {
+    const std::size_t N = codes.count();
     Matrix values(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(texels.size()));
     for (std::size_t j = 0; j < texels.size(); ++j)
         for (std::size_t k = 0; k < N; ++k)
-            values(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) =
-                (static_cast<float>(bytes[texels[j] * N + k]) - bias[k]) * scale[k];
+            values(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j)) = codes.value(texels[j], k);
     return values;
 }
 
@@ -105,28 +103,6 @@ std::vector<float> encodeTexels(const Network& encoder, const TexelSamples& from
                 codes[(begin + j) * N + k] = pass.output()(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(j));
     });
     return codes;
-}
-
-void quantiseCodes(const std::vector<float>& codes, const std::vector<std::uint32_t>& inside, std::size_t N,
-                   std::vector<float>& scale, std::vector<float>& bias, std::vector<std::uint8_t>& bytes,
-                   bool truncate) {
-    scale.assign(N, 1.f);
-    bias.assign(N, 0.f);
-    bytes.resize(codes.size());
-    const std::size_t texels = codes.size() / N;
-    for (std::size_t k = 0; k < N; ++k) {
-        float low = 1e30f, high = -1e30f;
-        for (std::uint32_t i : inside) {
-            low = std::min(low, codes[i * N + k]);
-            high = std::max(high, codes[i * N + k]);
-        }
-        if (high - low > 1e-6f) scale[k] = (high - low) / 255.f;
-        bias[k] = -low / scale[k];
-        for (std::size_t i = 0; i < texels; ++i) {
-            const float v = std::clamp((codes[i * N + k] - low) / scale[k], 0.f, 255.f);
-            bytes[i * N + k] = static_cast<std::uint8_t>(truncate ? static_cast<long>(v) : std::lround(v));
-        }
-    }
 }
 
 }  // namespace btflut

@@ -9,6 +9,7 @@
 
 #include "core/image/image.h"
 #include "core/learn/network.h"
+#include "core/predict/quantised_codes.h"
 #include "core/result.h"
 
 namespace btflut {
@@ -60,17 +61,10 @@ float rateAt(int step, int steps, float peak);
 /// l's features (light-major), written into `input` (its storage kept between steps).
 void codesBesideLights(const Matrix& codes, const Matrix& lights, Matrix& input);
 /// The values of `texels`' stored codes, one column each: (byte - bias) scale.
-Matrix codeValues(const std::vector<std::uint8_t>& bytes, const std::vector<float>& scale,
-                  const std::vector<float>& bias, std::span<const std::uint32_t> texels);
+Matrix codeValues(const QuantisedCodes& codes, std::span<const std::uint32_t> texels);
 
 /// Every texel's code (N per texel) from the encoder over its samples, in blocks of a fixed
 /// size (the same sums on any thread count).
 std::vector<float> encodeTexels(const Network& encoder, const TexelSamples& from, std::size_t texels, int threads);
-/// 8 bits per code over the range the `inside` texels span (others clamped into it):
-/// value = (byte - bias) scale; each byte the nearest, or with `truncate` the one below (as
-/// NeuralRTI stores them).
-void quantiseCodes(const std::vector<float>& codes, const std::vector<std::uint32_t>& inside, std::size_t N,
-                   std::vector<float>& scale, std::vector<float>& bias, std::vector<std::uint8_t>& bytes,
-                   bool truncate = false);
 
 }  // namespace btflut

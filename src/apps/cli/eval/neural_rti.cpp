@@ -85,7 +85,7 @@ Image NeuralRti::render(Direction light) const {
     std::vector<std::uint32_t> all(texels);
     std::iota(all.begin(), all.end(), std::uint32_t{0});
     Matrix input;
-    codesBesideLights(codeValues(coefficients, scale, bias, all), lightPositions({light}), input);
+    codesBesideLights(codeValues(quantised, all), lightPositions({light}), input);
     NetworkPass pass;
     net.forward(input, pass);
     Image image(width, height, channels);
@@ -208,8 +208,8 @@ Result<NeuralRti> fitNeuralRti(const std::vector<const Image*>& images, const st
     encoder = std::move(bestEncoder);
     decoder = std::move(bestDecoder);
     if (!encoder.finite() || !decoder.finite()) return Error{what + ": training NeuralRTI diverged"};
-    quantiseCodes(encodeTexels(encoder, from, first.pixelCount(), o.threads), drawn->inside,
-                  static_cast<std::size_t>(o.codes), n.scale, n.bias, n.coefficients, true);
+    n.quantised = QuantisedCodes::quantise(encodeTexels(encoder, from, first.pixelCount(), o.threads), drawn->inside,
+                                           static_cast<std::size_t>(o.codes), true);
     n.decoder = decoder.parameters();
     return n;
 }

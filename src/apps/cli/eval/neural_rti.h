@@ -30,6 +30,7 @@
 
 #include "core/direction/direction.h"
 #include "core/image/image.h"
+#include "core/predict/quantised_codes.h"
 #include "core/result.h"
 
 namespace btflut {
@@ -75,12 +76,11 @@ private:
 
 struct NeuralRti {
     int width = 0, height = 0, codes = 9, channels = 1;
-    std::vector<float> scale, bias;          ///< per code: value = (byte - bias) scale
-    std::vector<std::uint8_t> coefficients;  ///< N per texel
-    std::vector<float> decoder;              ///< (N + 2) - 50 - 50 - C, Network::parameters' order
-    std::vector<NeuralRtiEpoch> epochs;      ///< the loss curve; the last may be cut short by the time bound
-    std::string stopped;                     ///< why training ended: "early stopping", "30 epochs", "time bound"
-    int bestEpoch = 0;                       ///< the epoch (1 the first) whose weights are kept: the best validation
+    QuantisedCodes quantised;            ///< N per texel, truncated to bytes as NeuralRTI stores them
+    std::vector<float> decoder;          ///< (N + 2) - 50 - 50 - C, Network::parameters' order
+    std::vector<NeuralRtiEpoch> epochs;  ///< the loss curve; the last may be cut short by the time bound
+    std::string stopped;                 ///< why training ended: "early stopping", "30 epochs", "time bound"
+    int bestEpoch = 0;                   ///< the epoch (1 the first) whose weights are kept: the best validation
 
     std::vector<int> decoderSizes() const { return {codes + 2, 50, 50, channels}; }
     std::vector<int> encoderSizes(int lights) const { return {lights * channels, 150, 150, 150, codes}; }
