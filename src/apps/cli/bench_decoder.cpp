@@ -2,13 +2,13 @@
 // (shaders/bench_decoder.frag), per fragment and in texture space, side by side in one context
 // (issue 46): what btflut's specialised decoder costs next to what the hardware gives a
 // shader written plainly by hand. Ratios, never pass/fail.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "cli/bench_timing.h"
 #include "cli/command.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
@@ -110,31 +110,6 @@ struct Row {
     std::function<Status()> draw;
     std::vector<double> msPerMpx;
 };
-
-// Seconds per draw: GPU time (GL_TIME_ELAPSED around each) where the driver has a timer, else
-// the wall time of `count` draws and one glFinish.
-Result<double> timeDraws(Row& row, int count, bool timer) {
-    std::vector<GlQuery> queries;
-    const auto start = std::chrono::steady_clock::now();
-    for (int k = 0; k < count; ++k) {
-        if (timer) {
-            queries.push_back(makeQuery());
-            gl.BeginQuery(GL_TIME_ELAPSED, queries.back().id());
-        }
-        if (Status s = row.draw(); !s) return Error{s.error()};
-        if (timer) gl.EndQuery(GL_TIME_ELAPSED);
-    }
-    gl.Finish();
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / count;
-    if (!timer) return wall;
-    GLuint64 total = 0;
-    for (const GlQuery& q : queries) {
-        GLuint64 ns = 0;
-        gl.GetQueryObjectui64v(q.id(), GL_QUERY_RESULT, &ns);
-        total += ns;
-    }
-    return static_cast<double>(total) * 1e-9 / count;
-}
 
 void setFrame(const ShaderProgram& p, const std::vector<ShaderValues>& values) {
     for (const ShaderValues& v : values) {  // predictLearned.basis: frame.basis, ...
@@ -367,9 +342,9 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
             std::max(differs, std::abs(static_cast<double>(plainFrame.samples[i] - btflutFrame.samples[i])) * 255);
     for (int r = 0; r < o.timing.repeat; ++r)  // interleaved, so drift hits every row alike
         for (Row& row : rows) {
-            Result<double> seconds = timeDraws(row, o.timing.frames, timer);
-            if (!seconds) return Error{seconds.error()};
-            row.msPerMpx.push_back(*seconds * 1e3 / (row.pixels * 1e-6));
+            Result<DrawTimes> t = timeDraws(o.timing.frames, timer, row.draw);  // GPU time where it has a timer
+            if (!t) return Error{t.error()};
+            row.msPerMpx.push_back((timer ? t->gpu : t->wall) * 1e3 / (row.pixels * 1e-6));
         }
     if (GLenum error = gl.GetError(); error != GL_NO_ERROR)
         return Error{"OpenGL error " + std::to_string(error) + " in bench decoder"};

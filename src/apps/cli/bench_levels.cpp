@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "cli/bench_timing.h"
 #include "cli/cli.h"
 #include "cli/command.h"
 #include "core/bank/bank_file.h"
@@ -80,13 +81,9 @@ Status timeRows(std::vector<TimedRow>& rows, const GlBenchOptions& timing) {
     for (int r = 0; r < timing.repeat; ++r)
         for (TimedRow& row : rows) {
             gl.Finish();
-            const auto start = std::chrono::steady_clock::now();
-            for (int f = 0; f < timing.frames; ++f)
-                if (Status s = row.draw(); !s) return s;
-            gl.Finish();
-            row.ms.push_back(
-                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
-                timing.frames);
+            Result<DrawTimes> t = timeDraws(timing.frames, false, row.draw);
+            if (!t) return Error{t.error()};
+            row.ms.push_back(t->wall * 1e3);
         }
     return success();
 }

@@ -2,7 +2,6 @@
 // moving, wall and GPU time, interleaved; the ratios lut/flat, lut/ptm and lut/predictor, and
 // texture memory per material (bench/RESULTS.md, "Renderer"). Ratios, never pass/fail.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -10,6 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli/bench_timing.h"
 #include "cli/command.h"
 #include "core/bank/lut_bank.h"
 #include "core/check.h"
@@ -42,38 +42,11 @@ Vec3 movingLight() {
 }
 
 // Frame times of one renderer: `frames` frames drawn back to back with no wait between them,
-// then one glFinish; wall time per frame is the whole run's over the frames. GPU time per
-// frame from GL_TIME_ELAPSED queries around each frame's draw calls, read after the finish
-// (NaN where the driver has no timer).
-struct FrameTimes {
-    double wall = 0, gpu = 0;
-};
-
-Result<FrameTimes> timeFrames(SceneRenderer& renderer, RenderMode mode, bool moving, int frames, bool timer) {
-    std::vector<GlQuery> queries;
-    const auto start = std::chrono::steady_clock::now();
-    for (int f = 0; f < frames; ++f) {
-        if (timer) {
-            queries.push_back(makeQuery());
-            gl.BeginQuery(GL_TIME_ELAPSED, queries.back().id());
-        }
-        if (Status s = renderer.draw(moving ? movingLight() : benchLights()[0], mode); !s) return Error{s.error()};
-        if (timer) gl.EndQuery(GL_TIME_ELAPSED);
-    }
-    renderer.finish();
-    FrameTimes t;
-    t.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / frames;
-    t.gpu = std::numeric_limits<double>::quiet_NaN();
-    if (timer) {
-        GLuint64 total = 0;
-        for (const GlQuery& q : queries) {
-            GLuint64 ns = 0;
-            gl.GetQueryObjectui64v(q.id(), GL_QUERY_RESULT, &ns);
-            total += ns;
-        }
-        t.gpu = static_cast<double>(total) * 1e-9 / frames;
-    }
-    BTFLUT_CHECK(renderer.stats().quadsUnlit == 0);
+// then one glFinish (timeDraws); every quad lit.
+Result<DrawTimes> timeFrames(SceneRenderer& renderer, RenderMode mode, bool moving, int frames, bool timer) {
+    Result<DrawTimes> t =
+        timeDraws(frames, timer, [&] { return renderer.draw(moving ? movingLight() : benchLights()[0], mode); });
+    BTFLUT_CHECK(!t || renderer.stats().quadsUnlit == 0);
     return t;
 }
 
@@ -139,7 +112,7 @@ Result<RowTimes> timeModes(const std::vector<ModeRow>& rows, SceneRenderer& main
                     if (Status s = row.renderer->draw(benchLights()[0], row.mode); !s) return Error{s.error()};
                     row.renderer->finish();
                 }
-                Result<FrameTimes> t = timeFrames(*row.renderer, row.mode, moving, o.frames, timer);
+                Result<DrawTimes> t = timeFrames(*row.renderer, row.mode, moving, o.frames, timer);
                 if (!t) return Error{t.error()};
                 if (moving && row.name == "lut") times.movingLutStats = row.renderer->stats();
                 times.wall[{row.name, moving}].push_back(t->wall);
