@@ -130,6 +130,31 @@ TEST_CASE("quantised codes: 8 bits over the inside texels' range, nearest or tru
     CHECK(values(1, 1) == doctest::Approx(10));
 }
 
+TEST_CASE("learned model: validation chooses the residual network's weight decay among the candidates") {
+    TempDir dir;
+    const Relief relief{.size = 32};
+    const std::vector<Direction> lights = dome(24, 70);
+    Result<Dataset> dataset = openDataset(writeRelief(dir, relief, lights));
+    REQUIRE(dataset.ok());
+    auto residualOf = [&](std::vector<float> decays) {
+        BakeOptions options{.learned = LearnedOptions{.steps = 300, .weightDecays = std::move(decays)}};
+        options.threads = 1;
+        Result<LutBank> bank = bakeBank(*dataset, options);
+        REQUIRE_MESSAGE(bank.ok(), bank.error());
+        return bank->predictorAs<LearnedPredictor>()->model().decoder->residual.parameters();
+    };
+    const std::vector<float> strong = residualOf({0.1f}), weak = residualOf({0.01f});
+    CHECK(strong != weak);  // the relief trains past its linear start, and the decay shapes it
+    const std::vector<float> chosen = residualOf({0.1f, 0.01f});
+    CHECK((chosen == strong || chosen == weak));  // one candidate's fit, whole
+    for (const std::vector<float>& bad : {std::vector<float>{}, {-0.1f}, {1.f}, {NAN}}) {
+        BakeOptions options{.learned = LearnedOptions{.steps = 10, .weightDecays = bad}};
+        Result<LutBank> bank = bakeBank(*dataset, options);
+        REQUIRE(!bank.ok());
+        CHECK(bank.error().find("invalid learned model options") != std::string::npos);
+    }
+}
+
 TEST_CASE("learned model: a relief between the measured lights, its bank and chunk, the same bytes every run") {
     TempDir dir;
     const Relief relief{.size = 32};

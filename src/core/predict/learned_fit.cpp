@@ -21,10 +21,6 @@ namespace {
 constexpr std::size_t kMinLights = 16;  // fewer: the linear start, not trained
 // The linear basis (encoder and light network) starts where it should be: it moves slower.
 constexpr float kLinearRate = 0.05f;
-// Decoupled weight decay of the residual network (AdamW's): what keeps it smooth between the
-// lights it is trained on (without it, on the concrete, held-out lights' error rises from the
-// first few hundred steps).
-constexpr float kWeightDecay = 0.1f;
 
 // The start of training: each texel's samples fitted per channel by the first `terms` light
 // features (ridge least squares: hsh2's 4 or hsh3's 9 hemispherical harmonics), and the N principal
@@ -88,11 +84,13 @@ struct Trained {
 // Adam for both of the decoder's networks.
 struct DecoderAdam {
     Adam light, residual;
-    explicit DecoderAdam(const LearnedDecoder& d) : light(d.light), residual(d.residual) {}
+    float decay;  // the residual network's weight decay
+    DecoderAdam(const LearnedDecoder& d, float weightDecay)
+        : light(d.light), residual(d.residual), decay(weightDecay) {}
     void step(LearnedDecoder& d, const LearnedDecoder::Gradient& g, float rate) {
         light.step(d.light, g.light, rate * kLinearRate);
         residual.step(d.residual, g.residual, rate);
-        for (std::size_t k = 0; k < d.residual.layers(); ++k) d.residual.weights(k) *= 1 - rate * kWeightDecay;
+        for (std::size_t k = 0; k < d.residual.layers(); ++k) d.residual.weights(k) *= 1 - rate * decay;
     }
 };
 
@@ -198,14 +196,15 @@ Trained started(const Matrix& samples, const Matrix& lights, const LearnedOption
 // The learned kind's one Adam loop: `steps` steps on batches of the sample texels (`samples`,
 // a column per texel) drawn by `random`, each a sharded step of the decoder and of the encoder
 // when it makes the codes (else `codes` are the batch's: a column per texel of `samples`).
-// `rate(step)` is the decoder's rate (the encoder's kLinearRate of it); `after(step)` runs after
-// each step, and false from it stops the loop. False when a step's loss was not finite.
+// `rate(step)` is the decoder's rate (the encoder's kLinearRate of it), `decay` the residual
+// network's weight decay; `after(step)` runs after each step, and false from it stops the loop.
+// False when a step's loss was not finite.
 bool adamSteps(LearnedDecoder& decoder, Network* encoder, const Matrix* codes, const Matrix& samples,
-               const Matrix& lights, int channels, int steps, Random& random, int threads,
+               const Matrix& lights, int channels, int steps, float decay, Random& random, int threads,
                const std::function<float(int)>& rate, const std::function<bool(int)>& after) {
     std::optional<Adam> encoderAdam;
     if (encoder) encoderAdam.emplace(*encoder);
-    DecoderAdam decoderAdam(decoder);
+    DecoderAdam decoderAdam(decoder, decay);
     const auto perBatch =
         static_cast<Eigen::Index>(std::max<std::size_t>(1, kBatchSamples / static_cast<std::size_t>(lights.cols())));
     const auto T = static_cast<std::uint64_t>(samples.cols());
@@ -227,33 +226,36 @@ bool adamSteps(LearnedDecoder& decoder, Network* encoder, const Matrix* codes, c
     return true;
 }
 
+// Where a validated run was best: the step (a multiple of its steps / 16, 0 the linear start)
+// and the held-out lights' loss there.
+struct BestStep {
+    int step = 0;
+    float loss = 0;
+};
+
 // Phase 1: encoder and decoder together on the sample texels' samples, `steps` Adam steps of a
-// rate schedule spanning `schedule` steps. With a validation, the step (a multiple of steps /
-// 16, 0 the linear start) where its loss was least goes to `best`.
+// rate schedule spanning `schedule` steps, the residual network decayed by `decay`. With a
+// validation, where its loss was least goes to `best`.
 Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedOptions& o, int channels, int terms,
-                     int steps, int schedule, float peak, std::uint64_t seed, const Validation* validation, int* best,
-                     const std::function<void(double)>& progress) {
+                     int steps, int schedule, float peak, float decay, std::uint64_t seed, const Validation* validation,
+                     BestStep* best, const std::function<void(double)>& progress) {
     Random random(seed);
     Trained t = started(samples, lights, o, channels, terms, random);
     const int every = std::max(1, steps / 16);
-    float least = validation ? validationLoss(t, *validation) : 0.f;
-    if (best) *best = 0;
+    if (best) *best = {0, validation ? validationLoss(t, *validation) : 0.f};
     const bool finite = adamSteps(
-        t.decoder, &t.encoder, nullptr, samples, lights, channels, steps, random, o.threads,
+        t.decoder, &t.encoder, nullptr, samples, lights, channels, steps, decay, random, o.threads,
         [&](int step) { return rateAt(step, schedule, peak); },
         [&](int step) {
             if (validation && (step + 1) % every == 0) {
                 const float v = validationLoss(t, *validation);
-                if (v < least) {
-                    least = v;
-                    *best = step + 1;
-                }
+                if (v < best->loss) *best = {step + 1, v};
             }
             if (progress && step % 64 == 0) progress(static_cast<double>(step) / steps);
             // Half the schedule and no step better than the linear start held out: it is kept
             // (steps 0), so the rest would be trained for nothing. On six rendered and measured
             // sets a step that beat it came by a fifth of the schedule or never (bench/RESULTS.md).
-            return !(validation && *best == 0 && 2 * (step + 1) >= steps);
+            return !(validation && best->step == 0 && 2 * (step + 1) >= steps);
         });
     t.finite = finite && t.encoder.finite() && t.decoder.light.finite() && t.decoder.residual.finite();
     return t;
@@ -262,11 +264,12 @@ Trained trainJointly(const Matrix& samples, const Matrix& lights, const LearnedO
 // Phase 2: the decoder tuned to the sample texels' quantised codes (`codes`, a column per
 // texel of `samples`) for `steps` at a rate of `peak`; the decoder as it was if that diverges.
 LearnedDecoder tunedToCodes(const LearnedDecoder& trained, const Matrix& codes, const Matrix& samples,
-                            const Matrix& lights, int channels, int steps, float peak, const LearnedOptions& o) {
+                            const Matrix& lights, int channels, int steps, float peak, float decay,
+                            const LearnedOptions& o) {
     LearnedDecoder decoder = trained;
     Random random(o.seed + 17);
     adamSteps(
-        decoder, nullptr, &codes, samples, lights, channels, steps, random, o.threads,
+        decoder, nullptr, &codes, samples, lights, channels, steps, decay, random, o.threads,
         [&](int step) { return rateAt(step, steps, peak); },
         [&](int step) {
             if (o.progress && step % 64 == 0) o.progress(0.9 + 0.1 * step / steps);
@@ -292,6 +295,67 @@ Matrix columns(const Matrix& m, const std::vector<std::size_t>& keep) {
     return out;
 }
 
+// What validation chose for a fit: the linear start's terms, the steps to train on every light
+// (0: the linear start is kept) and the residual network's weight decay.
+struct Chosen {
+    int terms = 4, steps = 0;
+    float decay = 0;
+};
+
+// Validated on every fifth light held out: the start's terms (hsh3's 9 need more lights than
+// hsh2's 4 to interpolate between them), how long to train (a residual network learns the
+// training lights' shadows, which need not generalise: the linear start can be best), and how
+// smooth: decoupled weight decay of the residual network (AdamW's) keeps it smooth between the
+// lights it is trained on, and how smooth depends on the capture. On the concrete (36 training
+// lights) held-out lights' error rises from the first few hundred steps without it, where on 135
+// lights 0.01 lets the network place a glossy highlight or a cast shadow 3-4 dB closer
+// (bench/RESULTS.md, "How strongly the learned kind is smoothed"). A first run per
+// LearnedOptions::weightDecays; the least held-out loss at its best step chooses the decay and
+// the step count (the first on a tie). Fewer than kMinLights lights keep the linear start; under
+// 6, hsh2's terms.
+Result<Chosen> validated(const Matrix& samples, const Matrix& features, const LearnedOptions& o, int channels,
+                         int budget, const std::string& what) {
+    Chosen chosen{4, 0, o.weightDecays[0]};
+    const auto L = static_cast<std::size_t>(features.cols()), keep = static_cast<std::size_t>(samples.cols());
+    if (L < 6) return chosen;
+    std::vector<std::size_t> train, held;
+    for (std::size_t l = 0; l < L; ++l) (l % 5 == 2 ? held : train).push_back(l);
+    std::vector<std::size_t> checked(std::min<std::size_t>(keep, 4096));
+    std::iota(checked.begin(), checked.end(), std::size_t{0});
+    const Matrix trainSamples = lightRows(samples, train, channels), trainLights = columns(features, train);
+    const Validation v{columns(trainSamples, checked), columns(features, held),
+                       decoderTarget(columns(lightRows(samples, held, channels), checked),
+                                     static_cast<Eigen::Index>(held.size()), channels)};
+    float least = 0;
+    for (int candidate : {4, kLearnedLightFeatures}) {
+        // Two lights per term at least (as the target's fits, issue 34): two held-out lights
+        // cannot tell an overfit hsh3 (psm-rock, 11 lights: 33.12 dB against hsh2's terms'
+        // 34.23, left out in turn).
+        if (candidate > 4 && L < 2 * static_cast<std::size_t>(candidate)) continue;
+        Random random(o.seed);
+        const float loss = validationLoss(started(trainSamples, trainLights, o, channels, candidate, random), v);
+        if (candidate == 4 || loss < least) least = loss, chosen.terms = candidate;
+    }
+    if (L < kMinLights) return chosen;
+    float leastLoss = 0;
+    for (std::size_t d = 0; d < o.weightDecays.size(); ++d) {
+        Trained run;
+        BestStep best;
+        float peak = o.rate;
+        for (int attempt = 0; attempt < 3 && !run.finite; ++attempt, peak /= 4)
+            run = trainJointly(
+                trainSamples, trainLights, o, channels, chosen.terms, budget, budget, peak, o.weightDecays[d],
+                o.seed + static_cast<std::uint64_t>(attempt), &v, &best, [&](double f) {
+                    if (o.progress)
+                        o.progress(0.5 * (static_cast<double>(d) + f) / static_cast<double>(o.weightDecays.size()));
+                });
+        if (!run.finite) return Error{what + ": training the learned model diverged (the loss is not finite)"};
+        if (d == 0 || best.loss < leastLoss)
+            leastLoss = best.loss, chosen.steps = best.step, chosen.decay = o.weightDecays[d];
+    }
+    return chosen;
+}
+
 }  // namespace
 
 Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, const std::vector<Direction>& lights,
@@ -301,7 +365,8 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     if (!views.empty() && views.size() != images.size()) return Error{what + ": a view per image, or none"};
     if (images.size() < 3) return Error{what + ": a learned model needs at least 3 lights"};
     if (o.codes < 1 || o.codes > LearnedModel::kMaxCodes || o.hidden.empty() || o.steps < 1 ||
-        !(o.rate > 0 && std::isfinite(o.rate)) || !(o.seconds >= 0 && std::isfinite(o.seconds)))
+        !(o.rate > 0 && std::isfinite(o.rate)) || !(o.seconds >= 0 && std::isfinite(o.seconds)) ||
+        o.weightDecays.empty() || !std::ranges::all_of(o.weightDecays, [](float d) { return d >= 0 && d < 1; }))
         return Error{what + ": invalid learned model options"};
     for (const std::vector<int>* widths : {&o.hidden, &o.lightHidden})
         for (int h : *widths)
@@ -342,51 +407,18 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
         features.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Vector>(h.data(), m.features());
     }
 
-    // Validated on every fifth light held out: the start's terms (hsh3's 9 need more lights
-    // than hsh2's 4 to interpolate between them), and how long to train (a residual network
-    // learns the training lights' shadows, which need not generalise: the linear start can be
-    // best). Fewer than kMinLights lights keep the linear start; under 6, hsh2's terms.
     const float rate = o.rate;
     const int budget = stepBudget(o.steps, keep, lights.size(), o.seconds, sampleMultiplyAdds);
-    int steps = 0, terms = 4;
-    if (lights.size() >= 6) {
-        std::vector<std::size_t> train, held;
-        for (std::size_t l = 0; l < lights.size(); ++l) (l % 5 == 2 ? held : train).push_back(l);
-        std::vector<std::size_t> checked(std::min<std::size_t>(keep, 4096));
-        std::iota(checked.begin(), checked.end(), std::size_t{0});
-        const Matrix trainSamples = lightRows(samples, train, m.channels), trainLights = columns(features, train);
-        const Validation v{columns(trainSamples, checked), columns(features, held),
-                           decoderTarget(columns(lightRows(samples, held, m.channels), checked),
-                                         static_cast<Eigen::Index>(held.size()), m.channels)};
-        float least = 0;
-        for (int candidate : {4, kLearnedLightFeatures}) {
-            // Two lights per term at least (as the target's fits, issue 34): two held-out
-            // lights cannot tell an overfit hsh3 (psm-rock, 11 lights: 33.12 dB against
-            // hsh2's terms' 34.23, left out in turn).
-            if (candidate > 4 && lights.size() < 2 * static_cast<std::size_t>(candidate)) continue;
-            Random random(o.seed);
-            const float loss = validationLoss(started(trainSamples, trainLights, o, m.channels, candidate, random), v);
-            if (candidate == 4 || loss < least) least = loss, terms = candidate;
-        }
-        if (lights.size() >= kMinLights) {
-            Trained validated;
-            float peak = rate;
-            for (int attempt = 0; attempt < 3 && !validated.finite; ++attempt, peak /= 4)
-                validated = trainJointly(trainSamples, trainLights, o, m.channels, terms, budget, budget, peak,
-                                         o.seed + static_cast<std::uint64_t>(attempt), &v, &steps, [&](double f) {
-                                             if (o.progress) o.progress(0.5 * f);
-                                         });
-            if (!validated.finite)
-                return Error{what + ": training the learned model diverged (the loss is not finite)"};
-        }
-    }
+    Result<Chosen> chosen = validated(samples, features, o, m.channels, budget, what);
+    if (!chosen) return Error{chosen.error()};
+    const auto [terms, steps, decay] = *chosen;
 
     // Phase 1 on every light, retried at a quarter of the rate when it diverges: the validated
     // run's trajectory (its schedule, stopped where it was best), not a shorter schedule.
     Trained t;
     float peak = rate;
     for (int attempt = 0; attempt < 3 && !t.finite; ++attempt, peak /= 4)
-        t = trainJointly(samples, features, o, m.channels, terms, steps, budget, peak,
+        t = trainJointly(samples, features, o, m.channels, terms, steps, budget, peak, decay,
                          o.seed + static_cast<std::uint64_t>(attempt), nullptr, nullptr, [&](double f) {
                              if (o.progress) o.progress(0.5 + 0.4 * f);
                          });
@@ -396,8 +428,9 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     m.quantised =
         QuantisedCodes::quantise(encodeTexels(t.encoder, texelSamples, m.texels(), o.threads), drawn->inside, N);
 
-    m.decoder = std::make_shared<const LearnedDecoder>(tunedToCodes(
-        t.decoder, codeValues(m.quantised, drawn->texels), samples, features, m.channels, steps / 5, peak / 8, o));
+    m.decoder =
+        std::make_shared<const LearnedDecoder>(tunedToCodes(t.decoder, codeValues(m.quantised, drawn->texels), samples,
+                                                            features, m.channels, steps / 5, peak / 8, decay, o));
     if (o.progress) o.progress(1.0);
     return m;
 }

@@ -134,6 +134,10 @@ struct LearnedOptions {
     /// anywhere.
     double seconds = 0;
     float rate = 0.02f;  ///< Adam's peak rate (the residual network's; the linear parts' 1/20)
+    /// The residual network's decoupled weight decay: validation chooses among these (a first
+    /// run each; the first kept on a tie). How smooth between the lights it must be depends
+    /// on the capture (learned_fit.cpp).
+    std::vector<float> weightDecays{0.1f, 0.01f};
     int threads = 0;
     /// Called now and then with the fraction done (0..1); may be empty.
     std::function<void(double)> progress;

@@ -44,7 +44,9 @@ Result<TrainingSamples> drawTrainingSamples(const TexelSamples& from, const Mask
 /// wherever it is baked.
 constexpr double kTrainingMultiplyAddsPerSecond = 1.2e10;
 /// A fit's training runs, in units of one run's steps: the validated run, the run on every
-/// light (as long at most) and the tuning to quantised codes (a fifth).
+/// light (as long at most) and the tuning to quantised codes (a fifth). The second validated
+/// run (learned_fit.cpp: one per weight decay) is not priced, so that a decay of 0.1 chosen
+/// gives the bank it gave before the choice: a fit takes up to 3.2 / 2.2 of its time.
 constexpr double kTrainingRuns = 2.2;
 
 /// Steps to train: `steps`, or when `seconds` > 0 what trains in about that long, a sample's
