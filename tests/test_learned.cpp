@@ -49,6 +49,10 @@ Matrix randomMatrix(Eigen::Index rows, Eigen::Index cols, Random& random) {
     return m;
 }
 
+// The relief the learned model's tests bake: enough lights that it trains past its linear start.
+const Relief kRelief{.size = 32};
+std::vector<Direction> reliefLights() { return dome(24, 70); }
+
 }  // namespace
 
 TEST_CASE("network: the backward pass is the finite differences of the forward one") {
@@ -132,9 +136,7 @@ TEST_CASE("quantised codes: 8 bits over the inside texels' range, nearest or tru
 
 TEST_CASE("learned model: validation chooses the residual network's weight decay among the candidates") {
     TempDir dir;
-    const Relief relief{.size = 32};
-    const std::vector<Direction> lights = dome(24, 70);
-    Result<Dataset> dataset = openDataset(writeRelief(dir, relief, lights));
+    Result<Dataset> dataset = openDataset(writeRelief(dir, kRelief, reliefLights()));
     REQUIRE(dataset.ok());
     auto residualOf = [&](std::vector<float> decays) {
         BakeOptions options{.learned = LearnedOptions{.steps = 300, .weightDecays = std::move(decays)}};
@@ -157,8 +159,8 @@ TEST_CASE("learned model: validation chooses the residual network's weight decay
 
 TEST_CASE("learned model: a relief between the measured lights, its bank and chunk, the same bytes every run") {
     TempDir dir;
-    const Relief relief{.size = 32};
-    const std::vector<Direction> lights = dome(24, 70);
+    const Relief& relief = kRelief;
+    const std::vector<Direction> lights = reliefLights();
     Result<Dataset> dataset = openDataset(writeRelief(dir, relief, lights));
     REQUIRE(dataset.ok());
     BakeOptions options{.colour = ColourMode::Rgb, .learned = LearnedOptions{.steps = 300}};
