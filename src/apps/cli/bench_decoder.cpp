@@ -302,9 +302,9 @@ Status runBenchDecoder(const BenchDecoderOptions& o) {
     };
     // btflut's own paths with their match LUTs: the relight pass (a moving light in texture
     // space) and the scene renderer's quad per fragment.
-    std::size_t blendBytes = 0;
-    const PredictionTextures blend = PredictionTextures::upload(bank, blendBytes);
-    RelightPass pass(bank, 0, &blend);
+    std::size_t planeBytes = 0;
+    const PredictionTextures planes = PredictionTextures::upload(bank, planeBytes);
+    RelightPass pass(bank, 0, &planes);
     const std::vector<GlTexture> passLuts = pass.makeLuts();
     const RelightFrame relightFrame = Relighter(bank).gridFrame(light);
     GlTexture passTarget = allocateRelitTexture(bank.reference);

@@ -134,8 +134,8 @@ Status runBenchLevels(const BenchLevelsOptions& o) {
     gl.GetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &timerBits);
 
     std::size_t bytes = 0;
-    const PredictionTextures blend = PredictionTextures::upload(bank, bytes);
-    RelightPass pass(bank, 0, &blend);
+    const PredictionTextures planes = PredictionTextures::upload(bank, bytes);
+    RelightPass pass(bank, 0, &planes);
     const std::vector<GlTexture> luts = pass.makeLuts();
     const Relighter relighter(bank);
     GlTexture whole = allocateRelitTexture(bank.reference), level = allocateRelitTexture(bank.reference),

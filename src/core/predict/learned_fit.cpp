@@ -407,7 +407,6 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
         features.col(static_cast<Eigen::Index>(l)) = Eigen::Map<const Vector>(h.data(), m.features());
     }
 
-    const float rate = o.rate;
     const int budget = stepBudget(o.steps, keep, lights.size(), o.seconds, sampleMultiplyAdds);
     Result<Chosen> chosen = validated(samples, features, o, m.channels, budget, what);
     if (!chosen) return Error{chosen.error()};
@@ -416,7 +415,7 @@ Result<LearnedModel> fitLearnedModel(const std::vector<const Image*>& images, co
     // Phase 1 on every light, retried at a quarter of the rate when it diverges: the validated
     // run's trajectory (its schedule, stopped where it was best), not a shorter schedule.
     Trained t;
-    float peak = rate;
+    float peak = o.rate;
     for (int attempt = 0; attempt < 3 && !t.finite; ++attempt, peak /= 4)
         t = trainJointly(samples, features, o, m.channels, terms, steps, budget, peak, decay,
                          o.seed + static_cast<std::uint64_t>(attempt), nullptr, nullptr, [&](double f) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <utility>
 
 #include "core/check.h"
 #include "core/parallel.h"
@@ -90,12 +91,13 @@ std::vector<float> LearnedModel::predict(Direction light, std::span<const std::u
     return decode(*this, quantised, texels, light, view, threads);
 }
 
-std::vector<float> LearnedModel::predictCodes(Direction light, const std::vector<std::uint8_t>& texelCodes, int threads,
+std::vector<float> LearnedModel::predictCodes(Direction light, std::vector<std::uint8_t> texelCodes, int threads,
                                               Direction view) const {
     BTFLUT_CHECK(!empty() && texelCodes.size() % static_cast<std::size_t>(codes) == 0);
     if (texelCodes.empty()) return {};
-    const QuantisedCodes given{quantised.scale, quantised.bias, texelCodes};
-    return decode(*this, given, {}, light, view, threads, texelCodes.size() / static_cast<std::size_t>(codes));
+    const std::size_t count = texelCodes.size() / static_cast<std::size_t>(codes);
+    const QuantisedCodes given{quantised.scale, quantised.bias, std::move(texelCodes)};
+    return decode(*this, given, {}, light, view, threads, count);
 }
 
 Image LearnedModel::render(Direction light, Direction view) const {

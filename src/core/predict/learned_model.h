@@ -84,8 +84,9 @@ struct LearnedModel {
     std::vector<float> predict(Direction light, std::span<const std::uint32_t> texels = {}, int threads = 1,
                                Direction view = {}) const;
     /// The same for texels whose codes are given (N bytes each, as `quantised` holds them)
-    /// rather than the model's own: a mipmap level's (LearnedPredictor::levelCodes).
-    std::vector<float> predictCodes(Direction light, const std::vector<std::uint8_t>& codes, int threads = 1,
+    /// rather than the model's own: a mipmap level's (LearnedPredictor::levelCodes). Taken by
+    /// value: they become the bytes of a QuantisedCodes of the model's scale and bias.
+    std::vector<float> predictCodes(Direction light, std::vector<std::uint8_t> codes, int threads = 1,
                                     Direction view = {}) const;
     /// The prediction as an image (grey or RGB, float); `view` for a model of views.
     Image render(Direction light, Direction view = {}) const;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "core/check.h"
 #include "core/predict/gpu_constants.h"
@@ -148,7 +149,7 @@ void LearnedPredictor::levelCodes(const PredictorFrame& frame, int level, int wi
         std::vector<std::uint8_t> means(texels.size() * N);
         for (std::size_t j = 0; j < texels.size(); ++j)
             levelTexelBytes(m_model.quantised.bytes, width, height, m_model.codes, level, texels[j], &means[j * N]);
-        values = m_model.predictCodes(frame.learned->light, means, 0, frame.learned->view);
+        values = m_model.predictCodes(frame.learned->light, std::move(means), 0, frame.learned->view);
     }
     const auto C = static_cast<std::size_t>(m_model.channels), matched = static_cast<std::size_t>(channels());
     codes.resize(texels.size() * matched);
