@@ -316,11 +316,11 @@ TEST_CASE("export --ptm: a PTM 1.2 LRGB file, rows bottom first, that reads back
     CHECK(text.rfind("PTM_1.2\nPTM_FORMAT_LRGB\n256\n256\n", 0) == 0);
     Result<LutBank> original = loadBank(bank);
     REQUIRE(original.ok());
-    const Ptm& ptm = original->ptm;
+    const LightModel& ptm = original->ptm;
     // The payload's first record is the bottom row's first texel.
     const std::size_t payload = bytes->size() - ptm.texels() * 9,
                       bottom = ptm.texels() - static_cast<std::size_t>(ptm.width);
-    Result<Ptm> back = decodePtmFile(*bytes, file);
+    Result<LightModel> back = decodePtmFile(*bytes, file);
     REQUIRE_MESSAGE(back.ok(), back.error());
     CHECK(std::abs(int{(*bytes)[payload + ptm.texels() * 6]} - int{ptm.albedo[bottom * 3]}) == 0);
     CHECK(back->albedo == ptm.albedo);
@@ -335,7 +335,7 @@ TEST_CASE("export --ptm: a PTM 1.2 LRGB file, rows bottom first, that reads back
     }
     // Bad files: one line naming the file.
     Bytes truncated(bytes->begin(), bytes->end() - 5);
-    Result<Ptm> bad = decodePtmFile(truncated, "cut.ptm");
+    Result<LightModel> bad = decodePtmFile(truncated, "cut.ptm");
     REQUIRE_FALSE(bad.ok());
     CHECK(bad.error().find("cut.ptm") != std::string::npos);
     std::string rgb = text;

@@ -1,4 +1,4 @@
-// GL tests of the scene renderer's modes against their CPU twins: ptm (Ptm::render), nearest
+// GL tests of the scene renderer's modes against their CPU twins: ptm (LightModel::render of the bank's PTM), nearest
 // (the measured image), nearest-node LUTs, and per-fragment view directions for banks with
 // several view layers. A frontal camera sees the quad fill the image texel for texel, so each
 // pixel centre samples one texel centre.

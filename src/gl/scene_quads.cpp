@@ -10,6 +10,7 @@
 #include "core/check.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/learned_shader.h"
+#include "core/predict/ptm.h"
 #include "gl/scene_renderer.h"
 #include "gl/textures.h"
 
@@ -396,13 +397,12 @@ Status SceneRenderer::prepare(QuadState& q, RenderMode mode, const Vec3& light) 
         update(q, light, mode);
     }
     if (mode == RenderMode::Ptm && !material.ptmLoaded) {
-        Result<Ptm> ptm = loadBankPtm(paths.bank);
+        Result<LightModel> ptm = loadBankPtm(paths.bank);
         if (!ptm) return Error{ptm.error()};
-        for (int p = 0; p < 3; ++p)
-            material.ptm[static_cast<std::size_t>(p)] = uploadMipmapped(
-                ptm->width, ptm->height, GL_RGB8, GL_RGB, GL_UNSIGNED_BYTE, ptm->plane(p).data(), bytes.ptm);
-        material.ptmScale = ptm->scale;
-        material.ptmBias = ptm->bias;
+        const std::vector<Image> planes = lightModelImages(*ptm);  // coefficients 0-2, 3-5, the albedo
+        for (std::size_t p = 0; p < material.ptm.size(); ++p) material.ptm[p] = uploadMipmapped(planes[p], bytes.ptm);
+        std::copy(ptm->scale.begin(), ptm->scale.end(), material.ptmScale.begin());
+        std::copy(ptm->bias.begin(), ptm->bias.end(), material.ptmBias.begin());
         material.ptmLoaded = true;
         m_stats.loadedPtms.push_back(quad.material);
         for (QuadState& other : m_quads)  // their PTM weights are due

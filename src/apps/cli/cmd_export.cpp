@@ -154,19 +154,9 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
         const ModelPredictor* model = b.predictorAs<ModelPredictor>();
         if (references && !references->albedo().samples.empty())
             blend["albedo"] = texture("albedo", references->albedo());
-        if (model && !model->bankPtm()) {
+        if (model) {
             blend["predictor"] = b.predictorName();
             blend["model"] = lightModelSidecar(model->model(), texture);
-        } else if (model) {  // the bank's PTM
-            blend["predictor"] = "ptm";
-            blend["ptm_scale"] = b.ptm.scale;
-            blend["ptm_bias"] = b.ptm.bias;
-            for (int p = 0; p < 3; ++p) {
-                Image plane(b.ptm.width, b.ptm.height, 3);
-                const std::vector<std::uint8_t> bytes = b.ptm.plane(p);
-                for (std::size_t i = 0; i < bytes.size(); ++i) plane.samples[i] = bytes[i] / 255.f;
-                blend["ptm_planes"].push_back(texture("ptm-" + std::to_string(p), plane));
-            }
         } else if (const LearnedPredictor* learned = b.predictorAs<LearnedPredictor>()) {
             blend["predictor"] = b.predictorName();
             blend["learned"] = learnedSidecar(*learned, texture);
@@ -436,7 +426,7 @@ Status exportPtm(const ExportOptions& o, const LutBank& b) {
 Status exportRti(const ExportOptions& o, const LutBank& b) {
     if (Status s = requireExtension(o.rti, {"rti"}, "--rti"); !s) return s;
     const ModelPredictor* model = b.predictorAs<ModelPredictor>();
-    if (!model || model->bankPtm() || model->model().basis != LightBasis::Hsh)
+    if (!model || model->model().basis != LightBasis::Hsh)
         return Error{o.bank + ": its predictor is " +
                      (b.makesLuts() ? b.predictorName() : std::string("none (a bank of LUTs)")) +
                      "; an .rti file holds hemispherical harmonics: bake with --predictor hsh2 or hsh3 (or export "

@@ -10,6 +10,7 @@
 #include "core/parallel.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/model_predictor.h"
+#include "core/predict/ptm.h"
 #include "core/predict/reference_blend.h"
 #include "core/predict/references.h"
 #include "core/relight/relighter.h"
@@ -428,7 +429,7 @@ public:
             m_bank.fillGrids();  // the grid's targets between the lights are the chosen estimate's
         }
         if (m_ptm) {
-            Result<Ptm> fitted = m_ptm->finish(m_dataset.source);
+            Result<LightModel> fitted = m_ptm->finish(m_dataset.source);
             if (!fitted) return Error{fitted.error()};
             m_bank.ptm = std::move(*fitted);
         }

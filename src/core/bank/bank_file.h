@@ -53,6 +53,6 @@ Result<LutBank> decodeBank(const Bytes& bytes, const std::string& name, const Ba
 Status saveBank(const LutBank& bank, const std::string& path, const BankWriteOptions& options = {});
 Result<LutBank> loadBank(const std::string& path, const BankReadOptions& options = {});
 /// Only the PTM of a bank file (for a renderer that needs it later than the LUTs).
-Result<Ptm> loadBankPtm(const std::string& path);
+Result<LightModel> loadBankPtm(const std::string& path);
 
 }  // namespace btflut

@@ -29,8 +29,9 @@ constexpr std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReferenc
                         kLightModel = tagOf("LMDL"), kSelection = tagOf("CHOS"), kMatchGrid = tagOf("MGRD"),
                         kTargetFit = tagOf("TFIT"), kLearnedModel = tagOf("LRND");
 
-// The HEAD's predictor (version 5): the references blended (REFS), the bank's PTM (PTMC), a
-// light model (LMDL), or (version 8) a learned model (LRND).
+// The HEAD's predictor (version 5): the references blended (REFS), the bank's PTM (PTMC; read
+// from earlier files as the light model it is, written as Model), a light model (LMDL), or
+// (version 8) a learned model (LRND).
 enum class FilePredictor : std::uint32_t { References = 0, Ptm = 1, Model = 2, Learned = 3 };
 
 inline std::string tagName(std::uint32_t tag) {

@@ -402,7 +402,7 @@ private:
         m_bank.ptmInFile = true;
         if (!m_options.ptm && !(m_bank.makesLuts() && m_head.predictor == FilePredictor::Ptm))
             return success();  // the predictor's is needed
-        Result<Ptm> ptm = decodePtm(chunk, m_name, m_head.refWidth, m_head.refHeight);
+        Result<LightModel> ptm = decodePtm(chunk, m_name, m_head.refWidth, m_head.refHeight);
         if (!ptm) return Error{ptm.error()};
         m_bank.ptm = std::move(*ptm);
         return success();
@@ -452,7 +452,7 @@ private:
             if (label >= prediction.regions) return fail("a region label is beyond the bank's regions");
         const bool perChannel = m_bank.colour == ColourMode::Rgb;
         if (kind == FilePredictor::Ptm)
-            prediction.predictor = std::make_shared<ModelPredictor>(lightModelFromPtm(m_bank.ptm), perChannel, true);
+            prediction.predictor = std::make_shared<ModelPredictor>(m_bank.ptm, perChannel);
         else if (kind == FilePredictor::Model)
             prediction.predictor = std::make_shared<ModelPredictor>(std::move(*m_parts.model), perChannel);
         else if (kind == FilePredictor::Learned)
@@ -497,7 +497,7 @@ Result<LutBank> loadBank(const std::string& path, const BankReadOptions& options
     return decodeBank(*bytes, path, options);
 }
 
-Result<Ptm> loadBankPtm(const std::string& path) {
+Result<LightModel> loadBankPtm(const std::string& path) {
     Result<Bytes> bytes = readFile(path);
     if (!bytes) return Error{bytes.error()};
     Result<Chunks> chunks = splitChunks(*bytes, path);

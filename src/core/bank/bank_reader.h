@@ -14,7 +14,6 @@
 #include "core/bank/lut_bank.h"
 #include "core/predict/learned_model.h"
 #include "core/predict/light_model.h"
-#include "core/predict/ptm.h"
 #include "core/predict/reference_blend.h"
 #include "core/result.h"
 
@@ -92,7 +91,7 @@ Result<LearnedModel> decodeLearnedModel(Reader& in, const std::string& name, con
 Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const Head& head);
 
 // PTMC: the PTM of a bank whose reference image is width x height.
-Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t width, std::uint32_t height);
+Result<LightModel> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t width, std::uint32_t height);
 
 // REFS, MASK, LABL, ALBD: the parts of a bank that makes its LUTs at run time.
 Status readPredictionChunk(std::uint32_t tag, Reader& in, const std::string& name, const Head& head, LutBank& bank,

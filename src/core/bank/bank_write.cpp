@@ -53,16 +53,13 @@ void putDirection(Writer& w, Direction d) {
 
 // PTMC payload: width, height (u32), scale[6], bias[6] (f32), then three PNGs, each
 // preceded by its byte length (u32): coefficients 0-2, coefficients 3-5, albedo (RGB8).
-Bytes encodePtm(const Ptm& ptm) {
+Bytes encodePtm(const LightModel& ptm) {
     Writer w;
     w.put(static_cast<std::uint32_t>(ptm.width));
     w.put(static_cast<std::uint32_t>(ptm.height));
     for (float v : ptm.scale) w.put(v);
     for (float v : ptm.bias) w.put(v);
-    for (int p = 0; p < 3; ++p) {
-        const std::vector<std::uint8_t> bytes = ptm.plane(p);
-        Image image(ptm.width, ptm.height, 3);
-        std::transform(bytes.begin(), bytes.end(), image.samples.begin(), [](std::uint8_t b) { return b / 255.f; });
+    for (const Image& image : lightModelImages(ptm)) {  // coefficients 0-2, 3-5, the albedo
         const Bytes png = encodePng(image, 8);
         w.put(static_cast<std::uint32_t>(png.size()));
         w.putBytes(png.data(), png.size());
@@ -134,7 +131,7 @@ FilePredictor filePredictor(const LutBank& bank) {
         case PredictorKind::Learned:
             return FilePredictor::Learned;
         case PredictorKind::Model:
-            return bank.predictorAs<ModelPredictor>()->bankPtm() ? FilePredictor::Ptm : FilePredictor::Model;
+            return FilePredictor::Model;
         case PredictorKind::Luts:
         case PredictorKind::References:
             break;

@@ -39,7 +39,6 @@
 #include "core/image/image.h"
 #include "core/predict/light_model.h"
 #include "core/predict/predictor.h"
-#include "core/predict/ptm.h"
 
 namespace btflut {
 
@@ -136,7 +135,9 @@ struct LutBank {
     std::string referenceName;
     Direction referenceLight, referenceView;
     Image reference;  ///< without samples when the bank was written without it
-    Ptm ptm;          ///< the baseline PTM of the reference view; empty unless baked with one
+    /// The baseline PTM of the reference view (a light model of basis ptm, ptm.h); empty unless
+    /// baked with one.
+    LightModel ptm;
     /// The model's parameters (JSON, docs/model-params.md) where nodes were filled from the
     /// fitted model (LightNode::modelled); empty otherwise.
     std::string modelFill;

@@ -38,6 +38,45 @@ Result<Image> readRgb8Plane(Reader& in, const Fail& fail, const std::string& wha
     return image;
 }
 
+// A light model's planes (m's sizes and an albedo of its size set), as lightModelImages
+// writes them: its 8-bit planes three to an RGB8 PNG, its 4-bit planes six (two to a
+// channel), then the albedo; `context` and `word` name them in errors.
+template <class Fail>
+Status readPlanes(Reader& in, const Fail& fail, const std::string& context, const std::string& word, LightModel& m) {
+    auto png = [&](const std::string& what) {
+        return readRgb8Plane(in, fail, what, context + what + ")", m.width, m.height);
+    };
+    const auto P = static_cast<std::size_t>(m.planes), W = static_cast<std::size_t>(m.wide);
+    m.coefficients.resize(m.texels() * P);
+    for (std::size_t first = 0; first < W; first += 3) {
+        Result<Image> image = png(word + std::to_string(first) + "-" + std::to_string(std::min(W, first + 3) - 1));
+        if (!image) return Error{image.error()};
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3 && first + c < W; ++c)
+                m.coefficients[i * P + first + c] =
+                    static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
+    }
+    for (std::size_t first = W; first < P; first += 6) {  // 4-bit planes, two to a channel
+        Result<Image> image =
+            png("4-bit " + word + std::to_string(first) + "-" + std::to_string(std::min(P, first + 6) - 1));
+        if (!image) return Error{image.error()};
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3; ++c) {
+                const auto code = static_cast<int>(std::lround(image->samples[i * 3 + c] * 255));
+                if (first + 2 * c < P) m.coefficients[i * P + first + 2 * c] = static_cast<std::uint8_t>(code / 16);
+                if (first + 2 * c + 1 < P)
+                    m.coefficients[i * P + first + 2 * c + 1] = static_cast<std::uint8_t>(code % 16);
+            }
+    }
+    if (!m.albedo.empty()) {
+        Result<Image> image = png("albedo");
+        if (!image) return Error{image.error()};
+        for (std::size_t s = 0; s < m.albedo.size(); ++s)
+            m.albedo[s] = static_cast<std::uint8_t>(std::lround(image->samples[s] * 255));
+    }
+    return success();
+}
+
 }  // namespace
 
 // LMDL (encodeLightModel in bank_write.cpp): every count checked before anything is allocated
@@ -65,7 +104,10 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
         (channels != 1 || (m.basis == LightBasis::Hsh ? order != 2 && order != 3 : order != 0) ||
          static_cast<int>(planes) != LightModel::termCount(m.basis, m.order) || grid != 0 || wide != planes))
         return fail("a " + std::string(lightBasisName(m.basis)) + " model with the wrong terms");
-    if ((albedo ? 3u : channels) != head.refChannels) return fail("its colour does not match the reference image's");
+    // An albedo on a grey reference too: a bank's PTM (fitted with an albedo on grey images as
+    // on colour ones) was the predictor of files before LMDL, and is written back as this.
+    if (albedo ? head.refChannels != 3 && head.refChannels != 1 : channels != head.refChannels)
+        return fail("its colour does not match the reference image's");
     if (m.basis == LightBasis::Bilinear && (grid < 2 || grid > 64)) return fail("invalid grid size");
     if (m.basis != LightBasis::Bilinear && grid != 0) return fail("a grid for a basis without one");
     m.grid = static_cast<int>(grid);
@@ -95,38 +137,8 @@ Result<LightModel> decodeLightModel(Reader& in, const std::string& name, const H
         std::memcpy(m.table.data(), bytes, tableLength * sizeof(float));
     for (float v : m.table)
         if (!std::isfinite(v)) return fail("a table value is not finite");
-    auto png = [&](const std::string& what) {
-        return readRgb8Plane(in, fail, what, name + " (light model " + what + ")", m.width, m.height);
-    };
-    const std::size_t P = planes, W = wide;
-    m.coefficients.resize(m.texels() * P);
-    for (std::size_t first = 0; first < W; first += 3) {
-        Result<Image> image = png("planes " + std::to_string(first) + "-" + std::to_string(std::min(W, first + 3) - 1));
-        if (!image) return Error{image.error()};
-        for (std::size_t i = 0; i < m.texels(); ++i)
-            for (std::size_t c = 0; c < 3 && first + c < W; ++c)
-                m.coefficients[i * P + first + c] =
-                    static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
-    }
-    for (std::size_t first = W; first < P; first += 6) {  // 4-bit planes, two to a channel
-        Result<Image> image =
-            png("4-bit planes " + std::to_string(first) + "-" + std::to_string(std::min(P, first + 6) - 1));
-        if (!image) return Error{image.error()};
-        for (std::size_t i = 0; i < m.texels(); ++i)
-            for (std::size_t c = 0; c < 3; ++c) {
-                const auto code = static_cast<int>(std::lround(image->samples[i * 3 + c] * 255));
-                if (first + 2 * c < P) m.coefficients[i * P + first + 2 * c] = static_cast<std::uint8_t>(code / 16);
-                if (first + 2 * c + 1 < P)
-                    m.coefficients[i * P + first + 2 * c + 1] = static_cast<std::uint8_t>(code % 16);
-            }
-    }
-    if (albedo) {
-        Result<Image> image = png("albedo");
-        if (!image) return Error{image.error()};
-        m.albedo.resize(m.texels() * 3);
-        for (std::size_t s = 0; s < m.albedo.size(); ++s)
-            m.albedo[s] = static_cast<std::uint8_t>(std::lround(image->samples[s] * 255));
-    }
+    m.albedo.resize(albedo ? m.texels() * 3 : 0);
+    if (Status s = readPlanes(in, fail, name + " (light model ", "planes ", m); !s) return Error{s.error()};
     if (in.remaining() != 0) return fail("has the wrong size");
     return m;
 }
@@ -199,37 +211,26 @@ Result<LearnedModel> decodeLearnedModel(Reader& in, const std::string& name, con
 
 // The PTM of a bank whose reference image is width x height (from HEAD, already checked
 // against the pixel limit): its own size must match before anything is allocated.
-Result<Ptm> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t width, std::uint32_t height) {
+Result<LightModel> decodePtm(const Chunk& chunk, const std::string& name, std::uint32_t width, std::uint32_t height) {
     auto fail = [&](const std::string& what) { return Error{name + ": PTM chunk: " + what}; };
     Reader in(chunk.payload, chunk.length);
     const auto w = in.get<std::uint32_t>(), h = in.get<std::uint32_t>();
-    Ptm ptm;
-    for (float& v : ptm.scale) v = in.get<float>();
-    for (float& v : ptm.bias) v = in.get<float>();
+    LightModel ptm;
+    ptm.basis = LightBasis::Ptm;
+    ptm.planes = ptm.wide = kPtmTerms;
+    for (std::vector<float>* values : {&ptm.scale, &ptm.bias})
+        for (int k = 0; k < kPtmTerms; ++k) values->push_back(in.get<float>());
     if (!in.ok()) return fail("invalid header");
     if (w != width || h != height)
         return Error{name + ": the PTM (" + std::to_string(w) + "x" + std::to_string(h) +
                      ") does not match the reference image's size"};
     ptm.width = static_cast<int>(w);
     ptm.height = static_cast<int>(h);
-    for (int k = 0; k < Ptm::kTerms; ++k)
+    for (std::size_t k = 0; k < ptm.scale.size(); ++k)
         if (!std::isfinite(ptm.scale[k]) || !std::isfinite(ptm.bias[k]) || ptm.scale[k] <= 0)
             return fail("invalid scale or bias");
-    ptm.coefficients.resize(ptm.texels() * Ptm::kTerms);
     ptm.albedo.resize(ptm.texels() * 3);
-    auto plane = [&](std::uint8_t* bytes, int stride, const char* what) -> Status {
-        Result<Image> image = readPng(in, fail, what, name + " (PTM " + std::string(what) + ")", ptm.width, ptm.height);
-        if (!image) return Error{image.error()};
-        if (image->width != ptm.width || image->height != ptm.height || image->channels != 3)
-            return Error{name + ": PTM chunk: " + what + " has the wrong size"};
-        for (std::size_t i = 0; i < ptm.texels(); ++i)
-            for (int c = 0; c < 3; ++c)
-                bytes[i * stride + c] = static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
-        return success();
-    };
-    if (Status s = plane(ptm.coefficients.data(), Ptm::kTerms, "coefficients 0-2"); !s) return Error{s.error()};
-    if (Status s = plane(ptm.coefficients.data() + 3, Ptm::kTerms, "coefficients 3-5"); !s) return Error{s.error()};
-    if (Status s = plane(ptm.albedo.data(), 3, "albedo"); !s) return Error{s.error()};
+    if (Status s = readPlanes(in, fail, name + " (PTM ", "coefficients ", ptm); !s) return Error{s.error()};
     if (in.remaining() != 0) return fail("has the wrong size");
     return ptm;
 }

@@ -71,15 +71,15 @@ std::string lightModelName(const LightModel& model) {
 }
 
 int LightModel::termCount(LightBasis basis, int order) {
-    if (basis == LightBasis::Ptm) return Ptm::kTerms;
+    if (basis == LightBasis::Ptm) return kPtmTerms;
     if (basis == LightBasis::Hsh) return order * order;
     return 0;
 }
 
 std::vector<double> basisTerms(LightBasis basis, int order, Direction light) {
     if (basis == LightBasis::Ptm) {
-        const std::array<double, Ptm::kTerms> t = Ptm::terms(light);
-        return {t.begin(), t.end()};
+        const Vec3 l = toVector(light);
+        return {l.x * l.x, l.y * l.y, l.x * l.y, l.x, l.y, 1.0};
     }
     BTFLUT_CHECK(basis == LightBasis::Hsh && (order == 2 || order == 3));
     // Hemispherical harmonics: spherical harmonics with cos(theta) remapped to 2 cos(theta) - 1,
@@ -266,20 +266,6 @@ std::vector<Image> lightModelImages(const LightModel& m) {
         images.push_back(std::move(image));
     }
     return images;
-}
-
-LightModel lightModelFromPtm(const Ptm& ptm) {
-    LightModel m;
-    m.basis = LightBasis::Ptm;
-    m.width = ptm.width;
-    m.height = ptm.height;
-    m.planes = m.wide = Ptm::kTerms;
-    m.channels = 1;
-    m.scale.assign(ptm.scale.begin(), ptm.scale.end());
-    m.bias.assign(ptm.bias.begin(), ptm.bias.end());
-    m.coefficients = ptm.coefficients;
-    m.albedo = ptm.albedo;
-    return m;
 }
 
 }  // namespace btflut

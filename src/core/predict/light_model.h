@@ -32,7 +32,6 @@
 #include "core/direction/direction.h"
 #include "core/image/image.h"
 #include "core/predict/gpu_constants.h"
-#include "core/predict/ptm.h"
 #include "core/result.h"
 
 namespace btflut {
@@ -42,6 +41,9 @@ namespace btflut {
 /// integers summing to kWeightUnit, applied to the references' 8-bit codes, and a light
 /// model's channels are scaled by it (LightModelFixed).
 constexpr int kWeightUnit = BTFLUT_WEIGHT_UNIT;
+
+/// The PTM's terms (u^2, v^2, u v, u, v, 1): ptm.h fits a bank's baseline PTM.
+constexpr int kPtmTerms = 6;
 
 enum class LightBasis : std::uint32_t {
     Ptm = BTFLUT_BASIS_PTM,
@@ -97,7 +99,7 @@ struct LightModel {
     Image render(Direction light) const;
 };
 
-/// The six PTM terms or the 4 / 9 HSH terms of a light (ptm: Ptm::terms' order).
+/// The six PTM terms (u^2, v^2, u v, u, v, 1 of the light's x and y) or the 4 / 9 HSH terms of a light.
 std::vector<double> basisTerms(LightBasis basis, int order, Direction light);
 
 /// The per-light integers both the CPU and the shader evaluate (as PtmFixed, for every
@@ -119,9 +121,6 @@ std::array<std::int64_t, 3> predictFixed(const LightModel& model, const LightMod
 /// to an image (planes 3k, 3k + 1, 3k + 2 in R, G, B; missing ones 0), then the 4-bit planes
 /// six to an image (two to a channel, the first in the high nibble), then the albedo if any.
 std::vector<Image> lightModelImages(const LightModel& model);
-
-/// A PTM as a light model (the same bytes, scales, biases and albedo).
-LightModel lightModelFromPtm(const Ptm& ptm);
 
 struct LightModelOptions {
     LightBasis basis = LightBasis::Rbf;

@@ -8,10 +8,9 @@
 namespace btflut {
 
 // Grey: one channel's codes (a grey model without albedo), or the sum of three.
-ModelPredictor::ModelPredictor(LightModel model, bool perChannel, bool bankPtm)
+ModelPredictor::ModelPredictor(LightModel model, bool perChannel)
     : Predictor(perChannel ? 3 : 1, perChannel || (model.albedo.empty() && model.channels == 1) ? 255 : 765),
-      m_model(std::move(model)),
-      m_bankPtm(bankPtm) {
+      m_model(std::move(model)) {
     BTFLUT_CHECK(!m_model.empty());
 }
 

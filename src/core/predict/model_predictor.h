@@ -1,5 +1,5 @@
 #pragma once
-// A linear light model (light_model.h: ptm, hsh, rbf, bln; a bank's PTM as one) as a bank's
+// A linear light model (light_model.h: ptm, hsh, rbf, bln) as a bank's
 // predictor: its per-light integers and each texel's fixed-point prediction.
 
 #include "core/predict/light_model.h"
@@ -10,9 +10,8 @@ namespace btflut {
 class ModelPredictor final : public Predictor {
 public:
     /// `perChannel`: its RGB matched per channel (rgb banks); else its grey, on the scale of
-    /// the summed channel codes when it has colour. `bankPtm`: the model is a bank's PTM (the
-    /// file keeps it once, as the PTM; docs/btflut-format.md).
-    ModelPredictor(LightModel model, bool perChannel, bool bankPtm = false);
+    /// the summed channel codes when it has colour.
+    ModelPredictor(LightModel model, bool perChannel);
 
     PredictorKind kind() const override { return PredictorKind::Model; }
     std::string name() const override { return lightModelName(m_model); }
@@ -34,11 +33,9 @@ public:
     }
 
     const LightModel& model() const { return m_model; }
-    bool bankPtm() const { return m_bankPtm; }
 
 private:
     LightModel m_model;
-    bool m_bankPtm;
 };
 
 }  // namespace btflut

@@ -5,40 +5,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/check.h"
+
 namespace btflut {
 
-std::array<double, Ptm::kTerms> Ptm::terms(Direction light) {
-    const Vec3 l = toVector(light);
-    return {l.x * l.x, l.y * l.y, l.x * l.y, l.x, l.y, 1.0};
-}
-
-std::vector<std::uint8_t> Ptm::plane(int index) const {
-    if (index == 2) return albedo;
-    std::vector<std::uint8_t> out(texels() * 3);
-    for (std::size_t i = 0; i < texels(); ++i)
-        std::copy_n(&coefficients[i * kTerms + 3 * static_cast<std::size_t>(index)], 3, &out[i * 3]);
-    return out;
-}
-
-Image Ptm::render(Direction light) const {
-    const std::array<double, kTerms> t = terms(light);
-    Image out(width, height, 3);
-    for (std::size_t i = 0; i < texels(); ++i) {
-        double luminance = 0;
-        for (int k = 0; k < kTerms; ++k)
-            luminance += (coefficients[i * kTerms + k] - double{bias[k]}) * scale[k] * t[k];
-        for (int c = 0; c < 3; ++c)
-            out.samples[i * 3 + c] = static_cast<float>(std::clamp(albedo[i * 3 + c] / 255.0 * luminance, 0.0, 1.0));
-    }
-    return out;
-}
-
-PtmWeights ptmWeights(const std::array<float, Ptm::kTerms>& scale, const std::array<float, Ptm::kTerms>& bias,
-                      Direction light) {
-    const std::array<double, Ptm::kTerms> t = Ptm::terms(light);
+PtmWeights ptmWeights(std::span<const float> scale, std::span<const float> bias, Direction light) {
+    constexpr auto K = static_cast<std::size_t>(kPtmTerms);
+    BTFLUT_CHECK(scale.size() == K && bias.size() == K);
+    const std::vector<double> t = basisTerms(LightBasis::Ptm, 0, light);
     PtmWeights w;
     double offset = 0;
-    for (std::size_t k = 0; k < Ptm::kTerms; ++k) {
+    for (std::size_t k = 0; k < K; ++k) {
         w.weights[k] = static_cast<float>(255.0 * scale[k] * t[k]);
         offset -= double{bias[k]} * scale[k] * t[k];
     }
@@ -49,44 +26,48 @@ PtmWeights ptmWeights(const std::array<float, Ptm::kTerms>& scale, const std::ar
 PtmFitter::PtmFitter(int width, int height)
     : m_width(width),
       m_height(height),
-      m_moments(static_cast<std::size_t>(width) * height * Ptm::kTerms),
+      m_moments(static_cast<std::size_t>(width) * height * kPtmTerms),
       m_colour(static_cast<std::size_t>(width) * height * 3) {}
 
 void PtmFitter::add(const Image& image, Direction light) {
-    const std::array<double, Ptm::kTerms> t = Ptm::terms(light);
-    std::array<float, Ptm::kTerms> tf;
-    for (int k = 0; k < Ptm::kTerms; ++k) tf[k] = static_cast<float>(t[k]);
+    const std::vector<double> t = basisTerms(LightBasis::Ptm, 0, light);
+    std::array<float, kPtmTerms> tf;
+    for (int k = 0; k < kPtmTerms; ++k) tf[k] = static_cast<float>(t[k]);
     std::lock_guard lock(m_mutex);
     ++m_images;
-    for (int a = 0; a < Ptm::kTerms; ++a)
-        for (int b = 0; b < Ptm::kTerms; ++b) m_normal[a * Ptm::kTerms + b] += t[a] * t[b];
+    for (int a = 0; a < kPtmTerms; ++a)
+        for (int b = 0; b < kPtmTerms; ++b) m_normal[a * kPtmTerms + b] += t[a] * t[b];
     for (std::size_t i = 0; i < image.pixelCount(); ++i) {
         const float grey = image.grey(i);
-        for (int k = 0; k < Ptm::kTerms; ++k) m_moments[i * Ptm::kTerms + k] += tf[k] * grey;
+        for (int k = 0; k < kPtmTerms; ++k) m_moments[i * kPtmTerms + k] += tf[k] * grey;
         for (int c = 0; c < 3; ++c)
             m_colour[i * 3 + c] += image.samples[i * image.channels + (image.channels == 3 ? c : 0)];
     }
 }
 
-Result<Ptm> PtmFitter::finish(const std::string& what) const {
+Result<LightModel> PtmFitter::finish(const std::string& what) const {
     std::lock_guard lock(m_mutex);
-    const Eigen::Matrix<double, Ptm::kTerms, Ptm::kTerms> normal(m_normal.data());
-    Eigen::JacobiSVD<Eigen::Matrix<double, Ptm::kTerms, Ptm::kTerms>> svd(normal);
-    const double condition = svd.singularValues()(0) / svd.singularValues()(Ptm::kTerms - 1);
-    if (m_images < Ptm::kTerms || !std::isfinite(condition) || condition > 1e8)
+    const Eigen::Matrix<double, kPtmTerms, kPtmTerms> normal(m_normal.data());
+    Eigen::JacobiSVD<Eigen::Matrix<double, kPtmTerms, kPtmTerms>> svd(normal);
+    const double condition = svd.singularValues()(0) / svd.singularValues()(kPtmTerms - 1);
+    if (m_images < kPtmTerms || !std::isfinite(condition) || condition > 1e8)
         return Error{what +
                      ": a PTM needs at least six light directions spread enough to fit u^2, v^2, uv, "
                      "u, v and 1; these " +
                      std::to_string(m_images) + " do not determine them"};
-    const Eigen::Matrix<double, Ptm::kTerms, Ptm::kTerms> inverse = normal.inverse();
+    const Eigen::Matrix<double, kPtmTerms, kPtmTerms> inverse = normal.inverse();
 
     // Least squares on the grey value; the albedo carries the texel's colour, scaled so its
     // largest channel is 1 and the luminance scaled to match.
     const std::size_t texels = static_cast<std::size_t>(m_width) * m_height;
-    std::vector<double> fitted(texels * Ptm::kTerms);
-    Ptm ptm;
+    std::vector<double> fitted(texels * kPtmTerms);
+    LightModel ptm;
+    ptm.basis = LightBasis::Ptm;
     ptm.width = m_width;
     ptm.height = m_height;
+    ptm.planes = ptm.wide = kPtmTerms;
+    ptm.scale.assign(kPtmTerms, 1.f);
+    ptm.bias.assign(kPtmTerms, 0.f);
     ptm.albedo.resize(texels * 3);
     for (std::size_t i = 0; i < texels; ++i) {
         const float* colour = &m_colour[i * 3];
@@ -95,22 +76,22 @@ Result<Ptm> PtmFitter::finish(const std::string& what) const {
         const double luminanceScale = grey > 0 ? top / grey : 1.0;
         for (int c = 0; c < 3; ++c)
             ptm.albedo[i * 3 + c] = static_cast<std::uint8_t>(top > 0 ? std::lround(255 * colour[c] / top) : 255);
-        const Eigen::Map<const Eigen::Matrix<float, Ptm::kTerms, 1>> moments(&m_moments[i * Ptm::kTerms]);
-        Eigen::Map<Eigen::Matrix<double, Ptm::kTerms, 1>> a(&fitted[i * Ptm::kTerms]);
+        const Eigen::Map<const Eigen::Matrix<float, kPtmTerms, 1>> moments(&m_moments[i * kPtmTerms]);
+        Eigen::Map<Eigen::Matrix<double, kPtmTerms, 1>> a(&fitted[i * kPtmTerms]);
         a = inverse * moments.cast<double>() * luminanceScale;
     }
-    for (int k = 0; k < Ptm::kTerms; ++k) {
+    for (int k = 0; k < kPtmTerms; ++k) {
         double low = fitted[k], high = fitted[k];
         for (std::size_t i = 0; i < texels; ++i) {
-            low = std::min(low, fitted[i * Ptm::kTerms + k]);
-            high = std::max(high, fitted[i * Ptm::kTerms + k]);
+            low = std::min(low, fitted[i * kPtmTerms + k]);
+            high = std::max(high, fitted[i * kPtmTerms + k]);
         }
         ptm.scale[k] = static_cast<float>(high > low ? (high - low) / 255 : 1.0);
         ptm.bias[k] = static_cast<float>(-low / ptm.scale[k]);
     }
-    ptm.coefficients.resize(texels * Ptm::kTerms);
-    for (std::size_t i = 0; i < texels * Ptm::kTerms; ++i) {
-        const int k = static_cast<int>(i % Ptm::kTerms);
+    ptm.coefficients.resize(texels * kPtmTerms);
+    for (std::size_t i = 0; i < texels * kPtmTerms; ++i) {
+        const int k = static_cast<int>(i % kPtmTerms);
         ptm.coefficients[i] =
             static_cast<std::uint8_t>(std::clamp<long>(std::lround(fitted[i] / ptm.scale[k] + ptm.bias[k]), 0, 255));
     }

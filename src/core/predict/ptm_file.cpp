@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "core/check.h"
+
 namespace btflut {
 
 namespace {
@@ -19,32 +21,33 @@ void putFlipped(Bytes& out, const std::vector<std::uint8_t>& records, int width,
 
 }  // namespace
 
-Bytes encodePtmFile(const Ptm& ptm) {
-    std::array<long, Ptm::kTerms> bias{};
-    std::array<double, Ptm::kTerms> shift{};
-    for (int k = 0; k < Ptm::kTerms; ++k) {
+Bytes encodePtmFile(const LightModel& ptm) {
+    BTFLUT_CHECK(ptm.basis == LightBasis::Ptm && ptm.planes == kPtmTerms && !ptm.albedo.empty());
+    std::array<long, kPtmTerms> bias{};
+    std::array<double, kPtmTerms> shift{};
+    for (int k = 0; k < kPtmTerms; ++k) {
         bias[k] = std::lround(ptm.bias[k]);
         shift[k] = static_cast<double>(bias[k]) - ptm.bias[k];
     }
     std::string header =
         "PTM_1.2\nPTM_FORMAT_LRGB\n" + std::to_string(ptm.width) + "\n" + std::to_string(ptm.height) + "\n";
     char number[32];
-    for (int k = 0; k < Ptm::kTerms; ++k) {
-        std::snprintf(number, sizeof number, "%.9g%s", 255.0 * ptm.scale[k], k + 1 < Ptm::kTerms ? " " : "\n");
+    for (int k = 0; k < kPtmTerms; ++k) {
+        std::snprintf(number, sizeof number, "%.9g%s", 255.0 * ptm.scale[k], k + 1 < kPtmTerms ? " " : "\n");
         header += number;
     }
-    for (int k = 0; k < Ptm::kTerms; ++k) header += std::to_string(bias[k]) + (k + 1 < Ptm::kTerms ? " " : "\n");
+    for (int k = 0; k < kPtmTerms; ++k) header += std::to_string(bias[k]) + (k + 1 < kPtmTerms ? " " : "\n");
     std::vector<std::uint8_t> coefficients(ptm.coefficients.size());
     for (std::size_t i = 0; i < coefficients.size(); ++i)
         coefficients[i] = static_cast<std::uint8_t>(
-            std::clamp<long>(std::lround(ptm.coefficients[i] + shift[i % Ptm::kTerms]), 0, 255));
+            std::clamp<long>(std::lround(ptm.coefficients[i] + shift[i % kPtmTerms]), 0, 255));
     Bytes out(header.begin(), header.end());
-    putFlipped(out, coefficients, ptm.width, ptm.height, Ptm::kTerms);
+    putFlipped(out, coefficients, ptm.width, ptm.height, kPtmTerms);
     putFlipped(out, ptm.albedo, ptm.width, ptm.height, 3);
     return out;
 }
 
-Result<Ptm> decodePtmFile(const Bytes& bytes, const std::string& name) {
+Result<LightModel> decodePtmFile(const Bytes& bytes, const std::string& name) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
     // The header: whitespace-separated words after two lines.
     std::size_t pos = 0;
@@ -58,7 +61,11 @@ Result<Ptm> decodePtmFile(const Bytes& bytes, const std::string& name) {
     if (word() != "PTM_1.2") return fail("not a PTM 1.2 file");
     if (const std::string format = word(); format != "PTM_FORMAT_LRGB")
         return fail("format '" + format + "' is not PTM_FORMAT_LRGB (the only one btflut reads)");
-    Ptm ptm;
+    LightModel ptm;
+    ptm.basis = LightBasis::Ptm;
+    ptm.planes = ptm.wide = kPtmTerms;
+    ptm.scale.assign(kPtmTerms, 1.f);
+    ptm.bias.assign(kPtmTerms, 0.f);
     auto integer = [&](const std::string& what, long low, long high) -> Result<long> {
         const std::string w = word();
         char* end = nullptr;
@@ -71,14 +78,14 @@ Result<Ptm> decodePtmFile(const Bytes& bytes, const std::string& name) {
     if (!height) return Error{height.error()};
     ptm.width = static_cast<int>(*width);
     ptm.height = static_cast<int>(*height);
-    for (int k = 0; k < Ptm::kTerms; ++k) {
+    for (int k = 0; k < kPtmTerms; ++k) {
         const std::string w = word();
         char* end = nullptr;
         const double scale = std::strtod(w.c_str(), &end);
         if (w.empty() || *end != '\0' || !std::isfinite(scale) || scale <= 0) return fail("invalid scale '" + w + "'");
         ptm.scale[k] = static_cast<float>(scale / 255);
     }
-    for (int k = 0; k < Ptm::kTerms; ++k) {
+    for (int k = 0; k < kPtmTerms; ++k) {
         Result<long> bias = integer("bias", -(1L << 30), 1L << 30);
         if (!bias) return Error{bias.error()};
         ptm.bias[k] = static_cast<float>(*bias);
@@ -99,8 +106,8 @@ Result<Ptm> decodePtmFile(const Bytes& bytes, const std::string& name) {
                         rowBytes, out.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(row) * rowBytes));
         return out;
     };
-    ptm.coefficients = flipped(pos, Ptm::kTerms);
-    ptm.albedo = flipped(pos + texels * Ptm::kTerms, 3);
+    ptm.coefficients = flipped(pos, kPtmTerms);
+    ptm.albedo = flipped(pos + texels * kPtmTerms, 3);
     return ptm;
 }
 

@@ -14,14 +14,15 @@
 #include <string>
 
 #include "core/io/file_io.h"
-#include "core/predict/ptm.h"
+#include "core/predict/light_model.h"
 
 namespace btflut {
 
-Bytes encodePtmFile(const Ptm& ptm);
+/// A light model of basis ptm with an albedo (the bank's PTM, ptm.h).
+Bytes encodePtmFile(const LightModel& ptm);
 
 /// Reads an LRGB .ptm file (header checked field by field, sizes against the payload);
-/// errors name the file.
-Result<Ptm> decodePtmFile(const Bytes& bytes, const std::string& name);
+/// errors name the file. A light model of basis ptm.
+Result<LightModel> decodePtmFile(const Bytes& bytes, const std::string& name);
 
 }  // namespace btflut
