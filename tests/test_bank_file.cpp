@@ -2,6 +2,7 @@
 
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
+#include "core/io/byte_stream.h"
 #include "helpers.h"
 
 using namespace btflut;
@@ -91,4 +92,36 @@ TEST_CASE("saving is atomic: a failed save leaves the old file untouched") {
     CHECK(readText(dir / "m.btflut") == before);
     for (const auto& entry : fs::directory_iterator(dir.path()))
         CHECK(entry.path().string().find(".tmp.") == std::string::npos);
+}
+
+TEST_CASE("a chunk's bytes read back as written; a short read or a bad direction fails and sticks") {
+    ByteWriter w;
+    w.put(std::uint32_t{7});
+    w.put(-1.5f);
+    w.putString("reference");
+    w.putDirection(Direction::fromDegrees(30, 120));
+    const Bytes bytes = w.bytes();
+    CHECK(bytes.size() == 4 + 4 + 4 + 9 + 16);
+
+    ByteReader in(bytes.data(), bytes.size());
+    CHECK(in.get<std::uint32_t>() == 7);
+    CHECK(in.get<float>() == -1.5f);
+    CHECK(in.getString() == "reference");
+    Result<Direction> d = in.getDirection("m.btflut", "layer view");
+    REQUIRE(d.ok());
+    CHECK(d->thetaDegrees() == doctest::Approx(30));
+    CHECK(d->phiDegrees() == doctest::Approx(120));
+    CHECK(in.ok());
+    CHECK(in.remaining() == 0);
+    CHECK(in.get<std::uint32_t>() == 0);  // past the end: zero, and not ok from now on
+    CHECK_FALSE(in.ok());
+    CHECK(in.getBytes(0) == nullptr);
+
+    ByteWriter below;
+    below.put(95.0);  // theta past the horizon
+    below.put(0.0);
+    ByteReader bad(below.bytes().data(), below.bytes().size());
+    Result<Direction> refused = bad.getDirection("m.btflut", "node light");
+    REQUIRE_FALSE(refused.ok());
+    CHECK(refused.error() == "m.btflut: invalid node light direction");
 }

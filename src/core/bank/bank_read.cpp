@@ -28,7 +28,7 @@ Result<Chunks> splitChunks(const Bytes& bytes, const std::string& name) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
     if (bytes.size() < sizeof kSignature + 4 || std::memcmp(bytes.data(), kSignature, 8) != 0)
         return fail("not a .btflut file (bad signature)");
-    Reader file(bytes.data() + 8, bytes.size() - 8);
+    ByteReader file(bytes.data() + 8, bytes.size() - 8);
     Chunks chunks;
     chunks.version = file.get<std::uint32_t>();
     if (chunks.version < 1 || chunks.version > kBankFormatVersion)
@@ -57,7 +57,7 @@ Result<Chunks> splitChunks(const Bytes& bytes, const std::string& name) {
 
 Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::string& name, LutBank& bank) {
     auto fail = [&](const std::string& what) { return Error{name + ": " + what}; };
-    Reader in(chunk.payload, chunk.length);
+    ByteReader in(chunk.payload, chunk.length);
     Head head;
     head.version = version;
     bank.entries = static_cast<int>(in.get<std::uint32_t>());
@@ -69,8 +69,8 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
     head.refHeight = in.get<std::uint32_t>();
     head.refChannels = in.get<std::uint32_t>();
     head.refDepth = in.get<std::uint32_t>();
-    Result<Direction> rl = getDirection(in, name, "reference light");
-    Result<Direction> rv = getDirection(in, name, "reference view");
+    Result<Direction> rl = in.getDirection(name, "reference light");
+    Result<Direction> rv = in.getDirection(name, "reference view");
     bank.referenceName = in.getString();
     const auto domain = version >= 2 ? in.get<std::uint32_t>() : 0u;
     if (version >= 3) {
@@ -138,8 +138,8 @@ std::vector<bool> wantedLayers(const Chunks& chunks, const Head& head, const Lut
     LutBank views;
     for (const Chunk& chunk : chunks.list) {
         if (chunk.tag != kLayer) continue;
-        Reader in(chunk.payload, chunk.length);
-        Result<Direction> view = getDirection(in, name, "layer view");
+        ByteReader in(chunk.payload, chunk.length);
+        Result<Direction> view = in.getDirection(name, "layer view");
         if (!view || views.layers.size() == head.layerCount) return {};
         views.layers.push_back({*view, {}, {}, {}, {}, {}});
     }
@@ -168,7 +168,7 @@ public:
           m_wanted(wantedLayers(chunks, head, bank, name, options)) {}
 
     Status chunk(const Chunk& chunk) {
-        Reader in(chunk.payload, chunk.length);
+        ByteReader in(chunk.payload, chunk.length);
         switch (chunk.tag) {
             case kHead:
                 return fail("two HEAD chunks");
@@ -244,14 +244,14 @@ private:
 
     // LAYR: a view direction, its nodes' lights and names, their LUTs (or quantile
     // functions), the grid's provenance and LUTs.
-    Status layer(Reader& in) {
+    Status layer(ByteReader& in) {
         if (m_bank.layers.size() == m_head.layerCount)
             return fail("more LAYR chunks than the " + std::to_string(m_head.layerCount) + " declared");
         const std::string which = "layer " + std::to_string(m_bank.layers.size());
         const std::size_t length1 = m_bank.nodeLength();
         const auto cells = static_cast<std::size_t>(m_bank.gridSize) * m_bank.gridSize;
         ViewLayer layer;
-        Result<Direction> view = getDirection(in, m_name, "layer view");
+        Result<Direction> view = in.getDirection(m_name, "layer view");
         if (!view) return Error{view.error()};
         layer.view = *view;
         auto nodes = in.get<std::uint32_t>();
@@ -260,7 +260,7 @@ private:
         if (m_totalNodes > kMaxBankNodes)
             return fail("more than " + std::to_string(kMaxBankNodes) + " measured directions (the format's limit)");
         for (std::uint32_t n = 0; n < nodes; ++n) {
-            Result<Direction> light = getDirection(in, m_name, "node light");
+            Result<Direction> light = in.getDirection(m_name, "node light");
             if (!light) return Error{light.error()};
             std::string nodeName = in.getString();
             layer.nodes.push_back({nodeName, *light});
@@ -311,20 +311,21 @@ private:
     }
 
     // LMDL: the light model of a bank predicted by one.
-    Status lightModel(Reader& in) {
+    Status lightModel(ByteReader& in) {
         if (m_parts.model || !m_bank.makesLuts() || m_head.predictor != FilePredictor::Model)
             return fail("unexpected LMDL chunk");
-        Result<LightModel> model = decodeLightModel(in, m_name, m_head);
+        Result<LightModel> model = decodeLightModelChunk(in, chunkSource("LMDL"), static_cast<int>(m_head.refChannels));
         if (!model) return Error{model.error()};
         m_parts.model = std::move(*model);
         return success();
     }
 
     // LRND: the learned model of a bank predicted by one.
-    Status learnedModel(Reader& in) {
+    Status learnedModel(ByteReader& in) {
         if (m_parts.learned || !m_bank.makesLuts() || m_head.predictor != FilePredictor::Learned)
             return fail("unexpected LRND chunk");
-        Result<LearnedModel> model = decodeLearnedModel(in, m_name, m_head);
+        Result<LearnedModel> model =
+            decodeLearnedModelChunk(in, chunkSource("LRND"), m_head.version, static_cast<int>(m_head.refChannels));
         if (!model) return Error{model.error()};
         m_parts.learned = std::move(*model);
         return success();
@@ -350,7 +351,7 @@ private:
     }
 
     // CHOS: how --predictor auto chose (JSON).
-    Status selection(Reader& in) {
+    Status selection(ByteReader& in) {
         if (m_haveSelection || m_chunks.version < 5) return fail("unexpected CHOS chunk");
         m_haveSelection = true;
         m_bank.selection = in.getString();
@@ -363,7 +364,7 @@ private:
     // TFIT: the choice of estimate between the lights (JSON) and each layer's fit, kept until
     // the layers are all read (finish); in the isotropic domain (version 7) one fit over the
     // pairs' points.
-    Status targetFit(Reader& in) {
+    Status targetFit(ByteReader& in) {
         const bool pairs = m_bank.domain == BankDomain::Isotropic;
         if (m_haveTargetFit || m_chunks.version < (pairs ? 7 : 6)) return fail("unexpected TFIT chunk");
         m_haveTargetFit = true;
@@ -402,7 +403,8 @@ private:
         m_bank.ptmInFile = true;
         if (!m_options.ptm && !(m_bank.makesLuts() && m_head.predictor == FilePredictor::Ptm))
             return success();  // the predictor's is needed
-        Result<LightModel> ptm = decodePtm(chunk, m_name, m_head.refWidth, m_head.refHeight);
+        ByteReader in(chunk.payload, chunk.length);
+        Result<LightModel> ptm = decodePtmChunk(in, chunkSource("PTM"));
         if (!ptm) return Error{ptm.error()};
         m_bank.ptm = std::move(*ptm);
         return success();
@@ -410,7 +412,7 @@ private:
 
     // FILL (after the layers): which nodes the model filled, and its parameters.
     Status fillFlags() {
-        Reader in(m_fill->payload, m_fill->length);
+        ByteReader in(m_fill->payload, m_fill->length);
         m_bank.modelFill = in.getString();
         for (ViewLayer& layer : m_bank.layers) {
             bool seen = false;  // a modelled node: every later one must be too
@@ -463,6 +465,11 @@ private:
         return success();
     }
 
+    // Where a predictor's chunk is read: its errors name the file and `tag`.
+    ChunkSource chunkSource(const std::string& tag) const {
+        return {m_name, tag, static_cast<int>(m_head.refWidth), static_cast<int>(m_head.refHeight)};
+    }
+
     const Chunks& m_chunks;
     const Head& m_head;
     const std::string& m_name;
@@ -506,7 +513,11 @@ Result<LightModel> loadBankPtm(const std::string& path) {
     Result<Head> head = readHead(chunks->list.front(), chunks->version, path, description);
     if (!head) return Error{head.error()};
     for (const Chunk& chunk : chunks->list)
-        if (chunk.tag == kPtm) return decodePtm(chunk, path, head->refWidth, head->refHeight);
+        if (chunk.tag == kPtm) {
+            ByteReader in(chunk.payload, chunk.length);
+            return decodePtmChunk(in,
+                                  {path, "PTM", static_cast<int>(head->refWidth), static_cast<int>(head->refHeight)});
+        }
     return Error{path + ": the bank holds no PTM (bake it with --ptm)"};
 }
 

@@ -6,9 +6,9 @@
 #include "core/bank/bank_file.h"
 #include "core/bank/bank_format.h"
 #include "core/check.h"
-#include "core/predict/learned_decoder.h"
 #include "core/predict/learned_predictor.h"
 #include "core/predict/model_predictor.h"
+#include "core/predict/ptm.h"
 #include "core/predict/reference_blend.h"
 
 namespace btflut {
@@ -17,112 +17,11 @@ using namespace bank_format;
 
 namespace {
 
-class Writer {
-public:
-    template <typename T>
-    void put(T v) {
-        auto p = reinterpret_cast<const std::uint8_t*>(&v);
-        m_bytes.insert(m_bytes.end(), p, p + sizeof(T));
-    }
-    void putBytes(const void* data, std::size_t n) {
-        if (n == 0) return;
-        auto p = static_cast<const std::uint8_t*>(data);
-        m_bytes.insert(m_bytes.end(), p, p + n);
-    }
-    void putString(const std::string& s) {
-        put(static_cast<std::uint32_t>(s.size()));
-        putBytes(s.data(), s.size());
-    }
-    Bytes& bytes() { return m_bytes; }
-
-private:
-    Bytes m_bytes;
-};
-
-void putChunk(Writer& file, std::uint32_t tag, const Bytes& payload) {
+void putChunk(ByteWriter& file, std::uint32_t tag, const Bytes& payload) {
     file.put(tag);
     file.put(static_cast<std::uint32_t>(payload.size()));
     file.putBytes(payload.data(), payload.size());
     file.put(chunkCrc(tag, payload.data(), payload.size()));
-}
-
-void putDirection(Writer& w, Direction d) {
-    w.put(d.thetaDegrees());
-    w.put(d.phiDegrees());
-}
-
-// PTMC payload: width, height (u32), scale[6], bias[6] (f32), then three PNGs, each
-// preceded by its byte length (u32): coefficients 0-2, coefficients 3-5, albedo (RGB8).
-Bytes encodePtm(const LightModel& ptm) {
-    Writer w;
-    w.put(static_cast<std::uint32_t>(ptm.width));
-    w.put(static_cast<std::uint32_t>(ptm.height));
-    for (float v : ptm.scale) w.put(v);
-    for (float v : ptm.bias) w.put(v);
-    for (const Image& image : lightModelImages(ptm)) {  // coefficients 0-2, 3-5, the albedo
-        const Bytes png = encodePng(image, 8);
-        w.put(static_cast<std::uint32_t>(png.size()));
-        w.putBytes(png.data(), png.size());
-    }
-    return std::move(w.bytes());
-}
-
-// LMDL payload (docs/btflut-format.md): the model's description, its per-light table, then
-// its planes three to an RGB PNG and, in the LRGB layout, the albedo.
-Bytes encodeLightModel(const LightModel& m) {
-    Writer w;
-    const std::array<std::uint32_t, 7> description{
-        static_cast<std::uint32_t>(m.basis), static_cast<std::uint32_t>(m.planes),
-        static_cast<std::uint32_t>(m.wide),  static_cast<std::uint32_t>(m.channels),
-        static_cast<std::uint32_t>(m.order), m.albedo.empty() ? 0u : 1u,
-        static_cast<std::uint32_t>(m.grid)};
-    w.putBytes(description.data(), sizeof description);
-    w.put(m.sigma);
-    for (float v : m.scale) w.put(v);
-    for (float v : m.bias) w.put(v);
-    w.put(static_cast<std::uint32_t>(m.lights.size()));
-    for (Direction d : m.lights) putDirection(w, d);
-    w.put(static_cast<std::uint32_t>(m.table.size()));
-    w.putBytes(m.table.data(), m.table.size() * sizeof(float));
-    for (const Image& image : lightModelImages(m)) {  // the planes, then the albedo
-        const Bytes bytes = encodePng(image, 8);
-        w.put(static_cast<std::uint32_t>(bytes.size()));
-        w.putBytes(bytes.data(), bytes.size());
-    }
-    return std::move(w.bytes());
-}
-
-// LRND payload (docs/btflut-format.md): the model's sizes (version 9: with its view features),
-// each code's scale and bias, the light network's and the residual network's parameters, then
-// the codes three to an RGB PNG.
-Bytes encodeLearnedModel(const LearnedModel& m, std::uint32_t version) {
-    BTFLUT_CHECK(version >= 9 || m.viewFeatures == 0);
-    Writer w;
-    w.put(static_cast<std::uint32_t>(m.codes));
-    w.put(static_cast<std::uint32_t>(m.channels));
-    if (version >= 9) w.put(static_cast<std::uint32_t>(m.viewFeatures));
-    for (const std::vector<int>* widths : {&m.lightHidden, &m.hidden}) {
-        w.put(static_cast<std::uint32_t>(widths->size()));
-        for (int h : *widths) w.put(static_cast<std::uint32_t>(h));
-    }
-    for (float v : m.quantised.scale) w.put(v);
-    for (float v : m.quantised.bias) w.put(v);
-    for (const Network* network : {&m.decoder->light, &m.decoder->residual}) {
-        const std::vector<float> parameters = network->parameters();
-        w.put(static_cast<std::uint32_t>(parameters.size()));
-        w.putBytes(parameters.data(), parameters.size() * sizeof(float));
-    }
-    const auto N = static_cast<std::size_t>(m.codes);
-    for (std::size_t first = 0; first < N; first += 3) {
-        Image image(m.width, m.height, 3);
-        for (std::size_t i = 0; i < m.texels(); ++i)
-            for (std::size_t c = 0; c < 3 && first + c < N; ++c)
-                image.samples[i * 3 + c] = static_cast<float>(m.quantised.bytes[i * N + first + c]) / 255.f;
-        const Bytes png = encodePng(image, 8);
-        w.put(static_cast<std::uint32_t>(png.size()));
-        w.putBytes(png.data(), png.size());
-    }
-    return std::move(w.bytes());
 }
 
 // The HEAD's predictor: References for a bank of LUTs too.
@@ -199,12 +98,12 @@ Status checkBankSize(const LutBank& bank) {
 Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     BTFLUT_CHECK(checkBankSize(bank).ok());
     const std::uint32_t version = bankFormatVersion(bank);
-    Writer file;
+    ByteWriter file;
     file.putBytes(kSignature, sizeof kSignature);
     file.put(version);
 
     const bool embed = options.embedReference && !bank.reference.samples.empty();
-    Writer head;
+    ByteWriter head;
     head.put(static_cast<std::uint32_t>(bank.entries));
     head.put(static_cast<std::uint32_t>(bank.colour));
     head.put(static_cast<std::uint32_t>(bank.gridSize));
@@ -214,8 +113,8 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
     head.put(static_cast<std::uint32_t>(bank.reference.height));
     head.put(static_cast<std::uint32_t>(bank.reference.channels));
     head.put(static_cast<std::uint32_t>(bank.reference.bitDepth));
-    putDirection(head, bank.referenceLight);
-    putDirection(head, bank.referenceView);
+    head.putDirection(bank.referenceLight);
+    head.putDirection(bank.referenceView);
     head.putString(bank.referenceName);
     if (version >= 2) head.put(static_cast<std::uint32_t>(bank.domain));
     if (version >= 3) {
@@ -235,11 +134,11 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
 
     for (const ViewLayer& layer : bank.layers) {
         BTFLUT_CHECK(layer.lutsLoaded && !layer.gridLuts.empty());  // read whole (BankReadOptions defaults)
-        Writer w;
-        putDirection(w, layer.view);
+        ByteWriter w;
+        w.putDirection(layer.view);
         w.put(static_cast<std::uint32_t>(layer.nodes.size()));
         for (const LightNode& node : layer.nodes) {
-            putDirection(w, node.light);
+            w.putDirection(node.light);
             w.putString(node.name);
         }
         w.putBytes(layer.nodeLuts.data(), layer.nodeLuts.size() * sizeof(float));
@@ -248,7 +147,7 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         putChunk(file, kLayer, w.bytes());
     }
     if (!bank.modelFill.empty()) {  // version 4: which nodes the model filled, and the model
-        Writer w;
+        ByteWriter w;
         w.putString(bank.modelFill);
         for (const ViewLayer& layer : bank.layers)
             for (const LightNode& node : layer.nodes) w.put(static_cast<std::uint8_t>(node.modelled ? 1 : 0));
@@ -259,14 +158,12 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         const LutBank::Prediction& prediction = bank.prediction;
         const ReferenceBlend* references = bank.predictorAs<ReferenceBlend>();
         if (references) {
-            Writer refs;
+            ByteWriter refs;
             for (std::size_t k = 0; k < references->references().size(); ++k) {
                 const Image& image = references->references()[k];
-                putDirection(refs, references->lights()[k].light);
+                refs.putDirection(references->lights()[k].light);
                 refs.putString(references->lights()[k].name);
-                const Bytes png = encodePng(image, image.bitDepth);
-                refs.put(static_cast<std::uint32_t>(png.size()));
-                refs.putBytes(png.data(), png.size());
+                putPng(refs, image, image.bitDepth);
             }
             putChunk(file, kReferences, refs.bytes());
         }
@@ -278,9 +175,10 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         if (references && !references->albedo().samples.empty())
             putChunk(file, kAlbedo, encodePng(references->albedo(), 8));
         if (filePredictor(bank) == FilePredictor::Model)
-            putChunk(file, kLightModel, encodeLightModel(bank.predictorAs<ModelPredictor>()->model()));
+            putChunk(file, kLightModel, encodeLightModelChunk(bank.predictorAs<ModelPredictor>()->model()));
         if (filePredictor(bank) == FilePredictor::Learned)
-            putChunk(file, kLearnedModel, encodeLearnedModel(bank.predictorAs<LearnedPredictor>()->model(), version));
+            putChunk(file, kLearnedModel,
+                     encodeLearnedModelChunk(bank.predictorAs<LearnedPredictor>()->model(), version));
     }
     for (const ViewLayer& layer : bank.layers)  // version 5: every layer's or none
         if (!layer.matchGridLuts.empty())
@@ -289,12 +187,12 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
                 Bytes(reinterpret_cast<const std::uint8_t*>(layer.matchGridLuts.data()),
                       reinterpret_cast<const std::uint8_t*>(layer.matchGridLuts.data() + layer.matchGridLuts.size())));
     if (!bank.selection.empty()) {
-        Writer w;
+        ByteWriter w;
         w.putString(bank.selection);
         putChunk(file, kSelection, w.bytes());
     }
     if (version >= 6) {  // how the targets are estimated between the lights, and each layer's fit
-        Writer w;
+        ByteWriter w;
         w.putString(bank.targetChoice);
         auto put = [&](const TargetFit& fit) {
             w.put(static_cast<std::uint32_t>(fit.degree));
@@ -309,7 +207,7 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         }
         putChunk(file, kTargetFit, w.bytes());
     }
-    if (!bank.ptm.empty()) putChunk(file, kPtm, encodePtm(bank.ptm));
+    if (!bank.ptm.empty()) putChunk(file, kPtm, encodePtmChunk(bank.ptm));
     putChunk(file, kEnd, {});
     return std::move(file.bytes());
 }

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <utility>
 
 #include "core/check.h"
 #include "core/predict/gpu_constants.h"
+#include "core/predict/learned_decoder.h"
 #include "core/predict/learned_shader.h"
 
 namespace btflut {
@@ -158,6 +160,98 @@ void LearnedPredictor::levelCodes(const PredictorFrame& frame, int level, int wi
         for (std::size_t c = 0; c < C; ++c) p[c] = codeOfValue(values[j * C + c]);
         for (std::size_t c = 0; c < matched; ++c) codes[j * matched + c] = codeOf(p, static_cast<int>(c));
     }
+}
+
+Bytes encodeLearnedModelChunk(const LearnedModel& m, std::uint32_t version) {
+    BTFLUT_CHECK(version >= 9 || m.viewFeatures == 0);
+    ByteWriter w;
+    w.put(static_cast<std::uint32_t>(m.codes));
+    w.put(static_cast<std::uint32_t>(m.channels));
+    if (version >= 9) w.put(static_cast<std::uint32_t>(m.viewFeatures));
+    for (const std::vector<int>* widths : {&m.lightHidden, &m.hidden}) {
+        w.put(static_cast<std::uint32_t>(widths->size()));
+        for (int h : *widths) w.put(static_cast<std::uint32_t>(h));
+    }
+    for (float v : m.quantised.scale) w.put(v);
+    for (float v : m.quantised.bias) w.put(v);
+    for (const Network* network : {&m.decoder->light, &m.decoder->residual}) {
+        const std::vector<float> parameters = network->parameters();
+        w.put(static_cast<std::uint32_t>(parameters.size()));
+        w.putBytes(parameters.data(), parameters.size() * sizeof(float));
+    }
+    const auto N = static_cast<std::size_t>(m.codes);
+    for (std::size_t first = 0; first < N; first += 3) {
+        Image image(m.width, m.height, 3);
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3 && first + c < N; ++c)
+                image.samples[i * 3 + c] = static_cast<float>(m.quantised.bytes[i * N + first + c]) / 255.f;
+        putPng(w, image, 8);
+    }
+    return std::move(w.bytes());
+}
+
+Result<LearnedModel> decodeLearnedModelChunk(ByteReader& in, const ChunkSource& source, std::uint32_t version,
+                                             int referenceChannels) {
+    auto fail = [&](const std::string& what) { return source.fail(what); };
+    LearnedModel m;
+    const auto codes = in.get<std::uint32_t>(), channels = in.get<std::uint32_t>();
+    if (!in.ok() || codes < 1 || codes > static_cast<std::uint32_t>(LearnedModel::kMaxCodes) ||
+        (channels != 1 && channels != 3) || channels > static_cast<std::uint32_t>(referenceChannels))
+        return fail("invalid description");
+    m.codes = static_cast<int>(codes);
+    m.channels = static_cast<int>(channels);
+    if (version >= 9) {  // a model of views takes the view's features too
+        const auto views = in.get<std::uint32_t>();
+        if (!in.ok() || (views != 0 && views != static_cast<std::uint32_t>(kLearnedViewFeatures)))
+            return fail("invalid view feature count");
+        m.viewFeatures = static_cast<int>(views);
+    }
+    m.width = source.width;
+    m.height = source.height;
+    for (std::vector<int>* widths : {&m.lightHidden, &m.hidden}) {
+        const auto layers = in.get<std::uint32_t>();
+        if (!in.ok() || layers > 8 || (widths == &m.hidden && layers < 1)) return fail("invalid layer count");
+        for (std::uint32_t k = 0; k < layers; ++k) {
+            const auto width = in.get<std::uint32_t>();
+            if (!in.ok() || width < 1 || width > 256) return fail("invalid hidden layer width");
+            widths->push_back(static_cast<int>(width));
+        }
+    }
+    QuantisedCodes& q = m.quantised;
+    for (std::uint32_t k = 0; k < codes; ++k) q.scale.push_back(in.get<float>());
+    for (std::uint32_t k = 0; k < codes; ++k) q.bias.push_back(in.get<float>());
+    if (!in.ok()) return fail("truncated");
+    for (std::uint32_t k = 0; k < codes; ++k)
+        if (!std::isfinite(q.scale[k]) || !(q.scale[k] > 0) || !std::isfinite(q.bias[k]))
+            return fail("invalid scale or bias");
+    LearnedDecoder decoder;
+    for (Network* network : {&decoder.light, &decoder.residual}) {
+        const std::vector<int> sizes = network == &decoder.light ? m.lightSizes() : m.decoderSizes();
+        const auto parameters = in.get<std::uint32_t>();
+        const std::size_t expected = LearnedModel::parameterCount(sizes);
+        if (!in.ok() || parameters != expected || expected > static_cast<std::size_t>(LearnedModel::kMaxParameters) ||
+            parameters > in.remaining() / 4)
+            return fail("a network's parameters do not fit its sizes");
+        std::vector<float> values(parameters);
+        if (const std::uint8_t* bytes = in.getBytes(parameters * sizeof(float)); bytes)
+            std::memcpy(values.data(), bytes, parameters * sizeof(float));
+        for (float v : values)
+            if (!std::isfinite(v)) return fail("a network parameter is not finite");
+        *network = Network::fromParameters(sizes, values);
+    }
+    m.decoder = std::make_shared<const LearnedDecoder>(std::move(decoder));
+    const std::size_t N = codes;
+    q.bytes.resize(m.texels() * N);
+    for (std::size_t first = 0; first < N; first += 3) {
+        const std::string what = "codes " + std::to_string(first) + "-" + std::to_string(std::min(N, first + 3) - 1);
+        Result<Image> image = readRgb8Plane(in, source, what, source.name + " (learned " + what + ")");
+        if (!image) return Error{image.error()};
+        for (std::size_t i = 0; i < m.texels(); ++i)
+            for (std::size_t c = 0; c < 3 && first + c < N; ++c)
+                q.bytes[i * N + first + c] = static_cast<std::uint8_t>(std::lround(image->samples[i * 3 + c] * 255));
+    }
+    if (in.remaining() != 0) return fail("has the wrong size");
+    return m;
 }
 
 }  // namespace btflut

@@ -6,6 +6,8 @@
 
 #include <mutex>
 
+#include "core/io/byte_stream.h"
+#include "core/predict/chunk_planes.h"
 #include "core/predict/learned_model.h"
 #include "core/predict/predictor.h"
 
@@ -58,5 +60,15 @@ private:
     LearnedModel m_model;
     bool m_perChannel;
 };
+
+/// Its chunk of a .btflut file (LRND, docs/btflut-format.md): the model's sizes (format version
+/// 9: with its view features), each code's scale and bias, the light network's and the residual
+/// network's parameters, then the codes three to an RGB PNG.
+Bytes encodeLearnedModelChunk(const LearnedModel& m, std::uint32_t version);
+/// The chunk read back: every count checked before anything is allocated by it, the decoder's
+/// parameters as many as its sizes need and finite, the codes the reference's size, its
+/// channels at most the reference's (`referenceChannels`).
+Result<LearnedModel> decodeLearnedModelChunk(ByteReader& in, const ChunkSource& source, std::uint32_t version,
+                                             int referenceChannels);
 
 }  // namespace btflut

@@ -1,6 +1,9 @@
 #include "core/predict/model_predictor.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "core/check.h"
@@ -87,6 +90,89 @@ std::size_t ModelPredictor::code(const PredictorFrame& frame, std::size_t texel,
 void ModelPredictor::colour(const PredictorFrame& frame, std::size_t texel, float* rgb) const {
     const std::array<std::int64_t, 3> c = predictFixed(m_model, frame.model, texel);
     for (std::size_t k = 0; k < 3; ++k) rgb[k] = static_cast<float>(c[k]) / (255.f * kWeightUnit);
+}
+
+Bytes encodeLightModelChunk(const LightModel& m) {
+    ByteWriter w;
+    const std::array<std::uint32_t, 7> description{
+        static_cast<std::uint32_t>(m.basis), static_cast<std::uint32_t>(m.planes),
+        static_cast<std::uint32_t>(m.wide),  static_cast<std::uint32_t>(m.channels),
+        static_cast<std::uint32_t>(m.order), m.albedo.empty() ? 0u : 1u,
+        static_cast<std::uint32_t>(m.grid)};
+    w.putBytes(description.data(), sizeof description);
+    w.put(m.sigma);
+    for (float v : m.scale) w.put(v);
+    for (float v : m.bias) w.put(v);
+    w.put(static_cast<std::uint32_t>(m.lights.size()));
+    for (Direction d : m.lights) w.putDirection(d);
+    w.put(static_cast<std::uint32_t>(m.table.size()));
+    w.putBytes(m.table.data(), m.table.size() * sizeof(float));
+    for (const Image& image : lightModelImages(m)) putPng(w, image, 8);  // the planes, then the albedo
+    return std::move(w.bytes());
+}
+
+Result<LightModel> decodeLightModelChunk(ByteReader& in, const ChunkSource& source, int referenceChannels) {
+    auto fail = [&](const std::string& what) { return source.fail(what); };
+    const auto refChannels = static_cast<std::uint32_t>(referenceChannels);
+    LightModel m;
+    const auto basis = in.get<std::uint32_t>(), planes = in.get<std::uint32_t>(), wide = in.get<std::uint32_t>(),
+               channels = in.get<std::uint32_t>(), order = in.get<std::uint32_t>(), albedo = in.get<std::uint32_t>(),
+               grid = in.get<std::uint32_t>();
+    m.sigma = in.get<float>();
+    if (!in.ok()) return fail("truncated");
+    if (basis > 3 || planes < 1 || planes > static_cast<std::uint32_t>(LightModel::kMaxPlanes) || wide > planes ||
+        (channels != 1 && channels != 3) || albedo > 1)
+        return fail("invalid description");
+    m.wide = static_cast<int>(wide);
+    m.basis = static_cast<LightBasis>(basis);
+    m.planes = static_cast<int>(planes);
+    m.channels = static_cast<int>(channels);
+    m.order = static_cast<int>(order);
+    m.width = source.width;
+    m.height = source.height;
+    const bool fixedBasis = m.basis == LightBasis::Ptm || m.basis == LightBasis::Hsh;
+    if (fixedBasis &&
+        (channels != 1 || (m.basis == LightBasis::Hsh ? order != 2 && order != 3 : order != 0) ||
+         static_cast<int>(planes) != LightModel::termCount(m.basis, m.order) || grid != 0 || wide != planes))
+        return fail("a " + std::string(lightBasisName(m.basis)) + " model with the wrong terms");
+    // An albedo on a grey reference too: a bank's PTM (fitted with an albedo on grey images as
+    // on colour ones) was the predictor of files before LMDL, and is written back as this.
+    if (albedo ? refChannels != 3 && refChannels != 1 : channels != refChannels)
+        return fail("its colour does not match the reference image's");
+    if (m.basis == LightBasis::Bilinear && (grid < 2 || grid > 64)) return fail("invalid grid size");
+    if (m.basis != LightBasis::Bilinear && grid != 0) return fail("a grid for a basis without one");
+    m.grid = static_cast<int>(grid);
+    if (m.basis == LightBasis::Rbf && !(std::isfinite(m.sigma) && m.sigma > 0)) return fail("invalid rbf width");
+    for (std::uint32_t p = 0; p < planes; ++p) m.scale.push_back(in.get<float>());
+    for (std::uint32_t p = 0; p < planes; ++p) m.bias.push_back(in.get<float>());
+    for (std::uint32_t p = 0; p < planes; ++p)
+        if (!std::isfinite(m.scale[p]) || !(m.scale[p] > 0) || !std::isfinite(m.bias[p]))
+            return fail("invalid scale or bias");
+    const auto lights = in.get<std::uint32_t>();
+    if (!in.ok() || lights > in.remaining() / 16 || (m.basis == LightBasis::Rbf) != (lights > 0))
+        return fail("invalid light count");
+    for (std::uint32_t l = 0; l < lights; ++l) {
+        Result<Direction> light = in.getDirection(source.name, "light model light");
+        if (!light) return Error{light.error()};
+        m.lights.push_back(*light);
+    }
+    const std::uint64_t row = (1 + std::uint64_t{planes}) * channels;
+    const std::uint64_t rows = m.basis == LightBasis::Rbf        ? lights
+                               : m.basis == LightBasis::Bilinear ? std::uint64_t{grid} * grid
+                                                                 : 0;
+    const auto tableLength = in.get<std::uint32_t>();
+    if (!in.ok() || tableLength != rows * row || tableLength > in.remaining() / 4)
+        return fail("the table does not fit the model");
+    m.table.resize(tableLength);
+    if (const std::uint8_t* bytes = in.getBytes(tableLength * sizeof(float)); bytes && tableLength > 0)
+        std::memcpy(m.table.data(), bytes, tableLength * sizeof(float));
+    for (float v : m.table)
+        if (!std::isfinite(v)) return fail("a table value is not finite");
+    m.albedo.resize(albedo ? m.texels() * 3 : 0);
+    if (Status s = readModelPlanes(in, source, source.name + " (light model ", "planes ", m); !s)
+        return Error{s.error()};
+    if (in.remaining() != 0) return fail("has the wrong size");
+    return m;
 }
 
 }  // namespace btflut

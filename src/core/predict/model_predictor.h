@@ -2,6 +2,8 @@
 // A linear light model (light_model.h: ptm, hsh, rbf, bln) as a bank's
 // predictor: its per-light integers and each texel's fixed-point prediction.
 
+#include "core/io/byte_stream.h"
+#include "core/predict/chunk_planes.h"
 #include "core/predict/light_model.h"
 #include "core/predict/predictor.h"
 
@@ -37,5 +39,13 @@ public:
 private:
     LightModel m_model;
 };
+
+/// Its chunk of a .btflut file (LMDL, docs/btflut-format.md): the model's description, its
+/// per-light table, then its planes three to an RGB PNG and, in the LRGB layout, the albedo.
+Bytes encodeLightModelChunk(const LightModel& m);
+/// The chunk read back: every count checked before anything is allocated by it, every number
+/// finite, the planes and albedo the reference's size, its colour the reference's
+/// (`referenceChannels`; an albedo on a grey reference too, as a bank's PTM had).
+Result<LightModel> decodeLightModelChunk(ByteReader& in, const ChunkSource& source, int referenceChannels);
 
 }  // namespace btflut

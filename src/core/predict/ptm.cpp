@@ -98,4 +98,38 @@ Result<LightModel> PtmFitter::finish(const std::string& what) const {
     return ptm;
 }
 
+Bytes encodePtmChunk(const LightModel& ptm) {
+    ByteWriter w;
+    w.put(static_cast<std::uint32_t>(ptm.width));
+    w.put(static_cast<std::uint32_t>(ptm.height));
+    for (float v : ptm.scale) w.put(v);
+    for (float v : ptm.bias) w.put(v);
+    for (const Image& image : lightModelImages(ptm)) putPng(w, image, 8);  // coefficients 0-2, 3-5, the albedo
+    return std::move(w.bytes());
+}
+
+Result<LightModel> decodePtmChunk(ByteReader& in, const ChunkSource& source) {
+    auto fail = [&](const std::string& what) { return source.fail(what); };
+    const auto w = in.get<std::uint32_t>(), h = in.get<std::uint32_t>();
+    LightModel ptm;
+    ptm.basis = LightBasis::Ptm;
+    ptm.planes = ptm.wide = kPtmTerms;
+    for (std::vector<float>* values : {&ptm.scale, &ptm.bias})
+        for (int k = 0; k < kPtmTerms; ++k) values->push_back(in.get<float>());
+    if (!in.ok()) return fail("invalid header");
+    if (w != static_cast<std::uint32_t>(source.width) || h != static_cast<std::uint32_t>(source.height))
+        return Error{source.name + ": the PTM (" + std::to_string(w) + "x" + std::to_string(h) +
+                     ") does not match the reference image's size"};
+    ptm.width = static_cast<int>(w);
+    ptm.height = static_cast<int>(h);
+    for (std::size_t k = 0; k < ptm.scale.size(); ++k)
+        if (!std::isfinite(ptm.scale[k]) || !std::isfinite(ptm.bias[k]) || ptm.scale[k] <= 0)
+            return fail("invalid scale or bias");
+    ptm.albedo.resize(ptm.texels() * 3);
+    if (Status s = readModelPlanes(in, source, source.name + " (PTM ", "coefficients ", ptm); !s)
+        return Error{s.error()};
+    if (in.remaining() != 0) return fail("has the wrong size");
+    return ptm;
+}
+
 }  // namespace btflut

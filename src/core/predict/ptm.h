@@ -25,6 +25,8 @@
 
 #include "core/direction/direction.h"
 #include "core/image/image.h"
+#include "core/io/byte_stream.h"
+#include "core/predict/chunk_planes.h"
 #include "core/predict/light_model.h"
 #include "core/result.h"
 
@@ -57,5 +59,13 @@ private:
     std::vector<float> m_moments;                          ///< per texel: sum of t * grey (kPtmTerms)
     std::vector<float> m_colour;                           ///< per texel: sum of R, G, B
 };
+
+/// A bank's PTM as its chunk of a .btflut file (PTMC, docs/btflut-format.md): width, height
+/// (u32), scale[6], bias[6] (f32), then three PNGs, each preceded by its byte length (u32):
+/// coefficients 0-2, coefficients 3-5, albedo (RGB8).
+Bytes encodePtmChunk(const LightModel& ptm);
+/// The chunk read back: its size must be the reference's (`source`: already checked against
+/// the pixel limit) before anything is allocated.
+Result<LightModel> decodePtmChunk(ByteReader& in, const ChunkSource& source);
 
 }  // namespace btflut
