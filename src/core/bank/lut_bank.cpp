@@ -50,6 +50,29 @@ const char* provenanceName(Provenance p) {
 
 DiskPoint LutBank::gridPoint(int i, int j) const { return diskGridPoint(i, j, gridSize); }
 
+LutBank LutBank::sameDirections() const {
+    LutBank out;
+    out.entries = entries;
+    out.colour = colour;
+    out.gridSize = gridSize;
+    out.domain = domain;
+    out.views = views;
+    out.pairs = pairs;
+    out.pairNodes = pairNodes;
+    out.pairsLow = pairsLow;
+    out.pairsHigh = pairsHigh;
+    for (const ViewLayer& layer : layers) {
+        ViewLayer& copy = out.layers.emplace_back();
+        copy.view = layer.view;
+        copy.nodes = layer.nodes;
+        copy.lights = layer.lights;
+        copy.modelLights = layer.modelLights;
+        copy.measuredNodes = layer.measuredNodes;
+        copy.measuredReach = layer.measuredReach;
+    }
+    return out;
+}
+
 void LutBank::buildTriangulations() {
     std::vector<DiskPoint> viewPoints;
     for (ViewLayer& layer : layers) {

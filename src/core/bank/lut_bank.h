@@ -272,6 +272,11 @@ struct LutBank {
 
     /// Rebuilds the triangulations from the node and layer directions (after loading).
     void buildTriangulations();
+    /// A bank of the same directions, to hold other values at them: the LUT format (entries,
+    /// colour, grid size), the domain, every layer's view and nodes and the triangulations
+    /// over them; no node values, grids, fits, reference or predictor (the relighter's banks
+    /// of each node's correction, and of its match grid).
+    LutBank sameDirections() const;
     /// Fills every layer's grid from its nodes.
     void fillGrids();
 };

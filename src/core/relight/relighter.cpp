@@ -68,25 +68,13 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
     if (blend.target == LutBank::Prediction::Target::Corrections) {
         // Each node's LUT from the prediction at its light to its target, in a bank of the
         // same nodes (its lookups blend them as a classic bank's).
-        auto corrections = std::make_shared<LutBank>();
-        corrections->entries = bank.entries;
-        corrections->colour = bank.colour;
-        corrections->gridSize = bank.gridSize;
-        corrections->domain = bank.domain;
-        corrections->views = bank.views;
-        corrections->pairs = bank.pairs;
-        corrections->pairNodes = bank.pairNodes;
+        auto corrections = std::make_shared<LutBank>(bank.sameDirections());
         corrections->prediction.regions = blend.regions;
         corrections->prediction.quantiles = bank.entries;  // its node values: regions x channels x entries
         const auto samples = static_cast<std::size_t>(blend.quantiles);
-        for (const ViewLayer& layer : bank.layers) {
-            ViewLayer copy;  // the directions and triangulations; its own values
-            copy.view = layer.view;
-            copy.nodes = layer.nodes;
-            copy.lights = layer.lights;
-            copy.modelLights = layer.modelLights;
-            copy.measuredNodes = layer.measuredNodes;
-            copy.measuredReach = layer.measuredReach;
+        for (std::size_t l = 0; l < bank.layers.size(); ++l) {
+            const ViewLayer& layer = bank.layers[l];
+            ViewLayer& copy = corrections->layers[l];
             for (std::size_t n = 0; n < layer.nodes.size(); ++n) {
                 const RelightFrame f = predictionFrame(layer.nodes[n].light, layer.view);
                 const float* targets = &layer.nodeLuts[n * bank.nodeLength()];
@@ -98,7 +86,6 @@ Relighter::Relighter(const LutBank& bank) : m_bank(bank) {
                         copy.nodeLuts.insert(copy.nodeLuts.end(), lut.values.begin(), lut.values.end());
                     }
             }
-            corrections->layers.push_back(std::move(copy));
         }
         m_corrections = std::move(corrections);
     }
@@ -149,14 +136,11 @@ RelightFrame Relighter::gridFrame(Direction light, Direction view, std::optional
     {
         std::lock_guard lock(making);
         if (!m_gridBank) {  // a bank read without its grid: made once, here
-            auto copy = std::make_shared<LutBank>();
-            copy->entries = m_bank.entries;
-            copy->colour = m_bank.colour;
-            copy->gridSize = m_bank.gridSize;
-            copy->prediction.regions = m_bank.prediction.regions;
             LutBank whole = m_bank;
             bakeMatchGrid(whole);
-            copy->layers.resize(1);
+            auto copy = std::make_shared<LutBank>(whole.sameDirections());
+            copy->prediction.regions = m_bank.prediction.regions;
+            copy->layers.resize(1);  // the first view's grid, which matchGridLookup(light) reads
             copy->layers[0].matchGridLuts = std::move(whole.layers[0].matchGridLuts);
             m_gridBank = std::move(copy);
         }
