@@ -53,6 +53,26 @@ PredictorPlanes LearnedPredictor::planes() const {
     return out;
 }
 
+EngineParts LearnedPredictor::engineParts(const std::string& file) const {
+    EngineParts out;
+    out.planes = m_model.codes;
+    out.channels = m_model.channels;
+    out.weights = 4;  // the decoder in the weight texture: one layer, a square of texels
+    if (m_model.fitsGpu()) {
+        LearnedModel::GpuNetwork network = m_model.gpuNetwork();
+        out.weightGrid = std::move(network.texels);
+        out.weightGridSize = network.size;
+    }
+    const LearnedShaderCost cost = learnedShaderCost(m_model);
+    out.texelMultiplyAdds = cost.texelMultiplyAdds;
+    out.frameMultiplyAdds = cost.frameMultiplyAdds;
+    if (hasLearnedShader(m_model)) {
+        out.networkGlsl = learnedShaderSource(m_model, ShaderLanguage::Glsl, file);
+        out.networkHlsl = learnedShaderSource(m_model, ShaderLanguage::Hlsl, file);
+    }
+    return out;
+}
+
 std::vector<std::string> LearnedPredictor::shaderDefines() const {
     return {"PREDICT_LEARNED", "PREDICT_LEARNED_LAYERS " + std::to_string((m_model.codes + 3) / 4),
             "PREDICT_LEARNED_CHANNELS " + std::to_string(m_model.channels)};

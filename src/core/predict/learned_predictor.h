@@ -36,6 +36,8 @@ public:
     std::size_t multiplyAdds() const override;
     std::string description() const override;
     PredictorPlanes planes() const override;
+    /// Its decoder network as the weight grid (btflut.glsl), and its shader specialised to it.
+    EngineParts engineParts(const std::string& file) const override;
     std::vector<std::string> shaderDefines() const override;
     /// The decoder specialised to the model (learned_shader.h); empty for a network past a
     /// shader's constants, which the include's texture path draws.

@@ -92,6 +92,49 @@ void ModelPredictor::colour(const PredictorFrame& frame, std::size_t texel, floa
     for (std::size_t k = 0; k < 3; ++k) rgb[k] = static_cast<float>(c[k]) / (255.f * kWeightUnit);
 }
 
+namespace {
+
+// A light model's rows ((1 + P) x channels: the offsets, then each plane's channel weights)
+// over the engine's weight grid: bln's own nodes (its bilinear read is exact), rbf sampled.
+std::vector<float> modelWeightGrid(const LightModel& m, int& size) {
+    if (m.basis == LightBasis::Bilinear) {
+        size = m.grid;
+        return m.table;
+    }
+    size = kEngineWeightGrid;
+    const auto P = static_cast<std::size_t>(m.planes), C = static_cast<std::size_t>(m.channels), row = (1 + P) * C;
+    std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * row);
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i) {
+            const LightModel::Weights w =
+                m.weightsAt(fromDisk(diskGridPoint(i, j, size)));  // beyond the rim: the horizon's
+            float* node =
+                &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) *
+                      row];
+            std::copy_n(w.offset.begin(), C, node);
+            std::copy(w.weight.begin(), w.weight.end(), node + C);
+        }
+    return grid;
+}
+
+}  // namespace
+
+EngineParts ModelPredictor::engineParts(const std::string&) const {
+    const LightModel& m = m_model;
+    EngineParts out;
+    out.basis = m.basis;
+    out.order = m.order;
+    out.planes = m.planes;
+    out.channels = m.channels;
+    out.albedoMultiplies = !m.albedo.empty();
+    if (m.basis == LightBasis::Rbf || m.basis == LightBasis::Bilinear) {
+        out.weights = (m.planes + 1) * m.channels;
+        const std::vector<float> rows = modelWeightGrid(m, out.weightGridSize);
+        out.weightGrid = weightsInLayers(rows, static_cast<std::size_t>(out.weights), out.weightGridSize);
+    }
+    return out;
+}
+
 Bytes encodeLightModelChunk(const LightModel& m) {
     ByteWriter w;
     const std::array<std::uint32_t, 7> description{

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/check.h"
+
 namespace btflut {
 
 const char* predictorKindName(PredictorKind kind) {
@@ -73,6 +75,15 @@ void Predictor::levelCodes(const PredictorFrame& frame, int level, int width, in
             for (std::uint32_t t : block) sum += static_cast<double>(code(frame, t, static_cast<int>(c)));
             codes[j * C + c] = static_cast<std::size_t>(std::lround(sum / static_cast<double>(block.size())));
         }
+}
+
+std::vector<float> weightsInLayers(const std::vector<float>& grid, std::size_t count, int size) {
+    const std::size_t nodes = static_cast<std::size_t>(size) * static_cast<std::size_t>(size), layers = (count + 3) / 4;
+    BTFLUT_CHECK(grid.size() == nodes * count);
+    std::vector<float> out(layers * nodes * 4, 0.f);
+    for (std::size_t n = 0; n < nodes; ++n)
+        for (std::size_t k = 0; k < count; ++k) out[((k / 4) * nodes + n) * 4 + k % 4] = grid[n * count + k];
+    return out;
 }
 
 }  // namespace btflut

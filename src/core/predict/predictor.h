@@ -47,6 +47,29 @@ struct PredictorPlanes {
     int networkSize = 0;
 };
 
+/// What an engine reads of a predictor beside its planes (relight/engine_material.h,
+/// docs/engines.md): each kind says its own.
+struct EngineParts {
+    LightBasis basis = LightBasis::Ptm;  ///< a light model's
+    int order = 0;                       ///< hsh
+    int planes = 0;                      ///< a light model's P, the references' K, the learned codes N
+    int channels = 1;                    ///< the prediction's channels before any albedo: 1 or 3
+    bool albedoMultiplies = false;       ///< a light model's albedo times its value
+    /// The weight grid's nodes a side and values per node (0: none, the weights in closed form:
+    /// ptm, hsh; a learned model: 4, its decoder network), and the grid, [layer][j][i][4].
+    int weightGridSize = 0, weights = 0;
+    std::vector<float> weightGrid;
+    /// A learned model's decoder specialised to it (learned_shader.h), GLSL and HLSL, and its cost.
+    std::string networkGlsl, networkHlsl;
+    std::size_t texelMultiplyAdds = 0, frameMultiplyAdds = 0;
+};
+
+/// The engine weight grid's nodes a side for rbf and references (bln: its own grid, read exactly).
+constexpr int kEngineWeightGrid = 129;
+
+/// `count` values per node of a size x size grid (node-major) as layers of four: [layer][node][4].
+std::vector<float> weightsInLayers(const std::vector<float>& grid, std::size_t count, int size);
+
 /// A uniform a predictor's shader code reads per light (shaders/lut_common.glsl): vectors of
 /// `size` (1, 3 or 4) numbers, values.size() / size of them (an array, from its first element).
 struct ShaderValues {
@@ -108,6 +131,9 @@ public:
 
     /// Its planes as a GPU holds them.
     virtual PredictorPlanes planes() const = 0;
+    /// What an engine reads of it beside its planes; `file` names the material's files (a
+    /// learned decoder's shader names it).
+    virtual EngineParts engineParts(const std::string& file) const = 0;
     /// The #defines that choose and size its prediction in shaders/lut_common.glsl (PREDICT_...).
     virtual std::vector<std::string> shaderDefines() const = 0;
     /// GLSL its shader code needs after the include, made for this predictor (a learned model's

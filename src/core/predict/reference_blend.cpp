@@ -126,4 +126,31 @@ void ReferenceBlend::colour(const PredictorFrame& frame, std::size_t texel, floa
     }
 }
 
+std::vector<float> ReferenceBlend::weightGrid(int size) const {
+    BTFLUT_CHECK(size >= 2);
+    const std::size_t k = m_references.size();
+    std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * k, 0.f);
+    for (int j = 0; j < size; ++j)
+        for (int i = 0; i < size; ++i) {
+            const Weights w = m_triangulation.weightsAt(toDisk(fromDisk(diskGridPoint(i, j, size))));
+            float* node =
+                &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * k];
+            for (int n = 0; n < w.count; ++n)
+                node[static_cast<std::size_t>(w.index[static_cast<std::size_t>(n)])] +=
+                    static_cast<float>(w.weight[static_cast<std::size_t>(n)]);
+        }
+    return grid;
+}
+
+EngineParts ReferenceBlend::engineParts(const std::string&) const {
+    EngineParts out;
+    out.planes = static_cast<int>(m_references.size());
+    out.channels = m_references.front().channels;
+    out.weights = out.planes;
+    out.weightGridSize = kEngineWeightGrid;
+    out.weightGrid =
+        weightsInLayers(weightGrid(kEngineWeightGrid), static_cast<std::size_t>(out.weights), kEngineWeightGrid);
+    return out;
+}
+
 }  // namespace btflut

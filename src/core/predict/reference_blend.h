@@ -39,6 +39,13 @@ public:
         return std::to_string(m_references.size()) + " reference(s) blended per light";
     }
     PredictorPlanes planes() const override;
+    /// Its weights at each light on a weight grid: the blend's barycentric weights there.
+    EngineParts engineParts(const std::string& file) const override;
+    /// Each reference's weight (the blend's barycentric weights, clamped outside the references'
+    /// hull) over a size x size grid of the equal-area light disk (node (i, j) at x = -1 + 2 i /
+    /// (size - 1), y likewise; beyond the horizon, the horizon's), [node][reference]: for shaders
+    /// that blend per fragment (curved surfaces, point lights) and read the weights bilinearly.
+    std::vector<float> weightGrid(int size) const;
     std::vector<std::string> shaderDefines() const override;
     std::vector<ShaderValues> shaderValues(const PredictorFrame& frame) const override;
     PredictorFrame frameAt(Direction light, Direction view) const override;

@@ -7,10 +7,6 @@
 #include "core/check.h"
 #include "core/predict/gpu_constants.h"
 #include "core/predict/learned_predictor.h"
-#include "core/predict/learned_shader.h"
-#include "core/predict/light_model.h"
-#include "core/predict/model_predictor.h"
-#include "core/predict/reference_blend.h"
 #include "core/relight/relighter.h"
 
 namespace btflut {
@@ -32,53 +28,6 @@ std::vector<std::uint16_t> matchGridTexels(const LutBank& bank, const std::vecto
                 for (std::size_t c = 0; c < channels; ++c)
                     texels[at++] = grid[((cell * regions + r) * channels + c) * entries + k];
     return texels;
-}
-
-// `count` values per node of a size x size grid as layers of four: [layer][node][4].
-std::vector<float> inLayers(const std::vector<float>& grid, std::size_t count, int size) {
-    const std::size_t nodes = static_cast<std::size_t>(size) * static_cast<std::size_t>(size), layers = (count + 3) / 4;
-    BTFLUT_CHECK(grid.size() == nodes * count);
-    std::vector<float> out(layers * nodes * 4, 0.f);
-    for (std::size_t n = 0; n < nodes; ++n)
-        for (std::size_t k = 0; k < count; ++k) out[((k / 4) * nodes + n) * 4 + k % 4] = grid[n * count + k];
-    return out;
-}
-
-// A light model's rows ((1 + P) x channels: the offsets, then each plane's channel weights)
-// over the engine's weight grid: bln's own nodes (its bilinear read is exact), rbf sampled.
-std::vector<float> modelWeightGrid(const LightModel& m, int& size) {
-    if (m.basis == LightBasis::Bilinear) {
-        size = m.grid;
-        return m.table;
-    }
-    size = kEngineWeightGrid;
-    const auto P = static_cast<std::size_t>(m.planes), C = static_cast<std::size_t>(m.channels), row = (1 + P) * C;
-    std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * row);
-    for (int j = 0; j < size; ++j)
-        for (int i = 0; i < size; ++i) {
-            const LightModel::Weights w =
-                m.weightsAt(fromDisk(diskGridPoint(i, j, size)));  // beyond the rim: the horizon's
-            float* node =
-                &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) *
-                      row];
-            std::copy_n(w.offset.begin(), C, node);
-            std::copy(w.weight.begin(), w.weight.end(), node + C);
-        }
-    return grid;
-}
-
-// A light model's weights: ptm and hsh in closed form (btflut.glsl), rbf and bln on the grid.
-void setModel(EngineMaterial& out, const LightModel& m) {
-    out.basis = m.basis;
-    out.order = m.order;
-    out.planes = m.planes;
-    out.channels = m.channels;
-    out.albedoMultiplies = !m.albedo.empty();
-    if (m.basis == LightBasis::Rbf || m.basis == LightBasis::Bilinear) {
-        out.weights = (m.planes + 1) * m.channels;
-        const std::vector<float> rows = modelWeightGrid(m, out.weightGridSize);
-        out.weightGrid = inLayers(rows, static_cast<std::size_t>(out.weights), out.weightGridSize);
-    }
 }
 
 }  // namespace
@@ -138,35 +87,19 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     out.albedo = std::move(planes.albedo);
     out.scale = std::move(planes.scale);
     out.bias = std::move(planes.bias);
-    if (const ModelPredictor* model = bank.predictorAs<ModelPredictor>()) {
-        setModel(out, model->model());
-        return out;
-    }
-    if (const LearnedPredictor* learned = bank.predictorAs<LearnedPredictor>()) {
-        // The decoder in the weight texture: one layer, a square of texels (btflut.glsl).
-        out.planes = learned->model().codes;
-        out.channels = learned->model().channels;
-        out.weights = 4;
-        out.weightGridSize = planes.networkSize;
-        out.weightGrid = std::move(planes.network);
-        const LearnedModel& model = learned->model();
-        const LearnedShaderCost cost = learnedShaderCost(model);
-        out.texelMultiplyAdds = cost.texelMultiplyAdds;
-        out.frameMultiplyAdds = cost.frameMultiplyAdds;
-        if (hasLearnedShader(model)) {
-            const std::string file = std::filesystem::path(name).filename().string();
-            out.networkGlsl = learnedShaderSource(model, ShaderLanguage::Glsl, file);
-            out.networkHlsl = learnedShaderSource(model, ShaderLanguage::Hlsl, file);
-        }
-        return out;
-    }
-    const ReferenceBlend& references = *bank.predictorAs<ReferenceBlend>();
-    out.planes = static_cast<int>(references.references().size());
-    out.channels = references.references().front().channels;
-    out.weights = out.planes;
-    out.weightGridSize = kEngineWeightGrid;
-    out.weightGrid = inLayers(referenceWeightGrid(bank, kEngineWeightGrid), static_cast<std::size_t>(out.weights),
-                              kEngineWeightGrid);
+    EngineParts parts = bank.predictor().engineParts(std::filesystem::path(name).filename().string());
+    out.basis = parts.basis;
+    out.order = parts.order;
+    out.planes = parts.planes;
+    out.channels = parts.channels;
+    out.albedoMultiplies = parts.albedoMultiplies;
+    out.weights = parts.weights;
+    out.weightGridSize = parts.weightGridSize;
+    out.weightGrid = std::move(parts.weightGrid);
+    out.networkGlsl = std::move(parts.networkGlsl);
+    out.networkHlsl = std::move(parts.networkHlsl);
+    out.texelMultiplyAdds = parts.texelMultiplyAdds;
+    out.frameMultiplyAdds = parts.frameMultiplyAdds;
     return out;
 }
 

@@ -75,9 +75,6 @@ struct EngineMaterial {
     int predictorKind() const { return static_cast<int>(kind); }
 };
 
-/// The weight grid's nodes a side for rbf and references (bln: its own grid, read exactly).
-constexpr int kEngineWeightGrid = 129;
-
 /// What an engine needs to draw `bank` (its first view layer's match grid for predictors,
 /// made here for files older than it). Refuses banks without a reference; `name` names the
 /// bank in the error.

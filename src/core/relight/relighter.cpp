@@ -175,24 +175,6 @@ void bakeMatchGrid(LutBank& bank, int threads) {
     }
 }
 
-std::vector<float> referenceWeightGrid(const LutBank& bank, int size) {
-    const ReferenceBlend* blend = bank.predictorAs<ReferenceBlend>();
-    BTFLUT_CHECK(blend && size >= 2);
-    const std::size_t k = blend->references().size();
-    std::vector<float> grid(static_cast<std::size_t>(size) * static_cast<std::size_t>(size) * k, 0.f);
-    for (int j = 0; j < size; ++j)
-        for (int i = 0; i < size; ++i) {
-            const Weights w =
-                blend->triangulation().weightsAt(toDisk(fromDisk(diskGridPoint(i, j, size))));  // beyond the rim: on it
-            float* node =
-                &grid[(static_cast<std::size_t>(j) * static_cast<std::size_t>(size) + static_cast<std::size_t>(i)) * k];
-            for (int n = 0; n < w.count; ++n)
-                node[static_cast<std::size_t>(w.index[static_cast<std::size_t>(n)])] +=
-                    static_cast<float>(w.weight[static_cast<std::size_t>(n)]);
-        }
-    return grid;
-}
-
 RelightFrame Relighter::predictionFrame(Direction light, Direction view) const {
     RelightFrame frame;
     static_cast<PredictorFrame&>(frame) = m_predictor->frameAt(light, view);

@@ -129,11 +129,4 @@ float matchRampRadius(const LutBank& bank);
 /// whatever changes a bank's targets or predictor afterwards (model fill).
 void bakeMatchGrid(LutBank& bank, int threads = 0);
 
-/// A bank that blends references: each reference's weight (the blend's barycentric weights,
-/// clamped outside the references' hull) over a size x size grid of the equal-area light disk
-/// (node (i, j) at x = -1 + 2 i / (size - 1), y likewise; beyond the horizon, the horizon's),
-/// [node][reference]: for shaders that blend per fragment (curved surfaces, point lights) and
-/// read the weights bilinearly.
-std::vector<float> referenceWeightGrid(const LutBank& bank, int size);
-
 }  // namespace btflut
