@@ -2,7 +2,8 @@
 // A learned model (learned_model.h) as a bank's predictor: per texel its codes, decoded by the
 // bank's network at each light (LearnedModel::decoderCost multiply-adds a texel). Counting a
 // sample's codes decodes the sample's texels; the first texel's code read decodes every texel
-// of the frame, once, so the next are lookups.
+// of the frame, once, so the next are lookups. Also what an engine reads of it, and its chunk
+// of the .btflut file (LRND).
 
 #include <mutex>
 

@@ -1,6 +1,7 @@
 #pragma once
-// A linear light model (light_model.h: ptm, hsh, rbf, bln) as a bank's
-// predictor: its per-light integers and each texel's fixed-point prediction.
+// A linear light model (light_model.h: ptm, hsh, rbf, bln) as a bank's predictor: its per-light
+// integers and each texel's fixed-point prediction, what an engine reads of it, and its chunk of
+// the .btflut file (LMDL).
 
 #include "core/io/byte_stream.h"
 #include "core/predict/chunk_planes.h"
