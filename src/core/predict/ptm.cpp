@@ -45,6 +45,17 @@ void PtmFitter::add(const Image& image, Direction light) {
     }
 }
 
+LightModel ptmShell(int width, int height) {
+    LightModel ptm;
+    ptm.basis = LightBasis::Ptm;
+    ptm.width = width;
+    ptm.height = height;
+    ptm.planes = ptm.wide = kPtmTerms;
+    ptm.scale.assign(kPtmTerms, 1.f);
+    ptm.bias.assign(kPtmTerms, 0.f);
+    return ptm;
+}
+
 Result<LightModel> PtmFitter::finish(const std::string& what) const {
     std::lock_guard lock(m_mutex);
     const Eigen::Matrix<double, kPtmTerms, kPtmTerms> normal(m_normal.data());
@@ -61,13 +72,7 @@ Result<LightModel> PtmFitter::finish(const std::string& what) const {
     // largest channel is 1 and the luminance scaled to match.
     const std::size_t texels = static_cast<std::size_t>(m_width) * m_height;
     std::vector<double> fitted(texels * kPtmTerms);
-    LightModel ptm;
-    ptm.basis = LightBasis::Ptm;
-    ptm.width = m_width;
-    ptm.height = m_height;
-    ptm.planes = ptm.wide = kPtmTerms;
-    ptm.scale.assign(kPtmTerms, 1.f);
-    ptm.bias.assign(kPtmTerms, 0.f);
+    LightModel ptm = ptmShell(m_width, m_height);
     ptm.albedo.resize(texels * 3);
     for (std::size_t i = 0; i < texels; ++i) {
         const float* colour = &m_colour[i * 3];
@@ -111,17 +116,13 @@ Bytes encodePtmChunk(const LightModel& ptm) {
 Result<LightModel> decodePtmChunk(ByteReader& in, const ChunkSource& source) {
     auto fail = [&](const std::string& what) { return source.fail(what); };
     const auto w = in.get<std::uint32_t>(), h = in.get<std::uint32_t>();
-    LightModel ptm;
-    ptm.basis = LightBasis::Ptm;
-    ptm.planes = ptm.wide = kPtmTerms;
+    LightModel ptm = ptmShell(source.width, source.height);
     for (std::vector<float>* values : {&ptm.scale, &ptm.bias})
-        for (int k = 0; k < kPtmTerms; ++k) values->push_back(in.get<float>());
+        for (float& v : *values) v = in.get<float>();
     if (!in.ok()) return fail("invalid header");
     if (w != static_cast<std::uint32_t>(source.width) || h != static_cast<std::uint32_t>(source.height))
         return Error{source.name + ": the PTM (" + std::to_string(w) + "x" + std::to_string(h) +
                      ") does not match the reference image's size"};
-    ptm.width = static_cast<int>(w);
-    ptm.height = static_cast<int>(h);
     for (std::size_t k = 0; k < ptm.scale.size(); ++k)
         if (!std::isfinite(ptm.scale[k]) || !std::isfinite(ptm.bias[k]) || ptm.scale[k] <= 0)
             return fail("invalid scale or bias");

@@ -32,6 +32,10 @@
 
 namespace btflut {
 
+/// A PTM's light model before its planes are filled: basis ptm, its six 8-bit planes, each of
+/// scale 1 and bias 0 (the fit, the .ptm file and the bank's chunk set their own).
+LightModel ptmShell(int width, int height);
+
 /// A PTM's six per-coefficient weights and offset for a light, its terms with each
 /// coefficient's scale and bias folded in (as RTI viewers draw, once per light):
 /// luminance = sum_k byte_k / 255 * weights[k] + offset.

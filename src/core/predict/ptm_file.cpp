@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/predict/ptm.h"
 
 namespace btflut {
 
@@ -61,11 +62,7 @@ Result<LightModel> decodePtmFile(const Bytes& bytes, const std::string& name) {
     if (word() != "PTM_1.2") return fail("not a PTM 1.2 file");
     if (const std::string format = word(); format != "PTM_FORMAT_LRGB")
         return fail("format '" + format + "' is not PTM_FORMAT_LRGB (the only one btflut reads)");
-    LightModel ptm;
-    ptm.basis = LightBasis::Ptm;
-    ptm.planes = ptm.wide = kPtmTerms;
-    ptm.scale.assign(kPtmTerms, 1.f);
-    ptm.bias.assign(kPtmTerms, 0.f);
+    LightModel ptm = ptmShell(0, 0);  // its size from the header below
     auto integer = [&](const std::string& what, long low, long high) -> Result<long> {
         const std::string w = word();
         char* end = nullptr;
