@@ -54,12 +54,15 @@ struct EngineParts {
     int order = 0;                       ///< hsh
     int planes = 0;                      ///< a light model's P, the references' K, the learned codes N
     int channels = 1;                    ///< the prediction's channels before any albedo: 1 or 3
-    bool albedoMultiplies = false;       ///< a light model's albedo times its value
+    /// The albedo times the value (a light model's); false: the chroma after the match (lrgb references).
+    bool albedoMultiplies = false;
     /// The weight grid's nodes a side and values per node (0: none, the weights in closed form:
     /// ptm, hsh; a learned model: 4, its decoder network), and the grid, [layer][j][i][4].
     int weightGridSize = 0, weights = 0;
     std::vector<float> weightGrid;
-    /// A learned model's decoder specialised to it (learned_shader.h), GLSL and HLSL, and its cost.
+    /// A learned model's decoder specialised to it (learned_shader.h, after the include), GLSL
+    /// (GLSL ES and Godot too) and HLSL, and its cost; no shader for a network past a shader's
+    /// constants, which the include's texture path draws from the weight texture.
     std::string networkGlsl, networkHlsl;
     std::size_t texelMultiplyAdds = 0, frameMultiplyAdds = 0;
 };

@@ -87,19 +87,7 @@ Result<EngineMaterial> engineMaterial(const LutBank& bank, const std::string& na
     out.albedo = std::move(planes.albedo);
     out.scale = std::move(planes.scale);
     out.bias = std::move(planes.bias);
-    EngineParts parts = bank.predictor().engineParts(std::filesystem::path(name).filename().string());
-    out.basis = parts.basis;
-    out.order = parts.order;
-    out.planes = parts.planes;
-    out.channels = parts.channels;
-    out.albedoMultiplies = parts.albedoMultiplies;
-    out.weights = parts.weights;
-    out.weightGridSize = parts.weightGridSize;
-    out.weightGrid = std::move(parts.weightGrid);
-    out.networkGlsl = std::move(parts.networkGlsl);
-    out.networkHlsl = std::move(parts.networkHlsl);
-    out.texelMultiplyAdds = parts.texelMultiplyAdds;
-    out.frameMultiplyAdds = parts.frameMultiplyAdds;
+    static_cast<EngineParts&>(out) = bank.predictor().engineParts(std::filesystem::path(name).filename().string());
     return out;
 }
 

@@ -35,7 +35,9 @@ namespace btflut {
 /// tests/shader_forms_check.sh): what a learned material's sidecar asks for.
 constexpr int kShaderIncludeVersion = 5;
 
-struct EngineMaterial {
+/// What its predictor gives an engine (EngineParts: the basis, the weight grid, a learned
+/// decoder's shaders; defaults for a bank of LUTs), and the bank's LUT grid and textures.
+struct EngineMaterial : EngineParts {
     PredictorKind kind = PredictorKind::Luts;
     ColourMode colour = ColourMode::Grey;
 
@@ -49,26 +51,13 @@ struct EngineMaterial {
     // Luts: the reference, relit by the LUTs directly.
     Image reference;
 
-    // Model and References.
-    LightBasis basis = LightBasis::Ptm;  ///< Model
-    int order = 0;                       ///< hsh
-    int planes = 0;                      ///< Model: P; References: K; Learned: N codes
-    int channels = 1;                    ///< the prediction's channels before any albedo: 1 or 3
-    std::vector<float> scale, bias;      ///< Model, per plane, on the exported codes
-    std::vector<Image> images;           ///< RGBA8: the planes four to an image, or one reference each
-    Image albedo;                        ///< RGB8, empty when none
-    bool albedoMultiplies =
-        false;        ///< Model: the albedo times the value; References (lrgb): the chroma after the match
-    int codes = 255;  ///< codes of a prediction: 255, or 765 (the grey of RGB8)
-    int weightGridSize = 0, weights = 0;  ///< 0: the weights in closed form (ptm, hsh); Learned: 4, the network
-    std::vector<float> weightGrid;        ///< [layer][j][i][4], ceil(weights / 4) layers
-    Image labels;                         ///< 8-bit region per texel, empty with one region
+    // Model, References and Learned: the predictor's planes (Predictor::planes).
+    std::vector<float> scale, bias;  ///< Model, per plane, on the exported codes
+    std::vector<Image> images;       ///< RGBA8: the planes four to an image, or one reference each
+    Image albedo;                    ///< RGB8, empty when none
+    int codes = 255;                 ///< codes of a prediction: 255, or 765 (the grey of RGB8)
+    Image labels;                    ///< 8-bit region per texel, empty with one region
     int regions = 1;
-    /// Learned: the decoder specialised to the model (core/predict/learned_shader.h, after the
-    /// include), GLSL (GLSL ES and Godot too) and HLSL; empty for a network past a shader's
-    /// constants, which the include's texture path draws from the weight texture.
-    std::string networkGlsl, networkHlsl;
-    std::size_t texelMultiplyAdds = 0, frameMultiplyAdds = 0;  ///< Learned: its cost (LearnedShaderCost)
 
     int weightLayers() const { return (weights + 3) / 4; }
     /// btflut.glsl's BtflutPredictor.kind (BTFLUT_KIND_...); 0 for Luts.
