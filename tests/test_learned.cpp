@@ -320,6 +320,8 @@ TEST_CASE("learned model: a time budget sets the steps, the same on every machin
     CHECK(stepBudget(6000, 327680, 49, 120.0, 1218) == 87466);
     CHECK(stepBudget(6000, 32768, 49, 120.0, 1218) == 39250);  // 50 passes over its samples
     CHECK(stepBudget(6000, 100, 20, 60.0, 1218) == 50);        // 50 passes over 2000 samples
+    // A time past what a step count holds still stops at the passes (no overflowing cast).
+    CHECK(stepBudget(6000, 32768, 49, 1e300, 1218) == 39250);
     TempDir dir;
     const std::string manifest = writeRelief(dir, Relief{.size = 24}, dome(20, 70));
     std::string bytes;

@@ -210,6 +210,12 @@ TEST_CASE("auto: degenerate captures bake; a budget below every predictor is ref
             requireOneLineError(runCli({"bake", manifest, "--budget", bad, "-o", dir / "x.btflut"}),
                                 "expected bytes per texel (1 to 64), a training time (90s, 2m), multiply-adds per "
                                 "texel (1500mac), or several of them (9,90s,1500mac)");
+        for (const char* long_ : {"1e30s", "86401s", "1441m", "9,2000m"})
+            requireOneLineError(runCli({"bake", manifest, "--budget", long_, "-o", dir / "x.btflut"}),
+                                "a training time of at most 86400 s (a day)");
+        requireOneLineError(
+            runCli({"eval", manifest, "--modes", "neural9", "--budget", "1e6m", "--no-gl", "-o", dir / "ev"}),
+            "a training time of at most 86400 s (a day)");
         requireOneLineError(
             runCli({"bake", manifest, "--budget", "500mac", "--predictor", "hsh2", "-o", dir / "x.btflut"}),
             "--budget in multiply-adds bounds the candidates of --predictor auto");

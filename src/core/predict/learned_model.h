@@ -119,6 +119,9 @@ struct LearnedModel {
 /// dB mean where the 6,000 steps before scored 26.7, as many as 30 s or 60 s do
 /// (bench/RESULTS.md, "How long the learned kind trains").
 constexpr double kDefaultTrainingSeconds = 15;
+/// The longest training time `--budget` takes (bake, eval): a day. Training stops at kEpochs
+/// passes over its samples long before on any capture; a longer time is a typo.
+constexpr double kMostTrainingSeconds = 86400;
 
 struct LearnedOptions {
     int codes = 9;

@@ -50,10 +50,13 @@ int stepBudget(int steps, std::size_t texels, std::size_t lights, double seconds
     // A time given is the time to use (more steps than the default where it allows them);
     // without one, `steps`.
     const double stepCost = 3 * std::max(1.0, sampleMultiplyAdds) * static_cast<double>(kBatchSamples) * kTrainingRuns;
+    const std::size_t most = kEpochs * epoch;
+    // Bounded before the cast: a time past the steps a size_t holds would not convert.
     const std::size_t asked = seconds > 0
-                                  ? static_cast<std::size_t>(seconds * kTrainingMultiplyAddsPerSecond / stepCost)
+                                  ? static_cast<std::size_t>(std::min(
+                                        seconds * kTrainingMultiplyAddsPerSecond / stepCost, static_cast<double>(most)))
                                   : static_cast<std::size_t>(std::max(steps, 0));
-    return static_cast<int>(std::min(asked, kEpochs * epoch));
+    return static_cast<int>(std::min(asked, most));
 }
 
 Matrix decoderTarget(const Matrix& samples, Eigen::Index lights, int channels) {

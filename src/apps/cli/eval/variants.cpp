@@ -161,13 +161,16 @@ Status sweepMatchesAndBudgets(const EvalOptions& o, std::vector<Variant>& varian
         char* end = nullptr;
         const double value = std::strtod(number.c_str(), &end);
         if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(value) || value <= 0 ||
-            (time && (trainingSeconds > 0 || value > 1e6)) || (!time && (value != std::floor(value) || value > 255)))
+            (time && trainingSeconds > 0) || (!time && (value != std::floor(value) || value > 255)))
             return Error{"--budget '" + o.budgets +
                          "': expected bytes per texel from 1 to 255 and at most one training time (90s, 5m), "
                          "a comma-separated list"};
-        if (time)
+        if (time) {
             trainingSeconds = item.back() == 'm' ? 60 * value : value;
-        else
+            if (trainingSeconds > kMostTrainingSeconds)
+                return Error{"--budget '" + o.budgets + "': a training time of at most " +
+                             std::to_string(static_cast<int>(kMostTrainingSeconds)) + " s (a day)"};
+        } else
             budgets.push_back(static_cast<int>(value));
     }
     for (Variant& v : variants) v.trainingSeconds = trainingSeconds;
