@@ -11,6 +11,7 @@
 #include "core/bank/bank_file.h"
 #include "core/image/image.h"
 #include "core/io/file_io.h"
+#include "core/predict/learned_model.h"
 #include "core/relight/engine_material.h"
 
 namespace btflut::cli {
@@ -85,6 +86,13 @@ Result<FrameSize> parseFrameSize(const std::string& text) {
         s.height <= 0 || s.width > 16384 || s.height > 16384)
         return Error{"--size '" + text + "': expected WxH with both within 1..16384"};
     return s;
+}
+
+Status checkTrainingTime(double seconds, const std::string& text) {
+    if (seconds > kMostTrainingSeconds)
+        return Error{"--budget '" + text + "': a training time of at most " +
+                     std::to_string(static_cast<int>(kMostTrainingSeconds)) + " s (a day)"};
+    return success();
 }
 
 double median(std::vector<double> v) {

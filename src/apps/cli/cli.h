@@ -56,6 +56,10 @@ struct FrameSize {
 };
 Result<FrameSize> parseFrameSize(const std::string& text);
 
+/// --budget's training time in seconds (bake, eval): at most kMostTrainingSeconds, a day;
+/// `text` is the option's, which the error quotes.
+Status checkTrainingTime(double seconds, const std::string& text);
+
 /// The median of a non-empty list (the upper one of an even count).
 double median(std::vector<double> values);
 

@@ -178,12 +178,6 @@ std::vector<std::string> imagesSharingANode(const Dataset& dataset) {
     return shared;
 }
 
-// The error of a --budget whose training time is past kMostTrainingSeconds.
-Error trainingTooLong(const std::string& text) {
-    return Error{"--budget '" + text + "': a training time of at most " +
-                 std::to_string(static_cast<int>(kMostTrainingSeconds)) + " s (a day)"};
-}
-
 // --budget: bytes per texel, a training time and/or a decoding bound in multiply-adds per texel
 // ("9", "90s", "2m", "1500mac", "9,90s,1500mac").
 struct Budget {
@@ -212,7 +206,7 @@ Result<Budget> parseBudget(const std::string& text) {
         } else if (time) {
             if (b.seconds > 0) return bad;
             b.seconds = part.back() == 'm' ? 60 * value : value;
-            if (b.seconds > kMostTrainingSeconds) return trainingTooLong(text);
+            if (Status s = checkTrainingTime(b.seconds, text); !s) return Error{s.error()};
         } else {
             if (b.bytes || value != std::floor(value) || value > 64) return bad;
             b.bytes = static_cast<int>(value);

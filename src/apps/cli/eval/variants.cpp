@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "cli/cli.h"
 #include "cli/eval/eval.h"
 
 namespace btflut::cli::eval {
@@ -167,9 +168,7 @@ Status sweepMatchesAndBudgets(const EvalOptions& o, std::vector<Variant>& varian
                          "a comma-separated list"};
         if (time) {
             trainingSeconds = item.back() == 'm' ? 60 * value : value;
-            if (trainingSeconds > kMostTrainingSeconds)
-                return Error{"--budget '" + o.budgets + "': a training time of at most " +
-                             std::to_string(static_cast<int>(kMostTrainingSeconds)) + " s (a day)"};
+            if (Status s = checkTrainingTime(trainingSeconds, o.budgets); !s) return s;
         } else
             budgets.push_back(static_cast<int>(value));
     }
