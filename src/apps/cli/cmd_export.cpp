@@ -17,12 +17,9 @@
 #include "cli/web_page.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
-#include "core/predict/learned_decoder.h"
-#include "core/predict/learned_predictor.h"
 #include "core/predict/light_model.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/ptm_file.h"
-#include "core/predict/reference_blend.h"
 #include "core/predict/rti_file.h"
 #include "core/relight/engine_material.h"
 #include "core/relight/material_json.h"
@@ -76,57 +73,6 @@ Result<Image> gridImage(const ExportOptions& o, const LutBank& b, const std::str
                    what);  // the same order as the image's samples
 }
 
-// Writes an image beside the atlas and gives its file name.
-using TextureWriter = std::function<std::string(const std::string& suffix, const Image& image)>;
-
-// The light model's part of the sidecar (docs/predictors.md; its LMDL chunk in
-// docs/btflut-format.md).
-nlohmann::json lightModelSidecar(const LightModel& m, const TextureWriter& texture) {
-    nlohmann::json sidecar{
-        {"basis", lightBasisName(m.basis)}, {"name", lightModelName(m)}, {"planes", m.planes}, {"planes_8bit", m.wide},
-        {"channels", m.channels},           {"order", m.order},          {"scale", m.scale},   {"bias", m.bias},
-        {"images", nlohmann::json::array()}};
-    if (m.basis == LightBasis::Rbf) {
-        sidecar["sigma"] = m.sigma;
-        for (Direction d : m.lights) sidecar["lights"].push_back(directionJson(d));
-    }
-    if (m.basis == LightBasis::Bilinear) sidecar["grid"] = m.grid;
-    if (!m.table.empty()) sidecar["table"] = m.table;
-    const std::vector<Image> images = lightModelImages(m);
-    for (std::size_t k = 0; k < images.size(); ++k)
-        sidecar["images"].push_back(texture("model-" + std::to_string(k), images[k]));
-    sidecar["layout"] =
-        "images: the 8-bit planes three to an image (R, G, B), then the 4-bit planes six to an image (two to a "
-        "channel, the first in the high nibble), then the albedo if the model has one; value = (code - bias) * "
-        "scale; table rows (per rbf light or bln grid node j * grid + i): the channels' offsets, then each "
-        "plane's channel weights";
-    return sidecar;
-}
-
-// The learned model's (docs/predictors.md; its LRND chunk in docs/btflut-format.md).
-nlohmann::json learnedSidecar(const LearnedPredictor& learned, const TextureWriter& texture) {
-    const LearnedModel& m = learned.model();
-    nlohmann::json sidecar{{"codes", m.codes},
-                           {"channels", m.channels},
-                           {"scale", m.quantised.scale},
-                           {"bias", m.quantised.bias},
-                           {"light_network_sizes", m.lightSizes()},
-                           {"light_network", m.decoder->light.parameters()},
-                           {"residual_sizes", m.decoderSizes()},
-                           {"residual", m.decoder->residual.parameters()},
-                           {"images", nlohmann::json::array()}};
-    const PredictorPlanes planes = learned.planes();
-    for (std::size_t k = 0; k < planes.layers.size(); ++k)
-        sidecar["images"].push_back(texture("codes-" + std::to_string(k), planes.layers[k]));
-    sidecar["layout"] =
-        "images: the codes four to an image (R, G, B, A); value = (code - bias) * scale; each network: per "
-        "layer its weights (an output's inputs together), then its biases, ELU between layers, the last "
-        "linear; the light network of the light's 9 hsh terms of order 3 gives channel c's weight on code k "
-        "(output c (codes + 1) + k) and its offset (output c (codes + 1) + codes); the residual network of the "
-        "codes' values and the same terms adds to each channel";
-    return sidecar;
-}
-
 Status exportAtlas(const ExportOptions& o, const LutBank& b) {
     Result<Image> grid = gridImage(o, b, "atlas");
     if (!grid) return Error{grid.error()};
@@ -150,23 +96,8 @@ Status exportAtlas(const ExportOptions& o, const LutBank& b) {
         blend["mask"] = texture("mask", byteImage(prediction.mask.inside, b.reference.width, b.reference.height, 255));
         if (!prediction.labels.empty())
             blend["labels"] = texture("labels", byteImage(prediction.labels, b.reference.width, b.reference.height, 1));
-        const ReferenceBlend* references = b.predictorAs<ReferenceBlend>();
-        const ModelPredictor* model = b.predictorAs<ModelPredictor>();
-        if (references && !references->albedo().samples.empty())
-            blend["albedo"] = texture("albedo", references->albedo());
-        if (model) {
-            blend["predictor"] = b.predictorName();
-            blend["model"] = lightModelSidecar(model->model(), texture);
-        } else if (const LearnedPredictor* learned = b.predictorAs<LearnedPredictor>()) {
-            blend["predictor"] = b.predictorName();
-            blend["learned"] = learnedSidecar(*learned, texture);
-        } else {
-            blend["predictor"] = b.predictorName();
-            for (std::size_t k = 0; k < references->references().size(); ++k)
-                blend["references"].push_back(
-                    {{"file", texture("reference-" + std::to_string(k), references->references()[k])},
-                     {"light", directionJson(references->lights()[k].light)}});
-        }
+        blend["predictor"] = b.predictorName();
+        b.predictor().atlasSidecar(blend, texture);
         blend["how"] =
             "per light: blend the references of the Delaunay triangle (equal-area disk) around the light with "
             "barycentric weights (or relight the PTM or the light model), round the blend to its codes, and per region "

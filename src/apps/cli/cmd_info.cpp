@@ -9,8 +9,6 @@
 #include "core/bake/target_choice.h"
 #include "core/bank/bank_file.h"
 #include "core/io/json_text.h"
-#include "core/predict/learned_predictor.h"
-#include "core/predict/learned_shader.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/reference_blend.h"
 #include "core/relight/relighter.h"
@@ -154,14 +152,6 @@ LayerSummary summarise(const LutBank& b, const ViewLayer& layer) {
     return out;
 }
 
-// Multiply-adds per texel of the bank's decoder as it is drawn: a learned model's residual that
-// validation left constant is not evaluated (learned_shader.h).
-std::size_t decodeCost(const LutBank& b) {
-    if (const LearnedPredictor* learned = b.predictorAs<LearnedPredictor>())
-        return learnedShaderCost(learned->model()).texelMultiplyAdds;
-    return b.predictor().multiplyAdds();
-}
-
 nlohmann::json infoJson(const std::string& path, const LutBank& b) {
     nlohmann::json out{{"file", path},
                        {"format_version", bankFormatVersion(b)},
@@ -191,7 +181,7 @@ nlohmann::json infoJson(const std::string& path, const LutBank& b) {
             {"match", b.prediction.match},
             {"target", b.prediction.target == LutBank::Prediction::Target::Corrections ? "corrections" : "measured"},
             {"bytes_per_texel", b.predictorBytesPerTexel()},
-            {"multiply_adds_per_texel", decodeCost(b)}};
+            {"multiply_adds_per_texel", b.predictor().multiplyAdds()}};
         if (const ModelPredictor* model = b.predictorAs<ModelPredictor>()) {
             const LightModel& m = model->model();
             out["blend"]["model"] = {{"basis", lightBasisName(m.basis)},

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/check.h"
+#include "core/io/json_text.h"
 #include "core/predict/gpu_constants.h"
 #include "core/predict/learned_decoder.h"
 #include "core/predict/learned_shader.h"
@@ -78,9 +79,7 @@ std::vector<std::string> LearnedPredictor::shaderDefines() const {
             "PREDICT_LEARNED_CHANNELS " + std::to_string(m_model.channels)};
 }
 
-std::size_t LearnedPredictor::multiplyAdds() const {
-    return learnedTexelMultiplyAdds(m_model.codes, m_model.channels, m_model.hidden);
-}
+std::size_t LearnedPredictor::multiplyAdds() const { return learnedShaderCost(m_model).texelMultiplyAdds; }
 
 std::string LearnedPredictor::shaderSource() const {
     return hasLearnedShader(m_model) ? learnedShaderSource(m_model, ShaderLanguage::Glsl) : std::string();
@@ -272,6 +271,28 @@ Result<LearnedModel> decodeLearnedModelChunk(ByteReader& in, const ChunkSource& 
     }
     if (in.remaining() != 0) return fail("has the wrong size");
     return m;
+}
+
+// The learned model's part: its networks and its codes' images (docs/predictors.md; its LRND
+// chunk in docs/btflut-format.md).
+void LearnedPredictor::atlasSidecar(nlohmann::json& blend, const TextureWriter& texture) const {
+    const LearnedModel& m = m_model;
+    nlohmann::json sidecar{{"codes", m.codes},
+                           {"channels", m.channels},
+                           {"scale", m.quantised.scale},
+                           {"bias", m.quantised.bias},
+                           {"light_network_sizes", m.lightSizes()},
+                           {"light_network", m.decoder->light.parameters()},
+                           {"residual_sizes", m.decoderSizes()},
+                           {"residual", m.decoder->residual.parameters()},
+                           {"images", atlasImages(planes().layers, "codes", texture)}};
+    sidecar["layout"] =
+        "images: the codes four to an image (R, G, B, A); value = (code - bias) * scale; each network: per "
+        "layer its weights (an output's inputs together), then its biases, ELU between layers, the last "
+        "linear; the light network of the light's 9 hsh terms of order 3 gives channel c's weight on code k "
+        "(output c (codes + 1) + k) and its offset (output c (codes + 1) + codes); the residual network of the "
+        "codes' values and the same terms adds to each channel";
+    blend["learned"] = std::move(sidecar);
 }
 
 }  // namespace btflut

@@ -33,12 +33,14 @@ public:
     PredictorKind kind() const override { return PredictorKind::Learned; }
     std::string name() const override { return learnedModelName(m_model); }
     double bytesPerTexel() const override { return m_model.codes; }
-    /// The decoder's per texel (learned_shader.h; the light's part is once per light).
+    /// The decoder's per texel as it is drawn (learned_shader.h): a residual that validation left
+    /// constant is not evaluated, and the light's part is once per light.
     std::size_t multiplyAdds() const override;
     std::string description() const override;
     PredictorPlanes planes() const override;
     /// Its decoder network as the weight grid (btflut.glsl), and its shader specialised to it.
     EngineParts engineParts(const std::string& file) const override;
+    void atlasSidecar(nlohmann::json& blend, const TextureWriter& texture) const override;
     std::vector<std::string> shaderDefines() const override;
     /// The decoder specialised to the model (learned_shader.h); empty for a network past a
     /// shader's constants, which the include's texture path draws.

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/io/json_text.h"
 
 namespace btflut {
 
@@ -216,6 +217,33 @@ Result<LightModel> decodeLightModelChunk(ByteReader& in, const ChunkSource& sour
         return Error{s.error()};
     if (in.remaining() != 0) return fail("has the wrong size");
     return m;
+}
+
+// The light model's part: its description, table and planes (docs/predictors.md; its LMDL chunk in
+// docs/btflut-format.md).
+void ModelPredictor::atlasSidecar(nlohmann::json& blend, const TextureWriter& texture) const {
+    const LightModel& m = m_model;
+    nlohmann::json sidecar{{"basis", lightBasisName(m.basis)},
+                           {"name", lightModelName(m)},
+                           {"planes", m.planes},
+                           {"planes_8bit", m.wide},
+                           {"channels", m.channels},
+                           {"order", m.order},
+                           {"scale", m.scale},
+                           {"bias", m.bias},
+                           {"images", atlasImages(lightModelImages(m), "model", texture)}};
+    if (m.basis == LightBasis::Rbf) {
+        sidecar["sigma"] = m.sigma;
+        for (Direction d : m.lights) sidecar["lights"].push_back(directionJson(d));
+    }
+    if (m.basis == LightBasis::Bilinear) sidecar["grid"] = m.grid;
+    if (!m.table.empty()) sidecar["table"] = m.table;
+    sidecar["layout"] =
+        "images: the 8-bit planes three to an image (R, G, B), then the 4-bit planes six to an image (two to a "
+        "channel, the first in the high nibble), then the albedo if the model has one; value = (code - bias) * "
+        "scale; table rows (per rbf light or bln grid node j * grid + i): the channels' offsets, then each "
+        "plane's channel weights";
+    blend["model"] = std::move(sidecar);
 }
 
 }  // namespace btflut

@@ -1,6 +1,7 @@
 #include "core/predict/predictor.h"
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "core/check.h"
 
@@ -84,6 +85,13 @@ std::vector<float> weightsInLayers(const std::vector<float>& grid, std::size_t c
     for (std::size_t n = 0; n < nodes; ++n)
         for (std::size_t k = 0; k < count; ++k) out[((k / 4) * nodes + n) * 4 + k % 4] = grid[n * count + k];
     return out;
+}
+
+nlohmann::json atlasImages(const std::vector<Image>& images, const std::string& prefix, const TextureWriter& texture) {
+    nlohmann::json names = nlohmann::json::array();
+    for (std::size_t k = 0; k < images.size(); ++k)
+        names.push_back(texture(prefix + "-" + std::to_string(k), images[k]));
+    return names;
 }
 
 }  // namespace btflut

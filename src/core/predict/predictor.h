@@ -21,7 +21,9 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <nlohmann/json_fwd.hpp>
 #include <span>
 #include <string>
 #include <vector>
@@ -82,6 +84,11 @@ struct ShaderValues {
     bool integer = false;  ///< an int uniform (the values are whole numbers)
 };
 
+/// Writes an image beside an exported atlas and gives its file name (`export -o X.png`).
+using TextureWriter = std::function<std::string(const std::string& suffix, const Image& image)>;
+/// Images written with `texture` as "<prefix>-0", "<prefix>-1", ...: their file names, a JSON array.
+nlohmann::json atlasImages(const std::vector<Image>& images, const std::string& prefix, const TextureWriter& texture);
+
 struct LearnedFrame;
 
 /// A predictor's integers at one light: the references blended and their weights (a
@@ -137,6 +144,9 @@ public:
     /// What an engine reads of it beside its planes; `file` names the material's files (a
     /// learned decoder's shader names it).
     virtual EngineParts engineParts(const std::string& file) const = 0;
+    /// Its part of an exported atlas's sidecar (docs/predictors.md): what it holds, in `blend`,
+    /// its images written beside the atlas with `texture`.
+    virtual void atlasSidecar(nlohmann::json& blend, const TextureWriter& texture) const = 0;
     /// The #defines that choose and size its prediction in shaders/lut_common.glsl (PREDICT_...).
     virtual std::vector<std::string> shaderDefines() const = 0;
     /// GLSL its shader code needs after the include, made for this predictor (a learned model's

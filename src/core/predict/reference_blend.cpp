@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/check.h"
+#include "core/io/json_text.h"
 
 namespace btflut {
 
@@ -151,6 +152,14 @@ EngineParts ReferenceBlend::engineParts(const std::string&) const {
     out.weightGrid =
         weightsInLayers(weightGrid(kEngineWeightGrid), static_cast<std::size_t>(out.weights), kEngineWeightGrid);
     return out;
+}
+
+// The references' images and lights, and lrgb's albedo.
+void ReferenceBlend::atlasSidecar(nlohmann::json& blend, const TextureWriter& texture) const {
+    if (!m_albedo.samples.empty()) blend["albedo"] = texture("albedo", m_albedo);
+    for (std::size_t k = 0; k < m_references.size(); ++k)
+        blend["references"].push_back({{"file", texture("reference-" + std::to_string(k), m_references[k])},
+                                       {"light", directionJson(m_lights[k].light)}});
 }
 
 }  // namespace btflut
