@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "core/bake/auto_bake.h"
@@ -14,6 +15,7 @@
 #include "core/bank/bank_file.h"
 #include "core/data/dataset.h"
 #include "core/eval/metrics.h"
+#include "core/predict/kind_chunk.h"
 #include "core/predict/light_model.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/rti_file.h"
@@ -227,6 +229,52 @@ TEST_CASE("auto: degenerate captures bake; a budget below every predictor is ref
         REQUIRE(bank.ok());
         CHECK(bank->predictorBytesPerTexel() <= 3);
     }
+}
+
+TEST_CASE("the kinds' registry: a kind's own chunk found by kind, number and tag; missing or twice, refused") {
+    std::set<std::uint32_t> numbers, tags;
+    for (PredictorKind kind :
+         {PredictorKind::Luts, PredictorKind::Model, PredictorKind::References, PredictorKind::Learned}) {
+        const KindChunk* own = kindChunkOf(kind);
+        if (!own) continue;
+        CHECK(own->kind == kind);
+        CHECK(kindChunkNumbered(own->number) == own);
+        CHECK(kindChunkTagged(tagOf(own->tag)) == own);
+        CHECK(own->number > 1);  // 0 and 1: HEAD's references and PTM
+        CHECK(own->since <= kBankFormatVersion);
+        CHECK(numbers.insert(own->number).second);
+        CHECK(tags.insert(tagOf(own->tag)).second);
+    }
+    CHECK(numbers.size() == 2);  // the light model's and the learned model's
+    CHECK(kindChunkOf(PredictorKind::References) == nullptr);
+    CHECK(kindChunkNumbered(4) == nullptr);
+    CHECK(kindChunkTagged(tagOf("REFS")) == nullptr);
+
+    // A light model's bank without its LMDL chunk, or with it twice: one line each.
+    TempDir dir;
+    Result<Dataset> dataset = openDataset(writeRelief(dir, Relief{.size = 12}, dome(12, 65)));
+    REQUIRE(dataset.ok());
+    Result<LutBank> bank = bakeBank(*dataset, {.model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2}});
+    REQUIRE(bank.ok());
+    const Bytes bytes = encodeBank(*bank);
+    std::size_t at = 12, lmdl = 0, length = 0;  // after the signature and version: tag, length, payload, CRC
+    while (at + 8 <= bytes.size()) {
+        std::uint32_t tag = 0, size = 0;
+        std::memcpy(&tag, &bytes[at], 4);
+        std::memcpy(&size, &bytes[at + 4], 4);
+        if (tag == tagOf("LMDL")) lmdl = at, length = 12 + size;
+        at += 12 + size;
+    }
+    REQUIRE(length > 0);
+    Bytes without = bytes, twice = bytes;
+    without.erase(without.begin() + static_cast<std::ptrdiff_t>(lmdl),
+                  without.begin() + static_cast<std::ptrdiff_t>(lmdl + length));
+    twice.insert(twice.begin() + static_cast<std::ptrdiff_t>(lmdl), bytes.begin() + static_cast<std::ptrdiff_t>(lmdl),
+                 bytes.begin() + static_cast<std::ptrdiff_t>(lmdl + length));
+    CHECK(decodeBank(without, "w.btflut").error() ==
+          "w.btflut: a bank predicted by a light model without its model (LMDL chunk)");
+    CHECK(decodeBank(twice, "t.btflut").error() == "t.btflut: unexpected LMDL chunk");
+    REQUIRE(decodeBank(bytes, "b.btflut").ok());
 }
 
 TEST_CASE("version 6 banks of every basis round-trip; every cut and flipped bit is refused") {

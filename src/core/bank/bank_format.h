@@ -9,6 +9,8 @@
 #include <cstdint>
 #include <string>
 
+#include "core/io/byte_stream.h"
+
 namespace btflut::bank_format {
 
 static_assert(std::endian::native == std::endian::little,
@@ -19,20 +21,15 @@ constexpr std::uint32_t kMaxEntries = 65536;
 constexpr std::uint32_t kMaxGrid = 257;
 constexpr std::uint64_t kMaxChunk = 0xFFFFFFFFu;  // a chunk's length is a u32
 
-constexpr std::uint32_t tagOf(const char (&t)[5]) {
-    return static_cast<std::uint32_t>(t[0]) | static_cast<std::uint32_t>(t[1]) << 8 |
-           static_cast<std::uint32_t>(t[2]) << 16 | static_cast<std::uint32_t>(t[3]) << 24;
-}
 constexpr std::uint32_t kHead = tagOf("HEAD"), kLayer = tagOf("LAYR"), kReference = tagOf("REFI"), kPtm = tagOf("PTMC"),
                         kEnd = tagOf("END "), kReferences = tagOf("REFS"), kMask = tagOf("MASK"),
                         kLabels = tagOf("LABL"), kAlbedo = tagOf("ALBD"), kFill = tagOf("FILL"),
-                        kLightModel = tagOf("LMDL"), kSelection = tagOf("CHOS"), kMatchGrid = tagOf("MGRD"),
-                        kTargetFit = tagOf("TFIT"), kLearnedModel = tagOf("LRND");
+                        kSelection = tagOf("CHOS"), kMatchGrid = tagOf("MGRD"), kTargetFit = tagOf("TFIT");
 
-// The HEAD's predictor (version 5): the references blended (REFS), the bank's PTM (PTMC; read
-// from earlier files as the light model it is, written as Model), a light model (LMDL), or
-// (version 8) a learned model (LRND).
-enum class FilePredictor : std::uint32_t { References = 0, Ptm = 1, Model = 2, Learned = 3 };
+// The HEAD's predictor (version 5): the references blended (REFS), or the bank's PTM (PTMC;
+// read from earlier files as the light model it is, written as one). A kind with a chunk of its
+// own has its number, its tag and the version that added it in its entry (predict/kind_chunk.h).
+enum class FilePredictor : std::uint32_t { References = 0, Ptm = 1 };
 
 inline std::string tagName(std::uint32_t tag) {
     std::string s;

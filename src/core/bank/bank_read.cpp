@@ -8,7 +8,7 @@
 #include "core/bank/bank_reader.h"
 #include "core/check.h"
 #include "core/io/json_text.h"
-#include "core/predict/learned_predictor.h"
+#include "core/predict/kind_chunk.h"
 #include "core/predict/model_predictor.h"
 
 namespace btflut {
@@ -91,7 +91,10 @@ Result<Head> readHead(const Chunk& chunk, std::uint32_t version, const std::stri
         const auto predictor = in.get<std::uint32_t>();
         const auto match = in.get<float>();
         const auto target = in.get<std::uint32_t>();
-        if (in.ok() && (predictor > (version >= 8 ? 3u : 2u) || !(match >= 0 && match <= 1) || target > 1 ||
+        const KindChunk* own = kindChunkNumbered(predictor);
+        const bool known =
+            predictor <= static_cast<std::uint32_t>(FilePredictor::Ptm) || (own && own->since <= version);
+        if (in.ok() && (!known || !(match >= 0 && match <= 1) || target > 1 ||
                         (bank.prediction.quantiles > 0 ? (head.references == 0) != (predictor != 0)
                                                        : predictor != 0 || match != 1 || target != 0)))
             return fail("predictor, match or target out of range, or not what the references say");
@@ -186,10 +189,6 @@ public:
             case kAlbedo:
                 if (!m_bank.makesLuts()) return fail("unexpected chunk " + tagName(chunk.tag));
                 return readPredictionChunk(chunk.tag, in, m_name, m_head, m_bank, m_parts);
-            case kLightModel:
-                return lightModel(in);
-            case kLearnedModel:
-                return learnedModel(in);
             case kMatchGrid:
                 return matchGrid(chunk);
             case kSelection:
@@ -199,6 +198,7 @@ public:
             case kPtm:
                 return ptm(chunk);
             default:
+                if (const KindChunk* own = kindChunkTagged(chunk.tag)) return ownChunk(*own, in);
                 return fail("unknown chunk " + tagName(chunk.tag));
         }
     }
@@ -310,24 +310,16 @@ private:
         return success();
     }
 
-    // LMDL: the light model of a bank predicted by one.
-    Status lightModel(ByteReader& in) {
-        if (m_parts.model || !m_bank.makesLuts() || m_head.predictor != FilePredictor::Model)
-            return fail("unexpected LMDL chunk");
-        Result<LightModel> model = decodeLightModelChunk(in, chunkSource("LMDL"), static_cast<int>(m_head.refChannels));
-        if (!model) return Error{model.error()};
-        m_parts.model = std::move(*model);
-        return success();
-    }
-
-    // LRND: the learned model of a bank predicted by one.
-    Status learnedModel(ByteReader& in) {
-        if (m_parts.learned || !m_bank.makesLuts() || m_head.predictor != FilePredictor::Learned)
-            return fail("unexpected LRND chunk");
-        Result<LearnedModel> model =
-            decodeLearnedModelChunk(in, chunkSource("LRND"), m_head.version, static_cast<int>(m_head.refChannels));
-        if (!model) return Error{model.error()};
-        m_parts.learned = std::move(*model);
+    // A kind's own chunk (predict/kind_chunk.h: LMDL, LRND): the predictor of a bank of that kind.
+    Status ownChunk(const KindChunk& own, ByteReader& in) {
+        if (m_parts.haveOwnChunk || !m_bank.makesLuts() || static_cast<std::uint32_t>(m_head.predictor) != own.number)
+            return fail(std::string("unexpected ") + own.tag + " chunk");
+        m_parts.haveOwnChunk = true;
+        Result<std::shared_ptr<const Predictor>> predictor =
+            own.decode(in, chunkSource(own.tag), m_head.version, static_cast<int>(m_head.refChannels),
+                       m_bank.colour == ColourMode::Rgb, m_bank.colour == ColourMode::Lrgb);
+        if (!predictor) return Error{predictor.error()};
+        m_parts.own = std::move(*predictor);
         return success();
     }
 
@@ -437,16 +429,13 @@ private:
         const FilePredictor kind = m_head.predictor;
         if (kind == FilePredictor::Ptm && (!m_havePtm || m_bank.colour != ColourMode::Grey))
             return fail("a PTM-predicted bank without its PTM");
-        if (kind == FilePredictor::Model && (!m_parts.model || m_bank.colour == ColourMode::Lrgb))
-            return fail("a bank predicted by a light model without its model (LMDL chunk)");
-        if (kind == FilePredictor::Learned && (!m_parts.learned || m_bank.colour == ColourMode::Lrgb ||
-                                               (m_bank.colour == ColourMode::Rgb && m_parts.learned->channels != 3)))
-            return fail("a bank predicted by a learned model without its model (LRND chunk), or of another colour");
+        const KindChunk* own = kindChunkNumbered(static_cast<std::uint32_t>(kind));
+        if (own && !m_parts.own) return fail(own->missing);
         if (!m_head.embedded || m_parts.references.size() != m_head.references || prediction.mask.inside.empty() ||
             (prediction.regions > 1) != !prediction.labels.empty() ||
             (m_bank.colour == ColourMode::Lrgb) != !m_parts.albedo.samples.empty() ||
             (m_bank.layers.size() != 1 &&
-             !(m_parts.learned && m_parts.learned->viewFeatures > 0 && m_bank.domain == BankDomain::Layers)))
+             !(m_parts.own && m_parts.own->viewDependent() && m_bank.domain == BankDomain::Layers)))
             return fail(
                 "the references, mask, labels or albedo of a bank that blends references are missing or do not fit, "
                 "or it has several view layers and no predictor of views");
@@ -455,10 +444,8 @@ private:
         const bool perChannel = m_bank.colour == ColourMode::Rgb;
         if (kind == FilePredictor::Ptm)
             prediction.predictor = std::make_shared<ModelPredictor>(m_bank.ptm, perChannel);
-        else if (kind == FilePredictor::Model)
-            prediction.predictor = std::make_shared<ModelPredictor>(std::move(*m_parts.model), perChannel);
-        else if (kind == FilePredictor::Learned)
-            prediction.predictor = std::make_shared<LearnedPredictor>(std::move(*m_parts.learned), perChannel);
+        else if (own)
+            prediction.predictor = std::move(m_parts.own);
         else
             prediction.predictor = std::make_shared<ReferenceBlend>(
                 std::move(m_parts.references), std::move(m_parts.lights), perChannel, std::move(m_parts.albedo));

@@ -2,11 +2,12 @@
 // What reading a .btflut file shares between its two files (internal to bank/): bank_read.cpp
 // walks the chunks (HEAD, the layers, the match grids, the choice) and checks the whole;
 // predictor_chunks.cpp decodes the chunks a bank with a predictor has beside the predictor's own
-// (REFS, MASK, LABL, ALBD; a kind's own chunk is decoded beside its class: LMDL in
-// model_predictor.h, LRND in learned_predictor.h, and the baseline PTM's PTMC in ptm.h).
+// (REFS, MASK, LABL, ALBD; a kind's own chunk is decoded beside its class, found in the
+// registry of predict/kind_chunk.h, and the baseline PTM's PTMC in ptm.h).
 
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,8 +15,7 @@
 #include "core/bank/bank_format.h"
 #include "core/bank/lut_bank.h"
 #include "core/io/byte_stream.h"
-#include "core/predict/learned_model.h"
-#include "core/predict/light_model.h"
+#include "core/predict/predictor.h"
 #include "core/predict/reference_blend.h"
 #include "core/result.h"
 
@@ -44,8 +44,10 @@ struct PredictorParts {
     std::vector<Image> references;
     std::vector<ReferenceLight> lights;
     Image albedo;
-    std::optional<LightModel> model;
-    std::optional<LearnedModel> learned;
+    /// A kind's own chunk (predict/kind_chunk.h) decoded as the predictor; null until then, and
+    /// where the kind cannot predict a bank of this colour.
+    std::shared_ptr<const Predictor> own;
+    bool haveOwnChunk = false;
 };
 
 // REFS, MASK, LABL, ALBD: the parts of a bank that makes its LUTs at run time.

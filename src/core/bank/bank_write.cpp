@@ -6,8 +6,7 @@
 #include "core/bank/bank_file.h"
 #include "core/bank/bank_format.h"
 #include "core/check.h"
-#include "core/predict/learned_predictor.h"
-#include "core/predict/model_predictor.h"
+#include "core/predict/kind_chunk.h"
 #include "core/predict/ptm.h"
 #include "core/predict/reference_blend.h"
 
@@ -24,19 +23,8 @@ void putChunk(ByteWriter& file, std::uint32_t tag, const Bytes& payload) {
     file.put(chunkCrc(tag, payload.data(), payload.size()));
 }
 
-// The HEAD's predictor: References for a bank of LUTs too.
-FilePredictor filePredictor(const LutBank& bank) {
-    switch (bank.predictorKind()) {
-        case PredictorKind::Learned:
-            return FilePredictor::Learned;
-        case PredictorKind::Model:
-            return FilePredictor::Model;
-        case PredictorKind::Luts:
-        case PredictorKind::References:
-            break;
-    }
-    return FilePredictor::References;
-}
+// The kind's own chunk (predict/kind_chunk.h); null for the references and a bank of LUTs.
+const KindChunk* ownChunk(const LutBank& bank) { return kindChunkOf(bank.predictorKind()); }
 
 bool anyLayer(const LutBank& bank, bool (*uses)(const ViewLayer&)) {
     return std::any_of(bank.layers.begin(), bank.layers.end(), uses);
@@ -48,15 +36,12 @@ struct VersionAdded {
     bool (*uses)(const LutBank&);
 };
 constexpr VersionAdded kVersionsAdded[] = {
-    {9, [](const LutBank& b) { return filePredictor(b) == FilePredictor::Learned && b.predictor().viewDependent(); }},
-    {8, [](const LutBank& b) { return filePredictor(b) == FilePredictor::Learned; }},
     {7, [](const LutBank& b) { return !b.pairFit.empty(); }},  // the isotropic domain's fit
     {6, [](const LutBank& b) { return anyLayer(b, [](const ViewLayer& l) { return !l.fit.empty(); }); }},
-    // A light model, a match in part, a target of corrections, auto's choice, match LUTs over the grid.
+    // A match in part, a target of corrections, auto's choice, match LUTs over the grid.
     {5,
      [](const LutBank& b) {
-         return filePredictor(b) == FilePredictor::Model ||
-                (b.makesLuts() &&
+         return (b.makesLuts() &&
                  (b.prediction.match != 1 || b.prediction.target != LutBank::Prediction::Target::Measured)) ||
                 !b.selection.empty() || anyLayer(b, [](const ViewLayer& l) { return !l.matchGridLuts.empty(); });
      }},
@@ -70,10 +55,13 @@ constexpr VersionAdded kVersionsAdded[] = {
 std::uint32_t bankFormatVersion(const LutBank& bank) {
     // The oldest version that holds everything: readers of version 1 keep reading the banks
     // they always could. (A choice of the blend everywhere changes no lookup, and such banks
-    // stay readable where they were: the choice's figures are then not kept.)
+    // stay readable where they were: the choice's figures are then not kept.) A kind with a
+    // chunk of its own says the version it needs.
+    const KindChunk* own = ownChunk(bank);
+    const std::uint32_t kindVersion = own ? own->version(bank.predictor()) : 1;
     for (const VersionAdded& v : kVersionsAdded)
-        if (v.uses(bank)) return v.version;
-    return 1;
+        if (v.uses(bank)) return std::max(v.version, kindVersion);
+    return kindVersion;
 }
 
 Status checkBankSize(const LutBank& bank) {
@@ -125,7 +113,8 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
         head.put(static_cast<std::uint32_t>(bank.prediction.quantiles));
     }
     if (version >= 5) {
-        head.put(static_cast<std::uint32_t>(filePredictor(bank)));
+        const KindChunk* own = ownChunk(bank);
+        head.put(own ? own->number : static_cast<std::uint32_t>(FilePredictor::References));
         head.put(bank.makesLuts() ? bank.prediction.match : 1.f);
         head.put(static_cast<std::uint32_t>(bank.makesLuts() ? bank.prediction.target
                                                              : LutBank::Prediction::Target::Measured));
@@ -174,11 +163,8 @@ Bytes encodeBank(const LutBank& bank, const BankWriteOptions& options) {
                      encodePng(byteImage(prediction.labels, prediction.mask.width, prediction.mask.height, 1), 8));
         if (references && !references->albedo().samples.empty())
             putChunk(file, kAlbedo, encodePng(references->albedo(), 8));
-        if (filePredictor(bank) == FilePredictor::Model)
-            putChunk(file, kLightModel, encodeLightModelChunk(bank.predictorAs<ModelPredictor>()->model()));
-        if (filePredictor(bank) == FilePredictor::Learned)
-            putChunk(file, kLearnedModel,
-                     encodeLearnedModelChunk(bank.predictorAs<LearnedPredictor>()->model(), version));
+        if (const KindChunk* own = ownChunk(bank))
+            putChunk(file, tagOf(own->tag), own->encode(bank.predictor(), version));
     }
     for (const ViewLayer& layer : bank.layers)  // version 5: every layer's or none
         if (!layer.matchGridLuts.empty())

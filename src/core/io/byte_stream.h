@@ -19,6 +19,12 @@
 
 namespace btflut {
 
+/// A chunk's four-letter tag as the little-endian word files hold ("HEAD", "LRND").
+constexpr std::uint32_t tagOf(const char (&t)[5]) {
+    return static_cast<std::uint32_t>(t[0]) | static_cast<std::uint32_t>(t[1]) << 8 |
+           static_cast<std::uint32_t>(t[2]) << 16 | static_cast<std::uint32_t>(t[3]) << 24;
+}
+
 class ByteWriter {
 public:
     template <typename T>

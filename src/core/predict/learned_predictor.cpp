@@ -295,4 +295,23 @@ void LearnedPredictor::atlasSidecar(nlohmann::json& blend, const TextureWriter& 
     blend["learned"] = std::move(sidecar);
 }
 
+const KindChunk kLearnedModelChunk{
+    .kind = PredictorKind::Learned,
+    .number = 3,
+    .tag = "LRND",
+    .since = 8,
+    .missing = "a bank predicted by a learned model without its model (LRND chunk), or of another colour",
+    .version = [](const Predictor& p) -> std::uint32_t { return p.viewDependent() ? 9 : 8; },
+    .encode =
+        [](const Predictor& p, std::uint32_t version) {
+            return encodeLearnedModelChunk(static_cast<const LearnedPredictor&>(p).model(), version);
+        },
+    .decode = [](ByteReader& in, const ChunkSource& source, std::uint32_t version, int referenceChannels,
+                 bool perChannel, bool greyAndAlbedo) -> Result<std::shared_ptr<const Predictor>> {
+        Result<LearnedModel> model = decodeLearnedModelChunk(in, source, version, referenceChannels);
+        if (!model) return Error{model.error()};
+        if (greyAndAlbedo || (perChannel && model->channels != 3)) return std::shared_ptr<const Predictor>();
+        return std::shared_ptr<const Predictor>(std::make_shared<LearnedPredictor>(std::move(*model), perChannel));
+    }};
+
 }  // namespace btflut

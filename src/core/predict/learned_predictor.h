@@ -9,6 +9,7 @@
 
 #include "core/io/byte_stream.h"
 #include "core/predict/chunk_planes.h"
+#include "core/predict/kind_chunk.h"
 #include "core/predict/learned_model.h"
 #include "core/predict/predictor.h"
 
@@ -75,5 +76,8 @@ Bytes encodeLearnedModelChunk(const LearnedModel& m, std::uint32_t version);
 /// channels at most the reference's (`referenceChannels`).
 Result<LearnedModel> decodeLearnedModelChunk(ByteReader& in, const ChunkSource& source, std::uint32_t version,
                                              int referenceChannels);
+/// The kind in the registry (kind_chunk.h): HEAD's 3, its LRND chunk, from version 8 (9 for a
+/// model of views); it predicts grey banks and rgb banks of a colour model (not lrgb's).
+extern const KindChunk kLearnedModelChunk;
 
 }  // namespace btflut

@@ -246,4 +246,21 @@ void ModelPredictor::atlasSidecar(nlohmann::json& blend, const TextureWriter& te
     blend["model"] = std::move(sidecar);
 }
 
+const KindChunk kLightModelChunk{
+    .kind = PredictorKind::Model,
+    .number = 2,
+    .tag = "LMDL",
+    .since = 5,
+    .missing = "a bank predicted by a light model without its model (LMDL chunk)",
+    .version = [](const Predictor&) -> std::uint32_t { return 5; },
+    .encode = [](const Predictor& p,
+                 std::uint32_t) { return encodeLightModelChunk(static_cast<const ModelPredictor&>(p).model()); },
+    .decode = [](ByteReader& in, const ChunkSource& source, std::uint32_t, int referenceChannels, bool perChannel,
+                 bool greyAndAlbedo) -> Result<std::shared_ptr<const Predictor>> {
+        Result<LightModel> model = decodeLightModelChunk(in, source, referenceChannels);
+        if (!model) return Error{model.error()};
+        if (greyAndAlbedo) return std::shared_ptr<const Predictor>();
+        return std::shared_ptr<const Predictor>(std::make_shared<ModelPredictor>(std::move(*model), perChannel));
+    }};
+
 }  // namespace btflut

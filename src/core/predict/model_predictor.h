@@ -5,6 +5,7 @@
 
 #include "core/io/byte_stream.h"
 #include "core/predict/chunk_planes.h"
+#include "core/predict/kind_chunk.h"
 #include "core/predict/light_model.h"
 #include "core/predict/predictor.h"
 
@@ -51,5 +52,8 @@ Bytes encodeLightModelChunk(const LightModel& m);
 /// finite, the planes and albedo the reference's size, its colour the reference's
 /// (`referenceChannels`; an albedo on a grey reference too, as a bank's PTM had).
 Result<LightModel> decodeLightModelChunk(ByteReader& in, const ChunkSource& source, int referenceChannels);
+/// The kind in the registry (kind_chunk.h): HEAD's 2, its LMDL chunk, from version 5; it
+/// predicts grey and rgb banks (not lrgb's, whose albedo is the references').
+extern const KindChunk kLightModelChunk;
 
 }  // namespace btflut

@@ -2,9 +2,11 @@
 // The predictor of a bank that makes its LUTs at run time (LutBank::makesLuts): what places
 // shadows and highlights per texel before each light's LUT matches the histogram
 // (docs/predictors.md). One class per kind, each answering what relighting asks of it, so
-// the relighter (relight/relighter.h) never branches on the kind. (A kind's file chunk,
-// shaders and engine export still live outside its class: bank/predictor_chunks.cpp,
-// shaders/btflut.glsl and lut_common.glsl, relight/engine_material.cpp.)
+// the relighter (relight/relighter.h) never branches on the kind. A kind's chunk of the
+// .btflut file is its own too (kind_chunk.h, beside its class; the references' REFS is
+// bank/predictor_chunks.cpp's), and what an engine reads of it (engineParts), and its part of
+// an atlas's sidecar. Its GPU code is in shaders/ (kinds/, btflut.glsl's dispatcher,
+// lut_common.glsl's #if branches).
 //   reference_blend.h   K references blended with the light's barycentric weights
 //   model_predictor.h   a linear light model (ptm, hsh, rbf, bln; a bank's PTM as one)
 //   learned_predictor.h a learned model: per-texel codes and a small decoder network
