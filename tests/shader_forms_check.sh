@@ -59,6 +59,6 @@ for f in btflut_es.glsl btflut.hlsl btflut.gdshaderinc; do
 done
 # The C++ side's idea of the include's version (what sidecars of learned models ask for).
 glsl_version=$(sed -n 's/^#define BTFLUT_GLSL_VERSION \([0-9]*\).*/\1/p' "$(dirname "$0")/../shaders/btflut.glsl")
-grep -q "kShaderIncludeVersion = $glsl_version;" "$(dirname "$0")/../src/core/relight/engine_material.h" ||
-  { echo "shader forms: kShaderIncludeVersion (engine_material.h) is not BTFLUT_GLSL_VERSION $glsl_version" >&2; exit 1; }
+grep -q "kShaderIncludeVersion = $glsl_version;" "$(dirname "$0")/../src/core/predict/predictor.h" ||
+  { echo "shader forms: kShaderIncludeVersion (predictor.h) is not BTFLUT_GLSL_VERSION $glsl_version" >&2; exit 1; }
 echo "shader forms: btflut.hlsl builds in an HLSL pixel shader, btflut_es.glsl in a GLSL ES 3.00 one"

@@ -8,8 +8,6 @@
 
 #include "core/bank/bank_file.h"
 #include "core/check.h"
-#include "core/predict/learned_predictor.h"
-#include "core/predict/learned_shader.h"
 #include "core/predict/ptm.h"
 #include "gl/scene_renderer.h"
 #include "gl/textures.h"
@@ -155,18 +153,10 @@ namespace {
 // texture and fragment, issue 22; bench/RESULTS.md): a texel relit in texture space, its
 // mipmaps and the pass's render targets included, and a pixel shaded per fragment beyond its
 // flat cost: one reference (a filtered fetch, the LUT from uniforms, the dither), or a
-// predictor (its planes sampled bilinearly, the LUT from uniforms, the dither).
-// A learned model's decoder (its shader specialised to it, learned_shader.h) adds its own:
-// for neural9 on RGB (891 multiply-adds a texel) 5 flat pixels a relit texel and 8 a pixel per
-// fragment, whose codes are sampled bilinearly (bench render --lut-path texture and fragment,
-// dome-synth at 1920 x 1080, issue 46), in proportion to its size. The include's texture path,
-// for networks past a shader's constants, costs ~40 times that (issue 35: 310 for 1107).
+// predictor (its planes sampled bilinearly, the LUT from uniforms, the dither), and what its
+// decoding adds (Predictor::decodeCost: a learned model's network).
 double decoderCost(const LutBank& bank, bool perFragment) {
-    const LearnedPredictor* learned = bank.makesLuts() ? bank.predictorAs<LearnedPredictor>() : nullptr;
-    if (!learned) return 0.0;
-    const LearnedModel& m = learned->model();
-    if (!hasLearnedShader(m)) return 310.0 * static_cast<double>(m.decoderCost()) / 1107.0;
-    return (perFragment ? 8.0 : 5.0) * static_cast<double>(learnedShaderCost(m).texelMultiplyAdds) / 891.0;
+    return bank.makesLuts() ? bank.predictor().decodeCost(perFragment) : 0.0;
 }
 double relitTexelCost(const LutBank& bank) { return (bank.makesLuts() ? 4.8 : 4.6) + decoderCost(bank, false); }
 double perFragmentExtraCost(const LutBank& bank) { return (bank.makesLuts() ? 0.55 : 0.33) + decoderCost(bank, true); }

@@ -33,6 +33,23 @@ std::string LearnedPredictor::description() const {
     return out.str();
 }
 
+std::string LearnedPredictor::beyondGpu() const {
+    if (m_model.fitsGpu()) return {};
+    return "its learned model (" + name() + ") has networks larger than the GPU's decoder evaluates (at most " +
+           std::to_string(BTFLUT_LEARNED_HIDDEN) + " hidden layers of " + std::to_string(BTFLUT_LEARNED_WIDTH) +
+           " units); it is relit on the CPU only (btflut relight, eval)";
+}
+
+// Its shader specialised to it (learned_shader.h): for neural9 on RGB (891 multiply-adds a
+// texel) 5 flat pixels a relit texel and 8 a pixel per fragment, whose codes are sampled
+// bilinearly (bench render --lut-path texture and fragment, dome-synth at 1920 x 1080, issue
+// 46), in proportion to its size. The include's texture path, for networks past a shader's
+// constants, costs ~40 times that (issue 35: 310 for 1107).
+double LearnedPredictor::decodeCost(bool perFragment) const {
+    if (!hasLearnedShader(m_model)) return 310.0 * static_cast<double>(m_model.decoderCost()) / 1107.0;
+    return (perFragment ? 8.0 : 5.0) * static_cast<double>(learnedShaderCost(m_model).texelMultiplyAdds) / 891.0;
+}
+
 // The codes four to a layer (as a light model's planes), and the decoder's texels.
 PredictorPlanes LearnedPredictor::planes() const {
     const auto N = static_cast<std::size_t>(m_model.codes);
@@ -59,6 +76,7 @@ EngineParts LearnedPredictor::engineParts(const std::string& file) const {
     out.planes = m_model.codes;
     out.channels = m_model.channels;
     out.weights = 4;  // the decoder in the weight texture: one layer, a square of texels
+    out.shaderVersion = kShaderIncludeVersion;
     if (m_model.fitsGpu()) {
         LearnedModel::GpuNetwork network = m_model.gpuNetwork();
         out.weightGrid = std::move(network.texels);
@@ -313,5 +331,30 @@ const KindChunk kLearnedModelChunk{
         if (greyAndAlbedo || (perChannel && model->channels != 3)) return std::shared_ptr<const Predictor>();
         return std::shared_ptr<const Predictor>(std::make_shared<LearnedPredictor>(std::move(*model), perChannel));
     }};
+
+// Its codes; its decoder's shader files and costs; the weight texture, its network read exactly.
+void LearnedPredictor::materialFields(nlohmann::json& predictor, const EngineParts& parts) const {
+    predictor["images_layout"] =
+        "RGBA8, codes four to an image (code k: image k / 4, channel k % 4); value_k = (code_k - bias[k]) * "
+        "scale[k], code 0 .. 255";
+    if (!parts.networkGlsl.empty())
+        predictor["network"] = {
+            {"glsl", kNetworkFiles[0]},
+            {"hlsl", kNetworkFiles[1]},
+            {"godot", kNetworkFiles[2]},
+            {"texel_multiply_adds", parts.texelMultiplyAdds},
+            {"frame_multiply_adds", parts.frameMultiplyAdds},
+            {"how",
+             "the decoder specialised to this material, its weights as constants: include it after btflut.glsl "
+             "(btflut.hlsl, btflut.gdshaderinc); per fragment btflutRelightPrediction(..., "
+             "btflutNetworkPrediction(planes, uv, frame)) with the frame (BtflutLearnedFrame) of the light: "
+             "btflutNetworkFrame(light, view) per fragment where the light varies over the surface (a point "
+             "light, a curved mesh: frame_multiply_adds more a pixel), else once per light change as a uniform "
+             "(the weights.bin network's light part, docs/engines.md)"}};
+    predictor["weights"]["row"] =
+        "the decoder network's parameters, texel t at (t % grid_size, t / grid_size) of the one layer (btflut.glsl: A "
+        "learned model)";
+    predictor["weights"]["grid_mapping"] = "none: read exactly with texelFetch";
+}
 
 }  // namespace btflut

@@ -38,10 +38,16 @@ public:
     /// constant is not evaluated, and the light's part is once per light.
     std::size_t multiplyAdds() const override;
     std::string description() const override;
+    /// A model whose networks exceed the shader's arrays (LearnedModel::fitsGpu; `bake` trains
+    /// none) is relit on the CPU only.
+    std::string beyondGpu() const override;
+    /// Its decoder's, in proportion to its multiply-adds (measured for neural9).
+    double decodeCost(bool perFragment) const override;
     PredictorPlanes planes() const override;
     /// Its decoder network as the weight grid (btflut.glsl), and its shader specialised to it.
     EngineParts engineParts(const std::string& file) const override;
     void atlasSidecar(nlohmann::json& blend, const TextureWriter& texture) const override;
+    void materialFields(nlohmann::json& predictor, const EngineParts& parts) const override;
     std::vector<std::string> shaderDefines() const override;
     /// The decoder specialised to the model (learned_shader.h); empty for a network past a
     /// shader's constants, which the include's texture path draws.

@@ -263,4 +263,17 @@ const KindChunk kLightModelChunk{
         return std::shared_ptr<const Predictor>(std::make_shared<ModelPredictor>(std::move(*model), perChannel));
     }};
 
+// Its planes, its basis; rbf and bln: their weight grid's rows (ptm and hsh: in closed form).
+void ModelPredictor::materialFields(nlohmann::json& predictor, const EngineParts& parts) const {
+    predictor["images_layout"] =
+        "RGBA8, planes four to an image (plane p: image p / 4, channel p % 4); value_p = (code_p - bias[p]) * "
+        "scale[p], code 0 .. 255";
+    predictor["basis"] = lightBasisName(parts.basis);
+    predictor["basis_index"] = static_cast<int>(parts.basis);
+    if (parts.basis == LightBasis::Hsh) predictor["order"] = parts.order;
+    if (parts.weights > 0)
+        predictor["weights"]["row"] =
+            "the channels' offsets, then each plane's channel weights ((1 + planes) x channels)";
+}
+
 }  // namespace btflut

@@ -29,6 +29,7 @@ public:
     /// ptm and hsh: their weights in closed form (btflut.glsl); rbf and bln: on a weight grid.
     EngineParts engineParts(const std::string& file) const override;
     void atlasSidecar(nlohmann::json& blend, const TextureWriter& texture) const override;
+    void materialFields(nlohmann::json& predictor, const EngineParts& parts) const override;
     std::vector<std::string> shaderDefines() const override;
     std::vector<ShaderValues> shaderValues(const PredictorFrame& frame) const override;
     PredictorFrame frameAt(Direction light, Direction view) const override;

@@ -51,6 +51,13 @@ struct PredictorPlanes {
     int networkSize = 0;
 };
 
+/// The shader include's version (shaders/btflut.glsl's BTFLUT_GLSL_VERSION, checked equal by
+/// tests/shader_forms_check.sh): what a learned material's sidecar asks for.
+constexpr int kShaderIncludeVersion = 5;
+/// A decoder specialised to a material (EngineParts::networkGlsl, networkHlsl) as `export`
+/// writes it: GLSL (GLSL ES too), HLSL, Godot 4's (the GLSL text).
+constexpr const char* kNetworkFiles[] = {"btflut_network.glsl", "btflut_network.hlsl", "btflut_network.gdshaderinc"};
+
 /// What an engine reads of a predictor beside its planes (relight/engine_material.h,
 /// docs/engines.md): each kind says its own.
 struct EngineParts {
@@ -69,6 +76,7 @@ struct EngineParts {
     /// constants, which the include's texture path draws from the weight texture.
     std::string networkGlsl, networkHlsl;
     std::size_t texelMultiplyAdds = 0, frameMultiplyAdds = 0;
+    int shaderVersion = 2;  ///< of the include it needs (material.json's shader_version)
 };
 
 /// The engine weight grid's nodes a side for rbf and references (bln: its own grid, read exactly).
@@ -141,11 +149,24 @@ public:
     /// Channels predicted and matched apart: 3 (rgb banks) or 1 (the grey).
     int channels() const { return m_channels; }
 
+    /// Why a GPU cannot draw it (past the shaders' arrays), in one line naming no file; empty
+    /// when it can, as every kind but a learned model too large can.
+    virtual std::string beyondGpu() const { return {}; }
+    /// What decoding it adds to a texel relit in texture space (`perFragment` false) or to a
+    /// pixel drawn per fragment, in pixels shaded flat on llvmpipe (the renderer's choice of
+    /// path, gl/scene_quads.cpp): 0 where the path's own cost holds it (the linear kinds' few
+    /// multiply-adds).
+    virtual double decodeCost(bool /*perFragment*/) const { return 0.0; }
     /// Its planes as a GPU holds them.
     virtual PredictorPlanes planes() const = 0;
     /// What an engine reads of it beside its planes; `file` names the material's files (a
     /// learned decoder's shader names it).
     virtual EngineParts engineParts(const std::string& file) const = 0;
+    /// Its fields of material.json's "predictor" (docs/engines.md) beside every kind's (kind,
+    /// images, planes, scale and bias, the weight file's format): how its images hold it, and
+    /// what its own parts (`parts`, its engineParts) are: a basis, a network's shader files, its
+    /// weights' rows (in "weights", where it has a weight grid).
+    virtual void materialFields(nlohmann::json& predictor, const EngineParts& parts) const = 0;
     /// Its part of an exported atlas's sidecar (docs/predictors.md): what it holds, in `blend`,
     /// its images written beside the atlas with `texture`.
     virtual void atlasSidecar(nlohmann::json& blend, const TextureWriter& texture) const = 0;

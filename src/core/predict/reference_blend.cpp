@@ -162,4 +162,10 @@ void ReferenceBlend::atlasSidecar(nlohmann::json& blend, const TextureWriter& te
                                        {"light", directionJson(m_lights[k].light)}});
 }
 
+// A reference to an image; the weight grid's rows its blend weights.
+void ReferenceBlend::materialFields(nlohmann::json& predictor, const EngineParts&) const {
+    predictor["images_layout"] = "one reference per image (RGB; a grey one in R, G and B)";
+    predictor["weights"]["row"] = "one weight per reference";
+}
+
 }  // namespace btflut

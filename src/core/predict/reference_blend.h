@@ -42,6 +42,7 @@ public:
     /// Its weights at each light on a weight grid: the blend's barycentric weights there.
     EngineParts engineParts(const std::string& file) const override;
     void atlasSidecar(nlohmann::json& blend, const TextureWriter& texture) const override;
+    void materialFields(nlohmann::json& predictor, const EngineParts& parts) const override;
     /// Each reference's weight (the blend's barycentric weights, clamped outside the references'
     /// hull) over a size x size grid of the equal-area light disk (node (i, j) at x = -1 + 2 i /
     /// (size - 1), y likewise; beyond the horizon, the horizon's), [node][reference]: for shaders

@@ -5,8 +5,6 @@
 #include <filesystem>
 
 #include "core/check.h"
-#include "core/predict/gpu_constants.h"
-#include "core/predict/learned_predictor.h"
 #include "core/relight/relighter.h"
 
 namespace btflut {
@@ -34,13 +32,7 @@ std::vector<std::uint16_t> matchGridTexels(const LutBank& bank, const std::vecto
 
 Status drawnOnGpu(const LutBank& bank) {
     if (!bank.makesLuts()) return success();
-    if (const LearnedPredictor* learned = bank.predictorAs<LearnedPredictor>(); learned && !learned->model().fitsGpu())
-        return Error{"its learned model (" + bank.predictorName() +
-                     ") has networks larger than the GPU's decoder "
-                     "evaluates (at most " +
-                     std::to_string(BTFLUT_LEARNED_HIDDEN) + " hidden layers of " +
-                     std::to_string(BTFLUT_LEARNED_WIDTH) +
-                     " units); it is relit on the CPU only (btflut relight, eval)"};
+    if (std::string why = bank.predictor().beyondGpu(); !why.empty()) return Error{why};
     return success();
 }
 

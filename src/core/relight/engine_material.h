@@ -31,10 +31,6 @@
 
 namespace btflut {
 
-/// The shader include's version (shaders/btflut.glsl's BTFLUT_GLSL_VERSION, checked equal by
-/// tests/shader_forms_check.sh): what a learned material's sidecar asks for.
-constexpr int kShaderIncludeVersion = 5;
-
 /// What its predictor gives an engine (EngineParts: the basis, the weight grid, a learned
 /// decoder's shaders; defaults for a bank of LUTs), and the bank's LUT grid and textures.
 struct EngineMaterial : EngineParts {

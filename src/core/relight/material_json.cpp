@@ -9,70 +9,38 @@ std::string planeImageName(std::size_t k) { return "planes-" + std::to_string(k)
 namespace {
 
 // The sidecar's "predictor" (version 2): what btflut.glsl's BtflutPredictor takes, and the
-// files of its textures.
-nlohmann::json predictorJson(const EngineMaterial& m) {
+// files of its textures; what only its kind has, the predictor's own (materialFields).
+nlohmann::json predictorJson(const LutBank& b, const EngineMaterial& m) {
     std::vector<std::string> images;
     for (std::size_t k = 0; k < m.images.size(); ++k) images.push_back(planeImageName(k));
-    const bool albedo = !m.albedo.samples.empty(), labels = !m.labels.samples.empty();
-    const bool model = m.kind == PredictorKind::Model, learned = m.kind == PredictorKind::Learned;
-    nlohmann::json p{
-        {"kind", predictorKindName(m.kind)},
-        {"kind_index", m.predictorKind()},
-        {"images", images},
-        {"images_layout", model     ? "RGBA8, planes four to an image (plane p: image p / 4, channel p % 4); "
-                                      "value_p = (code_p - bias[p]) * scale[p], code 0 .. 255"
-                          : learned ? "RGBA8, codes four to an image (code k: image k / 4, channel k % 4); "
-                                      "value_k = (code_k - bias[k]) * scale[k], code 0 .. 255"
-                                    : "one reference per image (RGB; a grey one in R, G and B)"},
-        {"planes", m.planes},
-        {"channels", m.channels},
-        {"codes", m.codes},
-        {"output_channels", m.outputChannels},
-        {"regions", m.regions}};
-    if (learned) {
-        p["scale"] = m.scale;
-        p["bias"] = m.bias;
-        if (!m.networkGlsl.empty())
-            p["network"] = {
-                {"glsl", kNetworkFiles[0]},
-                {"hlsl", kNetworkFiles[1]},
-                {"godot", kNetworkFiles[2]},
-                {"texel_multiply_adds", m.texelMultiplyAdds},
-                {"frame_multiply_adds", m.frameMultiplyAdds},
-                {"how",
-                 "the decoder specialised to this material, its weights as constants: include it after btflut.glsl "
-                 "(btflut.hlsl, btflut.gdshaderinc); per fragment btflutRelightPrediction(..., "
-                 "btflutNetworkPrediction(planes, uv, frame)) with the frame (BtflutLearnedFrame) of the light: "
-                 "btflutNetworkFrame(light, view) per fragment where the light varies over the surface (a point "
-                 "light, a curved mesh: frame_multiply_adds more a pixel), else once per light change as a uniform "
-                 "(the weights.bin network's light part, docs/engines.md)"}};
-    }
-    if (model) {
-        p["basis"] = lightBasisName(m.basis);
-        p["basis_index"] = static_cast<int>(m.basis);
-        if (m.basis == LightBasis::Hsh) p["order"] = m.order;
+    nlohmann::json p{{"kind", predictorKindName(m.kind)},
+                     {"kind_index", m.predictorKind()},
+                     {"images", images},
+                     {"planes", m.planes},
+                     {"channels", m.channels},
+                     {"codes", m.codes},
+                     {"output_channels", m.outputChannels},
+                     {"regions", m.regions}};
+    if (!m.scale.empty()) {  // a light model's and a learned model's codes
         p["scale"] = m.scale;
         p["bias"] = m.bias;
     }
-    if (albedo) p["albedo"] = {{"file", "albedo.png"}, {"use", m.albedoMultiplies ? "multiplies" : "chroma"}};
-    if (labels)
+    if (!m.albedo.samples.empty())
+        p["albedo"] = {{"file", "albedo.png"}, {"use", m.albedoMultiplies ? "multiplies" : "chroma"}};
+    if (!m.labels.samples.empty())
         p["labels"] = {{"file", "labels.png"}, {"texture", "R8, nearest: each texel's region (value = region)"}};
     if (m.weights > 0)
-        p["weights"] = {
-            {"file", "weights.bin"},
-            {"format", "float32, little-endian, [layer][j][i][4]: a 2D array texture of RGBA32F layers"},
-            {"grid_size", m.weightGridSize},
-            {"count", m.weights},
-            {"layers", m.weightLayers()},
-            {"row", model     ? "the channels' offsets, then each plane's channel weights ((1 + planes) x channels)"
-                    : learned ? "the decoder network's parameters, texel t at (t % grid_size, t / grid_size) of "
-                                "the one layer (btflut.glsl: A learned model)"
-                              : "one weight per reference"},
-            {"grid_mapping", learned ? "none: read exactly with texelFetch"
-                                     : "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise; read "
-                                       "bilinearly between nodes (btflutWeightLayer)"}};
+        p["weights"] = {{"file", "weights.bin"},
+                        {"format", "float32, little-endian, [layer][j][i][4]: a 2D array texture of RGBA32F layers"},
+                        {"grid_size", m.weightGridSize},
+                        {"count", m.weights},
+                        {"layers", m.weightLayers()},
+                        {"grid_mapping",
+                         "node (i, j) at disk point x = -1 + 2 i / (grid_size - 1), y likewise; read "
+                         "bilinearly between nodes (btflutWeightLayer)"}};
     else
         p["weights"] = nullptr;  // ptm, hsh: closed form in btflut.glsl
+    b.predictor().materialFields(p, m);
     return p;
 }
 
@@ -86,9 +54,7 @@ nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
                         {"version", predictor ? 2 : 1},
                         {"kind", predictorKindName(m.kind)},
                         {"shader", "btflut.glsl"},
-                        {"shader_version", m.kind == PredictorKind::Learned ? kShaderIncludeVersion
-                                           : predictor                      ? 2
-                                                                            : 1},
+                        {"shader_version", predictor ? m.shaderVersion : 1},
                         {"reference",
                          {{"file", "reference.png"},
                           {"width", b.reference.width},
@@ -132,7 +98,7 @@ nlohmann::json materialJson(const LutBank& b, const EngineMaterial& m) {
     if (!b.modelFill.empty()) side["model_fill"] = nlohmann::json::parse(b.modelFill, nullptr, false);
 
     if (predictor) {
-        side["predictor"] = predictorJson(m);
+        side["predictor"] = predictorJson(b, m);
         side["predictor"]["name"] = b.predictorName();  // as bake's --predictor and info name it: "neural9", "hsh2"
     }
     // The sample's part of the image where the bank's mask leaves some out: what a closed

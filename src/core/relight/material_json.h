@@ -16,10 +16,6 @@ namespace btflut {
 /// The file of plane image k of a material with a predictor: planes-K.png.
 std::string planeImageName(std::size_t k);
 
-/// A learned material's specialised decoder (EngineMaterial::networkGlsl, networkHlsl): GLSL
-/// (GLSL ES too), HLSL, Godot 4's (the GLSL text).
-constexpr const char* kNetworkFiles[] = {"btflut_network.glsl", "btflut_network.hlsl", "btflut_network.gdshaderinc"};
-
 /// material.json for `material`, made from `bank`: version 1 for banks of LUTs (loaders
 /// written for it still read them), 2 with the "predictor" object for banks with one.
 nlohmann::json materialJson(const LutBank& bank, const EngineMaterial& material);
