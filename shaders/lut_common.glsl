@@ -60,14 +60,9 @@ uniform int matchRegions;
 uniform usampler2D predictLabels;
 #endif
 
-// How the prediction's codes are matched.
-#if defined(RGB_MODE)
-const int btflutPredictMatch = BTFLUT_MATCH_RGB;
-#elif defined(PREDICT_GREY_REFERENCES) || (defined(PREDICT_MODEL) && PREDICT_MODEL_CHANNELS == 1 && !defined(PREDICT_MODEL_ALBEDO)) || (defined(PREDICT_LEARNED) && PREDICT_LEARNED_CHANNELS == 1)
-const int btflutPredictMatch = BTFLUT_MATCH_ONE;
-#else
-const int btflutPredictMatch = BTFLUT_MATCH_SUM;
-#endif
+// How the prediction's codes are matched: PREDICT_MATCH, from the predictor's codes as
+// btflutMatchOf has it for engines (PredictionTextures::upload), whatever its kind.
+const int btflutPredictMatch = PREDICT_MATCH;
 
 // The texel the prediction reads (texelFetch at level predictLevel of the planes' mipmaps: the
 // relight pass's level, 0 unless it relights a minified texture's level alone): set by each

@@ -37,6 +37,11 @@ PredictionTextures PredictionTextures::upload(const LutBank& bank, std::size_t& 
     const std::vector<std::string> own = predictor->shaderDefines();
     t.m_defines.insert(t.m_defines.end(), own.begin(), own.end());
     if (bank.colour == ColourMode::Rgb) t.m_defines.push_back("RGB_MODE");
+    // How its codes are matched (btflut.glsl's btflutMatchOf): per channel, one channel's codes,
+    // or the sum of three (the grey of RGB8).
+    t.m_defines.push_back(std::string("PREDICT_MATCH ") + (bank.colour == ColourMode::Rgb ? "BTFLUT_MATCH_RGB"
+                                                           : predictor->codes() == 255    ? "BTFLUT_MATCH_ONE"
+                                                                                          : "BTFLUT_MATCH_SUM"));
     if (bank.prediction.regions > 1) t.m_defines.push_back("REGIONS");
     if (t.m_lutsAsUniforms) t.m_defines.push_back("LUT_UNIFORMS " + std::to_string(bank.matchLength()));
     const PredictorPlanes planes = predictor->planes();

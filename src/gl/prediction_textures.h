@@ -34,7 +34,7 @@ public:
     /// learned model's decoder) and the labels; adds their bytes to `bytes`.
     static PredictionTextures upload(const LutBank& bank, std::size_t& bytes);
 
-    /// BLEND, the predictor's own (Predictor::shaderDefines), REGIONS, RGB_MODE, LUT_UNIFORMS:
+    /// BLEND, the predictor's own (Predictor::shaderDefines), REGIONS, RGB_MODE, PREDICT_MATCH, LUT_UNIFORMS:
     /// made once by upload.
     const std::vector<std::string>& defines() const { return m_defines; }
     /// The predictor's own shader source (Predictor::shaderSource), made once: buildProgram's

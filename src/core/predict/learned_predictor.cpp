@@ -93,8 +93,7 @@ EngineParts LearnedPredictor::engineParts(const std::string& file) const {
 }
 
 std::vector<std::string> LearnedPredictor::shaderDefines() const {
-    return {"PREDICT_LEARNED", "PREDICT_LEARNED_LAYERS " + std::to_string((m_model.codes + 3) / 4),
-            "PREDICT_LEARNED_CHANNELS " + std::to_string(m_model.channels)};
+    return {"PREDICT_LEARNED", "PREDICT_LEARNED_LAYERS " + std::to_string((m_model.codes + 3) / 4)};
 }
 
 std::size_t LearnedPredictor::multiplyAdds() const { return learnedShaderCost(m_model).texelMultiplyAdds; }

@@ -65,9 +65,6 @@ PredictorPlanes ReferenceBlend::planes() const {
 
 std::vector<std::string> ReferenceBlend::shaderDefines() const {
     std::vector<std::string> d{"PREDICT_FETCHES " + std::to_string(std::min<std::size_t>(m_references.size(), 3))};
-    // Grey references are held in all three channels; their code is one channel's (codes
-    // 255), not the sum the grey of RGB takes.
-    if (m_references.front().channels == 1) d.push_back("PREDICT_GREY_REFERENCES");
     if (!m_albedo.samples.empty())
         d.insert(d.end(), {"PREDICT_ALBEDO_CHROMA", "PREDICT_ALBEDO_LAYER " + std::to_string(m_references.size())});
     return d;
