@@ -268,7 +268,7 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
     if (budget->bytes && o.predictor != "auto") return Error{"--budget in bytes goes with --predictor auto"};
     if (budget->multiplyAdds && o.predictor != "auto")
         return Error{"--budget in multiply-adds bounds the candidates of --predictor auto"};
-    if (budget->seconds > 0 && o.predictor != "auto" && !learnedModelNamed(o.predictor))
+    if (budget->seconds > 0 && o.predictor != "auto" && !predictorTrains(o.predictor))
         return Error{"--budget in time bounds a learned model's training: --predictor auto or neuralN"};
     if (Status s = requireExtension(o.output, {"btflut"}, "output"); !s) return s;
     // A view layer's grid alone must fit a chunk of the file (4 GiB): refused before any work.
@@ -309,7 +309,6 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
             return Error{"--predictor '" + o.predictor +
                          "': expected auto, references, ptm, hsh, hsh2, hsh3, rbfN, blnN, neuralN or neuralNwW"};
         if (!*model) return Error{"--predictor " + model->error()};
-        if (options.learned && budget->seconds > 0) options.learned->seconds = budget->seconds;
     }
     if (o.match >= 0) options.match = o.match;
     options.regions = o.regions;
@@ -322,11 +321,12 @@ Status runBake(const BakeCommandOptions& given, const CLI::App& app) {
             "what it predicts from; give --references 1 for the paper's bank"};
     if (o.json) o.quiet = true;  // stdout holds the JSON only
     if (!o.quiet) options.progress = terminalProgress(o.predictor == "auto" ? "validating" : "baking");
-    if (!o.quiet && options.learned)  // training takes most of such a bake: its own bar, in thousandths
+    // Training takes most of such a bake: its own bar, in thousandths.
+    std::function<void(double)> training;
+    if (!o.quiet && options.trains())
         if (auto bar = terminalProgress("training " + o.predictor))
-            options.learned->progress = [bar](double done) mutable {
-                bar(static_cast<std::size_t>(done * 1000), 1000);
-            };
+            training = [bar](double done) mutable { bar(static_cast<std::size_t>(done * 1000), 1000); };
+    options.setTraining(budget->seconds, std::move(training));
     HistogramsWhileBaking collector{*dataset};
     const bool fitting = o.fill == "model" && o.params.empty();
     const ImageProvider provider = fitting ? ImageProvider(std::ref(collector)) : ImageProvider();

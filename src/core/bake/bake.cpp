@@ -540,6 +540,14 @@ std::optional<Status> setModelNamed(BakeOptions& options, const std::string& nam
     return std::nullopt;
 }
 
+bool predictorTrains(const std::string& name) { return learnedModelNamed(name).has_value(); }
+
+void BakeOptions::setTraining(double seconds, std::function<void(double)> done) {
+    if (!learned) return;
+    if (seconds > 0) learned->seconds = seconds;
+    learned->progress = std::move(done);
+}
+
 Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options, const ImageProvider& provider) {
     const ImageProvider decode = [&](std::size_t i, Image& storage) -> Result<const Image*> {
         Result<Image> image = loadImage(dataset.images[i].path);

@@ -60,12 +60,20 @@ struct BakeOptions {
     bool predicts() const { return bakePredicts(references, regions, !labelsPath.empty(), colour, fitsModel()); }
     /// True when a model (a light model or a learned one) is fitted to every image.
     bool fitsModel() const { return model.has_value() || learned.has_value(); }
+    /// True when the predictor is trained (a learned model): a time bounds it, and it reports
+    /// its progress.
+    bool trains() const { return learned.has_value(); }
+    /// A trained predictor's training time (0: its default) and progress (0 to 1; may be empty).
+    void setTraining(double seconds, std::function<void(double)> done);
 };
 
 /// Sets the options' model from a `--predictor` name: a light model (lightModelNamed) or a
 /// learned one (learnedModelNamed). Nothing when the name names neither, an error for a
 /// number out of range.
 std::optional<Status> setModelNamed(BakeOptions& options, const std::string& name);
+/// Whether a `--predictor` name names a trained predictor (BakeOptions::trains), its numbers
+/// in range or not.
+bool predictorTrains(const std::string& name);
 
 /// Supplies image `index` of a dataset: decodes it into `storage` and returns &storage, or
 /// returns an image it already holds (benchmarks time the baking without the decoding).
