@@ -31,9 +31,11 @@ differ=0
 made=0
 check() {  # NAME: compares $work/old/NAME with $work/new/NAME (files or folders)
   made=$((made + 1))
-  # The shader include's text is compared by what it draws (the GL and browser tests), not
-  # byte for byte: a refactor of shaders/ changes it.
-  if ! diff -rq -x 'btflut*.glsl' -x 'btflut.hlsl' -x 'btflut.gdshaderinc' "$work/old/$1" "$work/new/$1" >/dev/null 2>&1; then
+  # The shader include's text, and the scripts of the three.js recipe an export folder copies,
+  # are compared by what they draw (the GL, browser and engine-example tests), not byte for
+  # byte: a refactor of shaders/ or src/web/ changes them.
+  if ! diff -rq -x 'btflut*.glsl' -x 'btflut.hlsl' -x 'btflut.gdshaderinc' -x 'btflut_material.js' -x 'btflut-three.js' \
+    "$work/old/$1" "$work/new/$1" >/dev/null 2>&1; then
     echo "DIFFERS: $1"
     differ=$((differ + 1))
   fi

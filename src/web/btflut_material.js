@@ -9,6 +9,7 @@
 //   m.weights: {size, layers, data} | null             RGBA32F layers, nearest (learned: the decoder)
 //   m.labels: {width, height, rgba} | null             RGBA8, nearest
 //   m.network: {source} | undefined                    learned: its decoder specialised to it (GLSL ES, after the include)
+//   btflutMaterial.frameUniforms(m, light, view)       what its shader reads per light: [[name, 3 or 4, values]]
 //   btflutMaterial.learnedFrame(m, light, view)        learned: the decoder's frame at a light, BtflutLearnedFrame's fields
 //   btflutMaterial.shaderStart(m, include)             the include and a learned material's decoder: the shader's start
 //   m.material, m.predictor                            the fields of BtflutMaterial, BtflutPredictor
@@ -192,6 +193,16 @@
             Math.sqrt(30 / pi) * ay * (2 * c - 1) * s, Math.sqrt(30 / pi) * 2 * ax * ay * (c * c - c)];
   }
 
+  // What a material's shader reads per light change beside the light, [name, components (3 or
+  // 4), values] for uniform3fv / uniform4fv: a learned decoder's frame (BtflutLearnedFrame, below),
+  // none for the kinds whose weights the include computes (or a decoder drawn from its texture).
+  function frameUniforms(m, light, view) {
+    if (!m.network) return [];
+    const f = learnedFrame(m, light, view);
+    return [['learnedFrame.basis[0]', 4, f.basis], ['learnedFrame.offset', 3, f.offset],
+            ['learnedFrame.hidden[0]', 4, f.hidden]];
+  }
+
   // A learned material's frame at a light and view (unit vectors of the tangent frame): the
   // fields of btflut.glsl's BtflutLearnedFrame, what btflutNetworkFrame computes per fragment,
   // here once per light change (LearnedModel::lightFrame). From the decoder's texels
@@ -290,5 +301,6 @@ vec3 relight(vec2 uv, vec3 lightTangent, uvec2 pixel) { return relight(uv, light
   // The source the fragment shader starts with: the include, then a learned material's decoder.
   const shaderStart = (m, include) => include + (m.network ? m.network.source : '');
 
-  global.btflutMaterial = {decodePng, constants, prepare, toHalf, fragmentHead, learnedFrame, shaderStart};
+  global.btflutMaterial = {decodePng, constants, prepare, toHalf, fragmentHead, frameUniforms, learnedFrame,
+                           shaderStart};
 })(typeof window !== 'undefined' ? window : globalThis);

@@ -140,8 +140,10 @@ async function load() {
   gl.uniform1i(at('layers'), m.layerViews.length / 3);
   if (m.layerViews.length) gl.uniform3fv(at('layerViews[0]'), m.layerViews);
   for (const name of ['mode', 'origin', 'zoom', 'sphere', 'tiles', 'window', 'light', 'lightDistance', 'exposure',
-                      'framePerFragment', 'learnedFrame.basis[0]', 'learnedFrame.offset', 'learnedFrame.hidden[0]'])
+                      'framePerFragment'])
     uniforms[name] = at(name);
+  // The predictor's uniforms at a light (btflutMaterial.frameUniforms): their locations.
+  for (const [name] of btflutMaterial.frameUniforms(m, [0, 0, 1], [0, 0, 1])) uniforms[name] = at(name);
   material = m;
   state.size = m.size;
   state.sample = m.json.sample || null;  // the sample's rectangle, for the sphere
@@ -209,13 +211,11 @@ function draw() {
   gl.uniform2f(uniforms.tiles, 2 * Math.max(1, Math.round(Math.PI * radius / sample.width)),
                Math.max(1, Math.round(Math.PI * radius / sample.height)));
   gl.uniform3f(uniforms.light, ...lightVector());
-  if (material.network) {  // a learned decoder: its frame here once for the 2D view, per fragment on the sphere
-    gl.uniform1i(uniforms.framePerFragment, state.view === 'sphere' ? 1 : 0);
-    const frame = btflutMaterial.learnedFrame(material, lightVector(), [0, 0, 1]);
-    gl.uniform4fv(uniforms['learnedFrame.basis[0]'], frame.basis);
-    gl.uniform3fv(uniforms['learnedFrame.offset'], frame.offset);
-    gl.uniform4fv(uniforms['learnedFrame.hidden[0]'], frame.hidden);
-  }
+  // The predictor's uniforms at the light (a learned decoder's frame): here once for the 2D view,
+  // per fragment on the sphere (framePerFragment: a uniform only such a decoder's shader has).
+  const frame = btflutMaterial.frameUniforms(material, lightVector(), [0, 0, 1]);
+  if (frame.length) gl.uniform1i(uniforms.framePerFragment, state.view === 'sphere' ? 1 : 0);
+  for (const [name, size, values] of frame) (size === 3 ? gl.uniform3fv : gl.uniform4fv).call(gl, uniforms[name], values);
   gl.uniform1f(uniforms.lightDistance, 4);
   gl.uniform1f(uniforms.exposure, state.exposure);
   gl.drawArrays(gl.TRIANGLES, 0, 3);
