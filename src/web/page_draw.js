@@ -139,11 +139,10 @@ async function load() {
   gl.uniform2f(at('size'), m.size[0], m.size[1]);
   gl.uniform1i(at('layers'), m.layerViews.length / 3);
   if (m.layerViews.length) gl.uniform3fv(at('layerViews[0]'), m.layerViews);
+  uniforms = {};  // this program's; the predictor's per-light ones are looked up when first set (draw)
   for (const name of ['mode', 'origin', 'zoom', 'sphere', 'tiles', 'window', 'light', 'lightDistance', 'exposure',
                       'framePerFragment'])
     uniforms[name] = at(name);
-  // The predictor's uniforms at a light (btflutMaterial.frameUniforms): their locations.
-  for (const [name] of btflutMaterial.frameUniforms(m, [0, 0, 1], [0, 0, 1])) uniforms[name] = at(name);
   material = m;
   state.size = m.size;
   state.sample = m.json.sample || null;  // the sample's rectangle, for the sphere
@@ -215,7 +214,11 @@ function draw() {
   // per fragment on the sphere (framePerFragment: a uniform only such a decoder's shader has).
   const frame = btflutMaterial.frameUniforms(material, lightVector(), [0, 0, 1]);
   if (frame.length) gl.uniform1i(uniforms.framePerFragment, state.view === 'sphere' ? 1 : 0);
-  for (const [name, size, values] of frame) (size === 3 ? gl.uniform3fv : gl.uniform4fv).call(gl, uniforms[name], values);
+  for (const [name, size, values] of frame) {
+    const location = uniforms[name] ??= gl.getUniformLocation(program, name);
+    if (size === 3) gl.uniform3fv(location, values);
+    else gl.uniform4fv(location, values);
+  }
   gl.uniform1f(uniforms.lightDistance, 4);
   gl.uniform1f(uniforms.exposure, state.exposure);
   gl.drawArrays(gl.TRIANGLES, 0, 3);

@@ -47,7 +47,7 @@ std::string LearnedPredictor::beyondGpu() const {
 // constants, costs ~40 times that (issue 35: 310 for 1107).
 double LearnedPredictor::decodeCost(bool perFragment) const {
     if (!hasLearnedShader(m_model)) return 310.0 * static_cast<double>(m_model.decoderCost()) / 1107.0;
-    return (perFragment ? 8.0 : 5.0) * static_cast<double>(learnedShaderCost(m_model).texelMultiplyAdds) / 891.0;
+    return (perFragment ? 8.0 : 5.0) * static_cast<double>(multiplyAdds()) / 891.0;
 }
 
 // The codes four to a layer (as a light model's planes), and the decoder's texels.
