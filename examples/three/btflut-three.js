@@ -127,15 +127,20 @@ void main() {
       layerViews: {value: Array.from({length: 16}, (_, k) =>
         k < m.layerViews.length / 3 ? new THREE.Vector3(...m.layerViews.slice(3 * k, 3 * k + 3)) : new THREE.Vector3(0, 0, 1))},
       size: {value: new THREE.Vector2(m.size[0], m.size[1])}, material: {value: m.material}, predictor: {value: m.predictor},
-      // A learned material's decoder: its frame at the light, computed here once per light change
-      // (or per fragment with options.framePerFragment, for a curved mesh's varying light).
-      framePerFragment: {value: !!(options && options.framePerFragment)}, learnedFrame: {value: null}};
-    const vectors = (array, n) => Array.from({length: array.length / n}, (_, k) => new THREE.Vector4(...array.slice(n * k, n * k + n)));
+      // What a kind's shader reads per light change (a learned decoder's frame), computed here
+      // once per light change, or per fragment with options.framePerFragment (a curved mesh's
+      // varying light).
+      framePerFragment: {value: !!(options && options.framePerFragment)}};
+    // btflutMaterial.frameUniforms gives them as [name, components, values]; 'frame.field[0]' is
+    // the array `field` of the struct uniform `frame`, which three.js sets from an object.
+    const vector = (values) => values.length === 4 ? new THREE.Vector4(...values) : new THREE.Vector3(...values);
     const updateFrame = () => {
-      if (!m.network) return;
       const l = uniforms.lightTangent.value, v = uniforms.viewTangent.value;
-      const f = btflutMaterial.learnedFrame(m, [l.x, l.y, l.z], [v.x, v.y, v.z]);
-      uniforms.learnedFrame.value = {basis: vectors(f.basis, 4), offset: new THREE.Vector3(...f.offset), hidden: vectors(f.hidden, 4)};
+      for (const [name, n, values] of btflutMaterial.frameUniforms(m, [l.x, l.y, l.z], [v.x, v.y, v.z])) {
+        const [, struct, field, array] = name.match(/^(\w+)\.(\w+)(\[0\])?$/);
+        const vectors = Array.from({length: values.length / n}, (_, k) => vector(values.slice(n * k, n * k + n)));
+        (uniforms[struct] = uniforms[struct] || {value: {}}).value[field] = array ? vectors : vectors[0];
+      }
     };
     updateFrame();
     const material = new THREE.RawShaderMaterial(
