@@ -7,6 +7,8 @@
 
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
+#include "core/predict/learned_predictor.h"
+#include "core/predict/model_predictor.h"
 #include "core/relight/relighter.h"
 #include "gl/context.h"
 #include "gl/native_renderer.h"
@@ -73,22 +75,29 @@ std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
           {"rgb K3 R2", BakeOptions{.colour = ColourMode::Rgb, .references = 3, .regions = 2}, false},
           {"grey images K4 R2", BakeOptions{.references = 4, .regions = 2}, true},  // one channel per reference
           {"lrgb K5 R2", BakeOptions{.colour = ColourMode::Lrgb, .references = 5, .regions = 2}, false},
-          {"ptm R2", BakeOptions{.model = LightModelOptions{.basis = Basis::Ptm}, .regions = 2}, false},
+          {"ptm R2", BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = Basis::Ptm}), .regions = 2}, false},
           {"hsh3 rgb",
-           BakeOptions{.colour = ColourMode::Rgb, .model = LightModelOptions{.basis = Basis::Hsh, .order = 3}}, false},
-          {"rbf5 match 0.5", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 5}, .match = 0.5f},
+           BakeOptions{.colour = ColourMode::Rgb,
+           .fit = lightModelFit(LightModelOptions{.basis = Basis::Hsh, .order = 3})},
+           false},
+          {"rbf5 match 0.5",
+           BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = Basis::Rbf, .planes = 5}), .match = 0.5f},
            false},
           {"bln4 corrections R2",
-           BakeOptions{.model = LightModelOptions{.basis = Basis::Bilinear, .planes = 4},
+           BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = Basis::Bilinear, .planes = 4}),
            .target = Target::Corrections,
            .regions = 2},
            false},
-          {"grey images hsh2", BakeOptions{.model = LightModelOptions{.basis = Basis::Hsh, .order = 2}}, true},
-          {"grey images rbf7", BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 7}}, true},
+          {"grey images hsh2", BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = Basis::Hsh, .order = 2})},
+           true},
+          {"grey images rbf7", BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = Basis::Rbf, .planes = 7})},
+           true},
           {"bln5c (4-bit planes)",
-           BakeOptions{.model = LightModelOptions{.basis = Basis::Bilinear, .planes = 5, .packed = true}}, false},
+           BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = Basis::Bilinear, .planes = 5, .packed = true})},
+           false},
           {"grey images rbf4c",
-           BakeOptions{.model = LightModelOptions{.basis = Basis::Rbf, .planes = 4, .packed = true}}, true}}) {
+           BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = Basis::Rbf, .planes = 4, .packed = true})},
+           true}}) {
         auto bank = bakeBank(greyImages ? *grey : *dataset, options);
         REQUIRE_MESSAGE(bank.ok(), name << ": " << bank.error());
         banks.emplace_back(name, std::move(*bank));
@@ -102,9 +111,10 @@ std::vector<std::pair<std::string, LutBank>> blendingBanks(const TempDir& dir) {
     REQUIRE(grey25.ok());
     const LearnedOptions learned{.codes = 5, .steps = 300};
     for (const auto& [name, options, set] :
-         {std::tuple{"neural5 trained", BakeOptions{.learned = learned}, &*grey25},
-          {"neural5 rgb R2", BakeOptions{.colour = ColourMode::Rgb, .learned = learned, .regions = 2}, &*dataset},
-          {"neural5 grey of rgb", BakeOptions{.learned = learned}, &*dataset}}) {
+         {std::tuple{"neural5 trained", BakeOptions{.fit = learnedFit(learned)}, &*grey25},
+          {"neural5 rgb R2", BakeOptions{.colour = ColourMode::Rgb, .fit = learnedFit(learned), .regions = 2},
+           &*dataset},
+          {"neural5 grey of rgb", BakeOptions{.fit = learnedFit(learned)}, &*dataset}}) {
         auto bank = bakeBank(*set, options);
         REQUIRE_MESSAGE(bank.ok(), name << ": " << bank.error());
         banks.emplace_back(name, std::move(*bank));
@@ -267,8 +277,8 @@ TEST_SUITE("gl") {
         const Relief relief{.size = 32, .border = 6};
         Result<Dataset> dataset = openDataset(writeRelief(dir, relief, dome(24, 70)));
         REQUIRE(dataset.ok());
-        Result<LutBank> bank =
-            bakeBank(*dataset, {.threads = 1, .model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2}});
+        Result<LutBank> bank = bakeBank(
+            *dataset, {.threads = 1, .fit = lightModelFit(LightModelOptions{.basis = LightBasis::Hsh, .order = 2})});
         REQUIRE_MESSAGE(bank.ok(), bank.error());
         const std::optional<PixelRect> window = sampleWindow(*bank);
         REQUIRE(window);

@@ -10,6 +10,7 @@
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/histogram/histogram.h"
+#include "core/predict/learned_predictor.h"
 #include "core/relight/level_match.h"
 #include "core/relight/relighter.h"
 #include "gl/context.h"
@@ -79,7 +80,7 @@ LutBank learnedSynthBank(const TempDir& dir, int size) {
                 .status == 0);
     auto dataset = openDataset(dir / "set");
     REQUIRE(dataset.ok());
-    auto bank = bakeBank(*dataset, {.learned = LearnedOptions{.codes = 5, .steps = 200}});
+    auto bank = bakeBank(*dataset, {.fit = learnedFit(LearnedOptions{.codes = 5, .steps = 200})});
     REQUIRE_MESSAGE(bank.ok(), bank.error());
     REQUIRE(saveBank(*bank, dir / "n.btflut").ok());
     return std::move(*bank);

@@ -139,7 +139,7 @@ TEST_CASE("learned model: validation chooses the residual network's weight decay
     Result<Dataset> dataset = openDataset(writeRelief(dir, kRelief, reliefLights()));
     REQUIRE(dataset.ok());
     auto residualOf = [&](std::vector<float> decays) {
-        BakeOptions options{.learned = LearnedOptions{.steps = 300, .weightDecays = std::move(decays)}};
+        BakeOptions options{.fit = learnedFit(LearnedOptions{.steps = 300, .weightDecays = std::move(decays)})};
         options.threads = 1;
         Result<LutBank> bank = bakeBank(*dataset, options);
         REQUIRE_MESSAGE(bank.ok(), bank.error());
@@ -150,7 +150,7 @@ TEST_CASE("learned model: validation chooses the residual network's weight decay
     const std::vector<float> chosen = residualOf({0.1f, 0.01f});
     CHECK((chosen == strong || chosen == weak));  // one candidate's fit, whole
     for (const std::vector<float>& bad : {std::vector<float>{}, {-0.1f}, {1.f}, {NAN}}) {
-        BakeOptions options{.learned = LearnedOptions{.steps = 10, .weightDecays = bad}};
+        BakeOptions options{.fit = learnedFit(LearnedOptions{.steps = 10, .weightDecays = bad})};
         Result<LutBank> bank = bakeBank(*dataset, options);
         REQUIRE(!bank.ok());
         CHECK(bank.error().find("invalid learned model options") != std::string::npos);
@@ -163,7 +163,7 @@ TEST_CASE("learned model: a relief between the measured lights, its bank and chu
     const std::vector<Direction> lights = reliefLights();
     Result<Dataset> dataset = openDataset(writeRelief(dir, relief, lights));
     REQUIRE(dataset.ok());
-    BakeOptions options{.colour = ColourMode::Rgb, .learned = LearnedOptions{.steps = 300}};
+    BakeOptions options{.colour = ColourMode::Rgb, .fit = learnedFit(LearnedOptions{.steps = 300})};
     options.threads = 1;
     Result<LutBank> bank = bakeBank(*dataset, options);
     REQUIRE_MESSAGE(bank.ok(), bank.error());
@@ -292,7 +292,8 @@ TEST_CASE("learned model names: neuralN and neuralNwW, the residual's hidden wid
     CHECK(AutoBakeOptions{}.seconds == 3 * kDefaultTrainingSeconds);
     BakeOptions named;
     REQUIRE(setModelNamed(named, "neural9"));
-    CHECK(named.learned->seconds == kDefaultTrainingSeconds);
+    REQUIRE(dynamic_cast<const LearnedFit*>(named.fit.get()));
+    CHECK(dynamic_cast<const LearnedFit&>(*named.fit).options().seconds == kDefaultTrainingSeconds);
     for (const char* bad : {"neural9w0", "neural9w65", "neural0w24"}) {
         const auto refused = learnedModelNamed(bad);
         REQUIRE(refused);
@@ -354,7 +355,7 @@ TEST_CASE("learned model: few lights, constant and black images, 16-bit images a
     auto bake = [&](const std::string& manifest, const std::string& what) {
         Result<Dataset> dataset = openDataset(manifest);
         REQUIRE_MESSAGE(dataset.ok(), dataset.error());
-        Result<LutBank> bank = bakeBank(*dataset, {.learned = LearnedOptions{.steps = 120}});
+        Result<LutBank> bank = bakeBank(*dataset, {.fit = learnedFit(LearnedOptions{.steps = 120})});
         INFO(what);
         REQUIRE_MESSAGE(bank.ok(), bank.error());
         const LearnedModel& m = bank->predictorAs<LearnedPredictor>()->model();
@@ -405,7 +406,7 @@ TEST_CASE("learned model: few lights, constant and black images, 16-bit images a
         TempDir sub;
         Result<Dataset> relief = openDataset(writeRelief(sub, Relief{.size = 16}, dome(20, 60)));
         REQUIRE(relief.ok());
-        Result<LutBank> diverged = bakeBank(*relief, {.learned = LearnedOptions{.steps = 50, .rate = 1e30f}});
+        Result<LutBank> diverged = bakeBank(*relief, {.fit = learnedFit(LearnedOptions{.steps = 50, .rate = 1e30f})});
         REQUIRE_FALSE(diverged.ok());
         CHECK_MESSAGE(diverged.error().find("training the learned model diverged") != std::string::npos,
                       diverged.error());
@@ -414,7 +415,7 @@ TEST_CASE("learned model: few lights, constant and black images, 16-bit images a
         TempDir sub;
         Result<Dataset> few = openDataset(writeRelief(sub, Relief{.size = 16}, dome(2, 50)));
         REQUIRE(few.ok());
-        Result<LutBank> refused = bakeBank(*few, {.learned = LearnedOptions{.steps = 50}});
+        Result<LutBank> refused = bakeBank(*few, {.fit = learnedFit(LearnedOptions{.steps = 50})});
         REQUIRE_FALSE(refused.ok());
         CHECK_MESSAGE(refused.error().find("a learned model needs at least 3 lights") != std::string::npos,
                       refused.error());

@@ -37,7 +37,7 @@ struct ViewBank {
         Result<Dataset> ds = openDataset(dir / "btf");
         REQUIRE(ds.ok());
         dataset = std::move(*ds);
-        BakeOptions options{.learned = LearnedOptions{.steps = 300}};
+        BakeOptions options{.fit = learnedFit(LearnedOptions{.steps = 300})};
         options.threads = 1;
         Result<LutBank> baked = bakeBank(dataset, options);
         REQUIRE_MESSAGE(baked.ok(), baked.error());
@@ -69,7 +69,7 @@ TEST_CASE("learned model of views: a layer per view, one decoder, version 9, rel
     REQUIRE_MESSAGE(back.ok(), back.error());
     CHECK(back->predictorAs<LearnedPredictor>()->model().viewFeatures == kLearnedViewFeatures);
     CHECK(encodeBank(*back) == bytes);
-    BakeOptions twoThreads{.learned = LearnedOptions{.steps = 300}};
+    BakeOptions twoThreads{.fit = learnedFit(LearnedOptions{.steps = 300})};
     twoThreads.threads = 2;
     Result<LutBank> again = bakeBank(v.dataset, twoThreads);
     REQUIRE(again.ok());

@@ -16,6 +16,8 @@
 #include "core/data/dataset.h"
 #include "core/eval/metrics.h"
 #include "core/predict/kind_chunk.h"
+#include "core/predict/learned_predictor.h"
+#include "core/predict/learned_shader.h"
 #include "core/predict/light_model.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/rti_file.h"
@@ -112,7 +114,7 @@ TEST_CASE("light models: lights within 5 degrees and black pixels give finite mo
     Result<Dataset> dataset = openDataset(manifest);
     REQUIRE(dataset.ok());
     for (const LightModelOptions& o : everyBasis()) {
-        Result<LutBank> bank = bakeBank(*dataset, {.model = o});
+        Result<LutBank> bank = bakeBank(*dataset, {.fit = lightModelFit(o)});
         REQUIRE_MESSAGE(bank.ok(), bank.error());
         const LightModel& m = bank->predictorAs<ModelPredictor>()->model();
         for (std::size_t p = 0; p < static_cast<std::size_t>(m.planes); ++p) {
@@ -231,6 +233,71 @@ TEST_CASE("auto: degenerate captures bake; a budget below every predictor is ref
     }
 }
 
+TEST_CASE("the fits' registry: a --predictor name's fit, whether it trains, and auto's candidates by kind") {
+    const auto hsh = predictorFitNamed("hsh2");
+    REQUIRE((hsh && *hsh));
+    CHECK((**hsh)->family() == "hsh");
+    CHECK_FALSE((**hsh)->trains());
+    CHECK_FALSE((**hsh)->takesViews());
+    CHECK(dynamic_cast<const LightModelFit&>(***hsh).options().order == 2);
+    CHECK((**hsh)->trainedFor(30, {}) == **hsh);  // a fit that does not train is itself
+    const auto neural = predictorFitNamed("neural5");
+    REQUIRE((neural && *neural));
+    CHECK((**neural)->family() == "neural");
+    CHECK((**neural)->trains());
+    CHECK((**neural)->takesViews());
+    bool called = false;
+    const FitPointer timed = (**neural)->trainedFor(30, [&](double) { called = true; });
+    const LearnedOptions& o = dynamic_cast<const LearnedFit&>(*timed).options();
+    CHECK(o.codes == 5);
+    CHECK(o.seconds == 30);
+    REQUIRE(o.progress);
+    o.progress(0.5);
+    CHECK(called);
+    CHECK(dynamic_cast<const LearnedFit&>(*(**neural)->trainedFor(0, {})).options().seconds == kDefaultTrainingSeconds);
+    // Out of range: an error, yet a trained kind's name (bake refuses a time for hsh2, not neural99).
+    const auto wide = predictorFitNamed("neural99");
+    REQUIRE(wide);
+    CHECK_FALSE(*wide);
+    CHECK(predictorTrains("neural99"));
+    CHECK_FALSE(predictorTrains("hsh2"));
+    for (const char* other : {"auto", "references", "K3", "bogus"}) {
+        CHECK_FALSE(predictorFitNamed(other));
+        CHECK_FALSE(predictorTrains(other));
+    }
+    // BakeOptions: a time and progress reach a trained fit alone.
+    BakeOptions options;
+    REQUIRE(setModelNamed(options, "rbf5"));
+    const FitPointer rbf = options.fit;
+    options.setTraining(30, {});
+    CHECK(options.fit == rbf);
+    CHECK_FALSE(options.trains());
+    REQUIRE(setModelNamed(options, "neural"));
+    CHECK(options.trains());
+    options.setTraining(40, {});
+    CHECK(dynamic_cast<const LearnedFit&>(*options.fit).options().seconds == 40);
+
+    // Auto's candidates, the kinds in the registry's order: a colour light model's albedo in
+    // its bytes, rbf and bln of the bytes, then the learned model of as many codes.
+    std::vector<std::string> names;
+    for (const FitCandidate& c : fitCandidates({.bytes = 9, .channels = 3, .seconds = 7})) {
+        names.push_back(c.name);
+        CHECK(c.fit->trains() == (c.name == "neural9"));
+        if (c.name == "ptm") CHECK(c.bytes == 9);
+        if (c.name == "hsh3") CHECK(c.bytes == 12);
+        if (c.name == "neural9") {
+            CHECK(c.bytes == 9);
+            CHECK(dynamic_cast<const LearnedFit&>(*c.fit).options().seconds == 7);
+            CHECK(c.multiplyAdds == learnedTexelMultiplyAdds(9, 3, LearnedOptions{}.hidden));
+        }
+    }
+    CHECK(names == std::vector<std::string>{"ptm", "hsh2", "hsh3", "rbf9", "bln9", "rbf9c", "bln9c", "neural9"});
+    // No byte left: no learned model (a light model keeps one plane).
+    names.clear();
+    for (const FitCandidate& c : fitCandidates({.bytes = 0, .channels = 1, .seconds = 7})) names.push_back(c.name);
+    CHECK(names == std::vector<std::string>{"ptm", "hsh2", "hsh3", "rbf1", "bln1", "rbf1c", "bln1c"});
+}
+
 TEST_CASE("the kinds' registry: a kind's own chunk found by kind, number and tag; missing or twice, refused") {
     std::set<std::uint32_t> numbers, tags;
     for (PredictorKind kind :
@@ -254,7 +321,8 @@ TEST_CASE("the kinds' registry: a kind's own chunk found by kind, number and tag
     TempDir dir;
     Result<Dataset> dataset = openDataset(writeRelief(dir, Relief{.size = 12}, dome(12, 65)));
     REQUIRE(dataset.ok());
-    Result<LutBank> bank = bakeBank(*dataset, {.model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2}});
+    Result<LutBank> bank =
+        bakeBank(*dataset, {.fit = lightModelFit(LightModelOptions{.basis = LightBasis::Hsh, .order = 2})});
     REQUIRE(bank.ok());
     const Bytes bytes = encodeBank(*bank);
     std::size_t at = 12, lmdl = 0, length = 0;  // after the signature and version: tag, length, payload, CRC
@@ -282,7 +350,7 @@ TEST_CASE("version 6 banks of every basis round-trip; every cut and flipped bit 
     Result<Dataset> dataset = openDataset(writeRelief(dir, Relief{.size = 20}, dome(12, 65)));
     REQUIRE(dataset.ok());
     for (const LightModelOptions& o : everyBasis()) {
-        Result<LutBank> bank = bakeBank(*dataset, {.model = o, .match = 0.5f, .regions = 2});
+        Result<LutBank> bank = bakeBank(*dataset, {.fit = lightModelFit(o), .match = 0.5f, .regions = 2});
         REQUIRE(bank.ok());
         CHECK(bankFormatVersion(*bank) == expectedVersion(*bank, 5));
         const Bytes bytes = encodeBank(*bank);
@@ -301,7 +369,7 @@ TEST_CASE("version 6 banks of every basis round-trip; every cut and flipped bit 
         }
     }
     // A newer format is refused with a line naming its version.
-    Result<LutBank> bank = bakeBank(*dataset, {.model = LightModelOptions{.basis = LightBasis::Rbf}});
+    Result<LutBank> bank = bakeBank(*dataset, {.fit = lightModelFit(LightModelOptions{.basis = LightBasis::Rbf})});
     REQUIRE(bank.ok());
     Bytes bytes = encodeBank(*bank);
     bytes[8] = static_cast<std::uint8_t>(kBankFormatVersion + 1);
@@ -343,8 +411,9 @@ TEST_CASE("the match LUTs baked over the grid: close to the exact run-time LUT, 
     const Mask mask = fullMask(40, 40);
     double previous = 0;
     for (int grid : {9, 33}) {
-        Result<LutBank> bank =
-            bakeBank(*dataset, {.gridSize = grid, .model = LightModelOptions{.basis = LightBasis::Rbf, .planes = 6}});
+        Result<LutBank> bank = bakeBank(
+            *dataset,
+            {.gridSize = grid, .fit = lightModelFit(LightModelOptions{.basis = LightBasis::Rbf, .planes = 6})});
         REQUIRE(bank.ok());
         REQUIRE(bank->layers[0].matchGridLuts.size() == static_cast<std::size_t>(grid * grid) * bank->matchLength());
         const Relighter relighter(*bank);
@@ -365,7 +434,8 @@ TEST_CASE("the match LUTs baked over the grid: close to the exact run-time LUT, 
         CHECK(back->layers[0].matchGridLuts == bank->layers[0].matchGridLuts);
     }
     // A corrupted grid is refused.
-    Result<LutBank> bank = bakeBank(*dataset, {.gridSize = 5, .model = LightModelOptions{.basis = LightBasis::Ptm}});
+    Result<LutBank> bank =
+        bakeBank(*dataset, {.gridSize = 5, .fit = lightModelFit(LightModelOptions{.basis = LightBasis::Ptm})});
     REQUIRE(bank.ok());
     LutBank broken = *bank;
     broken.layers[0].matchGridLuts[0] = 65535;  // the first LUT falls from its first entry to its second

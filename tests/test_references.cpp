@@ -10,6 +10,7 @@
 #include "core/eval/holdout.h"
 #include "core/eval/metrics.h"
 #include "core/histogram/histogram.h"
+#include "core/predict/model_predictor.h"
 #include "core/predict/reference_blend.h"
 #include "core/predict/references.h"
 #include "core/relight/relighter.h"
@@ -232,13 +233,14 @@ TEST_CASE("regions and the PTM predictor relight to the measured histograms; a o
         return l1 / static_cast<double>(dataset->images.size());
     };
     const double classicL1 = l1Over(*bakeBank(*dataset, {}));
-    for (BakeOptions options : {BakeOptions{.regions = 3}, BakeOptions{.references = 3, .regions = 2},
-                                BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}},
-                                BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}, .regions = 2}}) {
+    for (BakeOptions options :
+         {BakeOptions{.regions = 3}, BakeOptions{.references = 3, .regions = 2},
+          BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = LightBasis::Ptm})},
+          BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = LightBasis::Ptm}), .regions = 2}}) {
         auto bank = bakeBank(*dataset, options);
         REQUIRE(bank.ok());
         INFO("references " << options.references << " regions " << options.regions << " model "
-                           << options.model.has_value());
+                           << (options.fit != nullptr));
         CHECK(l1Over(*bank) < classicL1 + 0.01);  // the measured histograms, as closely as the classic bank
     }
     auto classic = bakeBank(*dataset, {});
@@ -257,7 +259,7 @@ TEST_CASE("a bank matched in part reproduces each measured light's histogram; be
     REQUIRE(dataset.ok());
     const Mask mask = *loadDatasetMask(*dataset, 48, 48);
     for (BakeOptions options :
-         {BakeOptions{.model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2}, .match = 0},
+         {BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = LightBasis::Hsh, .order = 2}), .match = 0},
           BakeOptions{.references = 3, .match = 0.5f}}) {
         auto bank = bakeBank(*dataset, options);
         auto full = bakeBank(*dataset, [&] {
@@ -327,13 +329,14 @@ TEST_CASE("version 3 and 6 files round-trip, and every cut and flipped bit is re
     const Material m = renderedMaterial(dir);
     auto dataset = openDataset(m.colour);
     REQUIRE(dataset.ok());
-    for (BakeOptions options : {BakeOptions{.colour = ColourMode::Lrgb, .references = 4, .regions = 2},
-                                BakeOptions{.colour = ColourMode::Rgb, .references = 3},
-                                BakeOptions{.model = LightModelOptions{.basis = LightBasis::Ptm}, .regions = 2}}) {
+    for (BakeOptions options :
+         {BakeOptions{.colour = ColourMode::Lrgb, .references = 4, .regions = 2},
+          BakeOptions{.colour = ColourMode::Rgb, .references = 3},
+          BakeOptions{.fit = lightModelFit(LightModelOptions{.basis = LightBasis::Ptm}), .regions = 2}}) {
         auto bank = bakeBank(*dataset, options);
         REQUIRE(bank.ok());
         CHECK(bankFormatVersion(*bank) == expectedVersion(*bank, 5));
-        if (!options.model) {
+        if (!options.fit) {
             // Without it (the blend alone), the LUTs baked over the grid (MGRD) are version 5, and
             // without those the references' banks are what version 3 readers read.
             BakeOptions blendOnly = options;

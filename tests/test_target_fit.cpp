@@ -17,6 +17,7 @@
 #include "core/bank/target_fit.h"
 #include "core/data/dataset.h"
 #include "core/predict/light_model.h"
+#include "core/predict/model_predictor.h"
 #include "helpers.h"
 
 using namespace btflut;
@@ -251,7 +252,8 @@ TEST_CASE("the fit travels in TFIT (version 6): round trip, and corrupt fits ref
     TempDir dir;
     Result<Dataset> dataset = openDataset(darkeningDataset(dir, 36, 75));
     REQUIRE(dataset.ok());
-    Result<LutBank> baked = bakeBank(*dataset, {.model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2}});
+    Result<LutBank> baked =
+        bakeBank(*dataset, {.fit = lightModelFit(LightModelOptions{.basis = LightBasis::Hsh, .order = 2})});
     REQUIRE_MESSAGE(baked.ok(), baked.error());
     LutBank& bank = *baked;
     std::vector<Direction> lights;
@@ -373,7 +375,7 @@ TEST_CASE("the fitted rough-surface model: a candidate estimate between the ligh
     for (const bool lutBank : {false, true}) {
         CAPTURE(lutBank);
         BakeOptions options;
-        if (!lutBank) options.model = LightModelOptions{.basis = LightBasis::Hsh, .order = 2};
+        if (!lutBank) options.fit = lightModelFit({.basis = LightBasis::Hsh, .order = 2});
         Result<LutBank> bank = bakeBank(*dataset, options);
         REQUIRE_MESSAGE(bank.ok(), bank.error());
         const nlohmann::json choice = nlohmann::json::parse(bank->targetChoice);

@@ -49,12 +49,7 @@ std::string bakeSettings(const BakeOptions& bake, bool validate) {
     std::string text = "validate " + std::to_string(validate) + " references " + std::to_string(bake.references) +
                        " regions " + std::to_string(bake.regions) + " colour " +
                        std::to_string(static_cast<int>(bake.colour)) + " grid " + std::to_string(bake.gridSize);
-    if (bake.model) {
-        const LightModelOptions& m = *bake.model;
-        text += " model " + std::to_string(static_cast<int>(m.basis)) + " " + std::to_string(m.order) + " " +
-                std::to_string(m.planes) + " " + std::to_string(m.packed) + " " + std::to_string(m.grid) + " " +
-                std::to_string(m.colour);
-    }
+    if (bake.fit) text += " " + bake.fit->settings();
     return text;
 }
 

@@ -12,6 +12,7 @@
 #include "core/image/image.h"
 #include "core/io/file_io.h"
 #include "core/predict/learned_model.h"
+#include "core/predict/predictor_fit.h"
 #include "core/relight/engine_material.h"
 
 namespace btflut::cli {

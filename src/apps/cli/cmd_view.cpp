@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "cli/command.h"
+#include "core/predict/model_predictor.h"
 #include "viewer/viewer.h"
 
 namespace btflut::cli {
@@ -93,7 +94,7 @@ void addViewCommand(CLI::App& root, Commands& commands) {
                                         Error{"--predictor '" + *predictor +
                                               "': expected auto, references or a basis (ptm, hsh, rbf, bln)"}};
                                 if (!*model) return Status{Error{"--predictor " + model->error()}};
-                                o->bake.model = **model;
+                                o->bake.fit = lightModelFit(**model);
                             }
                             return runViewer(*o);
                         }});

@@ -10,7 +10,7 @@
 #include "core/eval/metrics.h"
 #include "core/io/json_text.h"
 #include "core/parallel.h"
-#include "core/predict/learned_shader.h"
+#include "core/predict/model_predictor.h"
 #include "core/relight/relighter.h"
 
 namespace btflut {
@@ -58,16 +58,21 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, cons
     classic.references = 1;
     classic.colour = ColourMode::Grey;
     add("K1", classic, channels, 0, true);
-    const int codes = std::min(budget - region, LearnedModel::kMaxCodes);
-    auto addLearned = [&] {  // predicting colour itself: no albedo
-        if (codes < 1) return;
-        BakeOptions learned = classic;
-        learned.learned = LearnedOptions{.codes = codes, .seconds = bounds.seconds / 3};
-        add("neural" + std::to_string(codes), learned, codes,
-            learnedTexelMultiplyAdds(codes, channels == 3 ? 3 : 1, learned.learned->hidden));
+    // The kinds fitted to the images (predictor_fit.h): a light model's planes (and the
+    // albedo's product), a learned model's decoder (learned_shader.h); a learned model of as
+    // many codes is trained on each fold's lights (under 16, its linear start alone).
+    const std::vector<FitCandidate> fits =
+        fitCandidates({.bytes = budget - region, .channels = channels, .seconds = bounds.seconds / 3});
+    auto addFits = [&](bool takingViews) {
+        for (const FitCandidate& c : fits) {
+            if (takingViews && !c.fit->takesViews()) continue;
+            BakeOptions o = classic;
+            o.fit = c.fit;
+            add(c.name, o, c.bytes, c.multiplyAdds);
+        }
     };
     if (views) {
-        addLearned();
+        addFits(true);
         return out;
     }
     // K references: grey ones with an albedo (colour), or grey ones (grey images).
@@ -78,24 +83,7 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, cons
         refs.colour = channels == 3 ? ColourMode::Lrgb : ColourMode::Grey;
         add("K" + std::to_string(k) + (channels == 3 ? " lrgb" : ""), refs, k + albedo, 3);
     }
-    auto model = [&](const std::string& name, LightModelOptions m, int bytes) {
-        BakeOptions o = classic;
-        o.model = m;
-        add(name, o, bytes, static_cast<std::size_t>(bytes));  // a plane (or the albedo's channel) a byte
-    };
-    model("ptm", {.basis = LightBasis::Ptm}, 6 + albedo);
-    model("hsh2", {.basis = LightBasis::Hsh, .order = 2}, 4 + albedo);
-    model("hsh3", {.basis = LightBasis::Hsh, .order = 3}, 9 + albedo);
-    const int planes = std::clamp(budget - region, 1, LightModel::kMaxPlanes);
-    model("rbf" + std::to_string(planes), {.basis = LightBasis::Rbf, .planes = planes}, planes);
-    model("bln" + std::to_string(planes), {.basis = LightBasis::Bilinear, .planes = planes}, planes);
-    // Packed: the same bytes holding more components, the trailing ones with 4 bits.
-    model("rbf" + std::to_string(planes) + "c", {.basis = LightBasis::Rbf, .planes = planes, .packed = true}, planes);
-    model("bln" + std::to_string(planes) + "c", {.basis = LightBasis::Bilinear, .planes = planes, .packed = true},
-          planes);
-    // A learned model of as many codes, trained on each fold's lights (under 16, its linear
-    // start alone).
-    addLearned();
+    addFits(false);
     return out;
 }
 
@@ -207,14 +195,14 @@ void validate(std::vector<Candidate>& candidates, const Validation& v, const Aut
                 return &v.decoded[v.folds[f].train[i]];
             };
             BakeOptions fold = o;
-            if (fold.learned && options.base.progress)
-                fold.learned->progress = [&, f](double fraction) {
+            if (options.base.progress)
+                fold.setTraining(0, [&, f](double fraction) {
                     std::lock_guard lock(progressMutex);
                     trained[f] = fraction;
                     double sum = 0;
                     for (double t : trained) sum += t;
                     options.base.progress(done + static_cast<std::size_t>(sum * kStep), steps);
-                };
+                });
             banks[f] = bakeBank(train[f], fold, images);
         });
         for (std::size_t f = 0; f < v.folds.size(); ++f) {
@@ -422,14 +410,13 @@ Result<LutBank> bakeAuto(const Dataset& dataset, const AutoBakeOptions& options,
                 : "several views, some with fewer than 3 lights: the one-reference bank");
     }
     final.progress = options.base.progress;
-    if (final.learned && options.training) final.learned->progress = options.training;
+    if (options.training) final.setTraining(0, options.training);
     Result<LutBank> bank = bakeBank(dataset, final, cached);
     if (!bank && !choice.chosen && dataset.fixedView() && bank.error().find("constant") != std::string::npos) {
         final = classic.options;
-        final.model = LightModelOptions{.basis = LightBasis::Rbf,
-                                        .planes = std::clamp(options.budget, 1, LightModel::kMaxPlanes)};
-        selection["chosen"] = {
-            {"name", "rbf" + std::to_string(final.model->planes)}, {"match", 1}, {"bytes", final.model->planes}};
+        const int planes = std::clamp(options.budget, 1, LightModel::kMaxPlanes);
+        final.fit = lightModelFit({.basis = LightBasis::Rbf, .planes = planes});
+        selection["chosen"] = {{"name", "rbf" + std::to_string(planes)}, {"match", 1}, {"bytes", planes}};
         selection["note"] = "the reference is constant over the sample: a light model carries the brightness";
         log("the reference is constant over the sample: a light model (rbf) carries the brightness");
         bank = bakeBank(dataset, final, cached);

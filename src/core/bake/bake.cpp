@@ -8,7 +8,6 @@
 #include <optional>
 
 #include "core/parallel.h"
-#include "core/predict/learned_predictor.h"
 #include "core/predict/model_predictor.h"
 #include "core/predict/ptm.h"
 #include "core/predict/reference_blend.h"
@@ -112,7 +111,7 @@ Result<PredictionSetup> setUpPrediction(const Dataset& dataset, const BakeOption
     if (!dataset.fixedView()) {
         // Several views: a learned model of the views on rectified images (one frame for every
         // view), its bank a layer per view; every other predictor predicts one camera's images.
-        if (!options.learned)
+        if (!options.fit || !options.fit->takesViews())
             return Error{dataset.source +
                          ": --references, --regions, --colour lrgb and the light models need one view (a fixed "
                          "camera); this dataset has several (a learned model, --predictor neural, takes rectified "
@@ -229,20 +228,9 @@ Result<std::shared_ptr<const Predictor>> fitModel(const Dataset& dataset, const 
         lights.push_back(dataset.images[i].light);
         views.push_back(dataset.images[i].view);
     }
-    if (options.learned) {
-        LearnedOptions o = *options.learned;
-        o.threads = options.threads;
-        // Rectified views (setUpPrediction refuses others): the networks take the view too.
-        if (dataset.fixedView()) views.clear();
-        Result<LearnedModel> model = fitLearnedModel(view, lights, mask, o, dataset.source, views);
-        if (!model) return Error{model.error()};
-        return std::shared_ptr<const Predictor>(std::make_shared<LearnedPredictor>(std::move(*model), perChannel));
-    }
-    LightModelOptions o = *options.model;
-    o.threads = options.threads;
-    Result<LightModel> model = fitLightModel(view, lights, mask, o, dataset.source);
-    if (!model) return Error{model.error()};
-    return std::shared_ptr<const Predictor>(std::make_shared<ModelPredictor>(std::move(*model), perChannel));
+    // Rectified views (setUpPrediction refuses others, and kinds that do not take them).
+    if (dataset.fixedView()) views.clear();
+    return options.fit->fit(FitImages{view, lights, views, mask, perChannel, options.threads, dataset.source});
 }
 
 // A reference as the blend stores it: 8-bit (blends are integer sums of 8-bit codes,
@@ -326,8 +314,7 @@ public:
     Status preparePredictor() {
         const DatasetImage& refInfo = m_dataset.images[m_refIndex];
         if (m_options.fitsModel() && (m_options.references > 1 || m_options.colour == ColourMode::Lrgb))
-            return Error{"--predictor " +
-                         (m_options.model ? std::string(lightBasisName(m_options.model->basis)) : "neural") +
+            return Error{"--predictor " + m_options.fit->family() +
                          " relights with a model: it takes no --references, and its colour is the model's (grey "
                          "or rgb)"};
         if (!(m_options.match >= 0 && m_options.match <= 1))
@@ -525,27 +512,15 @@ private:
 }  // namespace
 
 std::optional<Status> setModelNamed(BakeOptions& options, const std::string& name) {
-    if (std::optional<Result<LightModelOptions>> model = lightModelNamed(name)) {
-        if (!*model) return Status{Error{model->error()}};
-        options.model = **model;
-        options.learned.reset();
-        return success();
-    }
-    if (std::optional<Result<LearnedOptions>> learned = learnedModelNamed(name)) {
-        if (!*learned) return Status{Error{learned->error()}};
-        options.learned = **learned;
-        options.model.reset();
-        return success();
-    }
-    return std::nullopt;
+    std::optional<Result<FitPointer>> fitted = predictorFitNamed(name);
+    if (!fitted) return std::nullopt;
+    if (!*fitted) return Status{Error{fitted->error()}};
+    options.fit = **fitted;
+    return success();
 }
 
-bool predictorTrains(const std::string& name) { return learnedModelNamed(name).has_value(); }
-
 void BakeOptions::setTraining(double seconds, std::function<void(double)> done) {
-    if (!learned) return;
-    if (seconds > 0) learned->seconds = seconds;
-    learned->progress = std::move(done);
+    if (trains()) fit = fit->trainedFor(seconds, std::move(done));
 }
 
 Result<LutBank> bakeBank(const Dataset& dataset, const BakeOptions& options, const ImageProvider& provider) {

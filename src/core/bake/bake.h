@@ -12,7 +12,7 @@
 
 #include "core/bank/lut_bank.h"
 #include "core/data/dataset.h"
-#include "core/predict/learned_model.h"
+#include "core/predict/predictor_fit.h"
 
 namespace btflut {
 
@@ -34,13 +34,12 @@ struct BakeOptions {
     bool ptm = false;                  ///< also fit a PTM (ptm.h) to the images of the reference's view
     std::optional<BankDomain> domain;  ///< empty: chosen from the directions (setNodes)
     int references = 1;                ///< K references blended per light (a fixed camera; relighter.h)
-    /// Instead of references: a light model (light_model.h) fitted to every image, relit,
-    /// then matched. Every image is held in memory while baking (the fit needs them all).
-    std::optional<LightModelOptions> model;
-    /// Or a learned model (learned_model.h), trained on every image, held in memory likewise.
-    std::optional<LearnedOptions> learned;
-    /// The model (or learned model) already fitted to these images with these options: used as
-    /// it is, not fitted again (auto baking a fold again with fewer quantiles).
+    /// Instead of references: a predictor fitted to every image (predictor_fit.h: a light
+    /// model, a learned model), relit, then matched. Every image is held in memory while
+    /// baking (the fit needs them all).
+    FitPointer fit;
+    /// The predictor already fitted to these images with these options: used as it is, not
+    /// fitted again (auto baking a fold again with fewer quantiles).
     std::shared_ptr<const Predictor> fitted;
     float match = 1;  ///< with a model or references: how far each light's LUT matches (LutBank::Prediction::match)
     LutBank::Prediction::Target target =
@@ -58,22 +57,18 @@ struct BakeOptions {
     /// True when these options bake a bank with a predictor (one that makes its LUTs at run
     /// time: LutBank::makesLuts), false for the paper's bank of one reference's LUTs.
     bool predicts() const { return bakePredicts(references, regions, !labelsPath.empty(), colour, fitsModel()); }
-    /// True when a model (a light model or a learned one) is fitted to every image.
-    bool fitsModel() const { return model.has_value() || learned.has_value(); }
+    /// True when a predictor is fitted to every image.
+    bool fitsModel() const { return fit != nullptr; }
     /// True when the predictor is trained (a learned model): a time bounds it, and it reports
     /// its progress.
-    bool trains() const { return learned.has_value(); }
+    bool trains() const { return fit && fit->trains(); }
     /// A trained predictor's training time (0: its default) and progress (0 to 1; may be empty).
     void setTraining(double seconds, std::function<void(double)> done);
 };
 
-/// Sets the options' model from a `--predictor` name: a light model (lightModelNamed) or a
-/// learned one (learnedModelNamed). Nothing when the name names neither, an error for a
-/// number out of range.
+/// Sets the options' fit from a `--predictor` name (predictorFitNamed: a light model, a learned
+/// one). Nothing when the name names no fit, an error for a number out of range.
 std::optional<Status> setModelNamed(BakeOptions& options, const std::string& name);
-/// Whether a `--predictor` name names a trained predictor (BakeOptions::trains), its numbers
-/// in range or not.
-bool predictorTrains(const std::string& name);
 
 /// Supplies image `index` of a dataset: decodes it into `storage` and returns &storage, or
 /// returns an image it already holds (benchmarks time the baking without the decoding).

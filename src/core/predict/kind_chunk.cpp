@@ -1,19 +1,16 @@
 #include "core/predict/kind_chunk.h"
 
-#include "core/predict/learned_predictor.h"
-#include "core/predict/model_predictor.h"
+#include "core/predict/kinds.h"
 
 namespace btflut {
 
 namespace {
 
-// Every kind with a chunk of its own: a new kind's entry is one line here.
-constexpr const KindChunk* kKindChunks[] = {&kLightModelChunk, &kLearnedModelChunk};
-
+// The kinds with a chunk of their own (kinds.cpp).
 template <class Matches>
 const KindChunk* findKindChunk(Matches matches) {
-    for (const KindChunk* entry : kKindChunks)
-        if (matches(*entry)) return entry;
+    for (const KindEntry& entry : kindEntries())
+        if (entry.chunk && matches(*entry.chunk)) return entry.chunk;
     return nullptr;
 }
 

@@ -11,6 +11,7 @@
 #include "core/predict/learned_decoder.h"
 #include "core/predict/learned_training.h"
 #include "core/predict/light_model.h"
+#include "core/predict/predictor_fit.h"
 
 namespace btflut {
 

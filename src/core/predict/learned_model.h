@@ -113,16 +113,6 @@ struct LearnedModel {
     LightFrame lightFrame(Direction light, Direction view = {}) const;
 };
 
-/// The training time of a learned kind named (learnedModelNamed: bake, eval) or chosen by auto
-/// (for each fold and the final bake) when no --budget names one: about 11,700 steps of neural9
-/// on RGB. On the concrete (rti-49, 256 x 256, held out every:4, seeds 1-4) it scores 28.9
-/// dB mean where the 6,000 steps before scored 26.7, as many as 30 s or 60 s do
-/// (bench/RESULTS.md, "How long the learned kind trains").
-constexpr double kDefaultTrainingSeconds = 15;
-/// The longest training time `--budget` takes (bake, eval): a day. Training stops at kEpochs
-/// passes over its samples long before on any capture; a longer time is a typo.
-constexpr double kMostTrainingSeconds = 86400;
-
 struct LearnedOptions {
     int codes = 9;
     std::vector<int> hidden{24, 24};  ///< the residual network's

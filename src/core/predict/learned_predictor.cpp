@@ -356,4 +356,54 @@ void LearnedPredictor::materialFields(nlohmann::json& predictor, const EnginePar
     predictor["weights"]["grid_mapping"] = "none: read exactly with texelFetch";
 }
 
+std::string LearnedFit::settings() const {
+    const LearnedOptions& o = m_options;
+    std::string text = "learned " + std::to_string(o.codes) + " " + std::to_string(o.seed) + " " +
+                       std::to_string(o.steps) + " " + std::to_string(o.seconds) + " hidden";
+    for (int w : o.hidden) text += " " + std::to_string(w);
+    return text;
+}
+
+FitPointer LearnedFit::trainedFor(double seconds, std::function<void(double)> progress) const {
+    LearnedOptions o = m_options;
+    if (seconds > 0) o.seconds = seconds;
+    o.progress = std::move(progress);
+    return learnedFit(std::move(o));
+}
+
+namespace {
+Result<LearnedModel> trainedLearnedModel(const LearnedOptions& options, const FitImages& in) {
+    LearnedOptions o = options;
+    o.threads = in.threads;
+    return fitLearnedModel(in.images, in.lights, in.mask, o, in.what, in.views);
+}
+}  // namespace
+
+Result<PredictorPointer> LearnedFit::fit(const FitImages& in) const {
+    Result<LearnedModel> model = trainedLearnedModel(m_options, in);
+    if (!model) return Error{model.error()};
+    return PredictorPointer(std::make_shared<LearnedPredictor>(std::move(*model), in.perChannel));
+}
+
+Result<UnmatchedModel> LearnedFit::fitUnmatched(const FitImages& in) const {
+    Result<LearnedModel> model = trainedLearnedModel(m_options, in);
+    if (!model) return Error{model.error()};
+    auto m = std::make_shared<LearnedModel>(std::move(*model));
+    const auto multiplyAdds = static_cast<double>(learnedShaderCost(*m).texelMultiplyAdds);
+    return UnmatchedModel{[m](Direction light, Direction view) { return m->render(light, view); },
+                          static_cast<double>(m->codes), multiplyAdds};
+}
+
+FitPointer learnedFit(LearnedOptions options) { return std::make_shared<LearnedFit>(std::move(options)); }
+
+const FitKind kLearnedFit{
+    fitNamed<learnedModelNamed, learnedFit>, true, true, [](const CandidateBounds& bounds) {
+        // Predicting colour itself: no albedo.
+        const int codes = std::min(bounds.bytes, LearnedModel::kMaxCodes);
+        if (codes < 1) return std::vector<FitCandidate>{};
+        const LearnedOptions o{.codes = codes, .seconds = bounds.seconds};
+        return std::vector<FitCandidate>{{"neural" + std::to_string(codes), learnedFit(o), codes,
+                                          learnedTexelMultiplyAdds(codes, bounds.channels == 3 ? 3 : 1, o.hidden)}};
+    }};
+
 }  // namespace btflut

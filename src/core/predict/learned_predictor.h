@@ -12,6 +12,7 @@
 #include "core/predict/kind_chunk.h"
 #include "core/predict/learned_model.h"
 #include "core/predict/predictor.h"
+#include "core/predict/predictor_fit.h"
 
 namespace btflut {
 
@@ -85,5 +86,27 @@ Result<LearnedModel> decodeLearnedModelChunk(ByteReader& in, const ChunkSource& 
 /// The kind in the registry (kind_chunk.h): HEAD's 3, its LRND chunk, from version 8 (9 for a
 /// model of views); it predicts grey banks and rgb banks of a colour model (not lrgb's).
 extern const KindChunk kLearnedModelChunk;
+
+/// A learned model trained on every image (fitLearnedModel), of one camera or of rectified
+/// views: its options.
+class LearnedFit final : public PredictorFit {
+public:
+    explicit LearnedFit(LearnedOptions options) : m_options(std::move(options)) {}
+    std::string family() const override { return "neural"; }
+    std::string settings() const override;
+    bool trains() const override { return true; }
+    bool takesViews() const override { return true; }
+    FitPointer trainedFor(double seconds, std::function<void(double)> progress) const override;
+    Result<PredictorPointer> fit(const FitImages& in) const override;
+    Result<UnmatchedModel> fitUnmatched(const FitImages& in) const override;
+    const LearnedOptions& options() const { return m_options; }
+
+private:
+    LearnedOptions m_options;
+};
+FitPointer learnedFit(LearnedOptions options);
+/// The kind in the fits' registry (predictor_fit.h): named by learnedModelNamed; auto's
+/// candidate is neuralN of the bytes (at most kMaxCodes), trained for the bounds' time.
+extern const FitKind kLearnedFit;
 
 }  // namespace btflut

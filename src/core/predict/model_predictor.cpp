@@ -276,4 +276,57 @@ void ModelPredictor::materialFields(nlohmann::json& predictor, const EngineParts
             "the channels' offsets, then each plane's channel weights ((1 + planes) x channels)";
 }
 
+std::string LightModelFit::settings() const {
+    const LightModelOptions& m = m_options;
+    return "model " + std::to_string(static_cast<int>(m.basis)) + " " + std::to_string(m.order) + " " +
+           std::to_string(m.planes) + " " + std::to_string(m.packed) + " " + std::to_string(m.grid) + " " +
+           std::to_string(m.colour);
+}
+
+namespace {
+Result<LightModel> fittedLightModel(const LightModelOptions& options, const FitImages& in) {
+    LightModelOptions o = options;
+    o.threads = in.threads;
+    return fitLightModel(in.images, in.lights, in.mask, o, in.what);
+}
+}  // namespace
+
+Result<PredictorPointer> LightModelFit::fit(const FitImages& in) const {
+    Result<LightModel> model = fittedLightModel(m_options, in);
+    if (!model) return Error{model.error()};
+    return PredictorPointer(std::make_shared<ModelPredictor>(std::move(*model), in.perChannel));
+}
+
+Result<UnmatchedModel> LightModelFit::fitUnmatched(const FitImages& in) const {
+    Result<LightModel> model = fittedLightModel(m_options, in);
+    if (!model) return Error{model.error()};
+    auto m = std::make_shared<LightModel>(std::move(*model));
+    const double multiplyAdds = m->planes * m->channels + (m->albedo.empty() ? 0 : 3);
+    return UnmatchedModel{[m](Direction light, Direction) { return m->render(light); },
+                          static_cast<double>(m->bytesPerTexel()), multiplyAdds};
+}
+
+FitPointer lightModelFit(LightModelOptions options) { return std::make_shared<LightModelFit>(std::move(options)); }
+
+const FitKind kLightModelFit{
+    fitNamed<lightModelNamed, lightModelFit>, false, false, [](const CandidateBounds& bounds) {
+        const int albedo = bounds.channels == 3 ? 3 : 0;
+        std::vector<FitCandidate> out;
+        // A plane (or the albedo's channel) a byte, a multiply-add each.
+        auto add = [&](std::string name, LightModelOptions m, int bytes) {
+            out.push_back({std::move(name), lightModelFit(m), bytes, static_cast<std::size_t>(bytes)});
+        };
+        add("ptm", {.basis = LightBasis::Ptm}, 6 + albedo);
+        add("hsh2", {.basis = LightBasis::Hsh, .order = 2}, 4 + albedo);
+        add("hsh3", {.basis = LightBasis::Hsh, .order = 3}, 9 + albedo);
+        const int planes = std::clamp(bounds.bytes, 1, LightModel::kMaxPlanes);
+        const std::string n = std::to_string(planes);
+        add("rbf" + n, {.basis = LightBasis::Rbf, .planes = planes}, planes);
+        add("bln" + n, {.basis = LightBasis::Bilinear, .planes = planes}, planes);
+        // Packed: the same bytes holding more components, the trailing ones with 4 bits.
+        add("rbf" + n + "c", {.basis = LightBasis::Rbf, .planes = planes, .packed = true}, planes);
+        add("bln" + n + "c", {.basis = LightBasis::Bilinear, .planes = planes, .packed = true}, planes);
+        return out;
+    }};
+
 }  // namespace btflut

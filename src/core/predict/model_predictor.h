@@ -8,6 +8,7 @@
 #include "core/predict/kind_chunk.h"
 #include "core/predict/light_model.h"
 #include "core/predict/predictor.h"
+#include "core/predict/predictor_fit.h"
 
 namespace btflut {
 
@@ -56,5 +57,23 @@ Result<LightModel> decodeLightModelChunk(ByteReader& in, const ChunkSource& sour
 /// The kind in the registry (kind_chunk.h): HEAD's 2, its LMDL chunk, from version 5; it
 /// predicts grey and rgb banks (not lrgb's, whose albedo is the references').
 extern const KindChunk kLightModelChunk;
+
+/// A light model fitted to every image (fitLightModel): its options.
+class LightModelFit final : public PredictorFit {
+public:
+    explicit LightModelFit(LightModelOptions options) : m_options(std::move(options)) {}
+    std::string family() const override { return lightBasisName(m_options.basis); }
+    std::string settings() const override;
+    Result<PredictorPointer> fit(const FitImages& in) const override;
+    Result<UnmatchedModel> fitUnmatched(const FitImages& in) const override;
+    const LightModelOptions& options() const { return m_options; }
+
+private:
+    LightModelOptions m_options;
+};
+FitPointer lightModelFit(LightModelOptions options);
+/// The kind in the fits' registry (predictor_fit.h): named by lightModelNamed; auto's candidates
+/// ptm, hsh2 and hsh3 (with an albedo for colour), and rbf and bln of the bytes, plain and packed.
+extern const FitKind kLightModelFit;
 
 }  // namespace btflut

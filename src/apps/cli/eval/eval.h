@@ -87,19 +87,13 @@ struct Variant {
     /// An RTI basis or a learned model on its own, unmatched (modes hsh, rbf, bln, neural; a
     /// number after the name is the hsh order, the planes or the codes): fitted to the fold's
     /// training images.
-    std::optional<LightModelOptions> basis;
-    std::optional<LearnedOptions> learned;
+    FitPointer fit;
     bool neuralRti = false;  ///< the published NeuralRTI (neural_rti.h), the learned kind's baseline
     double trainingSeconds =
         0;  ///< the learned kinds' training time (--budget 300s); 0: their own (kDefaultTrainingSeconds)
-    bool unmatched() const { return basis || learned || neuralRti; }
+    bool unmatched() const { return fit || neuralRti; }
     /// The mode as the report names it: the render mode, or the model's kind.
-    std::string modeName() const {
-        return basis       ? lightBasisName(basis->basis)
-               : learned   ? "neural"
-               : neuralRti ? "neuralrti"
-                           : renderModeName(mode);
-    }
+    std::string modeName() const { return fit ? fit->family() : neuralRti ? "neuralrti" : renderModeName(mode); }
     bool base() const {
         return predictor == "references" && references == 1 && regions == 1 && colour == ColourMode::Grey && !filled &&
                target == "measured";

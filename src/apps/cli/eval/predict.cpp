@@ -14,7 +14,6 @@
 #include "core/bake/bake.h"
 #include "core/bank/bank_file.h"
 #include "core/inverse/model_fill.h"
-#include "core/predict/learned_shader.h"
 #include "core/relight/relighter.h"
 
 namespace btflut::cli::eval {
@@ -182,28 +181,14 @@ Result<std::map<std::string, Rendering>> fitBases(std::vector<Variant>& variants
             };
             continue;
         }
-        if (v.learned) {
-            LearnedOptions options = *v.learned;
-            if (v.trainingSeconds > 0) options.seconds = v.trainingSeconds;
-            options.progress = within;
-            Result<LearnedModel> model = fitLearnedModel(images, lights, mask, options, dataset.source, views);
-            if (!model) return Error{model.error()};
-            v.bakeSeconds.push_back(seconds(start));
-            v.bytesPerTexel = model->codes;
-            v.multiplyAdds = static_cast<double>(learnedShaderCost(*model).texelMultiplyAdds);
-            models[v.name] = [m = std::make_shared<LearnedModel>(std::move(*model))](Direction l, Direction view) {
-                return m->render(l, view);
-            };
-            continue;
-        }
-        Result<LightModel> model = fitLightModel(images, lights, mask, *v.basis, dataset.source);
+        const FitPointer fit = v.fit->trainedFor(v.trainingSeconds, within);
+        Result<UnmatchedModel> model =
+            fit->fitUnmatched(FitImages{images, lights, views, mask, false, 0, dataset.source});
         if (!model) return Error{model.error()};
         v.bakeSeconds.push_back(seconds(start));
-        v.bytesPerTexel = model->bytesPerTexel();
-        v.multiplyAdds = model->planes * model->channels + (model->albedo.empty() ? 0 : 3);
-        models[v.name] = [m = std::make_shared<LightModel>(std::move(*model))](Direction l, Direction) {
-            return m->render(l);
-        };
+        v.bytesPerTexel = model->bytesPerTexel;
+        v.multiplyAdds = model->multiplyAdds;
+        models[v.name] = std::move(model->render);
     }
     return models;
 }

@@ -62,21 +62,15 @@ Result<std::vector<Variant>> modeVariants(const EvalOptions& o, const std::vecto
     for (const std::string& name : modes) {
         Result<RenderMode> mode = parseRenderMode(name);
         if (!mode) {
-            if (std::optional<Result<LightModelOptions>> basis = lightModelNamed(name)) {
-                if (!*basis) return Error{"--modes: " + basis->error()};
-                Variant v{name, RenderMode::Flat};
-                v.basis = **basis;
-                variants.push_back(v);
-                continue;
-            } else if (name == "neuralrti") {
+            if (name == "neuralrti") {
                 Variant v{name, RenderMode::Flat};
                 v.neuralRti = true;
                 variants.push_back(v);
                 continue;
-            } else if (std::optional<Result<LearnedOptions>> learned = learnedModelNamed(name)) {
-                if (!*learned) return Error{"--modes: " + learned->error()};
+            } else if (std::optional<Result<FitPointer>> fit = predictorFitNamed(name)) {
+                if (!*fit) return Error{"--modes: " + fit->error()};
                 Variant v{name, RenderMode::Flat};
-                v.learned = **learned;
+                v.fit = **fit;
                 variants.push_back(v);
                 continue;
             }
@@ -312,8 +306,8 @@ Status adaptToViews(EvalOptions& o, const Dataset& dataset) {
     if (o.modes == defaults.modes) o.modes = dataset.rectified ? "lut,nearest,brdf,neural9" : "lut,nearest,brdf";
     if (o.predictors == defaults.predictors) o.predictors = "references";
     for (const std::string& mode : split(o.modes)) {
-        if (learnedModelNamed(mode) && dataset.rectified) continue;
-        if (learnedModelNamed(mode))
+        if (predictorTakesViews(mode) && dataset.rectified) continue;
+        if (predictorTakesViews(mode))
             return Error{"--modes " + mode +
                          ": a learned model across views needs rectified views (one frame for "
                          "every view: the manifest's \"rectified\": true); " +
@@ -327,7 +321,7 @@ Status adaptToViews(EvalOptions& o, const Dataset& dataset) {
     bool predictorsAcross = true;
     for (const std::string& p : split(o.predictors))
         predictorsAcross =
-            predictorsAcross && (p == "references" || ((p == "auto" || learnedModelNamed(p)) && dataset.rectified));
+            predictorsAcross && (p == "references" || ((p == "auto" || predictorTakesViews(p)) && dataset.rectified));
     if (!predictorsAcross || o.references != "1" || o.regions != "1" || o.colours == "lrgb" || o.blendedLuts ||
         o.targets.find("corrections") != std::string::npos)
         return Error{
@@ -344,7 +338,7 @@ BakeOptions bakeOptionsOf(const Variant& v, bool ptm) {
     b.domain = v.domain;
     b.references = v.references;
     setModelNamed(b, v.predictor);  // references and auto name no model
-    if (b.learned && v.trainingSeconds > 0) b.learned->seconds = v.trainingSeconds;
+    if (v.trainingSeconds > 0) b.setTraining(v.trainingSeconds, {});
     if (v.target == "corrections") b.target = LutBank::Prediction::Target::Corrections;
     b.fitTargets = v.target != "blend";
     if (v.match) b.match = *v.match;
