@@ -136,6 +136,13 @@ def check_cache(btflut, tmp, check):
     os.utime(image, (os.path.getatime(image), os.path.getmtime(image) + 10))
     changed = said()
     check("baked earlier" not in changed, f"a changed image bakes the dataset again ({changed.strip()!r})")
+    # --predictor takes what bake's does (a light model, a learned one); a bad name is one line.
+    for name, needle in (("neural99", "1 to 16 codes"), ("bogus", "a learned model (neuralN)")):
+        refused = subprocess.run([btflut, "view", data, "--frames", "1", "--predictor", name], capture_output=True,
+                                 text=True)
+        lines = refused.stderr.strip().split("\n")
+        check(refused.returncode == 1 and len(lines) == 1 and needle in lines[0],
+              f"view --predictor {name}: one line, exit 1 (exit {refused.returncode}, {refused.stderr.strip()!r})")
     cache = os.path.join(os.environ["XDG_CACHE_HOME"], "btflut", "view")
     check(os.path.isdir(cache) and all(f.endswith(".btflut") for f in os.listdir(cache)),
           f"the banks are kept in $XDG_CACHE_HOME/btflut/view ({sorted(os.listdir(cache)) if os.path.isdir(cache) else []})")

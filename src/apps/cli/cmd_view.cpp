@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "cli/command.h"
-#include "core/predict/model_predictor.h"
+#include "core/predict/predictor_fit.h"
 #include "viewer/viewer.h"
 
 namespace btflut::cli {
@@ -68,7 +68,8 @@ void addViewCommand(CLI::App& root, Commands& commands) {
         ->check(CLI::IsMember({"grey", "rgb", "lrgb"}));
     app->add_option("--predictor", *predictor,
                     "with a dataset: auto (the default: what `bake DATASET` writes, chosen by validation), "
-                    "references, or a light model: ptm, hsh2, hsh3, rbfN, blnN (bake --predictor)");
+                    "references, a light model: ptm, hsh2, hsh3, rbfN, blnN, or a learned one: neuralN (bake "
+                    "--predictor)");
     app->add_flag("--rebake", o->rebake,
                   "with a dataset: bake it again, not the bank kept from an earlier view of it "
                   "($XDG_CACHE_HOME/btflut/view)");
@@ -88,13 +89,13 @@ void addViewCommand(CLI::App& root, Commands& commands) {
                             // auto, as bake: unless references or a predictor are named.
                             o->validate = *predictor == "auto" && app->count("--references") == 0;
                             if (*predictor != "references" && *predictor != "auto") {
-                                std::optional<Result<LightModelOptions>> model = lightModelNamed(*predictor);
-                                if (!model)
-                                    return Status{
-                                        Error{"--predictor '" + *predictor +
-                                              "': expected auto, references or a basis (ptm, hsh, rbf, bln)"}};
-                                if (!*model) return Status{Error{"--predictor " + model->error()}};
-                                o->bake.fit = lightModelFit(**model);
+                                std::optional<Result<FitPointer>> fit = predictorFitNamed(*predictor);
+                                if (!fit)
+                                    return Status{Error{"--predictor '" + *predictor +
+                                                        "': expected auto, references, a basis (ptm, hsh, rbf, bln) "
+                                                        "or a learned model (neuralN)"}};
+                                if (!*fit) return Status{Error{"--predictor " + fit->error()}};
+                                o->bake.fit = **fit;
                             }
                             return runViewer(*o);
                         }});
