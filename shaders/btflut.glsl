@@ -228,12 +228,12 @@ void btflutCodesAt(sampler2DArray planes, int layers, vec2 uv, out vec4 codes[BT
 // btflut: kinds (shaders/kinds/*.glsl, one file per kind; written here when btflut is built)
 
 // The prediction at texture coordinate `uv` for a light in the tangent frame, seen from a view
-// there (read by a learned model of views alone): its kind's (shaders/kinds/).
+// there (read by a learned model of views alone): its kind's (shaders/kinds/<kind>.glsl's
+// btflut<Kind>PredictionAt).
 BtflutPrediction btflutPrediction(sampler2DArray planes, sampler2DArray weights, BtflutPredictor p, vec2 uv,
                                   vec3 lightTangent, vec3 viewTangent) {
-    if (p.kind == BTFLUT_KIND_REFERENCES) return btflutReferencesPredictionAt(planes, weights, p, uv, lightTangent);
-    if (p.kind == BTFLUT_KIND_LEARNED) return btflutLearnedPredictionAt(planes, weights, p, uv, lightTangent, viewTangent);
-    return btflutModelPredictionAt(planes, weights, p, uv, lightTangent);
+    // btflut: dispatch (a line per file of shaders/kinds/; written here when btflut is built)
+    return btflutNoPrediction();
 }
 BtflutPrediction btflutPrediction(sampler2DArray planes, sampler2DArray weights, BtflutPredictor p, vec2 uv,
                                   vec3 lightTangent) {

@@ -63,9 +63,10 @@ BtflutModelFrame btflutModelFrame(sampler2DArray weights, BtflutPredictor p, vec
     return f;
 }
 
-// The prediction at texture coordinate `uv` for a light in the tangent frame (btflutPrediction).
+// The prediction at texture coordinate `uv` for a light in the tangent frame (btflutPrediction;
+// one view).
 BtflutPrediction btflutModelPredictionAt(sampler2DArray planes, sampler2DArray weights, BtflutPredictor p, vec2 uv,
-                                         vec3 lightTangent) {
+                                         vec3 lightTangent, vec3 viewTangent) {
     vec4 codes[BTFLUT_MAX_LAYERS];
     int layers = (p.planes + 3) / 4;
     btflutCodesAt(planes, layers, uv, codes);

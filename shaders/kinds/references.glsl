@@ -11,9 +11,10 @@ void btflutAddReference(inout BtflutPrediction p, float weight, vec4 texel) {
 }
 
 
-// The blend at texture coordinate `uv` for a light in the tangent frame (btflutPrediction).
+// The blend at texture coordinate `uv` for a light in the tangent frame (btflutPrediction; one
+// view).
 BtflutPrediction btflutReferencesPredictionAt(sampler2DArray planes, sampler2DArray weights, BtflutPredictor p, vec2 uv,
-                                              vec3 lightTangent) {
+                                              vec3 lightTangent, vec3 viewTangent) {
     BtflutPrediction prediction = btflutNoPrediction();
     vec2 disk = btflutDiskPoint(lightTangent);
     vec4 w4 = vec4(0.0);
