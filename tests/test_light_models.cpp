@@ -312,7 +312,13 @@ TEST_CASE("the kinds' registry: a kind's own chunk found by kind, number and tag
         CHECK(numbers.insert(own->number).second);
         CHECK(tags.insert(tagOf(own->tag)).second);
     }
-    CHECK(numbers.size() == 2);  // the light model's and the learned model's
+    CHECK(numbers.size() == 2);   // the light model's and the learned model's
+    std::set<std::string> names;  // material.json's, one a kind
+    for (const auto& [kind, name] : kPredictorKindNames) {
+        CHECK(names.insert(name).second);
+        CHECK(std::string(predictorKindName(kind)) == name);
+    }
+    CHECK(names.size() == 4);
     CHECK(kindChunkOf(PredictorKind::References) == nullptr);
     CHECK(kindChunkNumbered(4) == nullptr);
     CHECK(kindChunkTagged(tagOf("REFS")) == nullptr);

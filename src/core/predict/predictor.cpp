@@ -7,20 +7,6 @@
 
 namespace btflut {
 
-const char* predictorKindName(PredictorKind kind) {
-    switch (kind) {
-        case PredictorKind::Luts:
-            return "luts";
-        case PredictorKind::Model:
-            return "model";
-        case PredictorKind::References:
-            return "references";
-        case PredictorKind::Learned:
-            return "learned";
-    }
-    return "luts";
-}
-
 std::vector<std::uint32_t> levelBlock(int level, int width, int height, std::uint32_t texel) {
     const auto side = std::uint32_t{1} << level, levelWidth = static_cast<std::uint32_t>(levelSize(width, level));
     const std::uint32_t x0 = texel % levelWidth * side, y0 = texel / levelWidth * side;

@@ -28,6 +28,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/direction/direction.h"
@@ -123,8 +124,19 @@ enum class PredictorKind : int {
     References = BTFLUT_KIND_REFERENCES,
     Learned = BTFLUT_KIND_LEARNED,
 };
+/// Each kind's name (material.json's "kind"): a new kind's line here, beside its enum's.
+constexpr std::array kPredictorKindNames{
+    std::pair{PredictorKind::Luts, "luts"},
+    std::pair{PredictorKind::Model, "model"},
+    std::pair{PredictorKind::References, "references"},
+    std::pair{PredictorKind::Learned, "learned"},
+};
 /// "luts", "model", "references" or "learned".
-const char* predictorKindName(PredictorKind kind);
+constexpr const char* predictorKindName(PredictorKind kind) {
+    for (const auto& [k, name] : kPredictorKindNames)
+        if (k == kind) return name;
+    return "luts";
+}
 
 class Predictor {
 public:
