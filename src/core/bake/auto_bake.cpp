@@ -43,8 +43,7 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, cons
     const int region = base.regions > 1 || !base.labelsPath.empty() ? 1 : 0;
     const int albedo = channels == 3 ? 3 : 0;
     std::vector<Candidate> out;
-    // Its multiply-adds per texel: a light model's planes (and the albedo's product), the three
-    // references blended, a learned model's decoder (learned_shader.h).
+    // Its multiply-adds per texel: the three references blended, or a fitted kind's (below).
     auto add = [&](std::string name, BakeOptions o, int bytes, std::size_t multiplyAdds, bool classic = false) {
         Candidate c{std::move(name), std::move(o), bytes + region, multiplyAdds, classic};
         if (c.bytes > budget)
@@ -58,9 +57,9 @@ std::vector<Candidate> candidatesFor(const BakeOptions& base, int channels, cons
     classic.references = 1;
     classic.colour = ColourMode::Grey;
     add("K1", classic, channels, 0, true);
-    // The kinds fitted to the images (predictor_fit.h): a light model's planes (and the
-    // albedo's product), a learned model's decoder (learned_shader.h); a learned model of as
-    // many codes is trained on each fold's lights (under 16, its linear start alone).
+    // The kinds fitted to the images (predictor_fit.h), each with its multiply-adds: a light
+    // model's planes (and the albedo's product), a learned model's decoder (learned_shader.h),
+    // trained on each fold's lights (under 16, its linear start alone).
     const std::vector<FitCandidate> fits =
         fitCandidates({.bytes = budget - region, .channels = channels, .seconds = bounds.seconds / 3});
     auto addFits = [&](bool takingViews) {

@@ -2,8 +2,9 @@
 // The kinds whose predictor has a chunk of its own in a .btflut file (docs/btflut-format.md): a
 // light model's LMDL, a learned model's LRND. Each kind defines its entry beside its class (what
 // its chunk holds, how it is written and read back, which banks it can predict); the kinds'
-// registry (kinds.cpp) lists the entries, one line a kind. The bank's writer and reader (bank/) find a kind's entry
-// here, by its kind, by the number HEAD gives it or by its chunk's tag, and name no kind.
+// registry (kinds.cpp) lists the entries, one line a kind. The bank's writer and reader (bank/)
+// find a kind's entry here, by its kind, by the number HEAD gives it or by its chunk's tag, and
+// name no kind.
 //
 //   const KindChunk* own = kindChunkOf(bank.predictorKind());  // null: the references, LUTs
 //   Bytes chunk = own->encode(bank.predictor(), version);      // written under own->tag

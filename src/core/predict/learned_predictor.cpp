@@ -364,6 +364,8 @@ std::string LearnedFit::settings() const {
     return text;
 }
 
+const FitKind& LearnedFit::kind() const { return kLearnedFit; }
+
 FitPointer LearnedFit::trainedFor(double seconds, std::function<void(double)> progress) const {
     LearnedOptions o = m_options;
     if (seconds > 0) o.seconds = seconds;

@@ -94,8 +94,7 @@ public:
     explicit LearnedFit(LearnedOptions options) : m_options(std::move(options)) {}
     std::string family() const override { return "neural"; }
     std::string settings() const override;
-    bool trains() const override { return true; }
-    bool takesViews() const override { return true; }
+    const FitKind& kind() const override;
     FitPointer trainedFor(double seconds, std::function<void(double)> progress) const override;
     Result<PredictorPointer> fit(const FitImages& in) const override;
     Result<UnmatchedModel> fitUnmatched(const FitImages& in) const override;

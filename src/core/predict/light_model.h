@@ -24,6 +24,7 @@
 //   LightModelFixed f = lightModelFixed(*m, light);      // per light change: integer weights
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -83,6 +84,8 @@ struct LightModel {
     std::size_t texels() const { return static_cast<std::size_t>(width) * height; }
     /// Bytes per texel the model stores: its planes (two 4-bit planes to a byte) and the albedo.
     int bytesPerTexel() const { return wide + (planes - wide + 1) / 2 + (albedo.empty() ? 0 : 3); }
+    /// Multiply-adds a texel: each plane's weight per channel, and the albedo's product.
+    std::size_t multiplyAdds() const { return static_cast<std::size_t>(planes * channels) + (albedo.empty() ? 0 : 3); }
     /// The largest code of plane p: 255 or 15.
     int maxCode(int p) const { return p < wide ? 255 : 15; }
     /// The basis's own terms count (ptm 6, hsh 4 or 9); 0 for the PCA bases.

@@ -283,6 +283,8 @@ std::string LightModelFit::settings() const {
            std::to_string(m.colour);
 }
 
+const FitKind& LightModelFit::kind() const { return kLightModelFit; }
+
 namespace {
 Result<LightModel> fittedLightModel(const LightModelOptions& options, const FitImages& in) {
     LightModelOptions o = options;
@@ -301,9 +303,8 @@ Result<UnmatchedModel> LightModelFit::fitUnmatched(const FitImages& in) const {
     Result<LightModel> model = fittedLightModel(m_options, in);
     if (!model) return Error{model.error()};
     auto m = std::make_shared<LightModel>(std::move(*model));
-    const double multiplyAdds = m->planes * m->channels + (m->albedo.empty() ? 0 : 3);
     return UnmatchedModel{[m](Direction light, Direction) { return m->render(light); },
-                          static_cast<double>(m->bytesPerTexel()), multiplyAdds};
+                          static_cast<double>(m->bytesPerTexel()), static_cast<double>(m->multiplyAdds())};
 }
 
 FitPointer lightModelFit(LightModelOptions options) { return std::make_shared<LightModelFit>(std::move(options)); }

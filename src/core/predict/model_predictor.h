@@ -21,10 +21,7 @@ public:
     PredictorKind kind() const override { return PredictorKind::Model; }
     std::string name() const override { return lightModelName(m_model); }
     double bytesPerTexel() const override { return m_model.bytesPerTexel(); }
-    /// Each plane's weight per channel, and the albedo's product.
-    std::size_t multiplyAdds() const override {
-        return static_cast<std::size_t>(m_model.planes * m_model.channels) + (m_model.albedo.empty() ? 0 : 3);
-    }
+    std::size_t multiplyAdds() const override { return m_model.multiplyAdds(); }
     std::string description() const override;
     PredictorPlanes planes() const override;
     /// ptm and hsh: their weights in closed form (btflut.glsl); rbf and bln: on a weight grid.
@@ -64,6 +61,7 @@ public:
     explicit LightModelFit(LightModelOptions options) : m_options(std::move(options)) {}
     std::string family() const override { return lightBasisName(m_options.basis); }
     std::string settings() const override;
+    const FitKind& kind() const override;
     Result<PredictorPointer> fit(const FitImages& in) const override;
     Result<UnmatchedModel> fitUnmatched(const FitImages& in) const override;
     const LightModelOptions& options() const { return m_options; }

@@ -15,6 +15,10 @@ const FitKind* kindNamed(const std::string& name) {
 
 }  // namespace
 
+bool PredictorFit::trains() const { return kind().trains; }
+
+bool PredictorFit::takesViews() const { return kind().takesViews; }
+
 std::optional<Result<FitPointer>> predictorFitNamed(const std::string& name) {
     const FitKind* kind = kindNamed(name);
     if (!kind) return std::nullopt;

@@ -51,6 +51,7 @@ struct UnmatchedModel {
 };
 
 class PredictorFit;
+struct FitKind;
 using FitPointer = std::shared_ptr<const PredictorFit>;
 using PredictorPointer = std::shared_ptr<const Predictor>;
 
@@ -62,10 +63,12 @@ public:
     virtual std::string family() const = 0;
     /// The options as text (a cache's key).
     virtual std::string settings() const = 0;
-    /// Trained: a time bounds it, and it reports its progress.
-    virtual bool trains() const { return false; }
-    /// Fits rectified views too (its networks take the view).
-    virtual bool takesViews() const { return false; }
+    /// Its kind's entry in the registry (below).
+    virtual const FitKind& kind() const = 0;
+    /// Trained: a time bounds it, and it reports its progress (its kind's FitKind::trains).
+    bool trains() const;
+    /// Fits rectified views too (its networks take the view; FitKind::takesViews).
+    bool takesViews() const;
     /// The same with a training time (0: its own) and progress (0 to 1; may be empty); itself
     /// when it does not train.
     virtual FitPointer trainedFor(double /*seconds*/, std::function<void(double)> /*progress*/) const {
@@ -96,8 +99,8 @@ struct FitKind {
     /// The fit a `--predictor` name names: nothing when it names another kind, an error for a
     /// number out of range.
     std::optional<Result<FitPointer>> (*named)(const std::string& name);
-    bool trains;      ///< its fits train (PredictorFit::trains)
-    bool takesViews;  ///< its fits take rectified views (PredictorFit::takesViews)
+    bool trains;      ///< its fits train: a time bounds them, and they report their progress
+    bool takesViews;  ///< its fits take rectified views
     /// Its candidates for auto bake, cheapest first.
     std::vector<FitCandidate> (*candidates)(const CandidateBounds& bounds);
 };
