@@ -55,6 +55,55 @@ std::vector<Direction> reliefLights() { return dome(24, 70); }
 
 }  // namespace
 
+TEST_CASE("dense kernels: the four products, stored or added, into a block; the ELU and its gradient") {
+    Random random(7);
+    auto draw = [&](Eigen::Index rows, Eigen::Index cols) {
+        Matrix m(rows, cols);
+        for (float& v : m.reshaped()) v = static_cast<float>(random.uniform() * 2 - 1);
+        return m;
+    };
+    auto naive = [](const Matrix& a, const Matrix& b) {  // plain loops, in double
+        Matrix out(a.rows(), b.cols());
+        for (Eigen::Index i = 0; i < a.rows(); ++i)
+            for (Eigen::Index j = 0; j < b.cols(); ++j) {
+                double sum = 0;
+                for (Eigen::Index k = 0; k < a.cols(); ++k) sum += static_cast<double>(a(i, k)) * b(k, j);
+                out(i, j) = static_cast<float>(sum);
+            }
+        return out;
+    };
+    // Sizes on either side of Eigen's switch from coefficient products to its packed kernel.
+    for (Eigen::Index n : {3, 37}) {
+        const Matrix a = draw(n, 5), b = draw(5, n + 2), aT = a.transpose(), bT = b.transpose();
+        const Matrix want = naive(a, b);
+        for (auto [left, aForm, right, bForm] : {std::tuple{&a, dense::Plain, &b, dense::Plain},
+                                                 {&aT, dense::Transposed, &b, dense::Plain},
+                                                 {&a, dense::Plain, &bT, dense::Transposed},
+                                                 {&aT, dense::Transposed, &bT, dense::Transposed}}) {
+            Matrix out = Matrix::Constant(n + 4, n + 6, 9.f);  // the product in a block of a larger matrix
+            auto block = out.block(1, 2, n, n + 2);
+            dense::multiply(block, *left, aForm, *right, bForm);
+            CHECK((out.block(1, 2, n, n + 2) - want).cwiseAbs().maxCoeff() < 1e-5f);
+            dense::multiply(block, *left, aForm, *right, bForm, dense::Add);
+            CHECK((out.block(1, 2, n, n + 2) - 2 * want).cwiseAbs().maxCoeff() < 1e-5f);
+            out.block(1, 2, n, n + 2).setConstant(9.f);
+            CHECK((out.array() == 9.f).all());  // nothing written outside the block
+        }
+    }
+    Matrix a(1, 4);
+    a << -2.f, -0.5f, 0.f, 1.5f;
+    Matrix activated = a;
+    dense::addToColumns(activated, Vector::Constant(1, 0.25f));
+    dense::elu(activated);
+    Matrix delta, back = Matrix::Constant(1, 4, 2.f);
+    dense::eluBackward(delta, back, activated);
+    for (Eigen::Index i = 0; i < 4; ++i) {
+        const float x = a(0, i) + 0.25f;
+        CHECK(activated(0, i) == doctest::Approx(x > 0 ? x : std::exp(x) - 1));
+        CHECK(delta(0, i) == doctest::Approx(2 * (x > 0 ? 1 : std::exp(x))));
+    }
+}
+
 TEST_CASE("network: the backward pass is the finite differences of the forward one") {
     Random random(3);
     const Network start = Network::random({5, 7, 6, 3}, random);

@@ -80,11 +80,10 @@ void Network::forward(const Matrix& input, NetworkPass& pass) const {
     const Matrix* x = &pass.input;
     for (std::size_t k = 0; k < m_weights.size(); ++k) {
         Matrix& a = pass.activations[k];
-        a.noalias() = m_weights[k] * *x;
-        a.colwise() += m_biases[k];
-        // ELU: max(a, 0) + e^min(a, 0) - 1, in whole-array operations (Eigen vectorises exp
-        // there, not inside a select).
-        if (k + 1 < m_weights.size()) a.array() = a.array().max(0.f) + (a.array().min(0.f).exp() - 1.f);
+        a.resize(m_weights[k].rows(), x->cols());
+        dense::multiply(a, m_weights[k], dense::Plain, *x, dense::Plain);
+        dense::addToColumns(a, m_biases[k]);
+        if (k + 1 < m_weights.size()) dense::elu(a);
         x = &a;
     }
 }
@@ -99,16 +98,15 @@ void Network::backward(const NetworkPass& pass, const Matrix& outputGradient, bo
     delta = outputGradient;
     for (std::size_t k = L; k-- > 0;) {
         const Matrix& x = k == 0 ? pass.input : pass.activations[k - 1];
-        g.weights[k].noalias() = delta * x.transpose();
+        g.weights[k].resize(delta.rows(), x.rows());
+        dense::multiply(g.weights[k], delta, dense::Plain, x, dense::Transposed);
         g.biases[k] = delta.rowwise().sum();
         if (k == 0 && !inputGradient) break;
         Matrix& to = k == 0 ? g.input : back;
-        to.noalias() = m_weights[k].transpose() * delta;
+        to.resize(m_weights[k].cols(), delta.cols());
+        dense::multiply(to, m_weights[k], dense::Transposed, delta, dense::Plain);
         if (k == 0) break;
-        // ELU's derivative from its output a: 1 above 0, e^x = a + 1 below: min(a, 0) + 1.
-        const Matrix& a = pass.activations[k - 1];
-        delta.resize(back.rows(), back.cols());
-        delta.array() = back.array() * (a.array().min(0.f) + 1.f);
+        dense::eluBackward(delta, back, pass.activations[k - 1]);
     }
 }
 

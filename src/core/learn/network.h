@@ -9,16 +9,13 @@
 //   NetworkGradient g = net.backward(pass, dOutput, true);   // g.input: d loss / d inputs
 //   Adam adam(net);  adam.step(net, g, 1e-3f);
 
-#include <Eigen/Dense>
 #include <cstdint>
 #include <vector>
 
+#include "core/learn/dense.h"
 #include "core/random.h"
 
 namespace btflut {
-
-using Matrix = Eigen::MatrixXf;
-using Vector = Eigen::VectorXf;
 
 /// One batch's activations, kept for the backward pass.
 struct NetworkPass {

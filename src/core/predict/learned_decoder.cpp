@@ -17,7 +17,7 @@ void LearnedDecoder::forward(const Matrix& codes, const Matrix& lights, Pass& pa
         const Eigen::Map<const Matrix, 0, Eigen::OuterStride<>> A(basis.col(l).data(), N, C,
                                                                   Eigen::OuterStride<>(N + 1));
         auto out = pass.output.block(0, l * T, C, T);
-        out.noalias() += A.transpose() * codes;
+        dense::multiply(out, A, dense::Transposed, codes, dense::Plain, dense::Add);
         for (Eigen::Index c = 0; c < C; ++c) out.row(c).array() += basis(c * (N + 1) + N, l);
     }
 }
@@ -34,9 +34,9 @@ LearnedDecoder::Gradient LearnedDecoder::backward(const Pass& pass, const Matrix
         g.codes += g.residual.input.block(0, l * T, N, T);
         const Eigen::Map<const Matrix, 0, Eigen::OuterStride<>> A(basis.col(l).data(), N, C,
                                                                   Eigen::OuterStride<>(N + 1));
-        g.codes.noalias() += A * d;
+        dense::multiply(g.codes, A, dense::Plain, d, dense::Plain, dense::Add);
         Eigen::Map<Matrix, 0, Eigen::OuterStride<>> dA(basisGradient.col(l).data(), N, C, Eigen::OuterStride<>(N + 1));
-        dA.noalias() = pass.codes * d.transpose();
+        dense::multiply(dA, pass.codes, dense::Plain, d, dense::Transposed);
         for (Eigen::Index c = 0; c < C; ++c) basisGradient(c * (N + 1) + N, l) = d.row(c).sum();
     }
     g.light = light.backward(pass.light, basisGradient, false);
